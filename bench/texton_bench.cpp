@@ -1,0 +1,159 @@
+// Texton noise costs (DESIGN.md section 10): analysis time for 128², 256² and 512² exemplars, and
+// evaluation cost per sample for several texton supports, through `render` at 1 and 2 threads and
+// through the batch `evaluate` with point and filtered (scale 8) footprints.
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/image_io.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace {
+
+using namespace stochtex;
+
+constexpr int kRenderSide = 256;
+constexpr std::int64_t kRenderSamples = std::int64_t{kRenderSide} * kRenderSide;
+constexpr std::uint32_t kSeed = 7;
+
+// A 512² colour exemplar: analysis sizes crop it, so every size sees the same kind of texture.
+const ImageF& colour_exemplar() {
+  static const ImageF image =
+      read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/moss_ground_512.png");
+  return image;
+}
+
+ImageF crop_top_left(const ImageF& image, int side) {
+  ImageF result(side, side, image.channels());
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      for (int c = 0; c < image.channels(); ++c) result.at(x, y, c) = image.at(x, y, c);
+  return result;
+}
+
+// Analysing the 512² exemplar takes about half a second, so each model is built once and shared by
+// every evaluation benchmark that uses it.
+const Model& texton_model(int support) {
+  static std::map<int, Model> cache;
+  auto found = cache.find(support);
+  if (found == cache.end()) {
+    const Model model = analyze("texton", colour_exemplar().view(), {{"support", support}}, 0,
+                                "moss_ground_512.png");
+    found = cache.emplace(support, model).first;
+  }
+  return found->second;
+}
+
+// Runs `body` once per benchmark iteration and reports items_per_second (samples) and
+// ns_per_sample. Both use wall-clock time, like the benchmarks' UseRealTime(): a render's work is
+// done by its worker threads, which the calling thread's CPU time does not see.
+template <typename Body>
+void time_samples(benchmark::State& state, std::int64_t samples_per_iteration, Body&& body) {
+  const auto start = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    body();
+    benchmark::ClobberMemory();
+  }
+  const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
+  const std::int64_t samples = state.iterations() * samples_per_iteration;
+  state.SetItemsProcessed(samples);
+  if (samples > 0) state.counters["ns_per_sample"] = elapsed.count() / static_cast<double>(samples);
+}
+
+void BM_TextonAnalysis(benchmark::State& state) {
+  const int side = static_cast<int>(state.range(0));
+  ImageF exemplar;
+  try {
+    exemplar = crop_top_left(colour_exemplar(), side);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  for (auto _ : state) {
+    Model model = analyze("texton", exemplar.view(), {}, 0);
+    benchmark::DoNotOptimize(model);
+  }
+}
+BENCHMARK(BM_TextonAnalysis)
+    ->ArgName("side")
+    ->Arg(128)
+    ->Arg(256)
+    ->Arg(512)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// A 256x256 render at scale 1.
+void BM_TextonRender(benchmark::State& state) {
+  const Model* model = nullptr;
+  try {
+    model = &texton_model(static_cast<int>(state.range(0)));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  RenderOptions options;
+  options.threads = static_cast<int>(state.range(1));
+  const Grid grid{{0.0, 0.0}, 1.0, kRenderSide, kRenderSide};
+  ImageF out(kRenderSide, kRenderSide, model->channels());
+  time_samples(state, kRenderSamples, [&] { render(*model, grid, kSeed, out.view(), options); });
+}
+BENCHMARK(BM_TextonRender)
+    ->ArgNames({"support", "threads"})
+    ->ArgsProduct({{32, 64, 128, 256}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// The batch API on one thread, with the positions of a 256x256 grid at `scale`: scale 1 without
+// footprints (point samples), scale 8 with the footprints of the grid (prefiltered textons).
+void evaluate_batch(benchmark::State& state, double scale, bool filtered) {
+  const Model* model = nullptr;
+  try {
+    model = &texton_model(static_cast<int>(state.range(0)));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  std::vector<Vec2d> positions;
+  positions.reserve(static_cast<std::size_t>(kRenderSamples));
+  for (int j = 0; j < kRenderSide; ++j)
+    for (int i = 0; i < kRenderSide; ++i)
+      positions.push_back({scale * (i + 0.5), scale * (j + 0.5)});
+  std::vector<Footprint> footprints;
+  if (filtered) footprints.assign(positions.size(), Footprint{{scale, 0.0}, {0.0, scale}});
+  ImageF out(1, kRenderSide * kRenderSide, model->channels());
+  time_samples(state, kRenderSamples,
+               [&] { evaluate(*model, positions, footprints, kSeed, out.view()); });
+}
+
+void BM_TextonEvaluatePoint(benchmark::State& state) {
+  evaluate_batch(state, 1.0, false);
+}
+BENCHMARK(BM_TextonEvaluatePoint)
+    ->ArgName("support")
+    ->Arg(32)
+    ->Arg(64)
+    ->Arg(128)
+    ->Arg(256)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+void BM_TextonEvaluateFiltered8(benchmark::State& state) {
+  evaluate_batch(state, 8.0, true);
+}
+BENCHMARK(BM_TextonEvaluateFiltered8)
+    ->ArgName("support")
+    ->Arg(32)
+    ->Arg(64)
+    ->Arg(128)
+    ->Arg(256)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -1,0 +1,75 @@
+#pragma once
+// Models: what analysis builds and evaluation reads. A `Model` is immutable plain data behind a
+// shared pointer (cheap to copy, safe to share between threads); its method-specific content is a
+// closed variant dispatched once per batch, never per sample.
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace stochtex {
+
+struct Vec2d {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+// The area a sample covers in model space (unit = one exemplar pixel): the derivatives of the
+// sample position along the output's x and y axes. Zero means a point sample (no filtering).
+struct Footprint {
+  Vec2d dpdx;
+  Vec2d dpdy;
+};
+
+// One parameter of a method, described once: this record feeds the CLI, the model file and docs.
+struct ParamInfo {
+  std::string_view name;
+  double default_value;
+  double min_value;
+  double max_value;
+  bool integer;
+  std::string_view help;
+  std::span<const double> allowed = {};  // when not empty, the only accepted values
+};
+
+using ParamValues = std::map<std::string, double, std::less<>>;
+
+struct MethodInfo {
+  std::string_view name;
+  std::string_view summary;
+  std::span<const ParamInfo> params;
+};
+
+struct ModelData;  // the closed variant of method models (src/model_data.hpp)
+
+class Model {
+ public:
+  Model() = default;
+  explicit Model(std::shared_ptr<const ModelData> data) : data_(std::move(data)) {}
+
+  bool empty() const { return data_ == nullptr; }
+  std::string_view method() const;
+  int channels() const;
+  const ParamValues& params() const;
+  const ModelData& data() const { return *data_; }
+
+ private:
+  std::shared_ptr<const ModelData> data_;
+};
+
+// Model files (.stx, DESIGN.md section 7). Loading validates everything before allocating and
+// throws stochtex::Error with a message naming the file and the problem.
+void save_model(const Model& model, const std::filesystem::path& path);
+Model load_model(const std::filesystem::path& path);
+std::vector<std::uint8_t> serialize_model(const Model& model);
+Model deserialize_model(std::span<const std::uint8_t> bytes, const std::string& source_name);
+
+// A JSON description of a model: method, parameters, array sizes (`stochtex info`).
+std::string describe_model(const Model& model);
+
+}  // namespace stochtex

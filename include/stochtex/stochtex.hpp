@@ -1,0 +1,52 @@
+#pragma once
+// stochtex: procedural texture synthesis by example.
+//
+// Conventions, obeyed by every function:
+//  - Model space: one unit = one exemplar pixel. Images are float32, interleaved, 1 to 4 channels.
+//  - Inputs are views, outputs are owned values. The seed is always an argument, never state.
+//  - Analysis and I/O throw stochtex::Error (bad data, files) or std::invalid_argument (bad
+//    parameters) with one sentence a user can act on; evaluation never throws and never allocates.
+//  - Results are bit-identical for the same inputs, whatever the thread count or tiling.
+//
+// Linking: stochtex::runtime gives model.hpp and render.hpp (load, evaluate, render);
+// stochtex::analysis adds the functions below (FFTW, Eigen).
+
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "stochtex/error.hpp"
+#include "stochtex/image.hpp"
+#include "stochtex/model.hpp"
+#include "stochtex/render.hpp"
+
+namespace stochtex {
+
+// The methods and their described parameters.
+std::span<const MethodInfo> methods();
+// Throws std::invalid_argument naming the known methods when `name` is not one.
+const MethodInfo& method_info(std::string_view name);
+
+// Completes `given` with defaults and checks every value (known name, number, integer, range,
+// allowed set); throws std::invalid_argument with one sentence naming the parameter.
+ParamValues resolve_params(std::string_view method, const ParamValues& given);
+// The same from text values (the CLI's -p key=value).
+ParamValues resolve_params(std::string_view method,
+                           const std::map<std::string, std::string, std::less<>>& given);
+
+// Checks an exemplar: at least 2x2 pixels, 1 to 4 channels, finite values, not constant. Throws
+// Error(invalid_input) with a sentence naming `source_name`.
+void validate_exemplar(ImageView<const float> exemplar, const std::string& source_name);
+
+// Builds a model of the exemplar with the named method. `params` may be partial (defaults fill it).
+Model analyze(std::string_view method, ImageView<const float> exemplar,
+              const ParamValues& params = {}, std::uint32_t seed = 0,
+              const std::string& source_name = "exemplar");
+
+// The Gaussian version of the exemplar (ADSN), at any size: the ideal Gaussian texture that
+// texton, lrp and gabor noise approximate.
+ImageF gaussian_version(ImageView<const float> exemplar, int width, int height, std::uint32_t seed);
+
+}  // namespace stochtex

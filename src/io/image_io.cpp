@@ -1,0 +1,619 @@
+#include "io/image_io.hpp"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <openexr.h>
+#include <png.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+#include "stochtex/error.hpp"
+
+namespace stochtex {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string quoted(const fs::path& path) {
+  return "'" + path.string() + "'";
+}
+
+std::string errno_message(int error) {
+  return std::generic_category().message(error);
+}
+
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+// Refuses a declared size before anything proportional to it is allocated (DESIGN.md section 8).
+void check_size(const fs::path& path, std::int64_t width, std::int64_t height,
+                const ImageReadLimits& limits) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (width <= 0 || height <= 0)
+    throw Error(ErrorCode::format,
+                quoted(path) + " declares a size of " + size + " pixels; the file is corrupt");
+  if (width > INT_MAX || height > INT_MAX || width > limits.max_pixels / height)
+    throw Error(ErrorCode::invalid_input,
+                quoted(path) + " is " + size + " pixels, more than the limit of " +
+                    std::to_string(limits.max_pixels) + " pixels; use a smaller image");
+}
+
+// ---------------------------------------------------------------------------------------------
+// PNG. libpng reports errors by longjmp, which would skip C++ destructors: every function that
+// calls setjmp below holds only trivially destructible locals, and the objects that own memory
+// live in its caller's frame, which the longjmp never leaves.
+
+struct PngErrorMessage {
+  char text[256] = {};
+};
+
+[[noreturn]] void on_png_error(png_structp png, png_const_charp message) {
+  auto* error = static_cast<PngErrorMessage*>(png_get_error_ptr(png));
+  std::snprintf(error->text, sizeof error->text, "%s", message);
+  png_longjmp(png, 1);
+}
+
+// Warnings (unknown colour profiles, ancillary chunks with bad checksums) do not affect the pixels.
+void on_png_warning(png_structp, png_const_charp) {}
+
+void read_png_bytes(png_structp png, png_bytep data, png_size_t length) {
+  auto* file = static_cast<std::FILE*>(png_get_io_ptr(png));
+  if (std::fread(data, 1, length, file) != length)
+    png_error(png, std::feof(file) ? "the file ends too early" : "read error");
+}
+
+void write_png_bytes(png_structp png, png_bytep data, png_size_t length) {
+  if (std::fwrite(data, 1, length, static_cast<std::FILE*>(png_get_io_ptr(png))) != length)
+    png_error(png, std::strerror(errno));
+}
+
+void flush_png(png_structp png) {
+  std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png)));
+}
+
+struct PngReader {
+  PngErrorMessage error;
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+
+  PngReader() {
+    png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &error, on_png_error, on_png_warning);
+    if (png) info = png_create_info_struct(png);
+    if (!png || !info) {
+      png_destroy_read_struct(&png, &info, nullptr);
+      throw std::bad_alloc();
+    }
+  }
+  ~PngReader() { png_destroy_read_struct(&png, &info, nullptr); }
+  PngReader(const PngReader&) = delete;
+  PngReader& operator=(const PngReader&) = delete;
+};
+
+struct PngLayout {
+  png_uint_32 width = 0;
+  png_uint_32 height = 0;
+  int channels = 0;
+  int bit_depth = 0;
+  png_size_t row_bytes = 0;
+};
+
+// Reads the chunks before the pixels and asks libpng for 8 or 16 bits per sample with palettes
+// and transparency keys expanded, so 1 to 4 channels remain.
+bool read_png_layout(PngReader& reader, std::FILE* file, PngLayout& layout) {
+  if (setjmp(png_jmpbuf(reader.png))) return false;
+  png_set_read_fn(reader.png, file, read_png_bytes);
+  png_read_info(reader.png, reader.info);
+  const int color_type = png_get_color_type(reader.png, reader.info);
+  if (color_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(reader.png);
+  if (color_type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(reader.png, reader.info) < 8)
+    png_set_expand_gray_1_2_4_to_8(reader.png);
+  if (png_get_valid(reader.png, reader.info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(reader.png);
+  png_set_interlace_handling(reader.png);
+  png_read_update_info(reader.png, reader.info);
+  layout.width = png_get_image_width(reader.png, reader.info);
+  layout.height = png_get_image_height(reader.png, reader.info);
+  layout.channels = png_get_channels(reader.png, reader.info);
+  layout.bit_depth = png_get_bit_depth(reader.png, reader.info);
+  layout.row_bytes = png_get_rowbytes(reader.png, reader.info);
+  return true;
+}
+
+// Reading up to the end chunk also checks the checksums after the pixels, so a truncated file is
+// reported rather than silently accepted.
+bool read_png_pixels(PngReader& reader, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(reader.png))) return false;
+  png_read_image(reader.png, rows);
+  png_read_end(reader.png, nullptr);
+  return true;
+}
+
+[[noreturn]] void throw_png_read_error(const fs::path& path, const PngReader& reader) {
+  throw Error(ErrorCode::format, quoted(path) + " is not a readable PNG image (" +
+                                     reader.error.text +
+                                     "); it is truncated or corrupt, export it again");
+}
+
+ImageF read_png(const fs::path& path, std::FILE* file, const ImageReadLimits& limits) {
+  PngReader reader;
+  PngLayout layout;
+  if (!read_png_layout(reader, file, layout)) throw_png_read_error(path, reader);
+  check_size(path, layout.width, layout.height, limits);
+  const bool sixteen_bit = layout.bit_depth == 16;
+  if (layout.channels < 1 || layout.channels > 4 || (layout.bit_depth != 8 && !sixteen_bit) ||
+      layout.row_bytes != std::size_t{layout.width} * layout.channels * (sixteen_bit ? 2 : 1))
+    throw Error(ErrorCode::format, quoted(path) + " has an unsupported PNG pixel layout (" +
+                                       std::to_string(layout.channels) + " channels of " +
+                                       std::to_string(layout.bit_depth) +
+                                       " bits); convert it to 8- or 16-bit grey or RGB(A)");
+
+  std::vector<png_byte> bytes(layout.row_bytes * layout.height);
+  std::vector<png_bytep> rows(layout.height);
+  for (png_uint_32 y = 0; y < layout.height; ++y) rows[y] = bytes.data() + y * layout.row_bytes;
+  if (!read_png_pixels(reader, rows.data())) throw_png_read_error(path, reader);
+
+  ImageF image(static_cast<int>(layout.width), static_cast<int>(layout.height), layout.channels);
+  std::span<float> pixels = image.pixels();
+  if (sixteen_bit) {
+    // PNG stores 16-bit samples big-endian.
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+      pixels[i] = static_cast<float>((bytes[2 * i] << 8) | bytes[2 * i + 1]) / 65535.0f;
+  } else {
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+      pixels[i] = static_cast<float>(bytes[i]) / 255.0f;
+  }
+  return image;
+}
+
+struct PngWriter {
+  PngErrorMessage error;
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+
+  PngWriter() {
+    png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, on_png_error, on_png_warning);
+    if (png) info = png_create_info_struct(png);
+    if (!png || !info) {
+      png_destroy_write_struct(&png, &info);
+      throw std::bad_alloc();
+    }
+  }
+  ~PngWriter() { png_destroy_write_struct(&png, &info); }
+  PngWriter(const PngWriter&) = delete;
+  PngWriter& operator=(const PngWriter&) = delete;
+};
+
+bool write_png_rows(PngWriter& writer, std::FILE* file, png_uint_32 width, png_uint_32 height,
+                    int color_type, int bit_depth, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(writer.png))) return false;
+  png_set_write_fn(writer.png, file, write_png_bytes, flush_png);
+  png_set_IHDR(writer.png, writer.info, width, height, bit_depth, color_type, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(writer.png, writer.info);
+  png_write_image(writer.png, rows);
+  png_write_end(writer.png, nullptr);
+  return true;
+}
+
+// NaN and values below 0 become 0, values above 1 become the maximum.
+unsigned quantize(float value, unsigned maximum) {
+  if (!(value > 0.0f)) return 0;
+  if (value >= 1.0f) return maximum;
+  return static_cast<unsigned>(std::lround(value * static_cast<float>(maximum)));
+}
+
+void write_png(std::FILE* file, ImageView<const float> image, int bit_depth) {
+  constexpr std::array<int, 4> color_types = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
+                                              PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGBA};
+  const std::size_t bytes_per_sample = bit_depth == 16 ? 2 : 1;
+  const std::size_t row_bytes =
+      static_cast<std::size_t>(image.width) * image.channels * bytes_per_sample;
+  std::vector<png_byte> bytes(row_bytes * image.height);
+  std::vector<png_bytep> rows(image.height);
+  for (int y = 0; y < image.height; ++y) {
+    png_bytep row = bytes.data() + y * row_bytes;
+    rows[y] = row;
+    const float* values = image.row(y);
+    for (std::size_t i = 0; i < static_cast<std::size_t>(image.width) * image.channels; ++i) {
+      if (bit_depth == 16) {
+        const unsigned sample = quantize(values[i], 65535);
+        row[2 * i] = static_cast<png_byte>(sample >> 8);
+        row[2 * i + 1] = static_cast<png_byte>(sample & 0xff);
+      } else {
+        row[i] = static_cast<png_byte>(quantize(values[i], 255));
+      }
+    }
+  }
+  PngWriter writer;
+  if (!write_png_rows(writer, file, static_cast<png_uint_32>(image.width),
+                      static_cast<png_uint_32>(image.height), color_types[image.channels - 1],
+                      bit_depth, rows.data()))
+    throw std::runtime_error(writer.error.text);
+}
+
+// ---------------------------------------------------------------------------------------------
+// OpenEXR.
+
+struct ExrErrorMessage {
+  char text[256] = {};
+};
+
+void on_exr_error(exr_const_context_t context, exr_result_t, const char* message) {
+  void* user_data = nullptr;
+  if (exr_get_user_data(context, &user_data) == EXR_ERR_SUCCESS && user_data)
+    std::snprintf(static_cast<ExrErrorMessage*>(user_data)->text, sizeof(ExrErrorMessage::text),
+                  "%s", message);
+}
+
+[[noreturn]] void throw_exr_read_error(const fs::path& path, const std::string& problem) {
+  throw Error(ErrorCode::format, quoted(path) + " is not a readable OpenEXR image (" + problem +
+                                     "); it is truncated or corrupt, export it again");
+}
+
+// The OpenEXR C++ reader allocates tables sized by the declared data windows as it opens a file,
+// so the sizes are checked first with the C core library, which parses only the headers.
+void check_exr_sizes(const fs::path& path, const ImageReadLimits& limits) {
+  ExrErrorMessage error;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.error_handler_fn = on_exr_error;
+  init.user_data = &error;
+  exr_context_t context = nullptr;
+  const exr_result_t started = exr_start_read(&context, path.c_str(), &init);
+  const std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> finish(
+      &context, [](exr_context_t* opened) { exr_finish(opened); });
+  if (started != EXR_ERR_SUCCESS)
+    throw_exr_read_error(path, error.text[0] ? error.text : exr_get_default_error_message(started));
+  int parts = 0;
+  if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS || parts < 1)
+    throw_exr_read_error(path, "no image part");
+  for (int part = 0; part < parts; ++part) {
+    exr_attr_box2i_t window{};
+    if (exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS)
+      throw_exr_read_error(path, "no data window");
+    check_size(path, std::int64_t{window.max.x} - window.min.x + 1,
+               std::int64_t{window.max.y} - window.min.y + 1, limits);
+  }
+}
+
+// Y, (Y, A), (R, G, B) or (R, G, B, A), in that order.
+std::vector<const char*> exr_channel_names(const fs::path& path, const Imf::ChannelList& list) {
+  std::vector<const char*> names;
+  if (list.findChannel("R") && list.findChannel("G") && list.findChannel("B")) {
+    names = {"R", "G", "B"};
+  } else if (list.findChannel("Y")) {
+    if (list.findChannel("RY") || list.findChannel("BY"))
+      throw Error(ErrorCode::format, quoted(path) +
+                                         " stores colour as luminance and chroma (Y, RY, BY), "
+                                         "which is not supported; save it as R, G, B");
+    names = {"Y"};
+  } else {
+    std::string found;
+    for (auto channel = list.begin(); channel != list.end(); ++channel)
+      found += (found.empty() ? "" : ", ") + std::string(channel.name());
+    throw Error(ErrorCode::format, quoted(path) + " has no Y or R, G, B channels (it has: " +
+                                       (found.empty() ? "none" : found) +
+                                       "); save the image with R, G, B or Y channels");
+  }
+  if (list.findChannel("A")) names.push_back("A");
+  for (const char* name : names) {
+    const Imf::Channel& channel = *list.findChannel(name);
+    if (channel.xSampling != 1 || channel.ySampling != 1)
+      throw Error(ErrorCode::format, quoted(path) + " has a subsampled " + name +
+                                         " channel, which is not supported; save it at full "
+                                         "resolution");
+  }
+  return names;
+}
+
+ImageF read_exr(const fs::path& path, const ImageReadLimits& limits) {
+  check_exr_sizes(path, limits);
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1;
+    const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
+    check_size(path, width, height, limits);
+    const std::vector<const char*> names = exr_channel_names(path, file.header().channels());
+    const int channels = static_cast<int>(names.size());
+    ImageF image(static_cast<int>(width), static_cast<int>(height), channels);
+    Imf::FrameBuffer frame_buffer;
+    const std::size_t pixel_stride = sizeof(float) * channels;
+    for (int c = 0; c < channels; ++c)
+      frame_buffer.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.pixels().data() + c, window,
+                                                     pixel_stride, pixel_stride * width));
+    file.setFrameBuffer(frame_buffer);
+    file.readPixels(window.min.y, window.max.y);
+    return image;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw_exr_read_error(path, e.what());
+  }
+}
+
+// Lets OpenEXR write into the temporary file opened (and checked) by write_image.
+class ExrFileStream final : public Imf::OStream {
+ public:
+  ExrFileStream(std::FILE* file, const char* name) : Imf::OStream(name), file_(file) {}
+  void write(const char data[], int count) override {
+    if (std::fwrite(data, 1, static_cast<std::size_t>(count), file_) !=
+        static_cast<std::size_t>(count))
+      throw std::system_error(errno, std::generic_category());
+  }
+  std::uint64_t tellp() override {
+    const off_t position = ftello(file_);
+    if (position < 0) throw std::system_error(errno, std::generic_category());
+    return static_cast<std::uint64_t>(position);
+  }
+  void seekp(std::uint64_t position) override {
+    if (fseeko(file_, static_cast<off_t>(position), SEEK_SET) != 0)
+      throw std::system_error(errno, std::generic_category());
+  }
+
+ private:
+  std::FILE* file_;
+};
+
+void write_exr(std::FILE* file, const fs::path& temporary, ImageView<const float> image) {
+  constexpr std::array<std::array<const char*, 4>, 4> channel_names = {{
+      {"Y"},
+      {"Y", "A"},
+      {"R", "G", "B"},
+      {"R", "G", "B", "A"},
+  }};
+  const auto& names = channel_names[image.channels - 1];
+  Imf::Header header(image.width, image.height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  Imf::FrameBuffer frame_buffer;
+  const Imath::Box2i window = header.dataWindow();
+  for (int c = 0; c < image.channels; ++c) {
+    header.channels().insert(names[c], Imf::Channel(Imf::FLOAT));
+    frame_buffer.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.data + c, window,
+                                                   sizeof(float) * image.channels,
+                                                   sizeof(float) * image.row_stride));
+  }
+  ExrFileStream stream(file, temporary.c_str());
+  Imf::OutputFile output(stream, header);
+  output.setFrameBuffer(frame_buffer);
+  output.writePixels(image.height);
+}
+
+// ---------------------------------------------------------------------------------------------
+// PFM: "PF" (RGB) or "Pf" (grey), width, height and a scale whose sign gives the byte order
+// (negative: little-endian), each followed by one whitespace character; then float32 rows from
+// the bottom of the image to the top.
+
+bool is_pfm_space(int character) {
+  return character == ' ' || character == '\t' || character == '\n' || character == '\r';
+}
+
+// The next header field: leading whitespace skipped, then at most 32 characters up to and
+// including the single whitespace that ends it.
+bool read_pfm_field(std::FILE* file, std::string& field) {
+  field.clear();
+  int character = std::fgetc(file);
+  while (is_pfm_space(character)) character = std::fgetc(file);
+  while (character != EOF && !is_pfm_space(character)) {
+    if (field.size() == 32) return false;
+    field.push_back(static_cast<char>(character));
+    character = std::fgetc(file);
+  }
+  return !field.empty() && character != EOF;
+}
+
+template <typename T>
+bool parse_number(const std::string& text, T& value) {
+  const char* end = text.data() + text.size();
+  const auto [stop, error] = std::from_chars(text.data(), end, value);
+  return error == std::errc{} && stop == end;
+}
+
+ImageF read_pfm(const fs::path& path, std::FILE* file, const ImageReadLimits& limits) {
+  const auto corrupt = [&](const std::string& problem) {
+    return Error(ErrorCode::format, quoted(path) + " is not a readable PFM image (" + problem +
+                                        "); it is truncated or corrupt, export it again");
+  };
+  std::string magic, width_text, height_text, scale_text;
+  if (!read_pfm_field(file, magic) || !read_pfm_field(file, width_text) ||
+      !read_pfm_field(file, height_text) || !read_pfm_field(file, scale_text))
+    throw corrupt("incomplete or invalid header");
+  if (magic != "PF" && magic != "Pf") throw corrupt("unknown type '" + magic + "'");
+  std::int64_t width = 0;
+  std::int64_t height = 0;
+  if (!parse_number(width_text, width) || !parse_number(height_text, height))
+    throw corrupt("invalid size '" + width_text + " " + height_text + "'");
+  float scale = 0.0f;
+  if (!parse_number(scale_text, scale) || !std::isfinite(scale) || scale == 0.0f)
+    throw corrupt("invalid scale '" + scale_text + "'");
+  check_size(path, width, height, limits);
+
+  const int channels = magic == "PF" ? 3 : 1;
+  const std::size_t row_bytes = static_cast<std::size_t>(width) * channels * sizeof(float);
+  const std::size_t pixel_bytes = row_bytes * static_cast<std::size_t>(height);
+  const off_t header_bytes = ftello(file);
+  std::error_code size_error;
+  const std::uintmax_t file_bytes = fs::file_size(path, size_error);
+  if (header_bytes < 0 || size_error)
+    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + size_error.message());
+  if (file_bytes - static_cast<std::uintmax_t>(header_bytes) < pixel_bytes)
+    throw corrupt("the file ends too early: " + std::to_string(width) + "x" +
+                  std::to_string(height) + " pixels need " + std::to_string(pixel_bytes) +
+                  " bytes after the header");
+
+  const bool little_endian = scale < 0.0f;
+  ImageF image(static_cast<int>(width), static_cast<int>(height), channels);
+  std::vector<unsigned char> bytes(row_bytes);
+  for (int y = image.height() - 1; y >= 0; --y) {
+    if (std::fread(bytes.data(), 1, row_bytes, file) != row_bytes)
+      throw corrupt("the file ends too early");
+    float* row = image.view().row(y);
+    for (std::size_t i = 0; i < row_bytes / 4; ++i) {
+      const unsigned char* b = bytes.data() + 4 * i;
+      const std::uint32_t word = little_endian
+                                     ? std::uint32_t{b[0]} | std::uint32_t{b[1]} << 8 |
+                                           std::uint32_t{b[2]} << 16 | std::uint32_t{b[3]} << 24
+                                     : std::uint32_t{b[3]} | std::uint32_t{b[2]} << 8 |
+                                           std::uint32_t{b[1]} << 16 | std::uint32_t{b[0]} << 24;
+      row[i] = std::bit_cast<float>(word);
+    }
+  }
+  return image;
+}
+
+void write_pfm(std::FILE* file, ImageView<const float> image) {
+  const std::string header = std::string(image.channels == 3 ? "PF" : "Pf") + "\n" +
+                             std::to_string(image.width) + " " + std::to_string(image.height) +
+                             "\n-1.0\n";
+  const std::size_t row_values = static_cast<std::size_t>(image.width) * image.channels;
+  std::vector<unsigned char> bytes(row_values * 4);
+  bool written = std::fwrite(header.data(), 1, header.size(), file) == header.size();
+  for (int y = image.height - 1; y >= 0 && written; --y) {
+    const float* row = image.row(y);
+    for (std::size_t i = 0; i < row_values; ++i) {
+      const auto word = std::bit_cast<std::uint32_t>(row[i]);
+      for (int b = 0; b < 4; ++b) bytes[4 * i + b] = static_cast<unsigned char>(word >> (8 * b));
+    }
+    written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+  }
+  if (!written) throw std::system_error(errno, std::generic_category());
+}
+
+// ---------------------------------------------------------------------------------------------
+
+enum class Format { png, exr, pfm };
+
+Format output_format(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".png") return Format::png;
+  if (extension == ".exr") return Format::exr;
+  if (extension == ".pfm") return Format::pfm;
+  throw std::invalid_argument("cannot write " + quoted(path) + ": unsupported extension '" +
+                              extension + "'; use .png, .exr or .pfm");
+}
+
+File open_for_writing(const fs::path& path) {
+  File file(std::fopen(path.c_str(), "wb"));
+  if (file) return file;
+  const int error = errno;
+  const fs::path folder = path.parent_path();
+  std::error_code ignored;
+  if (error == ENOENT && !folder.empty() && !fs::is_directory(folder, ignored))
+    throw std::runtime_error("the folder " + quoted(folder) + " does not exist");
+  throw std::runtime_error(errno_message(error));
+}
+
+// fclose reports the errors of buffered writes still pending (a full disk, for example).
+void close_after_writing(File file) {
+  const bool written = std::fflush(file.get()) == 0 && !std::ferror(file.get());
+  const int write_error = errno;
+  const bool closed = std::fclose(file.release()) == 0;
+  if (!written) throw std::runtime_error(errno_message(write_error));
+  if (!closed) throw std::runtime_error(errno_message(errno));
+}
+
+}  // namespace
+
+ImageF read_image(const fs::path& path, const ImageReadLimits& limits) {
+  std::error_code status_error;
+  const fs::file_status status = fs::status(path, status_error);
+  if (status.type() == fs::file_type::not_found)
+    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": no such file");
+  if (status.type() == fs::file_type::directory)
+    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": it is a folder, not an image");
+  File file(std::fopen(path.c_str(), "rb"));
+  if (!file)
+    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+
+  std::array<unsigned char, 8> magic{};
+  const std::size_t magic_bytes = std::fread(magic.data(), 1, magic.size(), file.get());
+  if (std::ferror(file.get()))
+    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+  if (magic_bytes == 0)
+    throw Error(ErrorCode::format, quoted(path) + " is empty (0 bytes), not an image");
+  if (std::fseek(file.get(), 0, SEEK_SET) != 0)
+    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+
+  if (magic_bytes == magic.size() && png_sig_cmp(magic.data(), 0, magic.size()) == 0)
+    return read_png(path, file.get(), limits);
+  if (magic_bytes >= 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 &&
+      magic[3] == 0x01) {
+    file.reset();
+    return read_exr(path, limits);
+  }
+  if (magic_bytes >= 2 && magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f'))
+    return read_pfm(path, file.get(), limits);
+  throw Error(ErrorCode::format, quoted(path) +
+                                     " is not a PNG, OpenEXR or PFM image (its first bytes match "
+                                     "none of them); convert it to one of these formats");
+}
+
+void write_image(const fs::path& path, ImageView<const float> image, int png_bit_depth) {
+  if (!image.data || image.width < 1 || image.height < 1 || image.channels < 1 ||
+      image.channels > 4)
+    throw std::invalid_argument("cannot write " + quoted(path) + ": the image is " +
+                                std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                " pixels with " + std::to_string(image.channels) +
+                                " channels; it needs at least one pixel and 1 to 4 channels");
+  const Format format = output_format(path);
+  if (format == Format::png && png_bit_depth != 8 && png_bit_depth != 16)
+    throw std::invalid_argument("cannot write " + quoted(path) + ": PNG bit depth " +
+                                std::to_string(png_bit_depth) + " is not supported; use 8 or 16");
+  if (format == Format::pfm && image.channels != 1 && image.channels != 3)
+    throw Error(ErrorCode::invalid_input,
+                "cannot write " + quoted(path) + ": PFM holds 1 or 3 channels and the image has " +
+                    std::to_string(image.channels) + "; write .exr or .png instead");
+
+  fs::path temporary = path;
+  temporary += ".tmp";
+  try {
+    File file = open_for_writing(temporary);
+    switch (format) {
+      case Format::png:
+        write_png(file.get(), image, png_bit_depth);
+        break;
+      case Format::exr:
+        write_exr(file.get(), temporary, image);
+        break;
+      case Format::pfm:
+        write_pfm(file.get(), image);
+        break;
+    }
+    close_after_writing(std::move(file));
+    fs::rename(temporary, path);
+  } catch (const std::exception& e) {
+    std::error_code ignored;
+    fs::remove(temporary, ignored);
+    const auto* filesystem_error = dynamic_cast<const fs::filesystem_error*>(&e);
+    throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": " +
+                                   (filesystem_error ? filesystem_error->code().message()
+                                                     : std::string(e.what())));
+  }
+}
+
+}  // namespace stochtex

@@ -1,0 +1,255 @@
+#include "methods/texton/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "methods/texton/evaluate.hpp"
+#include "methods/texton/params.hpp"
+#include "stochtex/error.hpp"
+
+namespace stochtex::texton {
+namespace {
+
+// Cell size a = 0.6 r of the grid that simulates the Poisson process (section 8).
+constexpr double kCellSizeFactor = 0.6;
+// Most probes along the major axis of an anisotropic footprint, as GPU 8x anisotropic filtering.
+constexpr int kMaxProbes = 8;
+// A texel of level l reconstructs box(2^l) * tent(2^l) (a box-prefiltered level read with
+// bilinear interpolation), whose variance per axis is 4^l / 4; an ideal box filter of width w
+// has variance w^2 / 12. Equal variances give 2^l = w / sqrt(3): the level of detail is
+// log2(w) - log2(3) / 2, not log2(w), or the filtered noise is too blurred (measured in
+// docs/methods/texton.md).
+constexpr double kLodBias = 0.79248125036057809;  // log2(3) / 2
+
+// Level l+1 averages 2x2 texels of level l (zero beyond the border), so sum(alpha_l) * 4^l stays
+// sum(alpha): the filtered noise keeps the exemplar mean, and h_l approximates h convolved with a
+// box of width 2^l (section 5: filtering the noise = filtering the texton, by linearity).
+std::vector<PyramidLevel> build_pyramid(std::span<const float> coefficients, int support,
+                                        int channels, int order) {
+  std::vector<PyramidLevel> levels;
+  std::vector<float> current(coefficients.begin(), coefficients.end());
+  int size = support;
+  const float centre = 0.5f * static_cast<float>(support - 1);
+  for (int level = 0;; ++level) {
+    PyramidLevel out;
+    out.size = size;
+    out.stride = size + 2 * kPadding;
+    out.spacing = std::ldexp(1.0f, level);
+    out.first_texel = 0.5f * (out.spacing - 1.0f) - centre;
+    const float last_texel = out.first_texel + static_cast<float>(size - 1) * out.spacing;
+    out.half_width = std::max(std::abs(out.first_texel), std::abs(last_texel)) +
+                     0.5f * out.spacing * static_cast<float>(order + 1);
+    out.coefficients.assign(static_cast<std::size_t>(out.stride) * out.stride * channels, 0.0f);
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x)
+        for (int c = 0; c < channels; ++c)
+          out.coefficients[(static_cast<std::size_t>(y + kPadding) * out.stride + x + kPadding) *
+                               channels +
+                           c] = current[(static_cast<std::size_t>(y) * size + x) * channels + c];
+    levels.push_back(std::move(out));
+    if (size == 1) break;
+    const int next_size = (size + 1) / 2;
+    std::vector<float> next(static_cast<std::size_t>(next_size) * next_size * channels, 0.0f);
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x)
+        for (int c = 0; c < channels; ++c)
+          next[(static_cast<std::size_t>(y / 2) * next_size + x / 2) * channels + c] +=
+              0.25f * current[(static_cast<std::size_t>(y) * size + x) * channels + c];
+    current = std::move(next);
+    size = next_size;
+  }
+  return levels;
+}
+
+}  // namespace
+
+TextonModel::TextonModel(int channels, int support, int order, double mean_impacts,
+                         std::vector<float> coefficients, std::vector<float> mean)
+    : channels_(channels),
+      support_(support),
+      order_(order),
+      mean_impacts_(mean_impacts),
+      coefficients_(std::move(coefficients)),
+      mean_(std::move(mean)) {
+  if (channels_ < 1 || channels_ > 4)
+    throw std::invalid_argument("texton: channels must be 1 to 4");
+  if (support_ < 1) throw std::invalid_argument("texton: support must be positive");
+  if (std::find(kAllowedOrders.begin(), kAllowedOrders.end(), order_) == kAllowedOrders.end())
+    throw std::invalid_argument("texton: order must be 0, 1, 3 or 5");
+  if (!(mean_impacts_ > 0.0) || !std::isfinite(mean_impacts_))
+    throw std::invalid_argument("texton: mni must be a positive number");
+  if (coefficients_.size() != static_cast<std::size_t>(support_) * support_ * channels_ ||
+      mean_.size() != static_cast<std::size_t>(channels_))
+    throw std::invalid_argument("texton: coefficient or mean array has the wrong size");
+
+  pyramid_ = build_pyramid(coefficients_, support_, channels_, order_);
+  // h = sum alpha(k) psi(y - k) has a square support of side r = S + k (section 3.3: MNI =
+  // lambda r^2), so lambda = MNI / r^2.
+  const double side = 2.0 * pyramid_.front().half_width;
+  intensity_ = mean_impacts_ / (side * side);
+  cell_size_ = kCellSizeFactor * side;
+  cell_count_ = PoissonSampler(intensity_ * cell_size_ * cell_size_);
+  inverse_sqrt_intensity_ = static_cast<float>(1.0 / std::sqrt(intensity_));
+  // E f = lambda * integral(h) = lambda * sum(alpha) since psi integrates to 1 (Proposition 1).
+  constant_term_.resize(static_cast<std::size_t>(channels_));
+  for (int c = 0; c < channels_; ++c) {
+    double sum = 0.0;
+    for (std::size_t i = static_cast<std::size_t>(c); i < coefficients_.size();
+         i += static_cast<std::size_t>(channels_))
+      sum += coefficients_[i];
+    constant_term_[c] = static_cast<float>(mean_[c] - intensity_ * sum / std::sqrt(intensity_));
+  }
+}
+
+TextonModel TextonModel::from_record(const ModelRecord& record, const std::string& source) {
+  const auto read_int = [&](const char* name, double low, double high) {
+    const double value = record.scalar(name, source);
+    if (value != std::floor(value) || value < low || value > high)
+      throw Error(ErrorCode::format, "'" + source + "' has an invalid texton " + name +
+                                         " value; re-run `stochtex analyze`");
+    return static_cast<int>(value);
+  };
+  const int channels = read_int("channels", 1, 4);
+  const int support = read_int("support", 1, 4096);
+  const int order = read_int("order", 0, 5);
+  const double mean_impacts = record.scalar("mni", source);
+  const NamedArray& coefficients = record.array("texton", {support, support, channels}, source);
+  const NamedArray& mean = record.array("mean", {channels}, source);
+  const auto finite = [](const std::vector<float>& v) {
+    return std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); });
+  };
+  if (!finite(coefficients.values) || !finite(mean.values))
+    throw Error(ErrorCode::format,
+                "'" + source + "' holds non-finite texton values; re-run `stochtex analyze`");
+  try {
+    return TextonModel(channels, support, order, mean_impacts, coefficients.values, mean.values);
+  } catch (const std::invalid_argument& e) {
+    throw Error(ErrorCode::format, "'" + source + "' is not a valid texton model (" + e.what() +
+                                       "); re-run `stochtex analyze`");
+  }
+}
+
+ModelRecord TextonModel::to_record(const ParamValues& params) const {
+  ModelRecord record;
+  record.method = std::string(kMethodName);
+  record.params = params;
+  record.scalars = {
+      {"channels", channels_}, {"support", support_}, {"order", order_}, {"mni", mean_impacts_}};
+  record.arrays.push_back({"texton", {support_, support_, channels_}, coefficients_});
+  record.arrays.push_back({"mean", {channels_}, mean_});
+  return record;
+}
+
+void TextonModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                           std::uint32_t seed, ImageView<float> out) const noexcept {
+  switch (order_) {
+    case 0:
+      return evaluate_order<0>(positions, footprints, seed, out);
+    case 1:
+      return evaluate_order<1>(positions, footprints, seed, out);
+    case 3:
+      return evaluate_order<3>(positions, footprints, seed, out);
+    default:
+      return evaluate_order<5>(positions, footprints, seed, out);
+  }
+}
+
+template <int Order>
+void TextonModel::evaluate_order(std::span<const Vec2d> positions,
+                                 std::span<const Footprint> footprints, std::uint32_t seed,
+                                 ImageView<float> out) const noexcept {
+  const float cell_size = static_cast<float>(cell_size_);
+  const int top_level = static_cast<int>(pyramid_.size()) - 1;
+  for (std::size_t index = 0; index < positions.size(); ++index) {
+    const Vec2d p = positions[index];
+
+    // Filtering (section 5): pick the pyramid levels and probes from the footprint, as GPU
+    // trilinear + anisotropic filtering would. Point samples read level 0 only.
+    int level0 = 0;
+    float level_blend = 0.0f;
+    int probes = 1;
+    float probe_x = 0.0f;
+    float probe_y = 0.0f;
+    float fade = 1.0f;
+    if (!footprints.empty()) {
+      const Footprint& fp = footprints[index];
+      const double length_x = std::hypot(fp.dpdx.x, fp.dpdx.y);
+      const double length_y = std::hypot(fp.dpdy.x, fp.dpdy.y);
+      const double major = std::max(length_x, length_y);
+      const double minor = std::min(length_x, length_y);
+      if (major > 1.0) {
+        probes =
+            static_cast<int>(std::min<double>(kMaxProbes, std::ceil(major / std::max(minor, 1.0))));
+        const double width = std::max({major / probes, minor, 1.0});
+        double lod = std::max(0.0, std::log2(width) - kLodBias);
+        if (lod >= top_level) {
+          // Beyond the coarsest level the texton is a single blob: the filtered fluctuation
+          // decays like 1 / width (the variance of a box-filtered noise of finite correlation
+          // length falls as 1 / area), so it is faded towards the mean.
+          fade = static_cast<float>(std::exp2(top_level - lod));
+          lod = top_level;
+        }
+        level0 = std::min(static_cast<int>(lod), top_level);
+        level_blend = level0 == top_level ? 0.0f : static_cast<float>(lod - level0);
+        const Vec2d axis = length_x >= length_y ? fp.dpdx : fp.dpdy;
+        probe_x = static_cast<float>(axis.x / probes);
+        probe_y = static_cast<float>(axis.y / probes);
+      }
+    }
+    const PyramidLevel& fine = pyramid_[static_cast<std::size_t>(level0)];
+    const PyramidLevel& coarse =
+        pyramid_[static_cast<std::size_t>(std::min(level0 + 1, top_level))];
+    const float probe_extent =
+        0.5f * static_cast<float>(probes - 1) * std::max(std::abs(probe_x), std::abs(probe_y));
+    const float kernel_reach =
+        level_blend > 0.0f ? std::max(fine.half_width, coarse.half_width) : fine.half_width;
+    const double reach = static_cast<double>(kernel_reach + probe_extent);
+    const float probe_weight = 1.0f / static_cast<float>(probes);
+
+    float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    // The Poisson process is simulated on the grid cells that meet p + [-reach, reach]^2. Cell
+    // indices are 64-bit integers and offsets are taken relative to the cell corner in double
+    // before going to float, so p = 1e7 is as precise as p = 0 (DESIGN.md section 4).
+    const auto first_cell_x = static_cast<std::int64_t>(std::floor((p.x - reach) / cell_size_));
+    const auto last_cell_x = static_cast<std::int64_t>(std::floor((p.x + reach) / cell_size_));
+    const auto first_cell_y = static_cast<std::int64_t>(std::floor((p.y - reach) / cell_size_));
+    const auto last_cell_y = static_cast<std::int64_t>(std::floor((p.y + reach) / cell_size_));
+    for (std::int64_t cell_y = first_cell_y; cell_y <= last_cell_y; ++cell_y) {
+      const float offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * cell_size_);
+      for (std::int64_t cell_x = first_cell_x; cell_x <= last_cell_x; ++cell_x) {
+        const float offset_x = static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size_);
+        CounterRng rng(cell_key(cell_x, cell_y, seed, Stream::points));
+        const std::uint32_t impacts = cell_count_(rng);
+        for (std::uint32_t i = 0; i < impacts; ++i) {
+          const float u = rng.uniform();
+          const float v = rng.uniform();
+          const float dx = offset_x - u * cell_size;
+          const float dy = offset_y - v * cell_size;
+          if (probes == 1 && level_blend == 0.0f) {
+            accumulate_texton<Order>(fine, channels_, dx, dy, 1.0f, acc);
+            continue;
+          }
+          for (int k = 0; k < probes; ++k) {
+            const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(probes);
+            const float px = dx + shift * probe_x;
+            const float py = dy + shift * probe_y;
+            accumulate_texton<Order>(fine, channels_, px, py, probe_weight * (1.0f - level_blend),
+                                     acc);
+            if (level_blend > 0.0f)
+              accumulate_texton<Order>(coarse, channels_, px, py, probe_weight * level_blend, acc);
+          }
+        }
+      }
+    }
+    const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
+    const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
+    for (int c = 0; c < channels_; ++c) {
+      // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2); `fade` scales the fluctuation only.
+      const float noise = acc[c] * inverse_sqrt_intensity_ + constant_term_[c] - mean_[c];
+      out.at(x, y, c) = mean_[c] + fade * noise;
+    }
+  }
+}
+
+}  // namespace stochtex::texton

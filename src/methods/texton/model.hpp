@@ -1,0 +1,77 @@
+#pragma once
+// Texton noise model: the texton interpolation coefficients alpha (eq. 3), their prefiltered
+// pyramid (section 5), the exemplar mean and the shot-noise constants (sections 3.3, 8).
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/poisson.hpp"
+#include "model/model_record.hpp"
+#include "stochtex/image.hpp"
+#include "stochtex/model.hpp"
+
+namespace stochtex::texton {
+
+// Texels of zero around each pyramid level: order k reads up to k + 1 texels outside a level near
+// the support border (k <= 5); with 8 the evaluator never tests bounds, even after float rounding.
+inline constexpr int kPadding = 8;
+
+struct PyramidLevel {
+  int size = 0;           // texels per side
+  int stride = 0;         // size + 2 * kPadding, texels per padded row
+  float spacing = 1.0f;   // 2^level: distance between texels in exemplar pixels
+  float first_texel = 0;  // position of texel 0 relative to the texton centre, exemplar pixels
+  float half_width = 0;   // the kernel h_level vanishes where |y|_inf >= half_width
+  std::vector<float> coefficients;  // padded, (stride x stride x channels)
+};
+
+class TextonModel {
+ public:
+  static constexpr std::string_view kMethodName = "texton";
+
+  // `coefficients` is support x support x channels, row-major (the output of Algorithm 1 after the
+  // colour covariance correction); `mean` has `channels` values.
+  TextonModel(int channels, int support, int order, double mean_impacts,
+              std::vector<float> coefficients, std::vector<float> mean);
+
+  static TextonModel from_record(const ModelRecord& record, const std::string& source);
+  ModelRecord to_record(const ParamValues& params) const;
+
+  int channels() const { return channels_; }
+  int support() const { return support_; }
+  int order() const { return order_; }
+  double mean_impacts() const { return mean_impacts_; }
+  std::span<const float> coefficients() const { return coefficients_; }
+  std::span<const float> mean() const { return mean_; }
+  const std::vector<PyramidLevel>& pyramid() const { return pyramid_; }
+  double intensity() const { return intensity_; }
+
+  // Normalised texton noise (f - lambda sum(alpha)) / sqrt(lambda) + mean (eq. 2) at each
+  // position, filtered by the footprint when it is wider than a texel. noexcept, no allocation.
+  void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                std::uint32_t seed, ImageView<float> out) const noexcept;
+
+ private:
+  template <int Order>
+  void evaluate_order(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                      std::uint32_t seed, ImageView<float> out) const noexcept;
+
+  int channels_;
+  int support_;
+  int order_;
+  double mean_impacts_;
+  std::vector<float> coefficients_;
+  std::vector<float> mean_;
+
+  // Derived at construction.
+  std::vector<PyramidLevel> pyramid_;
+  double intensity_ = 0;  // lambda = MNI / r^2, r the side of h's support (section 3.3)
+  double cell_size_ = 0;  // a = 0.6 r (section 8)
+  PoissonSampler cell_count_;
+  float inverse_sqrt_intensity_ = 0;
+  std::vector<float> constant_term_;  // mean - lambda sum(alpha) / sqrt(lambda), per channel
+};
+
+}  // namespace stochtex::texton

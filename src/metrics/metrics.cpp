@@ -1,0 +1,300 @@
+#include "metrics/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstddef>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "spectral/adsn.hpp"
+#include "spectral/fft.hpp"
+
+namespace stochtex {
+namespace {
+
+void require_pixels(ImageView<const float> image, const char* function) {
+  if (image.width < 1 || image.height < 1 || image.channels < 1 || image.data == nullptr)
+    throw std::invalid_argument(std::string(function) + ": the image is empty");
+}
+
+void require_same_channels(ImageView<const float> a, ImageView<const float> b,
+                           const char* function) {
+  if (a.channels != b.channels)
+    throw std::invalid_argument(std::string(function) + ": the images have " +
+                                std::to_string(a.channels) + " and " + std::to_string(b.channels) +
+                                " channels");
+}
+
+// numerator / denominator with the convention of metrics.hpp for a zero reference.
+double relative(double numerator, double denominator) {
+  if (denominator > 0.0) return numerator / denominator;
+  return numerator > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
+}
+
+// Crop origins 0, crop / 2, crop, ... that fit in `size` (50% overlap, Welch 1967); crop >= 2.
+std::vector<int> crop_origins(int size, int crop) {
+  std::vector<int> origins;
+  for (int origin = 0; origin + crop <= size; origin += crop / 2) origins.push_back(origin);
+  return origins;
+}
+
+// The periodic Hann window sin^2(pi n / size): its copies shifted by size / 2 sum to a constant,
+// so 50%-overlapping crops weight every interior pixel equally, and its DFT has only three
+// non-zero bins, so the bias of removing the crop mean stays on the lowest frequencies.
+std::vector<double> hann_window(int size) {
+  std::vector<double> window(static_cast<std::size_t>(size));
+  for (int n = 0; n < size; ++n) {
+    const double s = std::sin(std::numbers::pi * n / size);
+    window[static_cast<std::size_t>(n)] = s * s;
+  }
+  return window;
+}
+
+// A standard normal value by Box-Muller on two raw mt19937 draws (std::normal_distribution is not
+// specified exactly, so its values differ between standard libraries). Each draw is its own
+// statement so that the order of the draws does not depend on argument evaluation order.
+double standard_normal(std::mt19937& rng) {
+  constexpr double two_to_32 = 4294967296.0;
+  const double u1 = (static_cast<double>(rng()) + 0.5) / two_to_32;
+  const double u2 = (static_cast<double>(rng()) + 0.5) / two_to_32;
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
+// `count` unit vectors of R^channels, uniform on the sphere, the same on every call.
+std::vector<std::vector<double>> projection_directions(int channels, int count) {
+  if (channels == 1) return {{1.0}};
+  constexpr std::uint32_t direction_seed = 0x5EED5EEDu;
+  std::mt19937 rng(direction_seed);
+  std::vector<std::vector<double>> directions(static_cast<std::size_t>(count));
+  for (auto& direction : directions) {
+    direction.resize(static_cast<std::size_t>(channels));
+    double norm_squared = 0.0;
+    for (double& component : direction) {
+      component = standard_normal(rng);
+      norm_squared += component * component;
+    }
+    const double norm = std::sqrt(norm_squared);
+    for (double& component : direction) component /= norm;
+  }
+  return directions;
+}
+
+// The pixels of `image` projected on `direction`, sorted: the empirical quantile function.
+std::vector<double> sorted_projection(ImageView<const float> image,
+                                      const std::vector<double>& direction) {
+  std::vector<double> values;
+  values.reserve(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
+  for (int y = 0; y < image.height; ++y) {
+    const float* row = image.row(y);
+    for (int x = 0; x < image.width; ++x) {
+      const float* pixel = row + static_cast<std::ptrdiff_t>(x) * image.channels;
+      double value = 0.0;
+      for (int c = 0; c < image.channels; ++c)
+        value += direction[static_cast<std::size_t>(c)] * pixel[c];
+      values.push_back(value);
+    }
+  }
+  std::sort(values.begin(), values.end());
+  return values;
+}
+
+// The empirical quantile F^-1((2 i + 1) / (2 levels)) of n sorted values: the value of index
+// floor((2 i + 1) n / (2 levels)), computed in integers so that equal counts give index i exactly.
+double quantile(const std::vector<double>& sorted, std::size_t i, std::size_t levels) {
+  const std::size_t index = (2 * i + 1) * sorted.size() / (2 * levels);
+  return sorted[index];
+}
+
+}  // namespace
+
+std::vector<double> welch_power_spectrum(ImageView<const float> image, int crop) {
+  require_pixels(image, "welch_power_spectrum");
+  if (crop < 2 || crop > image.width || crop > image.height)
+    throw std::invalid_argument("welch_power_spectrum: the crop side " + std::to_string(crop) +
+                                " must be at least 2 and fit in the " +
+                                std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                " image");
+  const std::vector<double> window = hann_window(crop);
+  double window_energy_1d = 0.0;
+  for (const double w : window) window_energy_1d += w * w;
+  const double window_energy = window_energy_1d * window_energy_1d;
+
+  const Fft2d fft(crop, crop);
+  const int spectrum_width = fft.spectrum_width();
+  std::vector<float> windowed(fft.image_size());
+  std::vector<std::complex<float>> spectrum(fft.spectrum_size());
+  std::vector<double> half_power(fft.spectrum_size(), 0.0);
+  const std::vector<int> x_origins = crop_origins(image.width, crop);
+  const std::vector<int> y_origins = crop_origins(image.height, crop);
+  for (const int y0 : y_origins) {
+    for (const int x0 : x_origins) {
+      const ImageView<const float> block = image.sub(x0, y0, crop, crop);
+      for (int c = 0; c < image.channels; ++c) {
+        double sum = 0.0;
+        for (int y = 0; y < crop; ++y)
+          for (int x = 0; x < crop; ++x) sum += block.at(x, y, c);
+        const double mean = sum / (static_cast<double>(crop) * crop);
+        for (int y = 0; y < crop; ++y)
+          for (int x = 0; x < crop; ++x)
+            windowed[static_cast<std::size_t>(y) * crop + x] = static_cast<float>(
+                window[static_cast<std::size_t>(x)] * window[static_cast<std::size_t>(y)] *
+                (block.at(x, y, c) - mean));
+        fft.forward(windowed, spectrum);
+        for (std::size_t i = 0; i < spectrum.size(); ++i) half_power[i] += std::norm(spectrum[i]);
+      }
+    }
+  }
+
+  // The input is real, so |X(kx, ky)| = |X(-kx, -ky)|: the columns kx > crop / 2 missing from the
+  // half-plane are read at (crop - kx, -ky).
+  const double normalisation =
+      1.0 / (window_energy * static_cast<double>(x_origins.size() * y_origins.size()));
+  std::vector<double> power(static_cast<std::size_t>(crop) * crop);
+  for (int ky = 0; ky < crop; ++ky) {
+    for (int kx = 0; kx < crop; ++kx) {
+      const bool stored = kx < spectrum_width;
+      const int qx = stored ? kx : crop - kx;
+      const int qy = stored ? ky : (crop - ky) % crop;
+      power[static_cast<std::size_t>(ky) * crop + kx] =
+          half_power[static_cast<std::size_t>(qy) * spectrum_width + qx] * normalisation;
+    }
+  }
+  return power;
+}
+
+int welch_crop_size(ImageView<const float> a, ImageView<const float> b) {
+  const int smaller_side = std::min({a.width, a.height, b.width, b.height});
+  if (smaller_side < 2)
+    throw std::invalid_argument(
+        "welch_crop_size: a spectral comparison needs images of at least 2x2 pixels");
+  constexpr int min_crop = 8;
+  constexpr int max_crop = 128;
+  const int limit =
+      smaller_side < min_crop ? smaller_side : std::clamp(smaller_side / 2, min_crop, max_crop);
+  int crop = 2;
+  while (crop * 2 <= limit) crop *= 2;
+  return crop;
+}
+
+double spectral_error(ImageView<const float> image, ImageView<const float> reference, int crop) {
+  require_same_channels(image, reference, "spectral_error");
+  const std::vector<double> image_power = welch_power_spectrum(image, crop);
+  const std::vector<double> reference_power = welch_power_spectrum(reference, crop);
+  double difference = 0.0;
+  double total = 0.0;
+  for (std::size_t i = 0; i < image_power.size(); ++i) {
+    difference += std::abs(image_power[i] - reference_power[i]);
+    total += std::abs(reference_power[i]);
+  }
+  return relative(difference, total);
+}
+
+double sliced_wasserstein(ImageView<const float> a, ImageView<const float> b, int directions) {
+  require_pixels(a, "sliced_wasserstein");
+  require_pixels(b, "sliced_wasserstein");
+  require_same_channels(a, b, "sliced_wasserstein");
+  if (directions < 1)
+    throw std::invalid_argument("sliced_wasserstein: the number of directions must be positive");
+  const std::size_t levels = std::min(static_cast<std::size_t>(a.width) * a.height,
+                                      static_cast<std::size_t>(b.width) * b.height);
+  const std::vector<std::vector<double>> projections =
+      projection_directions(a.channels, directions);
+  // Directions run in parallel, each into its own slot, and the slots are summed in order: the
+  // result does not depend on the thread count.
+  std::vector<double> mean_squares(projections.size());
+  parallel_for(projections.size(), 0, [&](std::size_t d) {
+    const std::vector<double> sorted_a = sorted_projection(a, projections[d]);
+    const std::vector<double> sorted_b = sorted_projection(b, projections[d]);
+    double squares = 0.0;
+    for (std::size_t i = 0; i < levels; ++i) {
+      const double difference = quantile(sorted_a, i, levels) - quantile(sorted_b, i, levels);
+      squares += difference * difference;
+    }
+    mean_squares[d] = squares / static_cast<double>(levels);
+  });
+  double sum = 0.0;
+  for (const double mean_square : mean_squares) sum += mean_square;
+  return std::sqrt(sum / static_cast<double>(projections.size()));
+}
+
+ColourStatistics colour_statistics(ImageView<const float> image) {
+  require_pixels(image, "colour_statistics");
+  const auto channels = static_cast<std::size_t>(image.channels);
+  const double pixel_count = static_cast<double>(image.width) * image.height;
+  ColourStatistics statistics{std::vector<double>(channels, 0.0),
+                              std::vector<double>(channels * channels, 0.0)};
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (std::size_t c = 0; c < channels; ++c)
+        statistics.mean[c] += image.at(x, y, static_cast<int>(c));
+  for (double& mean : statistics.mean) mean /= pixel_count;
+
+  // Second pass around the mean: summing raw squares would cancel catastrophically for images
+  // with a large mean and a small variance.
+  std::vector<double> centred(channels);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      for (std::size_t c = 0; c < channels; ++c)
+        centred[c] = image.at(x, y, static_cast<int>(c)) - statistics.mean[c];
+      for (std::size_t i = 0; i < channels; ++i)
+        for (std::size_t j = 0; j < channels; ++j)
+          statistics.covariance[i * channels + j] += centred[i] * centred[j];
+    }
+  }
+  for (double& covariance : statistics.covariance) covariance /= pixel_count;
+  return statistics;
+}
+
+double mean_error(const ColourStatistics& a, const ColourStatistics& b) {
+  if (a.mean.size() != b.mean.size())
+    throw std::invalid_argument("mean_error: the statistics have different channel counts");
+  double sum_of_squares = 0.0;
+  for (std::size_t c = 0; c < a.mean.size(); ++c)
+    sum_of_squares += (a.mean[c] - b.mean[c]) * (a.mean[c] - b.mean[c]);
+  return std::sqrt(sum_of_squares);
+}
+
+double covariance_error(const ColourStatistics& a, const ColourStatistics& reference) {
+  if (a.covariance.size() != reference.covariance.size())
+    throw std::invalid_argument("covariance_error: the statistics have different channel counts");
+  double difference = 0.0;
+  double norm = 0.0;
+  for (std::size_t i = 0; i < a.covariance.size(); ++i) {
+    const double delta = a.covariance[i] - reference.covariance[i];
+    difference += delta * delta;
+    norm += reference.covariance[i] * reference.covariance[i];
+  }
+  return relative(std::sqrt(difference), std::sqrt(norm));
+}
+
+ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,
+                                std::uint32_t seed) {
+  require_pixels(exemplar, "compare_images");
+  require_pixels(image, "compare_images");
+  require_same_channels(image, exemplar, "compare_images");
+  ComparisonReport report;
+  report.crop = welch_crop_size(exemplar, image);
+  const ImageF gaussian = adsn(exemplar, image.width, image.height, seed);
+  report.spectral_error = spectral_error(image, exemplar, report.crop);
+  report.spectral_error_adsn = spectral_error(gaussian.view(), exemplar, report.crop);
+  report.histogram_error = sliced_wasserstein(image, exemplar);
+  report.histogram_error_adsn = sliced_wasserstein(gaussian.view(), exemplar);
+  // Two disjoint halves of the same texture: the distance a perfect synthesis could not beat.
+  const int top_height = exemplar.height / 2;
+  report.histogram_error_floor =
+      sliced_wasserstein(exemplar.sub(0, 0, exemplar.width, top_height),
+                         exemplar.sub(0, top_height, exemplar.width, exemplar.height - top_height));
+  const ColourStatistics exemplar_statistics = colour_statistics(exemplar);
+  const ColourStatistics image_statistics = colour_statistics(image);
+  report.mean_error = mean_error(image_statistics, exemplar_statistics);
+  report.covariance_error = covariance_error(image_statistics, exemplar_statistics);
+  return report;
+}
+
+}  // namespace stochtex

@@ -1,0 +1,67 @@
+#pragma once
+// Quality measures of DESIGN.md section 9, used by `stochtex compare`, the statistical tests and
+// the docs. Every function takes views and returns plain numbers. Sums are accumulated in double.
+// Invalid arguments (empty images, a crop that does not fit, channel counts that differ) throw
+// std::invalid_argument. A relative error against a reference that is zero is 0 when the other
+// term is zero too, +infinity otherwise.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stochtex/image.hpp"
+
+namespace stochtex {
+
+// Welch power spectrum: mean of |FFT|^2 of Hann-windowed, mean-removed square crops of side
+// `crop` with 50% overlap, summed over channels. Returned as crop x crop values, row-major with
+// the vertical frequency as the row, DC at (0, 0) (both half-planes: the spectrum is symmetric).
+// Crops start at 0, crop / 2, crop, ... while they fit inside the image, in both axes. The window
+// is the periodic Hann window sin^2(pi n / crop) in each axis; each |FFT|^2 is divided by the sum
+// of the squared window weights, so the result is a power spectral density whose mean over the
+// crop^2 frequencies is the window-weighted variance: white noise of variance s^2 per channel gives
+// a flat spectrum at channels * s^2 (less the one degree of freedom the mean removal takes, which
+// lands on the 3 x 3 lowest frequencies). Requires 2 <= crop <= min(width, height).
+std::vector<double> welch_power_spectrum(ImageView<const float> image, int crop);
+// The crop size used by compare for a pair of images: the largest power of two <= half the smaller
+// side of both, capped at 128 and at least 8. Images whose smaller side is below 8 pixels get the
+// largest power of two <= that side (a single crop per axis); a side below 2 throws.
+int welch_crop_size(ImageView<const float> a, ImageView<const float> b);
+// Relative L1 distance sum|Sa - Sb| / sum|Sb| of the Welch spectra of a and of the reference b.
+double spectral_error(ImageView<const float> image, ImageView<const float> reference, int crop);
+
+inline constexpr int default_sliced_directions = 64;
+// Sliced Wasserstein-2 distance between the pixel colour distributions: sqrt of the mean over
+// directions of W2^2 between the 1-D projections. The directions are fixed (the same on every call
+// and platform), so the distance is deterministic and symmetric; a 1-channel image has the single
+// direction 1 whatever `directions` says. The two images may have different pixel counts: W2^2 =
+// int_0^1 |Fa^-1(t) - Fb^-1(t)|^2 dt is evaluated by the midpoint rule at min(count_a, count_b)
+// quantile levels of the empirical distributions (exact when the counts are equal).
+double sliced_wasserstein(ImageView<const float> a, ImageView<const float> b,
+                          int directions = default_sliced_directions);
+
+struct ColourStatistics {
+  std::vector<double> mean;        // per channel
+  std::vector<double> covariance;  // channels x channels, row-major, divided by the pixel count
+};
+ColourStatistics colour_statistics(ImageView<const float> image);
+// |mean_a - mean_b| (Euclidean) and ||cov_a - cov_b||_F / ||cov_b||_F.
+double mean_error(const ColourStatistics& a, const ColourStatistics& b);
+double covariance_error(const ColourStatistics& a, const ColourStatistics& reference);
+
+struct ComparisonReport {
+  int crop = 0;
+  double spectral_error = 0;         // image vs exemplar
+  double spectral_error_adsn = 0;    // an ADSN sample of the exemplar (same size) vs exemplar
+  double histogram_error = 0;        // sliced W2, image vs exemplar
+  double histogram_error_adsn = 0;   // ADSN sample vs exemplar
+  double histogram_error_floor = 0;  // exemplar top half vs bottom half
+  double mean_error = 0;
+  double covariance_error = 0;
+};
+// The full `stochtex compare` report; the ADSN sample (adsn(exemplar, image size, seed)) uses
+// `seed`. The images must have the same channel count and sides of at least 2 pixels.
+ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,
+                                std::uint32_t seed = 1);
+
+}  // namespace stochtex

@@ -1,0 +1,116 @@
+#include "stochtex/model.hpp"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "model/model_data.hpp"
+#include "model/model_file.hpp"
+#include "stochtex/error.hpp"
+
+namespace stochtex {
+namespace {
+
+// Finds the variant alternative whose kMethodName matches the record and builds it.
+template <std::size_t I = 0>
+MethodModel model_from_record(const ModelRecord& record, const std::string& source) {
+  if constexpr (I == std::variant_size_v<MethodModel>) {
+    throw Error(ErrorCode::format, "'" + source + "' uses the unknown method '" + record.method +
+                                       "'; it was written by another version of stochtex");
+  } else {
+    using Alternative = std::variant_alternative_t<I, MethodModel>;
+    if (record.method == Alternative::kMethodName) return Alternative::from_record(record, source);
+    return model_from_record<I + 1>(record, source);
+  }
+}
+
+ModelRecord record_of(const Model& model) {
+  return std::visit([&](const auto& m) { return m.to_record(model.params()); }, model.data().model);
+}
+
+}  // namespace
+
+std::string_view Model::method() const {
+  return std::visit([](const auto& m) { return std::decay_t<decltype(m)>::kMethodName; },
+                    data_->model);
+}
+
+int Model::channels() const {
+  return std::visit([](const auto& m) { return m.channels(); }, data_->model);
+}
+
+const ParamValues& Model::params() const {
+  return data_->params;
+}
+
+std::vector<std::uint8_t> serialize_model(const Model& model) {
+  return write_model_record(record_of(model));
+}
+
+Model deserialize_model(std::span<const std::uint8_t> bytes, const std::string& source_name) {
+  ModelRecord record = read_model_record(bytes, source_name);
+  MethodModel method_model = model_from_record(record, source_name);
+  return Model(std::make_shared<const ModelData>(
+      ModelData{std::move(record.params), std::move(method_model)}));
+}
+
+void save_model(const Model& model, const std::filesystem::path& path) {
+  const std::vector<std::uint8_t> bytes = serialize_model(model);
+  // Write next to the destination, then rename: a failure never leaves a partial model file.
+  std::filesystem::path temporary = path;
+  temporary += ".tmp";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file.write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
+    file.close();
+    if (!file) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw Error(ErrorCode::io,
+                  "cannot write '" + path.string() +
+                      "': the folder is missing or not writable; choose another path");
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw Error(ErrorCode::io, "cannot write '" + path.string() + "': " + error.message());
+  }
+}
+
+Model load_model(const std::filesystem::path& path) {
+  const std::string source = path.string();
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw Error(ErrorCode::io, "cannot read '" + source + "': no such file; check the path");
+  const auto size = std::filesystem::file_size(path, error);
+  const std::uint64_t max_size = 64 + kMaxModelHeaderBytes + 4 * kMaxModelArrayValues;
+  if (error || size > max_size)
+    throw Error(ErrorCode::format, "'" + source + "' is too large to be a stochtex model file");
+  std::ifstream file(path, std::ios::binary);
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+  file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!file) throw Error(ErrorCode::io, "cannot read '" + source + "': the read failed");
+  return deserialize_model(bytes, source);
+}
+
+std::string describe_model(const Model& model) {
+  const ModelRecord record = record_of(model);
+  nlohmann::ordered_json json;
+  json["method"] = record.method;
+  json["channels"] = model.channels();
+  json["params"] = record.params;
+  json["scalars"] = record.scalars;
+  auto arrays = nlohmann::ordered_json::array();
+  std::size_t bytes = 0;
+  for (const auto& array : record.arrays) {
+    arrays.push_back({{"name", array.name}, {"shape", array.shape}});
+    bytes += array.values.size() * sizeof(float);
+  }
+  json["arrays"] = arrays;
+  json["array_bytes"] = bytes;
+  return json.dump(2);
+}
+
+}  // namespace stochtex

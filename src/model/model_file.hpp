@@ -1,0 +1,28 @@
+#pragma once
+// The .stx model file (DESIGN.md section 7), byte layout, all integers little-endian:
+//   magic "STOCHTEX" (8 bytes) | format version u32 | header length u32 | header JSON (UTF-8)
+//   | array data: each declared array's float32 values, in header order | FNV-1a 64 checksum u64
+//     of every preceding byte.
+// The header JSON is {"method": str, "params": {name: number}, "scalars": {name: number},
+//   "arrays": [{"name": str, "shape": [int, ...]}, ...]}.
+// Reading validates magic, version, sizes (against the byte count actually present and against
+// hard limits) and the checksum before allocating any array; every failure throws
+// stochtex::Error(ErrorCode::format) with one sentence naming `source_name` and the problem.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "model/model_record.hpp"
+
+namespace stochtex {
+
+inline constexpr std::uint32_t kModelFormatVersion = 1;
+inline constexpr std::uint32_t kMaxModelHeaderBytes = 1u << 20;
+inline constexpr std::uint64_t kMaxModelArrayValues = std::uint64_t{1} << 28;  // 1 GiB of floats
+
+std::vector<std::uint8_t> write_model_record(const ModelRecord& record);
+ModelRecord read_model_record(std::span<const std::uint8_t> bytes, const std::string& source_name);
+
+}  // namespace stochtex

@@ -1,0 +1,91 @@
+#include "stochtex/render.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "model/model_data.hpp"
+
+namespace stochtex {
+
+void evaluate(const Model& model, std::span<const Vec2d> positions,
+              std::span<const Footprint> footprints, std::uint32_t seed, ImageView<float> out) {
+  if (model.empty()) throw std::invalid_argument("evaluate: the model is empty");
+  if (!footprints.empty() && footprints.size() != positions.size())
+    throw std::invalid_argument("evaluate: footprints must be empty or one per position");
+  if (out.channels != model.channels() ||
+      static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) < positions.size())
+    throw std::invalid_argument("evaluate: the output view must hold one pixel of " +
+                                std::to_string(model.channels()) + " channels per position");
+  // One dispatch per batch; the method's loop over samples is concrete and inlined.
+  std::visit([&](const auto& m) { m.evaluate(positions, footprints, seed, out); },
+             model.data().model);
+}
+
+void render(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
+            const RenderOptions& options) {
+  if (out.width != grid.width || out.height != grid.height || out.channels != model.channels())
+    throw std::invalid_argument("render: the output view does not match the grid and model");
+  if (options.tile_size < 1 || options.supersample < 1)
+    throw std::invalid_argument("render: tile_size and supersample must be positive");
+  const int tile = options.tile_size;
+  const int tiles_x = (grid.width + tile - 1) / tile;
+  const int tiles_y = (grid.height + tile - 1) / tile;
+  const std::size_t tile_count = static_cast<std::size_t>(tiles_x) * tiles_y;
+  const int sub = options.supersample;
+  const double sub_step = 1.0 / sub;
+  const int channels = model.channels();
+  // Point samples for the supersampled reference; otherwise one footprint per pixel (scale).
+  const bool with_footprints = options.filter && sub == 1;
+  const Footprint pixel_footprint{{grid.scale, 0.0}, {0.0, grid.scale}};
+
+  auto render_tile = [&](std::size_t t) {
+    const int x0 = static_cast<int>(t % static_cast<std::size_t>(tiles_x)) * tile;
+    const int y0 = static_cast<int>(t / static_cast<std::size_t>(tiles_x)) * tile;
+    const int w = std::min(tile, grid.width - x0);
+    const int h = std::min(tile, grid.height - y0);
+    const std::size_t samples = static_cast<std::size_t>(w) * h * sub * sub;
+    std::vector<Vec2d> positions;
+    positions.reserve(samples);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int sy = 0; sy < sub; ++sy)
+          for (int sx = 0; sx < sub; ++sx) {
+            // Pixel (i, j) samples origin + scale * (i + 1/2, j + 1/2); sub-samples stratify it.
+            const double i =
+                static_cast<double>(grid.first_pixel_x + x0 + x) + (sx + 0.5) * sub_step;
+            const double j =
+                static_cast<double>(grid.first_pixel_y + y0 + y) + (sy + 0.5) * sub_step;
+            positions.push_back({grid.origin.x + grid.scale * i, grid.origin.y + grid.scale * j});
+          }
+    std::vector<Footprint> footprints;
+    if (with_footprints) footprints.assign(samples, pixel_footprint);
+    if (sub == 1) {
+      evaluate(model, positions, footprints, seed, out.sub(x0, y0, w, h));
+      return;
+    }
+    std::vector<float> values(samples * static_cast<std::size_t>(channels));
+    evaluate(model, positions, footprints, seed,
+             ImageView<float>{values.data(), static_cast<int>(samples), 1, channels,
+                              static_cast<std::ptrdiff_t>(samples) * channels});
+    const std::size_t per_pixel = static_cast<std::size_t>(sub) * sub;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < channels; ++c) {
+          const std::size_t first = (static_cast<std::size_t>(y) * w + x) * per_pixel;
+          double sum = 0.0;
+          for (std::size_t s = 0; s < per_pixel; ++s) sum += values[(first + s) * channels + c];
+          out.at(x0 + x, y0 + y, c) = static_cast<float>(sum / static_cast<double>(per_pixel));
+        }
+  };
+  std::function<void(std::size_t)> on_done;
+  if (options.progress)
+    on_done = [&](std::size_t done) {
+      options.progress(static_cast<double>(done) / static_cast<double>(tile_count));
+    };
+  parallel_for(tile_count, options.threads, render_tile, on_done);
+}
+
+}  // namespace stochtex

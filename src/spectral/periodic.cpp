@@ -1,0 +1,58 @@
+#include "spectral/periodic.hpp"
+
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <vector>
+
+#include "spectral/fft.hpp"
+
+namespace stochtex {
+
+ImageF periodic_component(ImageView<const float> image) {
+  const int w = image.width;
+  const int h = image.height;
+  ImageF result(w, h, image.channels);
+  Fft2d fft(w, h);
+  std::vector<float> boundary(fft.image_size());
+  std::vector<float> smooth(fft.image_size());
+  std::vector<std::complex<float>> spectrum(fft.spectrum_size());
+  // Denominator of the discrete Poisson problem: 2cos(2pi q/w) + 2cos(2pi r/h) - 4.
+  std::vector<double> cos_x(static_cast<std::size_t>(fft.spectrum_width()));
+  std::vector<double> cos_y(static_cast<std::size_t>(h));
+  for (int q = 0; q < fft.spectrum_width(); ++q)
+    cos_x[q] = 2.0 * std::cos(2.0 * std::numbers::pi * q / w);
+  for (int r = 0; r < h; ++r) cos_y[r] = 2.0 * std::cos(2.0 * std::numbers::pi * r / h);
+
+  for (int c = 0; c < image.channels; ++c) {
+    // The boundary image v: the jumps across the image border, as in Moisan's eq. (13).
+    std::fill(boundary.begin(), boundary.end(), 0.0f);
+    auto b = [&](int x, int y) -> float& { return boundary[static_cast<std::size_t>(y) * w + x]; };
+    for (int y = 0; y < h; ++y) {
+      const float jump = image.at(w - 1, y, c) - image.at(0, y, c);
+      b(0, y) += jump;
+      b(w - 1, y) -= jump;
+    }
+    for (int x = 0; x < w; ++x) {
+      const float jump = image.at(x, h - 1, c) - image.at(x, 0, c);
+      b(x, 0) += jump;
+      b(x, h - 1) -= jump;
+    }
+    fft.forward(boundary, spectrum);
+    for (int r = 0; r < h; ++r) {
+      for (int q = 0; q < fft.spectrum_width(); ++q) {
+        const std::size_t i = static_cast<std::size_t>(r) * fft.spectrum_width() + q;
+        const double denominator = cos_x[q] + cos_y[r] - 4.0;
+        spectrum[i] = (q == 0 && r == 0) ? std::complex<float>(0.0f)
+                                         : spectrum[i] / static_cast<float>(denominator);
+      }
+    }
+    fft.inverse(spectrum, smooth);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        result.at(x, y, c) = image.at(x, y, c) - smooth[static_cast<std::size_t>(y) * w + x];
+  }
+  return result;
+}
+
+}  // namespace stochtex

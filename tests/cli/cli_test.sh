@@ -1,0 +1,314 @@
+#!/usr/bin/env bash
+# The `stochtex` command as a user meets it (DESIGN.md sections 6 and 8). Every bad input must
+# exit with its code (1 runtime failure, 2 usage error), print exactly one line on stderr starting
+# with "stochtex: error:", and leave no output file behind, not even a temporary one. The good
+# paths must work, print valid JSON where asked, and render the same bytes whatever the threads.
+#
+# usage: cli_test.sh STOCHTEX_BINARY TEXTURE_DIR
+set -u
+
+if [[ $# -ne 2 ]]; then
+  echo "usage: $0 STOCHTEX_BINARY TEXTURE_DIR" >&2
+  exit 2
+fi
+stochtex=$1
+textures=$2
+exemplar=$textures/red_fleece_128.png
+for required in "$stochtex" "$exemplar"; do
+  if [[ ! -f $required ]]; then
+    echo "cli_test: $required does not exist" >&2
+    exit 2
+  fi
+done
+if ! command -v python3 >/dev/null; then
+  echo "cli_test: python3 is needed to check JSON output and to write test images" >&2
+  exit 2
+fi
+
+work=$(mktemp -d) || exit 2
+trap 'rm -rf "$work"' EXIT
+inputs=$work/in     # bad and good inputs, made below
+models=$work/models # outputs of the good paths
+out=$work/out       # where failing commands are told to write: must stay empty
+mkdir -p "$inputs" "$models" "$out"
+
+passed=0
+failed=()
+
+pass() { passed=$((passed + 1)); }
+fail() {
+  failed+=("$1")
+  echo "FAIL: $1: $2"
+  if [[ -s $work/stderr ]]; then sed 's/^/  stderr: /' "$work/stderr"; fi
+}
+
+# Runs the command with stdout and stderr captured in $work/stdout and $work/stderr; sets $status.
+capture() {
+  "$@" >"$work/stdout" 2>"$work/stderr"
+  status=$?
+}
+
+# Checks a failure after `capture`: exit code, one "stochtex: error:" line, no file left in $out.
+# With mention non-empty, the sentence must also name it (the bad file).
+check_failure() {
+  local name=$1 code=$2 mention=$3 lines
+  lines=$(wc -l <"$work/stderr")
+  if [[ $status -ne $code ]]; then
+    fail "$name" "exit code $status, expected $code"
+  elif [[ $lines -ne 1 ]] || ! head -n 1 "$work/stderr" | grep -q '^stochtex: error: .'; then
+    fail "$name" "stderr is $lines line(s), expected one 'stochtex: error: ...' line"
+  elif [[ -n $mention ]] && ! grep -qF -- "$mention" "$work/stderr"; then
+    fail "$name" "the message does not name '$mention'"
+  elif [[ -n $(find "$out" -mindepth 1 -print -quit) ]]; then
+    fail "$name" "left output behind: $(find "$out" -mindepth 1 | tr '\n' ' ')"
+  else
+    pass
+  fi
+  find "$out" -mindepth 1 -delete
+}
+
+# expect_error NAME CODE MENTION COMMAND...: a bad input the CLI itself diagnoses.
+expect_error() {
+  local name=$1 code=$2 mention=$3
+  shift 3
+  capture "$@"
+  check_failure "$name" "$code" "$mention"
+}
+
+# expect_parse_error NAME COMMAND...: rejected by the option parser (CLI11), whose own message
+# is accepted; the exit code must still be 2 and nothing may be written.
+expect_parse_error() {
+  local name=$1
+  shift
+  capture "$@"
+  if [[ $status -ne 2 ]]; then
+    fail "$name" "exit code $status, expected 2"
+  elif [[ ! -s $work/stderr ]]; then
+    fail "$name" "no message on stderr"
+  elif [[ -n $(find "$out" -mindepth 1 -print -quit) ]]; then
+    fail "$name" "left output behind"
+  else
+    pass
+  fi
+  find "$out" -mindepth 1 -delete
+}
+
+# expect_ok NAME COMMAND...: exit code 0.
+expect_ok() {
+  local name=$1
+  shift
+  capture "$@"
+  if [[ $status -ne 0 ]]; then
+    fail "$name" "exit code $status, expected 0"
+    return 1
+  fi
+  pass
+}
+
+# expect_json NAME COMMAND...: exit code 0 and stdout is one valid JSON document.
+expect_json() {
+  local name=$1
+  shift
+  capture "$@"
+  if [[ $status -ne 0 ]]; then
+    fail "$name" "exit code $status, expected 0"
+  elif ! python3 -c 'import json,sys; json.load(sys.stdin)' <"$work/stdout" 2>/dev/null; then
+    fail "$name" "stdout is not one valid JSON document"
+  else
+    pass
+  fi
+}
+
+# expect_file NAME PATH: a good path wrote a non-empty file and no temporary beside it.
+expect_file() {
+  local name=$1 path=$2 leftovers
+  leftovers=$(find "$(dirname "$path")" -name '*.tmp*' | tr '\n' ' ')
+  if [[ ! -s $path ]]; then
+    fail "$name" "did not write $path"
+  elif [[ -n $leftovers ]]; then
+    fail "$name" "left temporaries: $leftovers"
+  else
+    pass
+  fi
+}
+
+# --- inputs -------------------------------------------------------------------------------------
+
+printf 'this is not an image\n' >"$inputs/x.png"
+head -c 2000 "$exemplar" >"$inputs/truncated.png"
+# Minimal 8-bit greyscale PNGs: a 1x1 image and a constant 16x16 one.
+python3 - "$inputs" <<'EOF'
+import struct, sys, zlib
+
+def png(path, width, height, value):
+    def chunk(kind, data):
+        return (struct.pack(">I", len(data)) + kind + data
+                + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF))
+    rows = b"".join(b"\x00" + bytes([value]) * width for _ in range(height))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n"
+                + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+
+png(sys.argv[1] + "/one_pixel.png", 1, 1, 128)
+png(sys.argv[1] + "/constant.png", 16, 16, 128)
+EOF
+# A 4x4 greyscale PFM (negative scale: little-endian) alternating 0.25 and 0.75, one pixel NaN.
+{
+  printf 'Pf\n4 4\n-1.0\n'
+  for i in $(seq 0 15); do
+    if [[ $i -eq 5 ]]; then
+      printf '\x00\x00\xc0\x7f'
+    elif ((i % 2)); then
+      printf '\x00\x00\x40\x3f'
+    else
+      printf '\x00\x00\x80\x3e'
+    fi
+  done
+} >"$inputs/nan.pfm"
+
+# --- good paths ---------------------------------------------------------------------------------
+
+model=$models/fleece.stx
+size=(--size 64x64)
+fast=(-m texton -p support=32)
+
+expect_ok "methods" "$stochtex" methods && if ! grep -q texton "$work/stdout"; then
+  fail "methods lists texton" "stdout does not mention texton"
+fi
+expect_json "methods --json" "$stochtex" methods --json
+expect_ok "--help" "$stochtex" --help
+for command in analyze render synth gaussian compare info methods; do
+  expect_ok "$command --help" "$stochtex" "$command" --help
+done
+
+if expect_ok "analyze" "$stochtex" analyze "$exemplar" "${fast[@]}" -o "$model"; then
+  expect_file "analyze writes the model" "$model"
+fi
+expect_ok "info" "$stochtex" info "$model"
+expect_json "info --json" "$stochtex" info "$model" --json
+for extension in png exr pfm; do
+  expect_ok "render .$extension" "$stochtex" render "$model" -o "$models/render.$extension" \
+    "${size[@]}" --seed 3 && expect_file "render writes .$extension" "$models/render.$extension"
+done
+expect_ok "render zoomed out, supersampled" "$stochtex" render "$model" -o "$models/zoom.png" \
+  "${size[@]}" --origin 1e7,-2.5 --scale 4 --supersample 2
+expect_ok "synth" "$stochtex" synth "$exemplar" "${fast[@]}" -o "$models/synth.png" "${size[@]}" &&
+  expect_file "synth writes the image" "$models/synth.png"
+expect_ok "gaussian" "$stochtex" gaussian "$exemplar" -o "$models/gaussian.png" --size 128x128 &&
+  expect_file "gaussian writes the image" "$models/gaussian.png"
+expect_ok "compare" "$stochtex" compare "$exemplar" "$models/gaussian.png"
+expect_json "compare --json" "$stochtex" compare "$exemplar" "$models/gaussian.png" --json
+
+# The output is a pure function of (model, grid, seed): threads and tiles change nothing.
+expect_ok "render seed 5, 1 thread" "$stochtex" render "$model" -o "$models/t1.pfm" "${size[@]}" \
+  --seed 5 --threads 1
+expect_ok "render seed 5, 2 threads" "$stochtex" render "$model" -o "$models/t2.pfm" "${size[@]}" \
+  --seed 5 --threads 2 --tile 16
+expect_ok "render seed 6" "$stochtex" render "$model" -o "$models/s6.pfm" "${size[@]}" --seed 6
+if cmp -s "$models/t1.pfm" "$models/t2.pfm"; then pass; else
+  fail "same seed, 1 and 2 threads" "the renders differ"
+fi
+if [[ -s $models/s6.pfm ]] && ! cmp -s "$models/t1.pfm" "$models/s6.pfm"; then pass; else
+  fail "different seeds" "the renders are identical"
+fi
+
+# --- bad inputs ---------------------------------------------------------------------------------
+
+analyze_to=(-o "$out/model.stx")
+expect_error "missing input file" 1 "missing.png" \
+  "$stochtex" analyze "$inputs/missing.png" -m texton "${analyze_to[@]}"
+expect_error "text file named .png" 1 "x.png" \
+  "$stochtex" analyze "$inputs/x.png" -m texton "${analyze_to[@]}"
+expect_error "truncated PNG" 1 "truncated.png" \
+  "$stochtex" analyze "$inputs/truncated.png" -m texton "${analyze_to[@]}"
+expect_error "1x1 PNG" 1 "one_pixel.png" \
+  "$stochtex" analyze "$inputs/one_pixel.png" -m texton "${analyze_to[@]}"
+expect_error "constant PNG" 1 "constant.png" \
+  "$stochtex" analyze "$inputs/constant.png" -m texton "${analyze_to[@]}"
+expect_error "PFM with a NaN" 1 "nan.pfm" \
+  "$stochtex" analyze "$inputs/nan.pfm" -m texton "${analyze_to[@]}"
+expect_error "synth of a truncated PNG" 1 "truncated.png" \
+  "$stochtex" synth "$inputs/truncated.png" "${fast[@]}" -o "$out/synth.png" "${size[@]}"
+expect_error "gaussian of a constant PNG" 1 "constant.png" \
+  "$stochtex" gaussian "$inputs/constant.png" -o "$out/gaussian.png" "${size[@]}"
+expect_error "compare with a missing image" 1 "missing.png" \
+  "$stochtex" compare "$exemplar" "$inputs/missing.png"
+
+expect_error "unknown method" 2 "nosuch" \
+  "$stochtex" analyze "$exemplar" -m nosuch "${analyze_to[@]}"
+for param in support=1 mni=0 order=2; do
+  expect_error "out-of-range -p $param" 2 "${param%%=*}" \
+    "$stochtex" analyze "$exemplar" -m texton -p "$param" "${analyze_to[@]}"
+done
+expect_error "non-numeric -p mni=abc" 2 "mni" \
+  "$stochtex" analyze "$exemplar" -m texton -p mni=abc "${analyze_to[@]}"
+expect_error "unknown parameter" 2 "nosuch" \
+  "$stochtex" analyze "$exemplar" -m texton -p nosuch=1 "${analyze_to[@]}"
+expect_error "-p without =" 2 "support" \
+  "$stochtex" analyze "$exemplar" -m texton -p support "${analyze_to[@]}"
+# Usage errors come before reading files: a bad parameter wins over a missing input.
+expect_error "bad parameter and missing input" 2 "support" \
+  "$stochtex" analyze "$inputs/missing.png" -m texton -p support=1 "${analyze_to[@]}"
+
+for bad_size in 0x10 abc 100000x100000; do
+  expect_error "render --size $bad_size" 2 "$bad_size" \
+    "$stochtex" render "$model" -o "$out/render.png" --size "$bad_size"
+done
+expect_error "synth --size 0x10" 2 "0x10" \
+  "$stochtex" synth "$exemplar" "${fast[@]}" -o "$out/synth.png" --size 0x10
+expect_error "gaussian --size abc" 2 "abc" \
+  "$stochtex" gaussian "$exemplar" -o "$out/gaussian.png" --size abc
+expect_error "render --origin abc" 2 "abc" \
+  "$stochtex" render "$model" -o "$out/render.png" "${size[@]}" --origin abc
+
+expect_parse_error "unknown subcommand" "$stochtex" nosuch
+expect_parse_error "analyze without --method" "$stochtex" analyze "$exemplar" "${analyze_to[@]}"
+expect_parse_error "render without --size" "$stochtex" render "$model" -o "$out/render.png"
+expect_parse_error "render --threads -1" \
+  "$stochtex" render "$model" -o "$out/render.png" "${size[@]}" --threads -1
+expect_parse_error "render --scale 0" \
+  "$stochtex" render "$model" -o "$out/render.png" "${size[@]}" --scale 0
+
+render_to=(-o "$out/render.png" "${size[@]}")
+expect_error "render of a missing model" 1 "missing.stx" \
+  "$stochtex" render "$inputs/missing.stx" "${render_to[@]}"
+expect_error "info of a missing model" 1 "missing.stx" "$stochtex" info "$inputs/missing.stx"
+expect_error "render of an image as a model" 1 "x.png" \
+  "$stochtex" render "$inputs/x.png" "${render_to[@]}"
+if [[ -s $model ]]; then
+  head -c 100 "$model" >"$inputs/truncated.stx"
+  expect_error "render of a truncated model" 1 "truncated.stx" \
+    "$stochtex" render "$inputs/truncated.stx" "${render_to[@]}"
+  # One byte flipped in the magic, the version, the header length, the arrays and the checksum.
+  model_bytes=$(wc -c <"$model")
+  for offset in 0 8 12 $((model_bytes / 2)) $((model_bytes - 1)); do
+    corrupt=$inputs/corrupt_$offset.stx
+    cp "$model" "$corrupt"
+    byte=$(od -An -tu1 -j "$offset" -N 1 "$corrupt" | tr -d ' ')
+    # shellcheck disable=SC2059 # the format is the escaped byte itself
+    printf "$(printf '\\%03o' $((byte ^ 255)))" |
+      dd of="$corrupt" bs=1 seek="$offset" count=1 conv=notrunc status=none
+    expect_error "render of a model with byte $offset flipped" 1 "corrupt_$offset.stx" \
+      "$stochtex" render "$corrupt" "${render_to[@]}"
+  done
+else
+  fail "truncated and corrupt models" "analyze wrote no model to damage"
+fi
+
+expect_error "render into a missing folder" 1 "missing" \
+  "$stochtex" render "$model" -o "$out/missing/render.png" "${size[@]}"
+expect_error "analyze into a missing folder" 1 "missing" \
+  "$stochtex" analyze "$exemplar" "${fast[@]}" -o "$out/missing/model.stx"
+expect_error "gaussian into a missing folder" 1 "missing" \
+  "$stochtex" gaussian "$exemplar" -o "$out/missing/gaussian.png" "${size[@]}"
+expect_error "render to an unknown extension" 2 "render.bmpx" \
+  "$stochtex" render "$model" -o "$out/render.bmpx" "${size[@]}"
+
+# --- summary ------------------------------------------------------------------------------------
+
+echo "cli_test: ${passed} passed, ${#failed[@]} failed"
+if [[ ${#failed[@]} -gt 0 ]]; then
+  printf '  failed: %s\n' "${failed[@]}"
+  exit 1
+fi

@@ -1,0 +1,217 @@
+// Deterministic mutation fuzzing of read_image (DESIGN.md section 8): small valid PNG, OpenEXR and
+// PFM files are damaged in seeded, reproducible ways, and every damaged file must either read as
+// a consistent image or throw stochtex::Error. Any other exception, or a crash, fails the test.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "io/image_io.hpp"
+#include "stochtex/error.hpp"
+
+namespace stochtex {
+namespace {
+
+namespace fs = std::filesystem;
+using Bytes = std::vector<unsigned char>;
+
+constexpr int kMutatedFiles = 3000;
+constexpr std::uint32_t kSeed = 20240611;
+
+Bytes read_bytes(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const fs::path& path, const Bytes& bytes) {
+  std::ofstream stream(path, std::ios::binary | std::ios::trunc);
+  stream.write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
+}
+
+struct Seed {
+  std::string name;
+  Bytes bytes;
+  bool png = false;
+};
+
+std::vector<Seed> make_seeds(const fs::path& folder) {
+  const auto image = [](int width, int height, int channels) {
+    ImageF result(width, height, channels);
+    std::mt19937 random(kSeed);
+    std::uniform_real_distribution<float> value(0.0f, 1.0f);
+    for (float& sample : result.pixels()) sample = value(random);
+    return result;
+  };
+  struct Recipe {
+    const char* name;
+    ImageF image;
+    int bit_depth;
+  };
+  const std::array<Recipe, 8> recipes = {{
+      {"rgb8.png", image(7, 5, 3), 8},
+      {"grey_alpha8.png", image(6, 3, 2), 8},
+      {"rgba16.png", image(5, 4, 4), 16},
+      {"grey16.png", image(9, 2, 1), 16},
+      {"rgba.exr", image(6, 5, 4), 8},
+      {"grey.exr", image(4, 7, 1), 8},
+      {"rgb.pfm", image(5, 3, 3), 8},
+      {"grey.pfm", image(3, 4, 1), 8},
+  }};
+  std::vector<Seed> seeds;
+  for (const Recipe& recipe : recipes) {
+    const fs::path path = folder / recipe.name;
+    write_image(path, recipe.image.view(), recipe.bit_depth);
+    seeds.push_back({recipe.name, read_bytes(path), path.extension() == ".png"});
+  }
+  return seeds;
+}
+
+std::uint32_t crc32(const unsigned char* data, std::size_t size) {
+  std::uint32_t crc = 0xffffffffu;
+  for (std::size_t i = 0; i < size; ++i) {
+    crc ^= data[i];
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+// Rewrites every PNG chunk checksum, so that mutations reach the chunk parsers and the inflater
+// instead of stopping at the first checksum test.
+void fix_png_checksums(Bytes& png) {
+  std::size_t at = 8;
+  while (at + 12 <= png.size()) {
+    const std::uint32_t length = std::uint32_t{png[at]} << 24 | std::uint32_t{png[at + 1]} << 16 |
+                                 std::uint32_t{png[at + 2]} << 8 | png[at + 3];
+    if (length > png.size() - at - 12) return;
+    const std::uint32_t crc = crc32(png.data() + at + 4, length + 4);
+    for (int b = 0; b < 4; ++b)
+      png[at + 8 + length + b] = static_cast<unsigned char>(crc >> (24 - 8 * b));
+    at += 12 + length;
+  }
+}
+
+// Values that sit on the edges parsers get wrong: zero, signs, powers of two, type limits.
+constexpr std::array<std::uint32_t, 12> kInterestingNumbers = {
+    0u,      1u,      2u,       0x7fu,       0x80u,       0xffu,
+    0x7fffu, 0xffffu, 0x10000u, 0x7fffffffu, 0x80000000u, 0xffffffffu};
+
+void mutate(Bytes& bytes, std::mt19937& random) {
+  const auto position = [&](std::size_t size) {
+    return std::uniform_int_distribution<std::size_t>(0, size == 0 ? 0 : size - 1)(random);
+  };
+  // Headers hold the sizes and types, so most edits land in the first bytes.
+  const auto header_position = [&] { return position(std::min<std::size_t>(bytes.size(), 96)); };
+  const int edits = std::uniform_int_distribution<int>(1, 4)(random);
+  for (int edit = 0; edit < edits && !bytes.empty(); ++edit) {
+    switch (std::uniform_int_distribution<int>(0, 6)(random)) {
+      case 0: {  // bit flip
+        bytes[position(bytes.size())] ^= static_cast<unsigned char>(1u << (random() % 8));
+        break;
+      }
+      case 1: {  // byte overwrite
+        bytes[header_position()] = static_cast<unsigned char>(random());
+        break;
+      }
+      case 2: {  // truncation
+        bytes.resize(position(bytes.size()));
+        break;
+      }
+      case 3: {  // insertion of random bytes
+        const std::size_t at = position(bytes.size() + 1);
+        Bytes inserted(std::uniform_int_distribution<std::size_t>(1, 16)(random));
+        for (auto& byte : inserted) byte = static_cast<unsigned char>(random());
+        bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at), inserted.begin(),
+                     inserted.end());
+        break;
+      }
+      case 4: {  // deletion of a range
+        const std::size_t at = position(bytes.size());
+        const std::size_t count =
+            std::min(bytes.size() - at, std::uniform_int_distribution<std::size_t>(1, 16)(random));
+        bytes.erase(bytes.begin() + static_cast<std::ptrdiff_t>(at),
+                    bytes.begin() + static_cast<std::ptrdiff_t>(at + count));
+        break;
+      }
+      case 5: {  // a binary header number, in either byte order
+        const std::size_t at = header_position();
+        if (at + 4 > bytes.size()) break;
+        const std::uint32_t value = kInterestingNumbers[random() % kInterestingNumbers.size()];
+        const bool big_endian = random() % 2 == 0;
+        for (int b = 0; b < 4; ++b)
+          bytes[at + b] = static_cast<unsigned char>(value >> (big_endian ? 24 - 8 * b : 8 * b));
+        break;
+      }
+      case 6: {  // a text header number (PFM): a digit run replaced by another number
+        const std::size_t at = header_position();
+        const auto is_digit = [](unsigned char c) { return c >= '0' && c <= '9'; };
+        const auto start =
+            std::find_if(bytes.begin() + static_cast<std::ptrdiff_t>(at), bytes.end(), is_digit);
+        const auto stop = std::find_if_not(start, bytes.end(), is_digit);
+        const std::string replacement = std::to_string(
+            static_cast<std::int32_t>(kInterestingNumbers[random() % kInterestingNumbers.size()]));
+        const auto offset = start - bytes.begin();
+        bytes.erase(start, stop);
+        bytes.insert(bytes.begin() + offset, replacement.begin(), replacement.end());
+        break;
+      }
+    }
+  }
+}
+
+TEST(ImageFuzz, MutatedFilesReadOrThrowError) {
+  const fs::path folder =
+      fs::temp_directory_path() / ("stochtex_image_fuzz_" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const std::vector<Seed> seeds = make_seeds(folder);
+
+  ImageReadLimits limits;
+  limits.max_pixels = 1 << 12;
+  std::mt19937 random(kSeed);
+  int images_read = 0;
+  int errors_thrown = 0;
+  const fs::path mutated_path = folder / "mutated";
+  for (int iteration = 0; iteration < kMutatedFiles; ++iteration) {
+    const Seed& seed = seeds[iteration % seeds.size()];
+    Bytes bytes = seed.bytes;
+    mutate(bytes, random);
+    if (seed.png && random() % 2 == 0) fix_png_checksums(bytes);
+    write_bytes(mutated_path, bytes);
+    const std::string context = "iteration " + std::to_string(iteration) + " from " + seed.name;
+    try {
+      const ImageF image = read_image(mutated_path, limits);
+      ASSERT_GT(image.width(), 0) << context;
+      ASSERT_GT(image.height(), 0) << context;
+      ASSERT_GE(image.channels(), 1) << context;
+      ASSERT_LE(image.channels(), 4) << context;
+      ASSERT_LE(static_cast<std::int64_t>(image.pixel_count()), limits.max_pixels) << context;
+      ASSERT_EQ(image.pixels().size(), image.pixel_count() * image.channels()) << context;
+      ++images_read;
+    } catch (const Error&) {
+      ++errors_thrown;
+    } catch (const std::exception& e) {
+      FAIL() << context << " threw something other than stochtex::Error: " << e.what();
+    }
+  }
+  fs::remove_all(folder);
+  // Both outcomes occur, so the mutations neither always break the files nor never reach them.
+  EXPECT_GT(images_read, 0);
+  EXPECT_GT(errors_thrown, 0);
+  std::printf("%d mutated files: %d read, %d refused with stochtex::Error\n", kMutatedFiles,
+              images_read, errors_thrown);
+}
+
+}  // namespace
+}  // namespace stochtex

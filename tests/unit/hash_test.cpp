@@ -1,0 +1,132 @@
+// The randomness spec of DESIGN.md section 5. The vectors below were computed with an independent
+// Python transcription of Jarzynski & Olano's reference GLSL (JCGT 2020, "pcg" and "pcg4d"); they
+// pin the C++ (and later GLSL) code: a change here re-seeds every stored texture.
+
+#include "core/hash.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/poisson.hpp"
+
+namespace stochtex {
+namespace {
+
+// Upper critical value of the chi-square distribution with `dof` degrees of freedom at tail
+// probability 1e-4 (Wilson-Hilferty approximation, accurate to ~1% for dof >= 3).
+double chi_square_critical(int dof) {
+  const double z = 3.719;  // standard normal quantile at 1 - 1e-4
+  const double k = dof;
+  const double t = 1.0 - 2.0 / (9.0 * k) + z * std::sqrt(2.0 / (9.0 * k));
+  return k * t * t * t;
+}
+
+TEST(Hash, PcgMatchesReferenceVectors) {
+  EXPECT_EQ(pcg_hash(0u), 0x07bb2fe2u);
+  EXPECT_EQ(pcg_hash(1u), 0xa8beea3cu);
+  EXPECT_EQ(pcg_hash(2u), 0x7a7ecc88u);
+  EXPECT_EQ(pcg_hash(0xdeadbeefu), 0x67299972u);
+  EXPECT_EQ(pcg_hash(0xffffffffu), 0xe62a4902u);
+}
+
+TEST(Hash, Pcg4dMatchesReferenceVectors) {
+  EXPECT_EQ(pcg4d({0, 0, 0, 0}), (Uint4{0x0f02f829u, 0x2d568769u, 0x32b0c43bu, 0xd32548eau}));
+  EXPECT_EQ(pcg4d({1, 2, 3, 4}), (Uint4{0x3622cd16u, 0xf11471d8u, 0xe1109b3fu, 0x02b94c2fu}));
+  EXPECT_EQ(pcg4d({0xffffffffu, 0, 0x12345678u, 0x9e3779b9u}),
+            (Uint4{0xd15ed682u, 0xe5e154ceu, 0xf2f48dd6u, 0x42bc40ecu}));
+}
+
+TEST(Hash, CellKeyAndCounterStreamMatchReferenceVectors) {
+  // Negative cells enter as their two's complement low 32 bits.
+  const std::uint32_t key = cell_key(-1, 5, 42, Stream::points);
+  EXPECT_EQ(key, 0x4f0bff40u);
+  CounterRng rng(key);
+  const std::uint32_t first = rng.next();
+  const std::uint32_t second = rng.next();
+  const std::uint32_t third = rng.next();
+  EXPECT_EQ(first, 0x38ad97b9u);
+  EXPECT_EQ(second, 0x535e0413u);
+  EXPECT_EQ(third, 0x8906aa8bu);
+}
+
+TEST(Hash, CellKeysDifferAcrossCellsSeedsStreamsAndFar) {
+  EXPECT_NE(cell_key(0, 0, 1, Stream::points), cell_key(0, 0, 2, Stream::points));
+  EXPECT_NE(cell_key(0, 0, 1, Stream::points), cell_key(0, 0, 1, Stream::phases));
+  EXPECT_NE(cell_key(0, 0, 1, Stream::points), cell_key(1, 0, 1, Stream::points));
+  EXPECT_NE(cell_key(0, 0, 1, Stream::points), cell_key(0, 1, 1, Stream::points));
+  // No small hidden period (a classic bug: cell index modulo 1024).
+  EXPECT_NE(cell_key(0, 0, 1, Stream::points), cell_key(1024, 0, 1, Stream::points));
+  EXPECT_NE(cell_key(0, 0, 1, Stream::points), cell_key(65536, 0, 1, Stream::points));
+}
+
+TEST(Hash, UniformIsUniform) {
+  // Chi-square over 64 bins of one uniform from each of 2^18 cells: a fixed draw, so the
+  // statistic is reproducible; it exceeds the 1e-4 critical value only if the hash is biased.
+  constexpr int kBins = 64;
+  constexpr int kDraws = 1 << 18;
+  std::vector<int> histogram(kBins, 0);
+  for (int i = 0; i < kDraws; ++i) {
+    CounterRng rng(cell_key(i % 512, i / 512, 7, Stream::points));
+    const float u = rng.uniform();
+    ASSERT_GE(u, 0.0f);
+    ASSERT_LT(u, 1.0f);
+    ++histogram[static_cast<std::size_t>(u * kBins)];
+  }
+  const double expected = static_cast<double>(kDraws) / kBins;
+  double chi_square = 0.0;
+  for (const int count : histogram)
+    chi_square += (count - expected) * (count - expected) / expected;
+  EXPECT_LT(chi_square, chi_square_critical(kBins - 1));
+}
+
+class PoissonTest : public ::testing::TestWithParam<double> {};
+
+TEST_P(PoissonTest, CountsFollowThePoissonLaw) {
+  const double mean = GetParam();
+  const PoissonSampler sampler(mean);
+  EXPECT_NEAR(sampler.mean(), mean, 1e-5 * mean);
+  constexpr int kDraws = 200000;
+  const int max_count = static_cast<int>(mean + 20.0 * std::sqrt(mean) + 30.0);
+  std::vector<double> observed(static_cast<std::size_t>(max_count) + 1, 0.0);
+  double sum = 0.0;
+  for (int i = 0; i < kDraws; ++i) {
+    CounterRng rng(cell_key(i, -i, 3, Stream::points));
+    const std::uint32_t k = sampler(rng);
+    sum += k;
+    observed[std::min<std::size_t>(k, static_cast<std::size_t>(max_count))] += 1.0;
+  }
+  // Exact probabilities in double; bins pooled from both ends until each expects >= 20 draws.
+  std::vector<double> probability(observed.size());
+  double p = std::exp(-mean);
+  for (int k = 0; k <= max_count; ++k) {
+    probability[static_cast<std::size_t>(k)] = p;
+    p *= mean / (k + 1);
+  }
+  double chi_square = 0.0;
+  int bins = 0;
+  double pooled_expected = 0.0;
+  double pooled_observed = 0.0;
+  for (std::size_t k = 0; k < observed.size(); ++k) {
+    pooled_expected += probability[k] * kDraws;
+    pooled_observed += observed[k];
+    if (pooled_expected >= 20.0) {
+      chi_square += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) /
+                    pooled_expected;
+      ++bins;
+      pooled_expected = 0.0;
+      pooled_observed = 0.0;
+    }
+  }
+  ASSERT_GE(bins, 2);
+  EXPECT_LT(chi_square, chi_square_critical(std::max(bins - 1, 3))) << "mean " << mean;
+  // The sample mean is within 5 standard errors of the Poisson mean.
+  EXPECT_NEAR(sum / kDraws, mean, 5.0 * std::sqrt(mean / kDraws));
+}
+
+// Small means (one chunk), the chunk limit, and large means split into several exact chunks.
+INSTANTIATE_TEST_SUITE_P(Means, PoissonTest, ::testing::Values(0.3, 2.5, 10.8, 16.0, 30.0, 250.0));
+
+}  // namespace
+}  // namespace stochtex

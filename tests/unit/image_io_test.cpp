@@ -1,0 +1,417 @@
+// Image files: exact round trips, format detection by content, and one clear error for every bad
+// file (DESIGN.md sections 6 and 8).
+
+#include "io/image_io.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "stochtex/error.hpp"
+
+namespace stochtex {
+namespace {
+
+namespace fs = std::filesystem;
+using Bytes = std::vector<unsigned char>;
+
+class ImageIoTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = testing::UnitTest::GetInstance()->current_test_info();
+    folder_ = fs::temp_directory_path() /
+              ("stochtex_image_io_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(folder_);
+    fs::create_directories(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+
+  fs::path file(const std::string& name) const { return folder_ / name; }
+  std::vector<fs::path> folder_contents() const {
+    return {fs::directory_iterator(folder_), fs::directory_iterator()};
+  }
+
+  fs::path folder_;
+};
+
+ImageF make_image(int width, int height, int channels, float (*value)(int x, int y, int c)) {
+  ImageF image(width, height, channels);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c) image.at(x, y, c) = value(x, y, c);
+  return image;
+}
+
+void expect_identical(const ImageF& expected, const ImageF& actual) {
+  ASSERT_EQ(actual.width(), expected.width());
+  ASSERT_EQ(actual.height(), expected.height());
+  ASSERT_EQ(actual.channels(), expected.channels());
+  for (std::size_t i = 0; i < expected.pixels().size(); ++i)
+    ASSERT_EQ(actual.pixels()[i], expected.pixels()[i]) << "sample " << i;
+}
+
+Bytes read_bytes(const fs::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const fs::path& path, const Bytes& bytes) {
+  std::ofstream stream(path, std::ios::binary);
+  stream.write(reinterpret_cast<const char*>(bytes.data()),
+               static_cast<std::streamsize>(bytes.size()));
+}
+
+void append_u32_big_endian(Bytes& bytes, std::uint32_t value) {
+  for (int shift = 24; shift >= 0; shift -= 8)
+    bytes.push_back(static_cast<unsigned char>(value >> shift));
+}
+
+std::uint32_t crc32(const unsigned char* data, std::size_t size) {
+  std::uint32_t crc = 0xffffffffu;
+  for (std::size_t i = 0; i < size; ++i) {
+    crc ^= data[i];
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+void append_chunk(Bytes& png, const std::string& type, const Bytes& data) {
+  append_u32_big_endian(png, static_cast<std::uint32_t>(data.size()));
+  const std::size_t start = png.size();
+  png.insert(png.end(), type.begin(), type.end());
+  png.insert(png.end(), data.begin(), data.end());
+  append_u32_big_endian(png, crc32(png.data() + start, png.size() - start));
+}
+
+// A PNG written by hand (so the tests can produce layouts write_image never does: palettes,
+// 1- and 2-bit samples, interlacing, hostile sizes). The pixel rows, each led by its filter byte,
+// go into one stored (uncompressed) deflate block.
+Bytes handmade_png(std::uint32_t width, std::uint32_t height, int bit_depth, int color_type,
+                   const Bytes& raw_rows, int interlace = 0, const Bytes& palette = {},
+                   const Bytes& transparency = {}) {
+  Bytes png = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  Bytes header;
+  append_u32_big_endian(header, width);
+  append_u32_big_endian(header, height);
+  header.insert(header.end(),
+                {static_cast<unsigned char>(bit_depth), static_cast<unsigned char>(color_type), 0,
+                 0, static_cast<unsigned char>(interlace)});
+  append_chunk(png, "IHDR", header);
+  if (!palette.empty()) append_chunk(png, "PLTE", palette);
+  if (!transparency.empty()) append_chunk(png, "tRNS", transparency);
+  const auto size = static_cast<std::uint16_t>(raw_rows.size());
+  Bytes zlib = {0x78,
+                0x01,
+                0x01,
+                static_cast<unsigned char>(size & 0xff),
+                static_cast<unsigned char>(size >> 8),
+                static_cast<unsigned char>(~size & 0xff),
+                static_cast<unsigned char>((~size >> 8) & 0xff)};
+  zlib.insert(zlib.end(), raw_rows.begin(), raw_rows.end());
+  std::uint32_t a = 1, b = 0;
+  for (unsigned char byte : raw_rows) {
+    a = (a + byte) % 65521;
+    b = (b + a) % 65521;
+  }
+  append_u32_big_endian(zlib, b << 16 | a);
+  append_chunk(png, "IDAT", zlib);
+  append_chunk(png, "IEND", {});
+  return png;
+}
+
+ErrorCode read_error_code(const fs::path& path, const ImageReadLimits& limits = {}) {
+  try {
+    read_image(path, limits);
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find(path.filename().string()), std::string::npos)
+        << "the message names the file: " << error.what();
+    return error.code();
+  }
+  ADD_FAILURE() << "reading " << path << " did not throw";
+  return ErrorCode::numerical;
+}
+
+TEST_F(ImageIoTest, Png8BitRoundTripIsExact) {
+  for (int channels = 1; channels <= 4; ++channels) {
+    const ImageF image = make_image(37, 19, channels, [](int x, int y, int c) {
+      return static_cast<float>((x * 7 + y * 13 + c * 29) % 256) / 255.0f;
+    });
+    const fs::path path = file("image8_" + std::to_string(channels) + ".png");
+    write_image(path, image.view(), 8);
+    expect_identical(image, read_image(path));
+  }
+}
+
+TEST_F(ImageIoTest, Png16BitRoundTripIsExact) {
+  for (int channels = 1; channels <= 4; ++channels) {
+    const ImageF image = make_image(41, 23, channels, [](int x, int y, int c) {
+      return static_cast<float>((x * 4099 + y * 1601 * 41 + c * 12345) % 65536) / 65535.0f;
+    });
+    const fs::path path = file("image16_" + std::to_string(channels) + ".png");
+    write_image(path, image.view(), 16);
+    expect_identical(image, read_image(path));
+  }
+}
+
+TEST_F(ImageIoTest, PngClampsAndRoundsOutOfRangeValues) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  ImageF image(5, 1, 1);
+  const float values[] = {-0.5f, nan, 2.0f, 0.5f, 0.25f / 255.0f};
+  for (int x = 0; x < 5; ++x) image.at(x, 0, 0) = values[x];
+  write_image(file("clamped.png"), image.view());
+  const ImageF read = read_image(file("clamped.png"));
+  EXPECT_EQ(read.at(0, 0, 0), 0.0f);
+  EXPECT_EQ(read.at(1, 0, 0), 0.0f);
+  EXPECT_EQ(read.at(2, 0, 0), 1.0f);
+  EXPECT_EQ(read.at(3, 0, 0), 128.0f / 255.0f);
+  EXPECT_EQ(read.at(4, 0, 0), 0.0f);
+}
+
+TEST_F(ImageIoTest, ExrFloatRoundTripIsExact) {
+  for (int channels = 1; channels <= 4; ++channels) {
+    const ImageF image = make_image(29, 17, channels, [](int x, int y, int c) {
+      return std::ldexp(static_cast<float>(x - 14) * 0.3183099f + static_cast<float>(c), y - 8);
+    });
+    const fs::path path = file("image_" + std::to_string(channels) + ".exr");
+    write_image(path, image.view());
+    expect_identical(image, read_image(path));
+  }
+}
+
+TEST_F(ImageIoTest, PfmRoundTripIsExactForGreyAndRgb) {
+  for (int channels : {1, 3}) {
+    const ImageF image = make_image(13, 11, channels, [](int x, int y, int c) {
+      return static_cast<float>(x * 100 + y) * 1e-3f - static_cast<float>(c) * 7.5f;
+    });
+    const fs::path path = file("image_" + std::to_string(channels) + ".pfm");
+    write_image(path, image.view());
+    expect_identical(image, read_image(path));
+  }
+}
+
+TEST_F(ImageIoTest, PfmStoresRowsBottomToTopAndHonoursByteOrder) {
+  // Big-endian (positive scale) grey 1x2: the first row in the file is the bottom of the image.
+  Bytes pfm = {'P', 'f', '\n', '1', ' ', '2', '\n', '1', '.', '0', '\n'};
+  append_u32_big_endian(pfm, 0x3f800000u);  // 1.0f
+  append_u32_big_endian(pfm, 0x40000000u);  // 2.0f
+  write_bytes(file("big_endian.pfm"), pfm);
+  const ImageF image = read_image(file("big_endian.pfm"));
+  ASSERT_EQ(image.width(), 1);
+  ASSERT_EQ(image.height(), 2);
+  EXPECT_EQ(image.at(0, 0, 0), 2.0f);
+  EXPECT_EQ(image.at(0, 1, 0), 1.0f);
+}
+
+TEST_F(ImageIoTest, PfmRefusesTwoOrFourChannels) {
+  for (int channels : {2, 4}) {
+    const ImageF image(4, 4, channels, 0.5f);
+    const fs::path path = file("image.pfm");
+    try {
+      write_image(path, image.view());
+      FAIL() << "a " << channels << "-channel PFM was written";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find(".exr"), std::string::npos) << error.what();
+    }
+    EXPECT_TRUE(folder_contents().empty());
+  }
+}
+
+TEST_F(ImageIoTest, WritingAStridedViewWritesOnlyItsPixels) {
+  const ImageF image = make_image(
+      8, 6, 3, [](int x, int y, int c) { return static_cast<float>(x + 8 * y + 48 * c) / 255.0f; });
+  const ImageView<const float> region = image.view().sub(2, 1, 4, 3);
+  for (const char* name : {"region.png", "region.exr", "region.pfm"}) {
+    write_image(file(name), region);
+    const ImageF read = read_image(file(name));
+    ASSERT_EQ(read.width(), 4);
+    ASSERT_EQ(read.height(), 3);
+    for (int y = 0; y < 3; ++y)
+      for (int x = 0; x < 4; ++x)
+        for (int c = 0; c < 3; ++c)
+          EXPECT_EQ(read.at(x, y, c), region.at(x, y, c)) << name << " " << x << "," << y;
+  }
+}
+
+TEST_F(ImageIoTest, FormatIsRecognisedByContentNotExtension) {
+  const ImageF image = make_image(
+      4, 4, 3, [](int x, int y, int c) { return static_cast<float>(x + y + c) / 255.0f; });
+  write_image(file("image.png"), image.view());
+  fs::rename(file("image.png"), file("misnamed.exr"));
+  expect_identical(image, read_image(file("misnamed.exr")));
+}
+
+TEST_F(ImageIoTest, CorpusPngsRead) {
+  const ImageF fleece = read_image(STOCHTEX_TEXTURE_DIR "/red_fleece_128.png");
+  EXPECT_EQ(fleece.width(), 128);
+  EXPECT_EQ(fleece.height(), 128);
+  EXPECT_EQ(fleece.channels(), 3);
+  float lowest = 1.0f, highest = 0.0f;
+  for (float value : fleece.pixels()) {
+    lowest = std::min(lowest, value);
+    highest = std::max(highest, value);
+  }
+  EXPECT_GE(lowest, 0.0f);
+  EXPECT_LE(highest, 1.0f);
+  EXPECT_LT(lowest, highest);
+
+  int corpus_files = 0;
+  for (const auto& entry : fs::directory_iterator(STOCHTEX_TEXTURE_DIR)) {
+    if (entry.path().extension() != ".png") continue;
+    const ImageF image = read_image(entry.path());
+    EXPECT_TRUE(image.channels() == 1 || image.channels() == 3) << entry.path();
+    EXPECT_GE(image.width(), 128) << entry.path();
+    ++corpus_files;
+  }
+  EXPECT_GT(corpus_files, 0);
+}
+
+TEST_F(ImageIoTest, PalettesAndLowBitDepthsAreExpanded) {
+  // 3x2, 2 bits per index; entry 1 is half transparent, so the image becomes RGBA.
+  const Bytes palette = {255, 0, 0, 0, 255, 0, 0, 0, 255, 10, 20, 30};
+  const Bytes indices = {0, 0b00'01'10'00, 0, 0b11'10'01'00};
+  write_bytes(file("palette.png"), handmade_png(3, 2, 2, 3, indices, 0, palette, {255, 128}));
+  const ImageF image = read_image(file("palette.png"));
+  ASSERT_EQ(image.channels(), 4);
+  EXPECT_EQ(image.at(0, 0, 0), 1.0f);
+  EXPECT_EQ(image.at(1, 0, 1), 1.0f);
+  EXPECT_EQ(image.at(1, 0, 3), 128.0f / 255.0f);
+  EXPECT_EQ(image.at(0, 1, 2), 30.0f / 255.0f);
+  EXPECT_EQ(image.at(0, 1, 3), 1.0f);
+
+  // 1-bit grey: 1 0 1 becomes 1 0 1 in [0, 1].
+  write_bytes(file("bilevel.png"), handmade_png(3, 1, 1, 0, {0, 0b1010'0000}));
+  const ImageF bilevel = read_image(file("bilevel.png"));
+  ASSERT_EQ(bilevel.channels(), 1);
+  EXPECT_EQ(bilevel.at(0, 0, 0), 1.0f);
+  EXPECT_EQ(bilevel.at(1, 0, 0), 0.0f);
+  EXPECT_EQ(bilevel.at(2, 0, 0), 1.0f);
+}
+
+TEST_F(ImageIoTest, InterlacedPngIsDeinterlaced) {
+  // Adam7 on 2x2: pass 1 holds (0,0), pass 6 holds (1,0), pass 7 holds row 1.
+  write_bytes(file("interlaced.png"), handmade_png(2, 2, 8, 0, {0, 10, 0, 20, 0, 30, 40}, 1));
+  const ImageF image = read_image(file("interlaced.png"));
+  EXPECT_EQ(image.at(0, 0, 0), 10.0f / 255.0f);
+  EXPECT_EQ(image.at(1, 0, 0), 20.0f / 255.0f);
+  EXPECT_EQ(image.at(0, 1, 0), 30.0f / 255.0f);
+  EXPECT_EQ(image.at(1, 1, 0), 40.0f / 255.0f);
+}
+
+TEST_F(ImageIoTest, TruncatedFilesAreFormatErrors) {
+  const ImageF image = make_image(32, 32, 3, [](int x, int y, int c) {
+    return static_cast<float>((x * 37 + y * 11 + c) % 256) / 255.0f;
+  });
+  for (const char* name : {"whole.png", "whole.exr", "whole.pfm"}) {
+    write_image(file(name), image.view());
+    const Bytes whole = read_bytes(file(name));
+    const fs::path truncated = file(std::string("half_") + name);
+    write_bytes(truncated, Bytes(whole.begin(), whole.begin() + whole.size() / 2));
+    EXPECT_EQ(read_error_code(truncated), ErrorCode::format) << name;
+  }
+}
+
+TEST_F(ImageIoTest, RandomBytesAreFormatErrors) {
+  std::mt19937 random(12345);
+  Bytes noise(4096);
+  for (auto& byte : noise) byte = static_cast<unsigned char>(random());
+  noise[0] = 'x';
+  write_bytes(file("noise.png"), noise);
+  EXPECT_EQ(read_error_code(file("noise.png")), ErrorCode::format);
+
+  // The same noise behind a valid PNG signature reaches libpng, which must refuse it cleanly.
+  const Bytes signature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  std::copy(signature.begin(), signature.end(), noise.begin());
+  write_bytes(file("noise_after_signature.png"), noise);
+  EXPECT_EQ(read_error_code(file("noise_after_signature.png")), ErrorCode::format);
+}
+
+TEST_F(ImageIoTest, EmptyFileIsAFormatError) {
+  write_bytes(file("empty.png"), {});
+  EXPECT_EQ(read_error_code(file("empty.png")), ErrorCode::format);
+}
+
+TEST_F(ImageIoTest, HugeDeclaredSizesAreRefusedBeforeAllocating) {
+  // Valid headers (checksums included) claiming 100000x100000 pixels, with almost no data.
+  write_bytes(file("huge.png"), handmade_png(100000, 100000, 8, 0, {0, 1}));
+  EXPECT_EQ(read_error_code(file("huge.png")), ErrorCode::invalid_input);
+
+  const std::string pfm_header = "PF\n100000 100000\n-1.0\n";
+  write_bytes(file("huge.pfm"), Bytes(pfm_header.begin(), pfm_header.end()));
+  EXPECT_EQ(read_error_code(file("huge.pfm")), ErrorCode::invalid_input);
+
+  // An EXR whose data window is edited to 100000x100000 pixels.
+  write_image(file("small.exr"), ImageF(2, 2, 1, 0.5f).view());
+  Bytes exr = read_bytes(file("small.exr"));
+  const std::string attribute = std::string("dataWindow") + '\0' + "box2i" + '\0';
+  const auto found = std::search(exr.begin(), exr.end(), attribute.begin(), attribute.end());
+  ASSERT_NE(found, exr.end());
+  const auto box = found + static_cast<std::ptrdiff_t>(attribute.size()) + 4;  // after the size
+  const std::uint32_t last = 99999;
+  for (int corner : {2, 3})  // max.x and max.y, little-endian int32
+    for (int b = 0; b < 4; ++b) box[4 * corner + b] = static_cast<unsigned char>(last >> (8 * b));
+  write_bytes(file("huge.exr"), exr);
+  EXPECT_EQ(read_error_code(file("huge.exr")), ErrorCode::invalid_input);
+}
+
+TEST_F(ImageIoTest, PixelLimitIsEnforced) {
+  write_image(file("image.png"), ImageF(16, 16, 1, 0.5f).view());
+  ImageReadLimits limits;
+  limits.max_pixels = 255;
+  EXPECT_EQ(read_error_code(file("image.png"), limits), ErrorCode::invalid_input);
+  limits.max_pixels = 256;
+  EXPECT_EQ(read_image(file("image.png"), limits).width(), 16);
+}
+
+TEST_F(ImageIoTest, MissingFileIsAnIoError) {
+  EXPECT_EQ(read_error_code(file("absent.png")), ErrorCode::io);
+  EXPECT_EQ(read_error_code(folder_), ErrorCode::io);
+}
+
+TEST_F(ImageIoTest, WritingIntoAMissingFolderFailsAndLeavesNothing) {
+  const fs::path path = folder_ / "missing" / "out.png";
+  try {
+    write_image(path, ImageF(4, 4, 3, 0.5f).view());
+    FAIL() << "writing into a missing folder succeeded";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.code(), ErrorCode::io);
+    EXPECT_NE(std::string(error.what()).find("out.png"), std::string::npos) << error.what();
+  }
+  EXPECT_FALSE(fs::exists(folder_ / "missing"));
+  EXPECT_TRUE(folder_contents().empty());
+}
+
+TEST_F(ImageIoTest, WritingLeavesOnlyTheOutputAndReplacesAnOldOne) {
+  for (const char* name : {"out.png", "out.exr", "out.pfm"}) {
+    write_image(file(name), ImageF(3, 3, 3, 0.25f).view());
+    write_image(file(name), ImageF(5, 2, 1, 1.0f).view());
+    const ImageF read = read_image(file(name));
+    EXPECT_EQ(read.width(), 5);
+    EXPECT_EQ(read.at(4, 1, 0), 1.0f);
+  }
+  std::vector<std::string> names;
+  for (const auto& path : folder_contents()) names.push_back(path.filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"out.exr", "out.pfm", "out.png"}));
+}
+
+TEST_F(ImageIoTest, BadWriteArgumentsAreInvalidArguments) {
+  const ImageF image(2, 2, 3, 0.5f);
+  EXPECT_THROW(write_image(file("out.jpg"), image.view()), std::invalid_argument);
+  EXPECT_THROW(write_image(file("out.png"), image.view(), 12), std::invalid_argument);
+  EXPECT_THROW(write_image(file("out.png"), ImageF().view()), std::invalid_argument);
+  EXPECT_TRUE(folder_contents().empty());
+}
+
+}  // namespace
+}  // namespace stochtex

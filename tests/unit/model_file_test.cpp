@@ -1,0 +1,192 @@
+// The .stx model file (DESIGN.md section 7): exact round trips, and every corrupt, truncated,
+// hostile or foreign file rejected by stochtex::Error(format) with a sentence naming the file.
+
+#include "model/model_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex {
+namespace {
+
+Model small_model(int channels) {
+  std::mt19937 engine(4);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  ImageF exemplar(32, 32, channels);
+  for (float& value : exemplar.pixels()) value = uniform(engine);
+  return analyze("texton", exemplar.view(), {{"support", 12}, {"iterations", 5}}, 1);
+}
+
+// The FNV-1a checksum of the file format, recomputed so mutated files get past it and reach the
+// deeper validation (header, shapes, values).
+std::vector<std::uint8_t> with_checksum(std::vector<std::uint8_t> bytes) {
+  bytes.resize(bytes.size() - 8);
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const std::uint8_t byte : bytes) {
+    hash ^= byte;
+    hash *= 1099511628211ull;
+  }
+  for (int i = 0; i < 8; ++i) bytes.push_back(static_cast<std::uint8_t>(hash >> (8 * i)));
+  return bytes;
+}
+
+// A file made of a given header and `float_count` zero floats, with a valid checksum.
+std::vector<std::uint8_t> file_with_header(const std::string& header, std::size_t float_count,
+                                           std::uint32_t version = kModelFormatVersion) {
+  std::vector<std::uint8_t> bytes = {'S', 'T', 'O', 'C', 'H', 'T', 'E', 'X'};
+  for (int i = 0; i < 4; ++i) bytes.push_back(static_cast<std::uint8_t>(version >> (8 * i)));
+  const auto length = static_cast<std::uint32_t>(header.size());
+  for (int i = 0; i < 4; ++i) bytes.push_back(static_cast<std::uint8_t>(length >> (8 * i)));
+  bytes.insert(bytes.end(), header.begin(), header.end());
+  bytes.resize(bytes.size() + 4 * float_count + 8, 0);
+  return with_checksum(bytes);
+}
+
+void expect_rejected(const std::vector<std::uint8_t>& bytes, const std::string& what) {
+  try {
+    deserialize_model(bytes, "model.stx");
+    ADD_FAILURE() << what << ": accepted";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.code(), ErrorCode::format) << what;
+    const std::string message = error.what();
+    EXPECT_NE(message.find("'model.stx'"), std::string::npos) << what << ": " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << what << ": " << message;
+  }
+}
+
+TEST(ModelFile, RoundTripIsExact) {
+  for (const int channels : {1, 3, 4}) {
+    const Model model = small_model(channels);
+    const std::vector<std::uint8_t> bytes = serialize_model(model);
+    const Model loaded = deserialize_model(bytes, "memory");
+    EXPECT_EQ(loaded.method(), "texton");
+    EXPECT_EQ(loaded.channels(), channels);
+    EXPECT_EQ(loaded.params(), model.params());
+    EXPECT_EQ(serialize_model(loaded), bytes);
+    // Same model, same evaluation, bit for bit.
+    const std::vector<Vec2d> points = {{0.5, 0.5}, {100.25, -7.0}, {1e7, 3e6}};
+    ImageF a(3, 1, channels);
+    ImageF b(3, 1, channels);
+    evaluate(model, points, {}, 5, a.view());
+    evaluate(loaded, points, {}, 5, b.view());
+    EXPECT_EQ(0, std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()));
+  }
+}
+
+TEST(ModelFile, SaveAndLoadThroughTheFileSystem) {
+  const Model model = small_model(3);
+  const auto folder = std::filesystem::temp_directory_path() / "stochtex_model_file_test";
+  std::filesystem::create_directories(folder);
+  const auto path = folder / "m.stx";
+  save_model(model, path);
+  EXPECT_FALSE(std::filesystem::exists(folder / "m.stx.tmp"));
+  EXPECT_EQ(serialize_model(load_model(path)), serialize_model(model));
+  EXPECT_THROW(save_model(model, folder / "missing" / "m.stx"), Error);
+  EXPECT_FALSE(std::filesystem::exists(folder / "missing"));
+  EXPECT_THROW(load_model(folder / "nothing.stx"), Error);
+  std::filesystem::remove_all(folder);
+}
+
+TEST(ModelFile, EveryTruncationIsRejected) {
+  const std::vector<std::uint8_t> bytes = serialize_model(small_model(3));
+  for (std::size_t length = 0; length < bytes.size(); ++length)
+    expect_rejected({bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(length)},
+                    "truncated to " + std::to_string(length));
+}
+
+TEST(ModelFile, EveryByteFlipIsRejected) {
+  const std::vector<std::uint8_t> bytes = serialize_model(small_model(1));
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    std::vector<std::uint8_t> corrupt = bytes;
+    corrupt[i] ^= 0x20;
+    expect_rejected(corrupt, "byte " + std::to_string(i) + " flipped");
+  }
+}
+
+TEST(ModelFile, OtherVersionsGetAClearMessage) {
+  const std::string header = R"({"method":"texton","params":{},"scalars":{},"arrays":[]})";
+  try {
+    deserialize_model(file_with_header(header, 0, kModelFormatVersion + 1), "new.stx");
+    FAIL() << "a newer version was accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("upgrade stochtex"), std::string::npos);
+  }
+  try {
+    deserialize_model(file_with_header(header, 0, 0), "old.stx");
+    FAIL() << "an older version was accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("re-run `stochtex analyze`"), std::string::npos);
+  }
+}
+
+TEST(ModelFile, HostileAndInconsistentHeadersAreRejected) {
+  const std::string good_arrays =
+      R"([{"name":"texton","shape":[2,2,1]},{"name":"mean","shape":[1]}])";
+  const std::string good_scalars = R"({"channels":1,"support":2,"order":1,"mni":30})";
+  auto header = [](const std::string& scalars, const std::string& arrays) {
+    return R"({"method":"texton","params":{"mni":30},"scalars":)" + scalars + R"(,"arrays":)" +
+           arrays + "}";
+  };
+  // The well-formed reference file is accepted, so each rejection below is due to its one change.
+  EXPECT_NO_THROW(deserialize_model(file_with_header(header(good_scalars, good_arrays), 5), "m"));
+
+  expect_rejected(file_with_header("not json at all", 0), "not JSON");
+  expect_rejected(file_with_header(std::string(100000, '[') + std::string(100000, ']'), 0),
+                  "deep nesting");
+  expect_rejected(file_with_header(R"({"method":"texton"})", 0), "missing fields");
+  expect_rejected(
+      file_with_header(R"({"method":"voronoi","params":{},"scalars":{},"arrays":[]})", 0),
+      "unknown method");
+  expect_rejected(
+      file_with_header(
+          header(good_scalars, R"([{"name":"texton","shape":[1000000,1000000,1000000]}])"), 0),
+      "a declared size of 10^18 values");
+  expect_rejected(file_with_header(header(good_scalars, R"([{"name":"texton","shape":[268435456]},)"
+                                                        R"({"name":"mean","shape":[268435456]}])"),
+                                   0),
+                  "two arrays of 1 GiB");
+  expect_rejected(file_with_header(header(good_scalars, R"([{"name":"texton","shape":[-4]}])"), 0),
+                  "negative size");
+  expect_rejected(file_with_header(header(good_scalars, good_arrays), 4),
+                  "data shorter than declared");
+  expect_rejected(file_with_header(header(good_scalars, good_arrays), 6),
+                  "data longer than declared");
+  expect_rejected(file_with_header(header(good_scalars, R"([{"name":"texton","shape":[3,3,1]},)"
+                                                        R"({"name":"mean","shape":[1]}])"),
+                                   10),
+                  "shape disagrees with the support");
+  expect_rejected(
+      file_with_header(header(R"({"channels":1,"support":2,"order":2,"mni":30})", good_arrays), 5),
+      "order 2");
+  expect_rejected(
+      file_with_header(header(R"({"channels":1,"support":2,"order":1,"mni":-1})", good_arrays), 5),
+      "negative mni");
+  expect_rejected(
+      file_with_header(header(R"({"channels":1,"support":2,"order":1})", good_arrays), 5),
+      "missing mni");
+  expect_rejected(file_with_header(header(good_scalars, R"([{"name":"texton","shape":[2,2,1]},)"
+                                                        R"({"name":"texton","shape":[1]}])"),
+                                   5),
+                  "repeated array name");
+}
+
+TEST(ModelFile, NonFiniteValuesAreRejected) {
+  const Model model = small_model(1);
+  std::vector<std::uint8_t> bytes = serialize_model(model);
+  // The first float of the texton array sits right after the header.
+  std::uint32_t header_length = 0;
+  std::memcpy(&header_length, bytes.data() + 12, 4);
+  const std::uint32_t nan_bits = 0x7fc00000u;
+  std::memcpy(bytes.data() + 16 + header_length, &nan_bits, 4);
+  expect_rejected(with_checksum(bytes), "NaN texton value");
+}
+
+}  // namespace
+}  // namespace stochtex
