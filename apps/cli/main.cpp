@@ -249,6 +249,7 @@ int run(int argc, char** argv) {
   gaussian_cmd->add_option("--size", settings.size, "output size WIDTHxHEIGHT")->required();
   gaussian_cmd->add_option("--seed", settings.seed, "32-bit seed")->capture_default_str();
   gaussian_cmd->add_option("--bit-depth", settings.bit_depth, "PNG output bits per channel")
+      ->capture_default_str()
       ->check(CLI::IsMember({8, 16}));
 
   auto* compare_cmd = app.add_subcommand("compare", "quality of IMAGE against EXEMPLAR");
@@ -265,6 +266,10 @@ int run(int argc, char** argv) {
   auto* methods_cmd = app.add_subcommand("methods", "list the methods and their parameters");
   methods_cmd->add_flag("--json", json, "print one JSON document");
 
+  // CLI11's own usage errors follow the one-sentence rule too.
+  app.failure_message([](const CLI::App*, const CLI::Error& error) {
+    return fmt::format("stochtex: error: {}; see --help\n", error.what());
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -273,21 +278,25 @@ int run(int argc, char** argv) {
 
   try {
     if (*analyze_cmd) {
+      check_output_path(output, false);
       const Model model = run_analyze(analyze_options);
       save_model(model, output);
       fmt::print(stderr, "wrote {}\n", output);
     } else if (*render_cmd) {
       parse_size(settings.size);
       parse_origin(settings.origin);
+      check_output_path(output, true);
       run_render(load_model(model_path), settings, output);
       fmt::print(stderr, "wrote {}\n", output);
     } else if (*synth_cmd) {
       parse_size(settings.size);
       parse_origin(settings.origin);
+      check_output_path(output, true);
       run_render(run_analyze(analyze_options), settings, output);
       fmt::print(stderr, "wrote {}\n", output);
     } else if (*gaussian_cmd) {
       const Size size = parse_size(settings.size);
+      check_output_path(output, true);
       const ImageF exemplar = load_exemplar(gaussian_input);
       const ImageF result =
           gaussian_version(exemplar.view(), size.width, size.height, settings.seed);

@@ -18,14 +18,16 @@
 #include <climits>
 #include <cmath>
 #include <csetjmp>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <new>
+#include <span>
 #include <stdexcept>
 #include <string>
-#include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include "stochtex/error.hpp"
@@ -85,6 +87,8 @@ void read_png_bytes(png_structp png, png_bytep data, png_size_t length) {
     png_error(png, std::feof(file) ? "the file ends too early" : "read error");
 }
 
+// std::strerror rather than a std::string message: the longjmp out of png_error would skip the
+// string's destructor.
 void write_png_bytes(png_structp png, png_bytep data, png_size_t length) {
   if (std::fwrite(data, 1, length, static_cast<std::FILE*>(png_get_io_ptr(png))) != length)
     png_error(png, std::strerror(errno));
@@ -279,18 +283,19 @@ void check_exr_sizes(const fs::path& path, const ImageReadLimits& limits) {
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
   init.error_handler_fn = on_exr_error;
   init.user_data = &error;
-  exr_context_t context = nullptr;
-  const exr_result_t started = exr_start_read(&context, path.c_str(), &init);
-  const std::unique_ptr<exr_context_t, void (*)(exr_context_t*)> finish(
-      &context, [](exr_context_t* opened) { exr_finish(opened); });
+  struct Context {
+    exr_context_t handle = nullptr;
+    ~Context() { exr_finish(&handle); }
+  } context;
+  const exr_result_t started = exr_start_read(&context.handle, path.c_str(), &init);
   if (started != EXR_ERR_SUCCESS)
     throw_exr_read_error(path, error.text[0] ? error.text : exr_get_default_error_message(started));
   int parts = 0;
-  if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS || parts < 1)
+  if (exr_get_count(context.handle, &parts) != EXR_ERR_SUCCESS || parts < 1)
     throw_exr_read_error(path, "no image part");
   for (int part = 0; part < parts; ++part) {
     exr_attr_box2i_t window{};
-    if (exr_get_data_window(context, part, &window) != EXR_ERR_SUCCESS)
+    if (exr_get_data_window(context.handle, part, &window) != EXR_ERR_SUCCESS)
       throw_exr_read_error(path, "no data window");
     check_size(path, std::int64_t{window.max.x} - window.min.x + 1,
                std::int64_t{window.max.y} - window.min.y + 1, limits);
@@ -614,6 +619,15 @@ void write_image(const fs::path& path, ImageView<const float> image, int png_bit
                                    (filesystem_error ? filesystem_error->code().message()
                                                      : std::string(e.what())));
   }
+}
+
+void check_output_path(const fs::path& path, bool image) {
+  if (image) output_format(path);
+  const fs::path folder = path.parent_path();
+  std::error_code ignored;
+  if (!folder.empty() && !fs::is_directory(folder, ignored))
+    throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": the folder " + quoted(folder) +
+                                   " does not exist; create it or choose another path");
 }
 
 }  // namespace stochtex

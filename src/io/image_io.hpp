@@ -25,4 +25,8 @@ ImageF read_image(const std::filesystem::path& path, const ImageReadLimits& limi
 void write_image(const std::filesystem::path& path, ImageView<const float> image,
                  int png_bit_depth = 8);
 
+// Checks, before any long work, that `path` can be an output: its folder exists and, for an image
+// (`image` true), its extension is .png, .exr or .pfm. Throws like write_image would.
+void check_output_path(const std::filesystem::path& path, bool image);
+
 }  // namespace stochtex

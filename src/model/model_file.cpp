@@ -20,15 +20,6 @@ constexpr std::size_t kMaxArrays = 64;
 constexpr std::size_t kMaxArrayRank = 4;
 constexpr std::size_t kMaxNameLength = 64;
 
-std::uint64_t fnv1a64(std::span<const std::uint8_t> bytes) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (const std::uint8_t byte : bytes) {
-    hash ^= byte;
-    hash *= 1099511628211ull;
-  }
-  return hash;
-}
-
 void put_u32(std::vector<std::uint8_t>& out, std::uint32_t value) {
   for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(value >> (8 * i)));
 }
@@ -100,7 +91,7 @@ class Reader {
     if (header_length > bytes_.size() - kPreambleBytes - kChecksumBytes)
       fail("is truncated (its header runs past the end of the file); re-run `stochtex analyze`");
     const std::size_t payload_end = bytes_.size() - kChecksumBytes;
-    if (fnv1a64(bytes_.first(payload_end)) != get_u64(bytes_.data() + payload_end))
+    if (model_checksum(bytes_.first(payload_end)) != get_u64(bytes_.data() + payload_end))
       fail("fails its checksum: the file is truncated or corrupt; re-run `stochtex analyze`");
 
     const std::string_view header(reinterpret_cast<const char*>(bytes_.data() + kPreambleBytes),
@@ -217,8 +208,17 @@ std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
       std::memcpy(&bits, &value, sizeof(bits));
       put_u32(out, bits);
     }
-  put_u64(out, fnv1a64(out));
+  put_u64(out, model_checksum(out));
   return out;
+}
+
+std::uint64_t model_checksum(std::span<const std::uint8_t> bytes_before_checksum) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const std::uint8_t byte : bytes_before_checksum) {
+    hash ^= byte;
+    hash *= 1099511628211ull;
+  }
+  return hash;
 }
 
 ModelRecord read_model_record(std::span<const std::uint8_t> bytes, const std::string& source_name) {

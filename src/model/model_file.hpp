@@ -23,6 +23,8 @@ inline constexpr std::uint32_t kMaxModelHeaderBytes = 1u << 20;
 inline constexpr std::uint64_t kMaxModelArrayValues = std::uint64_t{1} << 28;  // 1 GiB of floats
 
 std::vector<std::uint8_t> write_model_record(const ModelRecord& record);
+// The FNV-1a 64 checksum stored in the last 8 bytes of a model file, over all bytes before it.
+std::uint64_t model_checksum(std::span<const std::uint8_t> bytes_before_checksum);
 ModelRecord read_model_record(std::span<const std::uint8_t> bytes, const std::string& source_name);
 
 }  // namespace stochtex

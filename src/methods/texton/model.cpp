@@ -103,17 +103,24 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
 }
 
 TextonModel TextonModel::from_record(const ModelRecord& record, const std::string& source) {
-  const auto read_int = [&](const char* name, double low, double high) {
-    const double value = record.scalar(name, source);
-    if (value != std::floor(value) || value < low || value > high)
-      throw Error(ErrorCode::format, "'" + source + "' has an invalid texton " + name +
+  // Scalars are checked against the same ranges as the analysis parameters (params.hpp): a file
+  // must not ask the evaluator for more work or memory than `stochtex analyze` could.
+  const auto read = [&](std::string_view name, double low, double high, bool integer) {
+    const double value = record.scalar(std::string(name), source);
+    if ((integer && value != std::floor(value)) || value < low || value > high)
+      throw Error(ErrorCode::format, "'" + source + "' has an invalid texton " + std::string(name) +
                                          " value; re-run `stochtex analyze`");
-    return static_cast<int>(value);
+    return value;
   };
-  const int channels = read_int("channels", 1, 4);
-  const int support = read_int("support", 1, 4096);
-  const int order = read_int("order", 0, 5);
-  const double mean_impacts = record.scalar("mni", source);
+  const auto read_param = [&](std::string_view name) {
+    const auto param = std::find_if(kParams.begin(), kParams.end(),
+                                    [&](const ParamInfo& p) { return p.name == name; });
+    return read(name, param->min_value, param->max_value, param->integer);
+  };
+  const int channels = static_cast<int>(read("channels", 1, 4, true));
+  const int support = static_cast<int>(read_param("support"));
+  const int order = static_cast<int>(read_param("order"));
+  const double mean_impacts = read_param("mni");
   const NamedArray& coefficients = record.array("texton", {support, support, channels}, source);
   const NamedArray& mean = record.array("mean", {channels}, source);
   const auto finite = [](const std::vector<float>& v) {
