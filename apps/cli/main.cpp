@@ -200,6 +200,20 @@ void run_render(const Model& model, const RenderSettings& settings, const std::s
   write_image(output, image.view(), settings.bit_depth);
 }
 
+void export_model_images(const Model& model, const std::filesystem::path& folder) {
+  if (!std::filesystem::is_directory(folder))
+    throw Error(ErrorCode::io, fmt::format("cannot export into '{}': the folder does not exist; "
+                                           "create it first",
+                                           folder.string()));
+  for (auto& [name, image] : model_images(model)) {
+    write_image(folder / (name + ".exr"), image.view());
+    float peak = 0.0f;
+    for (const float value : image.pixels()) peak = std::max(peak, std::abs(value));
+    for (float& value : image.pixels()) value = 0.5f + 0.5f * value / std::max(peak, 1e-30f);
+    write_image(folder / (name + ".png"), image.view());
+  }
+}
+
 nlohmann::ordered_json methods_json() {
   auto list = nlohmann::ordered_json::array();
   for (const auto& method : methods()) {
@@ -262,6 +276,10 @@ int run(int argc, char** argv) {
   auto* info_cmd = app.add_subcommand("info", "describe a model file");
   info_cmd->add_option("MODEL", model_path, "model file (.stx)")->required();
   info_cmd->add_flag("--json", json, "print one JSON document");
+  std::string export_folder;
+  info_cmd->add_option("--export", export_folder,
+                       "write the model's image arrays (e.g. the texton) into this folder as "
+                       "NAME.exr (values) and NAME.png (preview: 0.5 + 0.5 v / max|v|)");
 
   auto* methods_cmd = app.add_subcommand("methods", "list the methods and their parameters");
   methods_cmd->add_flag("--json", json, "print one JSON document");
@@ -335,6 +353,7 @@ int run(int argc, char** argv) {
       }
     } else if (*info_cmd) {
       const Model model = load_model(model_path);
+      if (!export_folder.empty()) export_model_images(model, export_folder);
       const std::string description = describe_model(model);
       if (json) {
         fmt::print("{}\n", description);

@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "stochtex/image.hpp"
+
 namespace stochtex {
 
 struct Vec2d {
@@ -71,5 +73,13 @@ Model deserialize_model(std::span<const std::uint8_t> bytes, const std::string& 
 
 // A JSON description of a model: method, parameters, array sizes (`stochtex info`).
 std::string describe_model(const Model& model);
+
+// The model's image-shaped arrays (height x width x channels), by name: e.g. the texton of a
+// texton model. For inspection and documentation (`stochtex info --export`).
+struct NamedImage {
+  std::string name;
+  ImageF image;
+};
+std::vector<NamedImage> model_images(const Model& model);
 
 }  // namespace stochtex

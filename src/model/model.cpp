@@ -1,5 +1,6 @@
 #include "stochtex/model.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -111,6 +112,18 @@ std::string describe_model(const Model& model) {
   json["arrays"] = arrays;
   json["array_bytes"] = bytes;
   return json.dump(2);
+}
+
+std::vector<NamedImage> model_images(const Model& model) {
+  std::vector<NamedImage> images;
+  for (const auto& array : record_of(model).arrays) {
+    if (array.shape.size() != 3) continue;
+    ImageF image(static_cast<int>(array.shape[1]), static_cast<int>(array.shape[0]),
+                 static_cast<int>(array.shape[2]));
+    std::copy(array.values.begin(), array.values.end(), image.pixels().begin());
+    images.push_back({array.name, std::move(image)});
+  }
+  return images;
 }
 
 }  // namespace stochtex
