@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <array>
@@ -78,13 +79,9 @@ std::vector<Seed> make_seeds(const fs::path& folder) {
   return seeds;
 }
 
+// The PNG chunk checksum is zlib's CRC-32.
 std::uint32_t crc32(const unsigned char* data, std::size_t size) {
-  std::uint32_t crc = 0xffffffffu;
-  for (std::size_t i = 0; i < size; ++i) {
-    crc ^= data[i];
-    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
-  }
-  return ~crc;
+  return static_cast<std::uint32_t>(::crc32(0L, data, static_cast<uInt>(size)));
 }
 
 // Rewrites every PNG chunk checksum, so that mutations reach the chunk parsers and the inflater

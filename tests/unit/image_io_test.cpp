@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -77,13 +78,9 @@ void append_u32_big_endian(Bytes& bytes, std::uint32_t value) {
     bytes.push_back(static_cast<unsigned char>(value >> shift));
 }
 
+// The PNG chunk checksum is zlib's CRC-32.
 std::uint32_t crc32(const unsigned char* data, std::size_t size) {
-  std::uint32_t crc = 0xffffffffu;
-  for (std::size_t i = 0; i < size; ++i) {
-    crc ^= data[i];
-    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
-  }
-  return ~crc;
+  return static_cast<std::uint32_t>(::crc32(0L, data, static_cast<uInt>(size)));
 }
 
 void append_chunk(Bytes& png, const std::string& type, const Bytes& data) {
