@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <mutex>
 #include <new>
+#include <stdexcept>
 
 namespace stochtex {
 namespace {
@@ -61,6 +62,74 @@ void Fft2d::inverse(std::span<const std::complex<float>> in, std::span<float> ou
   fftwf_execute(plans_->inverse);
   const float normalisation = 1.0f / static_cast<float>(image_size());
   for (std::size_t i = 0; i < image_size(); ++i) out[i] = plans_->real[i] * normalisation;
+}
+
+struct RowPrunedFft2d::Plans {
+  float* real = nullptr;
+  fftwf_complex* complex = nullptr;
+  fftwf_plan rows_forward = nullptr;
+  fftwf_plan columns_forward = nullptr;
+  fftwf_plan columns_inverse = nullptr;
+  fftwf_plan rows_inverse = nullptr;
+  std::mutex mutex;
+
+  ~Plans() {
+    std::lock_guard lock(planner_mutex());
+    for (fftwf_plan plan : {rows_forward, columns_forward, columns_inverse, rows_inverse})
+      if (plan) fftwf_destroy_plan(plan);
+    fftwf_free(real);
+    fftwf_free(complex);
+  }
+};
+
+RowPrunedFft2d::RowPrunedFft2d(int width, int height, int rows)
+    : width_(width), height_(height), rows_(rows), plans_(new Plans) {
+  if (rows < 1 || rows > height) throw std::invalid_argument("RowPrunedFft2d: rows out of range");
+  plans_->real = fftwf_alloc_real(rows_size());
+  plans_->complex = fftwf_alloc_complex(spectrum_size());
+  if (!plans_->real || !plans_->complex) throw std::bad_alloc();
+  std::lock_guard lock(planner_mutex());
+  const int columns = spectrum_width();
+  const int flags = FFTW_ESTIMATE | FFTW_DESTROY_INPUT;
+  // Rows: `rows` real transforms of length width, one after the other in memory.
+  plans_->rows_forward =
+      fftwf_plan_many_dft_r2c(1, &width_, rows_, plans_->real, nullptr, 1, width_, plans_->complex,
+                              nullptr, 1, columns, flags);
+  plans_->rows_inverse = fftwf_plan_many_dft_c2r(1, &width_, rows_, plans_->complex, nullptr, 1,
+                                                 columns, plans_->real, nullptr, 1, width_, flags);
+  // Columns: `columns` complex transforms of length height, in place, stride = a row.
+  plans_->columns_forward =
+      fftwf_plan_many_dft(1, &height_, columns, plans_->complex, nullptr, columns, 1,
+                          plans_->complex, nullptr, columns, 1, FFTW_FORWARD, flags);
+  plans_->columns_inverse =
+      fftwf_plan_many_dft(1, &height_, columns, plans_->complex, nullptr, columns, 1,
+                          plans_->complex, nullptr, columns, 1, FFTW_BACKWARD, flags);
+  if (!plans_->rows_forward || !plans_->rows_inverse || !plans_->columns_forward ||
+      !plans_->columns_inverse)
+    throw std::bad_alloc();
+}
+
+RowPrunedFft2d::~RowPrunedFft2d() = default;
+
+void RowPrunedFft2d::forward(std::span<const float> in, std::span<std::complex<float>> out) const {
+  std::lock_guard lock(plans_->mutex);
+  std::copy_n(in.data(), rows_size(), plans_->real);
+  fftwf_execute(plans_->rows_forward);
+  // The row transforms of the zero rows are zero.
+  auto* spectrum = reinterpret_cast<std::complex<float>*>(plans_->complex);
+  std::fill(spectrum + static_cast<std::size_t>(rows_) * spectrum_width(),
+            spectrum + spectrum_size(), std::complex<float>(0.0f));
+  fftwf_execute(plans_->columns_forward);
+  std::copy_n(spectrum, spectrum_size(), out.data());
+}
+
+void RowPrunedFft2d::inverse(std::span<const std::complex<float>> in, std::span<float> out) const {
+  std::lock_guard lock(plans_->mutex);
+  std::copy_n(in.data(), spectrum_size(), reinterpret_cast<std::complex<float>*>(plans_->complex));
+  fftwf_execute(plans_->columns_inverse);
+  fftwf_execute(plans_->rows_inverse);
+  const float normalisation = 1.0f / (static_cast<float>(width_) * static_cast<float>(height_));
+  for (std::size_t i = 0; i < rows_size(); ++i) out[i] = plans_->real[i] * normalisation;
 }
 
 }  // namespace stochtex

@@ -55,6 +55,31 @@ TEST(Fft, ForwardIsTheUnnormalisedDft) {
     }
 }
 
+TEST(Fft, RowPrunedTransformsMatchTheFullTransforms) {
+  const int width = 20;
+  const int height = 12;
+  const int rows = 5;
+  ImageF image = random_image(width, height, 1, 4);
+  for (int y = rows; y < height; ++y)
+    for (int x = 0; x < width; ++x) image.at(x, y, 0) = 0.0f;
+  const Fft2d full(width, height);
+  const RowPrunedFft2d pruned(width, height, rows);
+  std::vector<std::complex<float>> expected(full.spectrum_size());
+  std::vector<std::complex<float>> actual(pruned.spectrum_size());
+  full.forward(image.pixels(), expected);
+  pruned.forward(image.pixels().first(pruned.rows_size()), actual);
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    EXPECT_NEAR(std::abs(actual[i] - expected[i]), 0.0f, 1e-4f) << i;
+  // Inverse of an arbitrary spectrum: the first rows agree with the full inverse.
+  const ImageF other = random_image(width, height, 1, 5);
+  full.forward(other.pixels(), expected);
+  std::vector<float> all(full.image_size());
+  std::vector<float> first(pruned.rows_size());
+  full.inverse(expected, all);
+  pruned.inverse(expected, first);
+  for (std::size_t i = 0; i < first.size(); ++i) EXPECT_NEAR(first[i], all[i], 1e-5f) << i;
+}
+
 TEST(Periodic, SmoothPartSolvesMoisansPoissonEquation) {
   // u = p + s where s is the zero-mean solution of Laplacian_periodic(s) = v, v the boundary
   // image of u (Moisan 2011, eq. 13). Check that equation pixel by pixel on s = u - p.
