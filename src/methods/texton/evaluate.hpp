@@ -4,10 +4,12 @@
 // mirrored in GLSL.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
 #include "core/hash.hpp"
+#include "core/poisson.hpp"
 #include "methods/texton/model.hpp"
 
 namespace stochtex::texton {
@@ -79,9 +81,11 @@ struct BsplineKernel {
 
 // Adds weight * h_level(d) to acc, where h_level is the (prefiltered) texton of one pyramid level
 // and d the offset from the impact point in exemplar pixels. Zero outside the level's support.
-template <int Order>
-inline void accumulate_texton(const PyramidLevel& level, int channels, float dx, float dy,
-                              float weight, float* acc) noexcept {
+// The channel count is a template parameter so that `acc` stays in registers.
+template <int Order, int Channels>
+inline void accumulate_texton(const PyramidLevel& level, float dx, float dy, float weight,
+                              float (&acc)[Channels]) noexcept {
+  constexpr int channels = Channels;
   if (std::abs(dx) >= level.half_width || std::abs(dy) >= level.half_width) return;
   constexpr int kTaps = BsplineKernel<Order>::kTaps;
   float wx[kTaps];
@@ -100,5 +104,66 @@ inline void accumulate_texton(const PyramidLevel& level, int channels, float dx,
     }
   }
 }
+
+// The Poisson points of the grid cells (section 8): cell (x, y) holds a Poisson number of points,
+// uniform in the cell, all drawn from cell_key(x, y, seed, points) in a fixed order. The draws are
+// a pure function of the cell, so neighbouring samples of a batch, which visit the same cells, can
+// reuse them: the cache keeps the points of recently visited cells and gives exactly the numbers
+// a fresh draw gives, so the output does not depend on the batch (a GLSL port simply draws every
+// time). Fixed size, on the stack: no allocation during evaluation.
+class CellCache {
+ public:
+  static constexpr int kEntries = 32;
+  static constexpr std::uint32_t kMaxPoints = 128;  // cells with more points are drawn each time
+
+  CellCache(std::uint32_t seed, const PoissonSampler& count) noexcept
+      : seed_(seed), count_(count) {}
+
+  // Calls f(u, v) for each point of the cell, (u, v) in [0, 1)^2 relative to the cell corner.
+  template <typename F>
+  void for_each_point(std::int64_t cell_x, std::int64_t cell_y, F&& f) noexcept {
+    const auto slot =
+        static_cast<std::size_t>((static_cast<std::uint64_t>(cell_x) * 0x9e3779b97f4a7c15ull ^
+                                  static_cast<std::uint64_t>(cell_y) * 0xc2b2ae3d27d4eb4full) >>
+                                 59);
+    Entry& entry = entries_[slot];
+    if (!entry.valid || entry.x != cell_x || entry.y != cell_y) {
+      CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
+      const std::uint32_t impacts = count_(rng);
+      if (impacts > kMaxPoints) {
+        for (std::uint32_t i = 0; i < impacts; ++i) {
+          const float u = rng.uniform();
+          const float v = rng.uniform();
+          f(u, v);
+        }
+        return;
+      }
+      entry.valid = true;
+      entry.x = cell_x;
+      entry.y = cell_y;
+      entry.count = impacts;
+      for (std::uint32_t i = 0; i < impacts; ++i) {
+        entry.u[i] = rng.uniform();
+        entry.v[i] = rng.uniform();
+      }
+    }
+    for (std::uint32_t i = 0; i < entry.count; ++i) f(entry.u[i], entry.v[i]);
+  }
+
+ private:
+  struct Entry {
+    bool valid = false;
+    std::int64_t x = 0;
+    std::int64_t y = 0;
+    std::uint32_t count = 0;
+    float u[kMaxPoints];
+    float v[kMaxPoints];
+  };
+  static_assert(kEntries == 32, "the slot index takes the top 5 bits of the hash");
+
+  std::uint32_t seed_;
+  const PoissonSampler& count_;
+  std::array<Entry, kEntries> entries_{};
+};
 
 }  // namespace stochtex::texton

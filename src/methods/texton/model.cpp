@@ -150,24 +150,39 @@ ModelRecord TextonModel::to_record(const ParamValues& params) const {
 
 void TextonModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                            std::uint32_t seed, ImageView<float> out) const noexcept {
+  // One concrete loop per (order, channel count): the inner loops unroll and the accumulators
+  // stay in registers. Dispatch happens once per batch.
+  const auto with_order = [&]<int Order>() {
+    switch (channels_) {
+      case 1:
+        return evaluate_typed<Order, 1>(positions, footprints, seed, out);
+      case 2:
+        return evaluate_typed<Order, 2>(positions, footprints, seed, out);
+      case 3:
+        return evaluate_typed<Order, 3>(positions, footprints, seed, out);
+      default:
+        return evaluate_typed<Order, 4>(positions, footprints, seed, out);
+    }
+  };
   switch (order_) {
     case 0:
-      return evaluate_order<0>(positions, footprints, seed, out);
+      return with_order.template operator()<0>();
     case 1:
-      return evaluate_order<1>(positions, footprints, seed, out);
+      return with_order.template operator()<1>();
     case 3:
-      return evaluate_order<3>(positions, footprints, seed, out);
+      return with_order.template operator()<3>();
     default:
-      return evaluate_order<5>(positions, footprints, seed, out);
+      return with_order.template operator()<5>();
   }
 }
 
-template <int Order>
-void TextonModel::evaluate_order(std::span<const Vec2d> positions,
+template <int Order, int Channels>
+void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
                                  std::span<const Footprint> footprints, std::uint32_t seed,
                                  ImageView<float> out) const noexcept {
   const float cell_size = static_cast<float>(cell_size_);
   const int top_level = static_cast<int>(pyramid_.size()) - 1;
+  CellCache cells(seed, cell_count_);
   for (std::size_t index = 0; index < positions.size(); ++index) {
     const Vec2d p = positions[index];
 
@@ -214,7 +229,7 @@ void TextonModel::evaluate_order(std::span<const Vec2d> positions,
     const double reach = static_cast<double>(kernel_reach + probe_extent);
     const float probe_weight = 1.0f / static_cast<float>(probes);
 
-    float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    float acc[Channels] = {};
     // The Poisson process is simulated on the grid cells that meet p + [-reach, reach]^2. Cell
     // indices are 64-bit integers and offsets are taken relative to the cell corner in double
     // before going to float, so p = 1e7 is as precise as p = 0 (DESIGN.md section 4).
@@ -226,32 +241,28 @@ void TextonModel::evaluate_order(std::span<const Vec2d> positions,
       const float offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * cell_size_);
       for (std::int64_t cell_x = first_cell_x; cell_x <= last_cell_x; ++cell_x) {
         const float offset_x = static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size_);
-        CounterRng rng(cell_key(cell_x, cell_y, seed, Stream::points));
-        const std::uint32_t impacts = cell_count_(rng);
-        for (std::uint32_t i = 0; i < impacts; ++i) {
-          const float u = rng.uniform();
-          const float v = rng.uniform();
+        cells.for_each_point(cell_x, cell_y, [&](float u, float v) {
           const float dx = offset_x - u * cell_size;
           const float dy = offset_y - v * cell_size;
           if (probes == 1 && level_blend == 0.0f) {
-            accumulate_texton<Order>(fine, channels_, dx, dy, 1.0f, acc);
-            continue;
+            accumulate_texton<Order, Channels>(fine, dx, dy, 1.0f, acc);
+            return;
           }
           for (int k = 0; k < probes; ++k) {
             const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(probes);
             const float px = dx + shift * probe_x;
             const float py = dy + shift * probe_y;
-            accumulate_texton<Order>(fine, channels_, px, py, probe_weight * (1.0f - level_blend),
-                                     acc);
+            accumulate_texton<Order, Channels>(fine, px, py, probe_weight * (1.0f - level_blend),
+                                               acc);
             if (level_blend > 0.0f)
-              accumulate_texton<Order>(coarse, channels_, px, py, probe_weight * level_blend, acc);
+              accumulate_texton<Order, Channels>(coarse, px, py, probe_weight * level_blend, acc);
           }
-        }
+        });
       }
     }
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-    for (int c = 0; c < channels_; ++c) {
+    for (int c = 0; c < Channels; ++c) {
       // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2); `fade` scales the fluctuation only.
       const float noise = acc[c] * inverse_sqrt_intensity_ + constant_term_[c] - mean_[c];
       out.at(x, y, c) = mean_[c] + fade * noise;

@@ -54,8 +54,8 @@ class TextonModel {
                 std::uint32_t seed, ImageView<float> out) const noexcept;
 
  private:
-  template <int Order>
-  void evaluate_order(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+  template <int Order, int Channels>
+  void evaluate_typed(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                       std::uint32_t seed, ImageView<float> out) const noexcept;
 
   int channels_;
