@@ -23,7 +23,9 @@ using namespace stochtex;
 constexpr int kExitRuntime = 1;
 constexpr int kExitUsage = 2;
 constexpr int kMaxSide = 32768;
-constexpr std::int64_t kMaxOutputPixels = std::int64_t{1} << 28;
+// 64 Mpixel (an 8192 x 8192 image, 1 GiB of RGBA floats): larger renders are refused up front
+// rather than attempted as multi-gigabyte allocations.
+constexpr std::int64_t kMaxOutputPixels = std::int64_t{1} << 26;
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
