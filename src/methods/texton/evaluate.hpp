@@ -105,6 +105,52 @@ inline void accumulate_texton(const PyramidLevel& level, float dx, float dy, flo
   }
 }
 
+// Most probes along the major axis of an anisotropic footprint, as GPU 8x anisotropic filtering.
+inline constexpr int kMaxProbes = 8;
+// A texel of level l reconstructs box(2^l) * tent(2^l) (a box-prefiltered level read with
+// bilinear interpolation), whose variance per axis is 4^l / 4; an ideal box filter of width w
+// has variance w^2 / 12. Equal variances give 2^l = w / sqrt(3): the level of detail is
+// log2(w) - log2(3) / 2, not log2(w), or the filtered noise is too blurred (measured in
+// docs/methods/texton.md).
+inline constexpr double kLodBias = 0.79248125036057809;  // log2(3) / 2
+
+// How a footprint is filtered (section 5): the pyramid level(s) and the probes along the major
+// axis, as GPU trilinear + anisotropic filtering would choose them. Default = point sample.
+struct FilterSetup {
+  int level = 0;
+  float level_blend = 0.0f;  // weight of level + 1
+  int probes = 1;
+  float probe_x = 0.0f;  // distance between probes, exemplar pixels
+  float probe_y = 0.0f;
+  float fade = 1.0f;  // beyond the coarsest level, the fluctuation is faded towards the mean
+};
+
+inline FilterSetup filter_setup(const Footprint& footprint, int top_level) noexcept {
+  FilterSetup setup;
+  const double length_x = std::hypot(footprint.dpdx.x, footprint.dpdx.y);
+  const double length_y = std::hypot(footprint.dpdy.x, footprint.dpdy.y);
+  const double major = std::max(length_x, length_y);
+  const double minor = std::min(length_x, length_y);
+  if (!(major > 1.0)) return setup;
+  setup.probes =
+      static_cast<int>(std::min<double>(kMaxProbes, std::ceil(major / std::max(minor, 1.0))));
+  const double width = std::max({major / setup.probes, minor, 1.0});
+  double lod = std::max(0.0, std::log2(width) - kLodBias);
+  if (lod >= top_level) {
+    // Beyond the coarsest level the texton is a single blob: the filtered fluctuation decays like
+    // 1 / width (the variance of a box-filtered noise of finite correlation length falls as
+    // 1 / area), so it is faded towards the mean.
+    setup.fade = static_cast<float>(std::exp2(top_level - lod));
+    lod = top_level;
+  }
+  setup.level = std::min(static_cast<int>(lod), top_level);
+  setup.level_blend = setup.level == top_level ? 0.0f : static_cast<float>(lod - setup.level);
+  const Vec2d axis = length_x >= length_y ? footprint.dpdx : footprint.dpdy;
+  setup.probe_x = static_cast<float>(axis.x / setup.probes);
+  setup.probe_y = static_cast<float>(axis.y / setup.probes);
+  return setup;
+}
+
 // The Poisson points of the grid cells (section 8): cell (x, y) holds a Poisson number of points,
 // uniform in the cell, all drawn from cell_key(x, y, seed, points) in a fixed order. The draws are
 // a pure function of the cell, so neighbouring samples of a batch, which visit the same cells, can

@@ -13,14 +13,6 @@ namespace {
 
 // Cell size a = 0.6 r of the grid that simulates the Poisson process (section 8).
 constexpr double kCellSizeFactor = 0.6;
-// Most probes along the major axis of an anisotropic footprint, as GPU 8x anisotropic filtering.
-constexpr int kMaxProbes = 8;
-// A texel of level l reconstructs box(2^l) * tent(2^l) (a box-prefiltered level read with
-// bilinear interpolation), whose variance per axis is 4^l / 4; an ideal box filter of width w
-// has variance w^2 / 12. Equal variances give 2^l = w / sqrt(3): the level of detail is
-// log2(w) - log2(3) / 2, not log2(w), or the filtered noise is too blurred (measured in
-// docs/methods/texton.md).
-constexpr double kLodBias = 0.79248125036057809;  // log2(3) / 2
 
 // Level l+1 averages 2x2 texels of level l (zero beyond the border), so sum(alpha_l) * 4^l stays
 // sum(alpha): the filtered noise keeps the exemplar mean, and h_l approximates h convolved with a
@@ -186,39 +178,14 @@ void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
   for (std::size_t index = 0; index < positions.size(); ++index) {
     const Vec2d p = positions[index];
 
-    // Filtering (section 5): pick the pyramid levels and probes from the footprint, as GPU
-    // trilinear + anisotropic filtering would. Point samples read level 0 only.
-    int level0 = 0;
-    float level_blend = 0.0f;
-    int probes = 1;
-    float probe_x = 0.0f;
-    float probe_y = 0.0f;
-    float fade = 1.0f;
-    if (!footprints.empty()) {
-      const Footprint& fp = footprints[index];
-      const double length_x = std::hypot(fp.dpdx.x, fp.dpdx.y);
-      const double length_y = std::hypot(fp.dpdy.x, fp.dpdy.y);
-      const double major = std::max(length_x, length_y);
-      const double minor = std::min(length_x, length_y);
-      if (major > 1.0) {
-        probes =
-            static_cast<int>(std::min<double>(kMaxProbes, std::ceil(major / std::max(minor, 1.0))));
-        const double width = std::max({major / probes, minor, 1.0});
-        double lod = std::max(0.0, std::log2(width) - kLodBias);
-        if (lod >= top_level) {
-          // Beyond the coarsest level the texton is a single blob: the filtered fluctuation
-          // decays like 1 / width (the variance of a box-filtered noise of finite correlation
-          // length falls as 1 / area), so it is faded towards the mean.
-          fade = static_cast<float>(std::exp2(top_level - lod));
-          lod = top_level;
-        }
-        level0 = std::min(static_cast<int>(lod), top_level);
-        level_blend = level0 == top_level ? 0.0f : static_cast<float>(lod - level0);
-        const Vec2d axis = length_x >= length_y ? fp.dpdx : fp.dpdy;
-        probe_x = static_cast<float>(axis.x / probes);
-        probe_y = static_cast<float>(axis.y / probes);
-      }
-    }
+    const FilterSetup filter =
+        footprints.empty() ? FilterSetup{} : filter_setup(footprints[index], top_level);
+    const int level0 = filter.level;
+    const float level_blend = filter.level_blend;
+    const int probes = filter.probes;
+    const float probe_x = filter.probe_x;
+    const float probe_y = filter.probe_y;
+    const float fade = filter.fade;
     const PyramidLevel& fine = pyramid_[static_cast<std::size_t>(level0)];
     const PyramidLevel& coarse =
         pyramid_[static_cast<std::size_t>(std::min(level0 + 1, top_level))];
