@@ -15,6 +15,9 @@
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
 #include "stochtex/stochtex.hpp"
+#ifdef STOCHTEX_WITH_GL
+#include "stochtex/gpu.hpp"
+#endif
 
 namespace {
 
@@ -131,6 +134,7 @@ struct RenderSettings {
   int tile = 64;
   bool no_filter = false;
   int bit_depth = 8;
+  std::string backend = "cpu";
 };
 
 void add_render_options(CLI::App* command, RenderSettings& settings, bool size_required) {
@@ -160,6 +164,11 @@ void add_render_options(CLI::App* command, RenderSettings& settings, bool size_r
   command->add_option("--bit-depth", settings.bit_depth, "PNG output bits per channel")
       ->capture_default_str()
       ->check(CLI::IsMember({8, 16}));
+  command
+      ->add_option("--backend", settings.backend,
+                   "cpu (the reference) or gl (OpenGL 4.5 compute, headless; texton so far)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cpu", "gl"}));
 }
 
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
@@ -196,9 +205,23 @@ void run_render(const Model& model, const RenderSettings& settings, const std::s
   options.tile_size = settings.tile;
   options.supersample = settings.supersample;
   options.filter = !settings.no_filter;
-  Progress progress("render ");
-  options.progress = [&](double fraction) { progress(fraction); };
-  render(model, grid, settings.seed, image.view(), options);
+  if (settings.backend == "gl") {
+#ifdef STOCHTEX_WITH_GL
+    GpuRenderOptions gpu_options;
+    gpu_options.filter = options.filter;
+    if (options.supersample != 1)
+      throw UsageError("--supersample is a CPU reference: use it with --backend cpu");
+    render_gl(model, grid, settings.seed, image.view(), gpu_options);
+#else
+    throw Error(ErrorCode::io,
+                "this stochtex was built without the OpenGL backend "
+                "(STOCHTEX_BUILD_GL=OFF); use --backend cpu");
+#endif
+  } else {
+    Progress progress("render ");
+    options.progress = [&](double fraction) { progress(fraction); };
+    render(model, grid, settings.seed, image.view(), options);
+  }
   write_image(output, image.view(), settings.bit_depth);
 }
 

@@ -39,6 +39,9 @@ class PoissonSampler {
   }
 
   double mean() const noexcept { return chunk_mean_ * chunks_; }
+  // The tabulated CDF and chunk count, for the GLSL twin of the sampler (src/gl).
+  const std::array<float, kTableSize>& cdf() const noexcept { return cdf_; }
+  std::uint32_t chunks() const noexcept { return chunks_; }
 
   std::uint32_t operator()(CounterRng& rng) const noexcept {
     std::uint32_t total = 0;

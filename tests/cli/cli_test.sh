@@ -213,6 +213,14 @@ if [[ -s $models/s6.pfm ]] && ! cmp -s "$models/t1.pfm" "$models/s6.pfm"; then p
   fail "different seeds" "the renders are identical"
 fi
 
+# The OpenGL backend (llvmpipe without a GPU): same grid and seed, same picture as the CPU.
+expect_ok "render --backend gl" "$stochtex" render "$model" -o "$models/gl.png" --size 48x40 \
+  --seed 5 --backend gl && expect_file "render --backend gl writes the image" "$models/gl.png"
+expect_parse_error "unknown backend" "$stochtex" render "$model" -o "$out/x.png" "${size[@]}" \
+  --backend vulkan
+expect_error "--supersample with --backend gl" 2 "--supersample" \
+  "$stochtex" render "$model" -o "$out/x.png" "${size[@]}" --backend gl --supersample 2
+
 # --- bad inputs ---------------------------------------------------------------------------------
 
 analyze_to=(-o "$out/model.stx")

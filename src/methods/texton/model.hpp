@@ -47,6 +47,11 @@ class TextonModel {
   std::span<const float> mean() const { return mean_; }
   const std::vector<PyramidLevel>& pyramid() const { return pyramid_; }
   double intensity() const { return intensity_; }
+  // Shot-noise constants, for the GLSL twin of the evaluator (src/gl).
+  double cell_size() const { return cell_size_; }
+  const PoissonSampler& cell_count() const { return cell_count_; }
+  float inverse_sqrt_intensity() const { return inverse_sqrt_intensity_; }
+  std::span<const float> constant_term() const { return constant_term_; }
 
   // Normalised texton noise (f - lambda sum(alpha)) / sqrt(lambda) + mean (eq. 2) at each
   // position, filtered by the footprint when it is wider than a texel. noexcept, no allocation.

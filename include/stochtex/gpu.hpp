@@ -1,0 +1,55 @@
+#pragma once
+// GPU rendering through OpenGL 4.5 compute shaders (library stochtex::gl): the same grid, model
+// and seed as render() in render.hpp, evaluated by the GLSL twin of each method's evaluator.
+// Runs headless through EGL: on NVIDIA drivers where a GPU exists, on Mesa llvmpipe where not.
+// The CPU evaluator is the reference; the GPU output matches it within float rounding (tested).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "stochtex/image.hpp"
+#include "stochtex/model.hpp"
+#include "stochtex/render.hpp"
+
+namespace stochtex {
+
+struct GpuRenderOptions {
+  int tile_size = 4096;  // pixels per side of one dispatch; affects speed only, never the output
+  bool filter = true;    // pass each pixel's footprint (scale) to the evaluator
+};
+
+// Methods the GL backend evaluates (texton so far).
+bool gl_supports(std::string_view method);
+
+// A model made ready on the GPU: an OpenGL context, the compiled evaluator and the model's data,
+// kept for repeated renders (interactive use, benchmarks). Use it from one thread.
+class GlRenderer {
+ public:
+  // Throws stochtex::Error when no OpenGL 4.5 context can be made or the method has no GLSL
+  // evaluator yet, with a sentence saying so.
+  explicit GlRenderer(const Model& model);
+  ~GlRenderer();
+  GlRenderer(const GlRenderer&) = delete;
+  GlRenderer& operator=(const GlRenderer&) = delete;
+
+  void render(const Grid& grid, std::uint32_t seed, ImageView<float> out,
+              const GpuRenderOptions& options = {});
+  // GPU time of the last render's dispatches (GL timer queries), without the read-back.
+  double last_gpu_milliseconds() const;
+  // "OpenGL <version> on <renderer>".
+  std::string device() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// One render with a renderer made for it.
+void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
+               const GpuRenderOptions& options = {});
+
+// "OpenGL <version> on <renderer>" of the context render_gl uses (creates one).
+std::string gl_device_description();
+
+}  // namespace stochtex

@@ -1,0 +1,316 @@
+#include <EGL/egl.h>
+#define GL_GLEXT_PROTOTYPES
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gl/context.hpp"
+#include "gl/shaders.hpp"
+#include "methods/texton/evaluate.hpp"
+#include "model/model_data.hpp"
+#include "stochtex/error.hpp"
+#include "stochtex/gpu.hpp"
+
+namespace stochtex {
+namespace {
+
+[[noreturn]] void gl_failure(const std::string& what) {
+  throw Error(ErrorCode::numerical, "the OpenGL backend failed: " + what +
+                                        "; use --backend cpu, and report this with `stochtex "
+                                        "render --backend gl` and your driver");
+}
+
+void check_gl(const char* step) {
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR)
+    gl_failure(std::string(step) + " (GL error " + std::to_string(error) + ")");
+}
+
+class Program {
+ public:
+  explicit Program(const std::string& source) {
+    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      std::string log(4096, '\0');
+      glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
+      glDeleteShader(shader);
+      gl_failure("the compute shader does not compile: " + std::string(log.c_str()));
+    }
+    id_ = glCreateProgram();
+    glAttachShader(id_, shader);
+    glLinkProgram(id_);
+    glDeleteShader(shader);
+    glGetProgramiv(id_, GL_LINK_STATUS, &ok);
+    if (!ok) gl_failure("the compute shader does not link");
+  }
+  ~Program() { glDeleteProgram(id_); }
+  Program(const Program&) = delete;
+  Program& operator=(const Program&) = delete;
+
+  GLint location(const char* name) const { return glGetUniformLocation(id_, name); }
+  void set(const char* name, int value) const { glProgramUniform1i(id_, location(name), value); }
+  void set(const char* name, unsigned value) const {
+    glProgramUniform1ui(id_, location(name), value);
+  }
+  void set(const char* name, float value) const { glProgramUniform1f(id_, location(name), value); }
+  void set2(const char* name, int x, int y) const { glProgramUniform2i(id_, location(name), x, y); }
+  void set2(const char* name, unsigned x, unsigned y) const {
+    glProgramUniform2ui(id_, location(name), x, y);
+  }
+  void set2(const char* name, float x, float y) const {
+    glProgramUniform2f(id_, location(name), x, y);
+  }
+  void set4(const char* name, const float* values) const {
+    glProgramUniform4fv(id_, location(name), 1, values);
+  }
+  void set_array(const char* name, const float* values, int count) const {
+    glProgramUniform1fv(id_, location(name), count, values);
+  }
+  void set_array(const char* name, const int* values, int count) const {
+    glProgramUniform1iv(id_, location(name), count, values);
+  }
+  GLuint id() const { return id_; }
+
+ private:
+  GLuint id_ = 0;
+};
+
+class Buffer {
+ public:
+  Buffer(std::size_t bytes, const void* data) {
+    glCreateBuffers(1, &id_);
+    glNamedBufferData(id_, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 4)), data,
+                      data ? GL_STATIC_DRAW : GL_DYNAMIC_READ);
+  }
+  ~Buffer() {
+    if (id_ != 0) glDeleteBuffers(1, &id_);
+  }
+  Buffer(Buffer&& other) noexcept : id_(other.id_) { other.id_ = 0; }
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  Buffer& operator=(Buffer&&) = delete;
+  GLuint id() const { return id_; }
+
+ private:
+  GLuint id_ = 0;
+};
+
+// The texton evaluator's GPU state: the program and the texel buffer, made once per model.
+class TextonPass {
+ public:
+  explicit TextonPass(const texton::TextonModel& model)
+      : model_(model),
+        program_(std::string("#version 450\n") + gl::kRandomGlsl + gl::kTextonGlsl),
+        texels_(pack_texels(model, offsets_)) {
+    check_gl("compiling the texton shader");
+    float constant_term[4] = {};
+    float mean[4] = {};
+    for (int c = 0; c < model.channels(); ++c) {
+      constant_term[c] = model.constant_term()[static_cast<std::size_t>(c)];
+      mean[c] = model.mean()[static_cast<std::size_t>(c)];
+    }
+    program_.set("channels", model.channels());
+    program_.set("order", model.order());
+    program_.set("cell_size", static_cast<float>(model.cell_size()));
+    program_.set_array("poisson_cdf", model.cell_count().cdf().data(),
+                       static_cast<int>(model.cell_count().cdf().size()));
+    program_.set("poisson_chunks", static_cast<unsigned>(model.cell_count().chunks()));
+    program_.set("inverse_sqrt_intensity", model.inverse_sqrt_intensity());
+    program_.set4("constant_term", constant_term);
+    program_.set4("mean_colour", mean);
+    check_gl("setting the texton uniforms");
+  }
+
+  // Sets the per-render uniforms; then dispatch() runs one tile.
+  void prepare(const Grid& grid, std::uint32_t seed, bool filter) const {
+    // The footprint of every pixel is the grid's: one filter setup for the render, chosen by
+    // the same function as the CPU evaluator.
+    const auto& pyramid = model_.pyramid();
+    const int top_level = static_cast<int>(pyramid.size()) - 1;
+    const texton::FilterSetup setup =
+        filter ? texton::filter_setup(Footprint{{grid.scale, 0.0}, {0.0, grid.scale}}, top_level)
+               : texton::FilterSetup{};
+    const int levels[2] = {setup.level, std::min(setup.level + 1, top_level)};
+    const auto& fine = pyramid[static_cast<std::size_t>(levels[0])];
+    const auto& coarse = pyramid[static_cast<std::size_t>(levels[1])];
+    const float probe_extent = 0.5f * static_cast<float>(setup.probes - 1) *
+                               std::max(std::abs(setup.probe_x), std::abs(setup.probe_y));
+    const float kernel_reach =
+        setup.level_blend > 0.0f ? std::max(fine.half_width, coarse.half_width) : fine.half_width;
+    const int level_offset[2] = {offsets_[static_cast<std::size_t>(levels[0])],
+                                 offsets_[static_cast<std::size_t>(levels[1])]};
+    const int level_stride[2] = {fine.stride, coarse.stride};
+    const float level_spacing[2] = {fine.spacing, coarse.spacing};
+    const float level_first[2] = {fine.first_texel, coarse.first_texel};
+    const float level_half[2] = {fine.half_width, coarse.half_width};
+
+    // The grid origin splits into a cell (64-bit here, its low 32 bits in the shader, as
+    // cell_key uses them) and a small float offset: far origins are as precise as near ones.
+    const double cell_size = model_.cell_size();
+    const double origin_cell_x = std::floor(grid.origin.x / cell_size);
+    const double origin_cell_y = std::floor(grid.origin.y / cell_size);
+    const auto low_bits = [](double cell) {
+      return static_cast<unsigned>(static_cast<std::uint64_t>(static_cast<std::int64_t>(cell)));
+    };
+    program_.set2("origin_cell", low_bits(origin_cell_x), low_bits(origin_cell_y));
+    program_.set2("origin_offset", static_cast<float>(grid.origin.x - origin_cell_x * cell_size),
+                  static_cast<float>(grid.origin.y - origin_cell_y * cell_size));
+    program_.set("scale", static_cast<float>(grid.scale));
+    program_.set("seed", static_cast<unsigned>(seed));
+    program_.set("reach", kernel_reach + probe_extent);
+    program_.set("probes", setup.probes);
+    program_.set2("probe_step", setup.probe_x, setup.probe_y);
+    program_.set("level_blend", setup.level_blend);
+    program_.set("fade", setup.fade);
+    program_.set_array("level_offset", level_offset, 2);
+    program_.set_array("level_stride", level_stride, 2);
+    program_.set_array("level_spacing", level_spacing, 2);
+    program_.set_array("level_first_texel", level_first, 2);
+    program_.set_array("level_half_width", level_half, 2);
+    check_gl("setting the texton uniforms");
+  }
+
+  // Evaluates the pixels [first, first + size) of the grid into `result` (size x channels).
+  void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
+                const Buffer& result) const {
+    program_.set2("first_pixel", static_cast<int>(first_x), static_cast<int>(first_y));
+    program_.set2("dispatch_size", width, height);
+    glUseProgram(program_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, texels_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, result.id());
+    glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8),
+                      1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glUseProgram(0);
+  }
+
+ private:
+  // Every pyramid level's padded coefficients, one after the other; `offsets` gets each start.
+  static Buffer pack_texels(const texton::TextonModel& model, std::vector<int>& offsets) {
+    std::vector<float> texels;
+    for (const auto& level : model.pyramid()) {
+      offsets.push_back(static_cast<int>(texels.size()));
+      texels.insert(texels.end(), level.coefficients.begin(), level.coefficients.end());
+    }
+    return Buffer(texels.size() * sizeof(float), texels.data());
+  }
+
+  const texton::TextonModel& model_;
+  std::vector<int> offsets_;
+  Program program_;
+  Buffer texels_;
+};
+
+}  // namespace
+
+bool gl_supports(std::string_view method) {
+  return method == texton::TextonModel::kMethodName;
+}
+
+struct GlRenderer::Impl {
+  gl::Context context;
+  const Model model;
+  std::unique_ptr<TextonPass> texton;
+  GLuint timer = 0;
+  double milliseconds = 0.0;
+
+  explicit Impl(const Model& m) : model(m) {
+    std::visit(
+        [&](const auto& method_model) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(method_model)>, texton::TextonModel>)
+            texton = std::make_unique<TextonPass>(method_model);
+        },
+        model.data().model);
+    glCreateQueries(GL_TIME_ELAPSED, 1, &timer);
+  }
+  ~Impl() {
+    texton.reset();
+    glDeleteQueries(1, &timer);
+  }
+};
+
+namespace {
+
+const Model& checked_model(const Model& model) {
+  if (model.empty()) throw std::invalid_argument("GlRenderer: the model is empty");
+  if (!gl_supports(model.method()))
+    throw Error(ErrorCode::invalid_input, "the gl backend does not evaluate method '" +
+                                              std::string(model.method()) +
+                                              "' yet (only texton); use --backend cpu");
+  return model;
+}
+
+}  // namespace
+
+GlRenderer::GlRenderer(const Model& model) : impl_(new Impl(checked_model(model))) {}
+
+GlRenderer::~GlRenderer() = default;
+
+void GlRenderer::render(const Grid& grid, std::uint32_t seed, ImageView<float> out,
+                        const GpuRenderOptions& options) {
+  const int channels = impl_->model.channels();
+  if (out.width != grid.width || out.height != grid.height || out.channels != channels)
+    throw std::invalid_argument("render_gl: the output view does not match the grid and model");
+  constexpr std::int64_t kMaxPixelIndex = std::int64_t{1} << 30;
+  if (std::abs(grid.first_pixel_x) + grid.width > kMaxPixelIndex ||
+      std::abs(grid.first_pixel_y) + grid.height > kMaxPixelIndex)
+    throw std::invalid_argument(
+        "render_gl: the region's pixel indices exceed 2^30; move the origin instead");
+  const TextonPass& pass = *impl_->texton;
+  pass.prepare(grid, seed, options.filter);
+  const int tile_width = std::clamp(options.tile_size, 1, std::max(grid.width, 1));
+  const int tile_height = std::clamp(options.tile_size, 1, std::max(grid.height, 1));
+  const Buffer result(static_cast<std::size_t>(tile_width) * tile_height * channels * sizeof(float),
+                      nullptr);
+  std::vector<float> values(static_cast<std::size_t>(tile_width) * tile_height * channels);
+  impl_->milliseconds = 0.0;
+  for (int y0 = 0; y0 < grid.height; y0 += tile_height)
+    for (int x0 = 0; x0 < grid.width; x0 += tile_width) {
+      const int w = std::min(tile_width, grid.width - x0);
+      const int h = std::min(tile_height, grid.height - y0);
+      glBeginQuery(GL_TIME_ELAPSED, impl_->timer);
+      pass.dispatch(grid.first_pixel_x + x0, grid.first_pixel_y + y0, w, h, result);
+      glEndQuery(GL_TIME_ELAPSED);
+      GLuint64 nanoseconds = 0;
+      glGetQueryObjectui64v(impl_->timer, GL_QUERY_RESULT, &nanoseconds);
+      impl_->milliseconds += static_cast<double>(nanoseconds) * 1e-6;
+      const std::size_t count = static_cast<std::size_t>(w) * h * channels;
+      glGetNamedBufferSubData(result.id(), 0, static_cast<GLsizeiptr>(count * sizeof(float)),
+                              values.data());
+      check_gl("running the shader");
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          for (int c = 0; c < channels; ++c)
+            out.at(x0 + x, y0 + y, c) = values[(static_cast<std::size_t>(y) * w + x) * channels +
+                                               static_cast<std::size_t>(c)];
+    }
+}
+
+double GlRenderer::last_gpu_milliseconds() const {
+  return impl_->milliseconds;
+}
+
+std::string GlRenderer::device() const {
+  return impl_->context.description();
+}
+
+void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
+               const GpuRenderOptions& options) {
+  GlRenderer(model).render(grid, seed, out, options);
+}
+
+std::string gl_device_description() {
+  return gl::Context().description();
+}
+
+}  // namespace stochtex

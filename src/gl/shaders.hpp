@@ -1,0 +1,10 @@
+#pragma once
+// GLSL sources compiled into the library (generated from the .glsl files by CMake, so the files
+// stay the single source and editors see them as GLSL).
+
+namespace stochtex::gl {
+
+extern const char* const kRandomGlsl;  // src/gl/random.glsl
+extern const char* const kTextonGlsl;  // src/methods/texton/evaluate.glsl
+
+}  // namespace stochtex::gl
