@@ -8,7 +8,7 @@ packages=(
   libfftw3-dev libpng-dev libopenexr-dev libeigen3-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
 )
 
 missing=()
