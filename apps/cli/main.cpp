@@ -8,6 +8,8 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
@@ -225,6 +227,27 @@ void run_render(const Model& model, const RenderSettings& settings, const std::s
   write_image(output, image.view(), settings.bit_depth);
 }
 
+// Writes next to the destination, then renames: a failure never leaves a partial file.
+void write_text_file(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::path temporary = path;
+  temporary += ".tmp";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file << text;
+    file.close();
+    if (!file) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw Error(ErrorCode::io, fmt::format("cannot write '{}'", path.string()));
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error)
+    throw Error(ErrorCode::io,
+                fmt::format("cannot write '{}': {}", path.string(), error.message()));
+}
+
 void export_model_images(const Model& model, const std::filesystem::path& folder) {
   if (!std::filesystem::is_directory(folder))
     throw Error(ErrorCode::io, fmt::format("cannot export into '{}': the folder does not exist; "
@@ -305,6 +328,11 @@ int run(int argc, char** argv) {
   info_cmd->add_option("--export", export_folder,
                        "write the model's image arrays (e.g. the texton) into this folder as "
                        "NAME.exr (values) and NAME.png (preview: 0.5 + 0.5 v / max|v|)");
+
+  auto* export_cmd = app.add_subcommand(
+      "export-shader", "model file -> self-contained GLSL + data images for engines (texton)");
+  export_cmd->add_option("MODEL", model_path, "model file (.stx)")->required();
+  export_cmd->add_option("-o,--output", output, "folder to write (created if missing)")->required();
 
   auto* methods_cmd = app.add_subcommand("methods", "list the methods and their parameters");
   methods_cmd->add_flag("--json", json, "print one JSON document");
@@ -392,6 +420,26 @@ int run(int argc, char** argv) {
           fmt::print("array     {} {}\n", array["name"].get<std::string>(), array["shape"].dump());
         fmt::print("data      {} bytes\n", doc["array_bytes"].get<std::size_t>());
       }
+    } else if (*export_cmd) {
+#ifdef STOCHTEX_WITH_GL
+      const ShaderExport files = export_shader(load_model(model_path));
+      const std::filesystem::path folder(output);
+      std::error_code error;
+      std::filesystem::create_directories(folder, error);
+      if (error)
+        throw Error(ErrorCode::io,
+                    fmt::format("cannot create the folder '{}': {}", output, error.message()));
+      write_text_file(folder / files.glsl_file_name, files.glsl);
+      for (const auto& [name, image] : files.images)
+        write_image(folder / (name + ".exr"), image.view());
+      write_text_file(folder / "README.md", files.readme);
+      fmt::print(stderr, "wrote {} ({}, {} image(s), README.md)\n", output, files.glsl_file_name,
+                 files.images.size());
+#else
+      throw Error(ErrorCode::io,
+                  "this stochtex was built without the OpenGL backend "
+                  "(STOCHTEX_BUILD_GL=OFF), which export-shader needs");
+#endif
     } else if (*methods_cmd) {
       if (json) {
         fmt::print("{}\n", methods_json().dump(2));

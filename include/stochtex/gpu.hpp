@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
@@ -48,6 +49,18 @@ class GlRenderer {
 // One render with a renderer made for it.
 void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
                const GpuRenderOptions& options = {});
+
+// `stochtex export-shader`: a self-contained GLSL source exposing
+//   vec4 stochtex_<method>(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)
+// (p in exemplar pixels, dpdx/dpdy its screen derivatives, zero = no filtering), the model's
+// data as images to bind as textures, and a README showing how. Needs no GL context.
+struct ShaderExport {
+  std::string glsl_file_name;
+  std::string glsl;
+  std::vector<NamedImage> images;  // write each as <name>.exr (float32, exact)
+  std::string readme;
+};
+ShaderExport export_shader(const Model& model);
 
 // "OpenGL <version> on <renderer>" of the context render_gl uses (creates one).
 std::string gl_device_description();

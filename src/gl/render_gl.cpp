@@ -6,11 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "gl/context.hpp"
 #include "gl/shaders.hpp"
+#include "gl/texton_glsl.hpp"
 #include "methods/texton/evaluate.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/error.hpp"
@@ -70,15 +73,6 @@ class Program {
   void set2(const char* name, float x, float y) const {
     glProgramUniform2f(id_, location(name), x, y);
   }
-  void set4(const char* name, const float* values) const {
-    glProgramUniform4fv(id_, location(name), 1, values);
-  }
-  void set_array(const char* name, const float* values, int count) const {
-    glProgramUniform1fv(id_, location(name), count, values);
-  }
-  void set_array(const char* name, const int* values, int count) const {
-    glProgramUniform1iv(id_, location(name), count, values);
-  }
   GLuint id() const { return id_; }
 
  private:
@@ -87,73 +81,46 @@ class Program {
 
 class Buffer {
  public:
-  Buffer(std::size_t bytes, const void* data) {
+  explicit Buffer(std::size_t bytes) {
     glCreateBuffers(1, &id_);
-    glNamedBufferData(id_, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 4)), data,
-                      data ? GL_STATIC_DRAW : GL_DYNAMIC_READ);
+    glNamedBufferData(id_, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 4)), nullptr,
+                      GL_DYNAMIC_READ);
   }
-  ~Buffer() {
-    if (id_ != 0) glDeleteBuffers(1, &id_);
-  }
-  Buffer(Buffer&& other) noexcept : id_(other.id_) { other.id_ = 0; }
+  ~Buffer() { glDeleteBuffers(1, &id_); }
   Buffer(const Buffer&) = delete;
   Buffer& operator=(const Buffer&) = delete;
-  Buffer& operator=(Buffer&&) = delete;
   GLuint id() const { return id_; }
 
  private:
   GLuint id_ = 0;
 };
 
-// The texton evaluator's GPU state: the program and the texel buffer, made once per model.
+// The texton evaluator's GPU state: the program (compiled with the model's constants) and the
+// texel atlas, made once per model.
 class TextonPass {
  public:
   explicit TextonPass(const texton::TextonModel& model)
       : model_(model),
-        program_(std::string("#version 450\n") + gl::kRandomGlsl + gl::kTextonGlsl),
-        texels_(pack_texels(model, offsets_)) {
-    check_gl("compiling the texton shader");
-    float constant_term[4] = {};
-    float mean[4] = {};
-    for (int c = 0; c < model.channels(); ++c) {
-      constant_term[c] = model.constant_term()[static_cast<std::size_t>(c)];
-      mean[c] = model.mean()[static_cast<std::size_t>(c)];
-    }
-    program_.set("channels", model.channels());
-    program_.set("order", model.order());
-    program_.set("cell_size", static_cast<float>(model.cell_size()));
-    program_.set_array("poisson_cdf", model.cell_count().cdf().data(),
-                       static_cast<int>(model.cell_count().cdf().size()));
-    program_.set("poisson_chunks", static_cast<unsigned>(model.cell_count().chunks()));
-    program_.set("inverse_sqrt_intensity", model.inverse_sqrt_intensity());
-    program_.set4("constant_term", constant_term);
-    program_.set4("mean_colour", mean);
-    check_gl("setting the texton uniforms");
+        glsl_(gl::texton_glsl(model)),
+        program_(std::string("#version 450\n") + gl::texton_library_source(glsl_) +
+                 gl::kTextonRenderGlsl) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &atlas_);
+    glTextureStorage2D(atlas_, 1, GL_RGBA32F, glsl_.atlas.width(), glsl_.atlas.height());
+    glTextureSubImage2D(atlas_, 0, 0, 0, glsl_.atlas.width(), glsl_.atlas.height(), GL_RGBA,
+                        GL_FLOAT, glsl_.atlas.pixels().data());
+    program_.set("stochtex_texton_atlas", 0);
+    check_gl("uploading the texton");
   }
+  ~TextonPass() { glDeleteTextures(1, &atlas_); }
+  TextonPass(const TextonPass&) = delete;
+  TextonPass& operator=(const TextonPass&) = delete;
 
   // Sets the per-render uniforms; then dispatch() runs one tile.
   void prepare(const Grid& grid, std::uint32_t seed, bool filter) const {
-    // The footprint of every pixel is the grid's: one filter setup for the render, chosen by
-    // the same function as the CPU evaluator.
-    const auto& pyramid = model_.pyramid();
-    const int top_level = static_cast<int>(pyramid.size()) - 1;
+    const int top_level = static_cast<int>(model_.pyramid().size()) - 1;
     const texton::FilterSetup setup =
         filter ? texton::filter_setup(Footprint{{grid.scale, 0.0}, {0.0, grid.scale}}, top_level)
                : texton::FilterSetup{};
-    const int levels[2] = {setup.level, std::min(setup.level + 1, top_level)};
-    const auto& fine = pyramid[static_cast<std::size_t>(levels[0])];
-    const auto& coarse = pyramid[static_cast<std::size_t>(levels[1])];
-    const float probe_extent = 0.5f * static_cast<float>(setup.probes - 1) *
-                               std::max(std::abs(setup.probe_x), std::abs(setup.probe_y));
-    const float kernel_reach =
-        setup.level_blend > 0.0f ? std::max(fine.half_width, coarse.half_width) : fine.half_width;
-    const int level_offset[2] = {offsets_[static_cast<std::size_t>(levels[0])],
-                                 offsets_[static_cast<std::size_t>(levels[1])]};
-    const int level_stride[2] = {fine.stride, coarse.stride};
-    const float level_spacing[2] = {fine.spacing, coarse.spacing};
-    const float level_first[2] = {fine.first_texel, coarse.first_texel};
-    const float level_half[2] = {fine.half_width, coarse.half_width};
-
     // The grid origin splits into a cell (64-bit here, its low 32 bits in the shader, as
     // cell_key uses them) and a small float offset: far origins are as precise as near ones.
     const double cell_size = model_.cell_size();
@@ -167,16 +134,11 @@ class TextonPass {
                   static_cast<float>(grid.origin.y - origin_cell_y * cell_size));
     program_.set("scale", static_cast<float>(grid.scale));
     program_.set("seed", static_cast<unsigned>(seed));
-    program_.set("reach", kernel_reach + probe_extent);
-    program_.set("probes", setup.probes);
-    program_.set2("probe_step", setup.probe_x, setup.probe_y);
-    program_.set("level_blend", setup.level_blend);
-    program_.set("fade", setup.fade);
-    program_.set_array("level_offset", level_offset, 2);
-    program_.set_array("level_stride", level_stride, 2);
-    program_.set_array("level_spacing", level_spacing, 2);
-    program_.set_array("level_first_texel", level_first, 2);
-    program_.set_array("level_half_width", level_half, 2);
+    program_.set("filter_level", setup.level);
+    program_.set("filter_level_blend", setup.level_blend);
+    program_.set("filter_probes", setup.probes);
+    program_.set2("filter_probe_step", setup.probe_x, setup.probe_y);
+    program_.set("filter_fade", setup.fade);
     check_gl("setting the texton uniforms");
   }
 
@@ -186,7 +148,7 @@ class TextonPass {
     program_.set2("first_pixel", static_cast<int>(first_x), static_cast<int>(first_y));
     program_.set2("dispatch_size", width, height);
     glUseProgram(program_.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, texels_.id());
+    glBindTextureUnit(0, atlas_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, result.id());
     glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8),
                       1);
@@ -195,21 +157,49 @@ class TextonPass {
   }
 
  private:
-  // Every pyramid level's padded coefficients, one after the other; `offsets` gets each start.
-  static Buffer pack_texels(const texton::TextonModel& model, std::vector<int>& offsets) {
-    std::vector<float> texels;
-    for (const auto& level : model.pyramid()) {
-      offsets.push_back(static_cast<int>(texels.size()));
-      texels.insert(texels.end(), level.coefficients.begin(), level.coefficients.end());
-    }
-    return Buffer(texels.size() * sizeof(float), texels.data());
-  }
-
   const texton::TextonModel& model_;
-  std::vector<int> offsets_;
+  gl::TextonGlsl glsl_;
   Program program_;
-  Buffer texels_;
+  GLuint atlas_ = 0;
 };
+
+// How to use an exported shader (written as README.md beside it).
+constexpr const char* kExportReadme = R"md(# stochtex texton noise shader
+
+Files: `stochtex_texton.glsl` (the noise, self-contained) and `texton_atlas.exr` (the texton
+pyramid, RGBA float32). The GLSL declares `uniform sampler2D stochtex_texton_atlas;` and exposes
+
+    vec4 stochtex_texton(vec2 p, vec2 dpdx, vec2 dpdy, uint seed);
+
+`p` is in exemplar pixels (1 unit = 1 pixel of the analysed image), `dpdx`/`dpdy` its screen
+derivatives (`dFdx(p)`, `dFdy(p)` in a fragment shader; `vec2(0)` for no filtering) and `seed`
+picks the random pattern. The result's first `channels` components are the colour.
+
+Binding it in a plain OpenGL 4.5 program (load the EXR with any EXR reader into `texels`):
+
+```c
+GLuint atlas;
+glCreateTextures(GL_TEXTURE_2D, 1, &atlas);
+glTextureStorage2D(atlas, 1, GL_RGBA32F, width, height);
+glTextureSubImage2D(atlas, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels);
+glBindTextureUnit(0, atlas);
+glProgramUniform1i(program, glGetUniformLocation(program, "stochtex_texton_atlas"), 0);
+```
+
+```glsl
+#version 450
+// ... contents of stochtex_texton.glsl ...
+in vec2 uv;  // your surface coordinate
+out vec4 colour;
+void main() {
+  vec2 p = uv * 512.0;  // scaled to exemplar pixels
+  colour = vec4(stochtex_texton(p, dFdx(p), dFdy(p), 7u).rgb, 1.0);
+}
+```
+
+The atlas is read with `texelFetch` (exact texels, no sampler filtering needed): the shader does
+its own B-spline interpolation and footprint filtering, the same as the CPU reference.
+)md";
 
 }  // namespace
 
@@ -270,8 +260,8 @@ void GlRenderer::render(const Grid& grid, std::uint32_t seed, ImageView<float> o
   pass.prepare(grid, seed, options.filter);
   const int tile_width = std::clamp(options.tile_size, 1, std::max(grid.width, 1));
   const int tile_height = std::clamp(options.tile_size, 1, std::max(grid.height, 1));
-  const Buffer result(static_cast<std::size_t>(tile_width) * tile_height * channels * sizeof(float),
-                      nullptr);
+  const Buffer result(static_cast<std::size_t>(tile_width) * tile_height * channels *
+                      sizeof(float));
   std::vector<float> values(static_cast<std::size_t>(tile_width) * tile_height * channels);
   impl_->milliseconds = 0.0;
   for (int y0 = 0; y0 < grid.height; y0 += tile_height)
@@ -311,6 +301,28 @@ void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageVi
 
 std::string gl_device_description() {
   return gl::Context().description();
+}
+
+ShaderExport export_shader(const Model& model) {
+  if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
+  if (!gl_supports(model.method()))
+    throw Error(ErrorCode::invalid_input, "export-shader does not support method '" +
+                                              std::string(model.method()) + "' yet (only texton)");
+  const auto& texton_model = std::get<texton::TextonModel>(model.data().model);
+  gl::TextonGlsl glsl = gl::texton_glsl(texton_model);
+  ShaderExport result;
+  result.glsl_file_name = "stochtex_texton.glsl";
+  std::ostringstream header;
+  header << "// Texton noise exported by `stochtex export-shader` (" << texton_model.channels()
+         << " channels, texton " << texton_model.support() << "x" << texton_model.support()
+         << ", MNI " << texton_model.mean_impacts() << ").\n"
+         << "// Paste or include after `#version 450` (GLSL 4.30+). Bind texton_atlas.exr as an "
+            "RGBA32F texture to\n// `stochtex_texton_atlas`, then call stochtex_texton(p, dpdx, "
+            "dpdy, seed). See README.md.\n\n";
+  result.glsl = header.str() + gl::texton_library_source(glsl);
+  result.images.push_back({"texton_atlas", std::move(glsl.atlas)});
+  result.readme = kExportReadme;
+  return result;
 }
 
 }  // namespace stochtex

@@ -4,7 +4,8 @@
 
 namespace stochtex::gl {
 
-extern const char* const kRandomGlsl;  // src/gl/random.glsl
-extern const char* const kTextonGlsl;  // src/methods/texton/evaluate.glsl
+extern const char* const kRandomGlsl;        // src/gl/random.glsl
+extern const char* const kTextonGlsl;        // src/methods/texton/evaluate.glsl
+extern const char* const kTextonRenderGlsl;  // src/gl/texton_render.glsl
 
 }  // namespace stochtex::gl

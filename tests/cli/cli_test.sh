@@ -221,6 +221,11 @@ expect_parse_error "unknown backend" "$stochtex" render "$model" -o "$out/x.png"
 expect_error "--supersample with --backend gl" 2 "--supersample" \
   "$stochtex" render "$model" -o "$out/x.png" "${size[@]}" --backend gl --supersample 2
 
+expect_ok "export-shader" "$stochtex" export-shader "$model" -o "$models/shader" &&
+  expect_file "export-shader writes the GLSL" "$models/shader/stochtex_texton.glsl" &&
+  expect_file "export-shader writes the atlas" "$models/shader/texton_atlas.exr" &&
+  expect_file "export-shader writes the README" "$models/shader/README.md"
+
 # --- bad inputs ---------------------------------------------------------------------------------
 
 analyze_to=(-o "$out/model.stx")

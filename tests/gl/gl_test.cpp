@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -170,6 +171,82 @@ TEST(Gl, BitIdenticalWhateverTheDispatchTilesAndRegions) {
         ASSERT_EQ(part.at(x, y, c), reference.at(45 + x, y, c));
   const ImageF other_seed = render_gpu(model, grid, 5, 512);
   EXPECT_FALSE(same_bytes(reference, other_seed));
+}
+
+TEST(Gl, ExportedShaderCompilesAndMatchesTheCpu) {
+  // What an engine gets from `stochtex export-shader`: the GLSL file and the atlas image, read
+  // back from disk, driven by a minimal compute shader through the public entry point
+  // stochtex_texton(p, dpdx, dpdy, seed), with the footprint computed in GLSL (texton_filter).
+  const Model& model = model_of("red_fleece_128.png", 1);
+  const ShaderExport files = export_shader(model);
+  ASSERT_EQ(files.images.size(), 1u);
+  const auto folder = std::filesystem::temp_directory_path() / "stochtex_export_test";
+  std::filesystem::create_directories(folder);
+  write_image(folder / "texton_atlas.exr", files.images[0].image.view());
+  const ImageF atlas = read_image(folder / "texton_atlas.exr");
+  std::filesystem::remove_all(folder);
+
+  const gl::Context context;
+  const std::string source = "#version 450\n" + files.glsl + R"glsl(
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 0) writeonly buffer Out { vec4 values[]; };
+uniform int width;
+uniform float scale;
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  vec2 p = scale * (vec2(pixel) + 0.5);
+  values[pixel.y * width + pixel.x] =
+      stochtex_texton(p, vec2(scale, 0.0), vec2(0.0, scale), 11u);
+}
+)glsl";
+  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  ASSERT_TRUE(ok);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, shader);
+  glLinkProgram(program);
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, 1, GL_RGBA32F, atlas.width(), atlas.height());
+  glTextureSubImage2D(texture, 0, 0, 0, atlas.width(), atlas.height(), GL_RGBA, GL_FLOAT,
+                      atlas.pixels().data());
+  glBindTextureUnit(0, texture);
+  glProgramUniform1i(program, glGetUniformLocation(program, "stochtex_texton_atlas"), 0);
+  constexpr int kSize = 48;
+  for (const double scale : {1.0, 3.0}) {
+    glProgramUniform1i(program, glGetUniformLocation(program, "width"), kSize);
+    glProgramUniform1f(program, glGetUniformLocation(program, "scale"), static_cast<float>(scale));
+    GLuint buffer = 0;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferData(buffer, kSize * kSize * 4 * sizeof(float), nullptr, GL_DYNAMIC_READ);
+    glUseProgram(program);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
+    glDispatchCompute(kSize / 8, kSize / 8, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<float> values(kSize * kSize * 4);
+    glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(values.size() * sizeof(float)),
+                            values.data());
+    ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    glDeleteBuffers(1, &buffer);
+    const ImageF cpu = render_cpu(model, Grid{{0.0, 0.0}, scale, kSize, kSize}, 11);
+    float worst = 0.0f;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        for (int c = 0; c < model.channels(); ++c)
+          worst = std::max(worst, std::abs(cpu.at(x, y, c) -
+                                           values[(static_cast<std::size_t>(y) * kSize + x) * 4 +
+                                                  static_cast<std::size_t>(c)]));
+    std::cout << "exported shader, scale " << scale << ": max |cpu - gl| = " << worst << "\n";
+    // Same tolerance as the renderer's parity (TextonMatchesTheCpuReference).
+    EXPECT_LT(worst, 1e-4f) << "scale " << scale;
+  }
+  glDeleteTextures(1, &texture);
+  glDeleteProgram(program);
+  glDeleteShader(shader);
 }
 
 }  // namespace

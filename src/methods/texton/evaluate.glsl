@@ -1,70 +1,70 @@
-// Texton noise on the GPU: the GLSL twin of TextonModel::evaluate_typed (evaluate.hpp,
-// model.cpp), same hash, same draws, same constants. One invocation per output pixel of a
-// regular grid; the footprint is the grid's (one filter setup per render, see filter_setup).
-// Requires random.glsl before it.
+// Texton noise in GLSL: the twin of TextonModel::evaluate_typed and filter_setup (evaluate.hpp,
+// model.cpp), same hash, same draws, same constants, so the CPU and GPU agree to float rounding.
+// Requires random.glsl, then the model's constants (texton_glsl_constants() in src/gl writes
+// them: TEXTON_CHANNELS, TEXTON_ORDER, TEXTON_CELL_SIZE, TEXTON_POISSON_CDF, TEXTON_POISSON_CHUNKS,
+// TEXTON_INVERSE_SQRT_INTENSITY, TEXTON_CONSTANT_TERM, TEXTON_MEAN, TEXTON_LEVELS and the
+// TEXTON_LEVEL_* arrays) and `uniform sampler2D stochtex_texton_atlas`: every pyramid level's
+// padded texels (RGBA = up to 4 channels), level l in rows TEXTON_LEVEL_ROW[l] onwards.
 
-layout(local_size_x = 8, local_size_y = 8) in;
+const int TEXTON_PADDING = 8;
+const int TEXTON_MAX_PROBES = 8;
+const float TEXTON_LOD_BIAS = 0.79248125036057809;  // log2(3) / 2, see filter_setup
 
-layout(std430, binding = 0) readonly buffer Texels { float texels[]; };
-layout(std430, binding = 1) writeonly buffer Result { float result[]; };
+struct TextonFilter {
+  int level;
+  float level_blend;
+  int probes;
+  vec2 probe_step;
+  float fade;
+};
 
-uniform ivec2 image_size;   // pixels of the whole render
-uniform ivec2 first_pixel;  // grid.first_pixel of this render + the dispatch's offset
-uniform ivec2 dispatch_size;
-uniform uvec2 origin_cell;  // low 32 bits of the cell holding the grid origin
-uniform vec2 origin_offset; // grid origin minus that cell's corner, exemplar pixels
-uniform float scale;
-uniform uint seed;
-uniform int channels;
-uniform int order;
+// filter_setup of evaluate.hpp: the pyramid level(s) and probes for a footprint.
+TextonFilter texton_filter(vec2 dpdx, vec2 dpdy) {
+  TextonFilter f = TextonFilter(0, 0.0, 1, vec2(0.0), 1.0);
+  float length_x = length(dpdx);
+  float length_y = length(dpdy);
+  float major = max(length_x, length_y);
+  float minor = min(length_x, length_y);
+  if (!(major > 1.0)) return f;
+  int top_level = TEXTON_LEVELS - 1;
+  f.probes = int(min(float(TEXTON_MAX_PROBES), ceil(major / max(minor, 1.0))));
+  float width = max(max(major / float(f.probes), minor), 1.0);
+  float lod = max(0.0, log2(width) - TEXTON_LOD_BIAS);
+  if (lod >= float(top_level)) {
+    f.fade = exp2(float(top_level) - lod);
+    lod = float(top_level);
+  }
+  f.level = min(int(lod), top_level);
+  f.level_blend = f.level == top_level ? 0.0 : lod - float(f.level);
+  f.probe_step = (length_x >= length_y ? dpdx : dpdy) / float(f.probes);
+  return f;
+}
 
-uniform float cell_size;
-uniform float poisson_cdf[96];
-uniform uint poisson_chunks;
-uniform float inverse_sqrt_intensity;
-uniform vec4 constant_term;
-uniform vec4 mean_colour;
-
-// Filtering, decided once per render from the pixel footprint (filter_setup in C++).
-uniform float reach;
-uniform int probes;
-uniform vec2 probe_step;
-uniform float level_blend;
-uniform float fade;
-// The two pyramid levels read: [0] fine, [1] coarse. offset in floats into `texels`.
-uniform int level_offset[2];
-uniform int level_stride[2];
-uniform float level_spacing[2];
-uniform float level_first_texel[2];
-uniform float level_half_width[2];
-
-const int PADDING = 8;
-
-uint poisson_count(inout CounterRng rng) {
+uint texton_poisson_count(inout CounterRng rng) {
   uint total = 0u;
-  for (uint c = 0u; c < poisson_chunks; ++c) {
+  for (uint c = 0u; c < TEXTON_POISSON_CHUNKS; ++c) {
     float u = rng_uniform(rng);
     uint k = 0u;
-    while (u >= poisson_cdf[k]) ++k;
+    while (u >= TEXTON_POISSON_CDF[k]) ++k;
     total += k;
   }
   return total;
 }
 
-// B-spline interpolation weights of order `order` at texel coordinate u (BsplineKernel in C++).
-int bspline_weights(float u, out float w[6]) {
+// B-spline interpolation weights of order TEXTON_ORDER at texel coordinate u (BsplineKernel).
+int texton_weights(float u, out float w[6]) {
   for (int i = 0; i < 6; ++i) w[i] = 0.0;
-  if (order == 0) {
+  if (TEXTON_ORDER == 0) {
     w[0] = 1.0;
     return int(floor(u + 0.5));
   }
   float cell = floor(u);
   float t = u - cell;
-  int first = int(cell) - (order - 1) / 2;
-  if (order == 1) {
+  int first = int(cell) - (TEXTON_ORDER - 1) / 2;
+  if (TEXTON_ORDER == 1) {
     w[0] = 1.0 - t;
     w[1] = t;
-  } else if (order == 3) {
+  } else if (TEXTON_ORDER == 3) {
     float s = 1.0 - t;
     float t2 = t * t;
     float t3 = t2 * t;
@@ -88,69 +88,72 @@ int bspline_weights(float u, out float w[6]) {
   return first;
 }
 
-void accumulate_texton(int level, float dx, float dy, float weight, inout vec4 acc) {
-  float half_width = level_half_width[level];
+void texton_accumulate(int level, float dx, float dy, float weight, inout vec4 acc) {
+  float half_width = TEXTON_LEVEL_HALF_WIDTH[level];
   if (abs(dx) >= half_width || abs(dy) >= half_width) return;
   float wx[6];
   float wy[6];
-  float inverse_spacing = 1.0 / level_spacing[level];
-  int x0 = bspline_weights((dx - level_first_texel[level]) * inverse_spacing, wx);
-  int y0 = bspline_weights((dy - level_first_texel[level]) * inverse_spacing, wy);
-  int stride = level_stride[level];
-  int base = level_offset[level] + ((y0 + PADDING) * stride + (x0 + PADDING)) * channels;
-  int taps = order + 1;
-  for (int j = 0; j < taps; ++j) {
-    int row = base + j * stride * channels;
-    for (int i = 0; i < taps; ++i) {
-      float w = weight * wy[j] * wx[i];
-      for (int c = 0; c < channels; ++c) acc[c] += w * texels[row + i * channels + c];
-    }
-  }
+  float inverse_spacing = 1.0 / TEXTON_LEVEL_SPACING[level];
+  int x0 = texton_weights((dx - TEXTON_LEVEL_FIRST_TEXEL[level]) * inverse_spacing, wx);
+  int y0 = texton_weights((dy - TEXTON_LEVEL_FIRST_TEXEL[level]) * inverse_spacing, wy);
+  ivec2 base = ivec2(x0 + TEXTON_PADDING, TEXTON_LEVEL_ROW[level] + y0 + TEXTON_PADDING);
+  for (int j = 0; j <= TEXTON_ORDER; ++j)
+    for (int i = 0; i <= TEXTON_ORDER; ++i)
+      acc += (weight * wy[j] * wx[i]) * texelFetch(stochtex_texton_atlas, base + ivec2(i, j), 0);
 }
 
-void main() {
-  ivec2 local_pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (local_pixel.x >= dispatch_size.x || local_pixel.y >= dispatch_size.y) return;
-  ivec2 pixel = first_pixel + local_pixel;
-  // Position relative to the origin cell's corner: small numbers, so far origins stay precise.
-  vec2 p = origin_offset + scale * (vec2(pixel) + 0.5);
+// Texton noise at p, in exemplar pixels relative to the corner of cell `origin_cell` (whose
+// index enters the hash as its low 32 bits, so callers may keep p small and the cell far).
+vec4 texton_noise(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
+  int top_level = TEXTON_LEVELS - 1;
+  int coarse = min(f.level + 1, top_level);
+  float probe_extent = 0.5 * float(f.probes - 1) * max(abs(f.probe_step.x), abs(f.probe_step.y));
+  float kernel_reach = f.level_blend > 0.0 ? max(TEXTON_LEVEL_HALF_WIDTH[f.level],
+                                                 TEXTON_LEVEL_HALF_WIDTH[coarse])
+                                           : TEXTON_LEVEL_HALF_WIDTH[f.level];
+  float reach = kernel_reach + probe_extent;
+  float probe_weight = 1.0 / float(f.probes);
   vec4 acc = vec4(0.0);
-  int first_x = int(floor((p.x - reach) / cell_size));
-  int last_x = int(floor((p.x + reach) / cell_size));
-  int first_y = int(floor((p.y - reach) / cell_size));
-  int last_y = int(floor((p.y + reach) / cell_size));
-  float probe_weight = 1.0 / float(probes);
+  int first_x = int(floor((p.x - reach) / TEXTON_CELL_SIZE));
+  int last_x = int(floor((p.x + reach) / TEXTON_CELL_SIZE));
+  int first_y = int(floor((p.y - reach) / TEXTON_CELL_SIZE));
+  int last_y = int(floor((p.y + reach) / TEXTON_CELL_SIZE));
   for (int cell_y = first_y; cell_y <= last_y; ++cell_y) {
-    float offset_y = p.y - float(cell_y) * cell_size;
+    float offset_y = p.y - float(cell_y) * TEXTON_CELL_SIZE;
     for (int cell_x = first_x; cell_x <= last_x; ++cell_x) {
-      float offset_x = p.x - float(cell_x) * cell_size;
-      CounterRng rng = CounterRng(
-          cell_key(origin_cell.x + uint(cell_x), origin_cell.y + uint(cell_y), seed,
-                   STREAM_POINTS),
-          0u);
-      uint impacts = poisson_count(rng);
+      float offset_x = p.x - float(cell_x) * TEXTON_CELL_SIZE;
+      CounterRng rng = CounterRng(cell_key(origin_cell.x + uint(cell_x),
+                                           origin_cell.y + uint(cell_y), seed, STREAM_POINTS),
+                                  0u);
+      uint impacts = texton_poisson_count(rng);
       for (uint n = 0u; n < impacts; ++n) {
         float u = rng_uniform(rng);
         float v = rng_uniform(rng);
-        float dx = offset_x - u * cell_size;
-        float dy = offset_y - v * cell_size;
-        if (probes == 1 && level_blend == 0.0) {
-          accumulate_texton(0, dx, dy, 1.0, acc);
+        float dx = offset_x - u * TEXTON_CELL_SIZE;
+        float dy = offset_y - v * TEXTON_CELL_SIZE;
+        if (f.probes == 1 && f.level_blend == 0.0) {
+          texton_accumulate(f.level, dx, dy, 1.0, acc);
           continue;
         }
-        for (int k = 0; k < probes; ++k) {
-          float shift = float(k) + 0.5 - 0.5 * float(probes);
-          float px = dx + shift * probe_step.x;
-          float py = dy + shift * probe_step.y;
-          accumulate_texton(0, px, py, probe_weight * (1.0 - level_blend), acc);
-          if (level_blend > 0.0) accumulate_texton(1, px, py, probe_weight * level_blend, acc);
+        for (int k = 0; k < f.probes; ++k) {
+          float shift = float(k) + 0.5 - 0.5 * float(f.probes);
+          float px = dx + shift * f.probe_step.x;
+          float py = dy + shift * f.probe_step.y;
+          texton_accumulate(f.level, px, py, probe_weight * (1.0 - f.level_blend), acc);
+          if (f.level_blend > 0.0)
+            texton_accumulate(coarse, px, py, probe_weight * f.level_blend, acc);
         }
       }
     }
   }
-  int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * channels;
-  for (int c = 0; c < channels; ++c) {
-    float noise = acc[c] * inverse_sqrt_intensity + constant_term[c] - mean_colour[c];
-    result[index + c] = mean_colour[c] + fade * noise;
-  }
+  // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2); `fade` scales the fluctuation only.
+  vec4 noise = acc * TEXTON_INVERSE_SQRT_INTENSITY + TEXTON_CONSTANT_TERM - TEXTON_MEAN;
+  return TEXTON_MEAN + f.fade * noise;
+}
+
+// The engine-facing entry point (`stochtex export-shader`): p in exemplar pixels, its screen
+// derivatives (dFdx(p), dFdy(p) in a fragment shader; zero = no filtering) and a seed. Keep |p|
+// below ~1e4 for full precision; move far regions with texton_noise's origin_cell instead.
+vec4 stochtex_texton(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {
+  return texton_noise(p, uvec2(0u), seed, texton_filter(dpdx, dpdy));
 }
