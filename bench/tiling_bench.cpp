@@ -1,0 +1,111 @@
+// Histogram-preserving tiling and blending costs (DESIGN.md section 10): analysis time for 128²,
+// 256² and 512² colour exemplars with both transports, and evaluation cost per sample through
+// `render` at 1 and 2 threads for the Gaussian fast path (section 6.1: 3 fetches) and the full
+// path (3 fetches + one T^-1 look-up), point-sampled and filtered (scale 8).
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdint>
+#include <exception>
+#include <map>
+#include <string>
+
+#include "io/image_io.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace {
+
+using namespace stochtex;
+
+constexpr int kRenderSide = 256;
+constexpr std::int64_t kRenderSamples = std::int64_t{kRenderSide} * kRenderSide;
+constexpr std::uint32_t kSeed = 7;
+
+const ImageF& colour_exemplar() {
+  static const ImageF image =
+      read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/moss_ground_512.png");
+  return image;
+}
+
+ImageF crop_top_left(const ImageF& image, int side) {
+  ImageF result(side, side, image.channels());
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      for (int c = 0; c < image.channels(); ++c) result.at(x, y, c) = image.at(x, y, c);
+  return result;
+}
+
+// Models of the 256² crop, built once: 0 sliced transport (3-D table), 1 per-channel transport,
+// 2 Gaussian fast path.
+const Model& tiling_model(int variant) {
+  static std::map<int, Model> cache;
+  auto found = cache.find(variant);
+  if (found == cache.end()) {
+    const ImageF exemplar = crop_top_left(colour_exemplar(), 256);
+    const ParamValues params = variant == 2   ? ParamValues{{"blend", 1}}
+                               : variant == 1 ? ParamValues{{"transport", 1}}
+                                              : ParamValues{};
+    found = cache.emplace(variant, analyze("tiling", exemplar.view(), params, 0)).first;
+  }
+  return found->second;
+}
+
+// Wall-clock ns per sample, as the texton benchmarks (a render's work is on worker threads).
+template <typename Body>
+void time_samples(benchmark::State& state, std::int64_t samples_per_iteration, Body&& body) {
+  const auto start = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    body();
+    benchmark::ClobberMemory();
+  }
+  const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
+  const std::int64_t samples = state.iterations() * samples_per_iteration;
+  state.SetItemsProcessed(samples);
+  if (samples > 0) state.counters["ns_per_sample"] = elapsed.count() / static_cast<double>(samples);
+}
+
+void BM_TilingAnalysis(benchmark::State& state) {
+  const int side = static_cast<int>(state.range(0));
+  const double transport = static_cast<double>(state.range(1));
+  ImageF exemplar;
+  try {
+    exemplar = crop_top_left(colour_exemplar(), side);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  for (auto _ : state) {
+    Model model = analyze("tiling", exemplar.view(), {{"transport", transport}}, 0);
+    benchmark::DoNotOptimize(model);
+  }
+}
+BENCHMARK(BM_TilingAnalysis)
+    ->ArgNames({"side", "transport"})
+    ->ArgsProduct({{128, 256, 512}, {0, 1}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// A 256x256 render: variant (0 full path with the 3-D table, 1 full path with 1-D tables,
+// 2 Gaussian fast path), threads, scale (1 point-sized footprints, 8 minified).
+void BM_TilingRender(benchmark::State& state) {
+  const Model* model = nullptr;
+  try {
+    model = &tiling_model(static_cast<int>(state.range(0)));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  RenderOptions options;
+  options.threads = static_cast<int>(state.range(1));
+  const Grid grid{{0.0, 0.0}, static_cast<double>(state.range(2)), kRenderSide, kRenderSide};
+  ImageF out(kRenderSide, kRenderSide, model->channels());
+  time_samples(state, kRenderSamples, [&] { render(*model, grid, kSeed, out.view(), options); });
+}
+BENCHMARK(BM_TilingRender)
+    ->ArgNames({"variant", "threads", "scale"})
+    ->ArgsProduct({{0, 1, 2}, {1, 2}, {1, 8}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -1,0 +1,39 @@
+#pragma once
+// Analysis of histogram-preserving tiling and blending: the Gaussianisation T of the exemplar
+// (sections 4.1-4.2) and its inverse T^-1 as look-up tables (section 4.3), by one of two
+// transports, and the transports themselves (public for tests and benchmarks).
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "methods/tiling/model.hpp"
+#include "stochtex/image.hpp"
+
+namespace stochtex::tiling {
+
+// Iterated sliced optimal transport (Pitie et al. 2007, Rabin et al. 2011): each iteration draws
+// a random orthonormal basis of R^dims and, along each of its directions, moves every point so that
+// its rank among the projected points meets the same-rank quantile of the target's projection. The
+// points converge to the target distribution along a near-optimal (L2) displacement. `source` and
+// the result are count x dims, interleaved. Deterministic in `seed`.
+std::vector<float> sliced_transport_to_points(std::span<const float> source,
+                                              std::span<const float> target, int dims,
+                                              int iterations, std::uint32_t seed);
+// The same towards the continuous Gaussian of eq. (20) (mean 1/2, deviation 1/6 per axis): its
+// projection on a unit direction d is the 1-D Gaussian of mean sum(d)/2 and deviation 1/6, whose
+// quantiles are exact, so no Gaussian point set needs to be drawn or sorted.
+std::vector<float> sliced_transport_to_gaussian(std::span<const float> source, int dims,
+                                                int iterations, std::uint32_t seed);
+
+// Exact 1-D transport of `values` to the Gaussian of eq. (20): the value of rank k among n becomes
+// 1/2 + Phi^-1((k + 1/2) / n) / 6, written to `gaussian` (n entries). Fills `table` with T^-1: the
+// quantiles of `values` at the uniform levels (k + 1/2) / table.size() of eq. (22).
+void gaussianise_1d(std::span<const float> values, std::span<float> gaussian,
+                    std::span<float> table);
+
+// Histogram-preserving tiling and blending analysis. `params` holds every entry of kParams (see
+// registry: resolve_params).
+TilingModel analyze(ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed);
+
+}  // namespace stochtex::tiling

@@ -1,0 +1,443 @@
+#include "methods/tiling/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "methods/tiling/params.hpp"
+#include "stochtex/error.hpp"
+
+namespace stochtex::tiling {
+namespace {
+
+// A level-l texel read bilinearly reconstructs box(2^l) * tent(2^l), of variance 4^l / 4 per axis;
+// the box footprint of width w that `render --supersample` averages has variance w^2 / 12. Equal
+// variances give 2^l = w / sqrt(3), the same level-of-detail bias as the texton pyramid.
+constexpr double kLodBias = 0.79248125036057809;  // log2(3) / 2
+// Strata of the quadrature that prefilters T^-1 (see prefilter_kernel).
+constexpr int kPrefilterStrata = 64;
+constexpr int kMaxExemplarSide = 1 << 16;
+
+// Level l + 1 averages 2 x 2 texels of level l with periodic wrap, so every level keeps the mean
+// of G exactly and the exemplar's period (texels_per_pixel = level width / exemplar width).
+std::vector<std::vector<float>> build_pyramid(const std::vector<float>& base, int width, int height,
+                                              int channels, std::vector<int>& widths,
+                                              std::vector<int>& heights) {
+  std::vector<std::vector<float>> levels{base};
+  widths = {width};
+  heights = {height};
+  while (widths.back() > 1 || heights.back() > 1) {
+    const int w = widths.back();
+    const int h = heights.back();
+    const int next_w = (w + 1) / 2;
+    const int next_h = (h + 1) / 2;
+    const std::vector<float>& current = levels.back();
+    std::vector<float> next(static_cast<std::size_t>(next_w) * next_h * channels, 0.0f);
+    for (int y = 0; y < next_h; ++y)
+      for (int x = 0; x < next_w; ++x)
+        for (int dy = 0; dy < 2; ++dy)
+          for (int dx = 0; dx < 2; ++dx) {
+            const int sx = (2 * x + dx) % w;
+            const int sy = (2 * y + dy) % h;
+            for (int c = 0; c < channels; ++c)
+              next[(static_cast<std::size_t>(y) * next_w + x) * channels + c] +=
+                  0.25f * current[(static_cast<std::size_t>(sy) * w + sx) * channels + c];
+          }
+    levels.push_back(std::move(next));
+    widths.push_back(next_w);
+    heights.push_back(next_h);
+  }
+  return levels;
+}
+
+std::vector<double> channel_variances(const std::vector<float>& texels, int channels) {
+  const std::size_t count = texels.size() / static_cast<std::size_t>(channels);
+  std::vector<double> mean(static_cast<std::size_t>(channels), 0.0);
+  std::vector<double> variance(static_cast<std::size_t>(channels), 0.0);
+  for (std::size_t i = 0; i < count; ++i)
+    for (int c = 0; c < channels; ++c) mean[c] += texels[i * channels + c];
+  for (double& m : mean) m /= static_cast<double>(count);
+  for (std::size_t i = 0; i < count; ++i)
+    for (int c = 0; c < channels; ++c) {
+      const double d = texels[i * channels + c] - mean[c];
+      variance[c] += d * d;
+    }
+  for (double& v : variance) v /= static_cast<double>(count);
+  return variance;
+}
+
+// One row of a banded matrix: entries first .. first + weights.size() - 1.
+struct KernelRow {
+  int first = 0;
+  std::vector<float> weights;
+};
+
+// The prefiltered inverse of a pyramid level (our reading of Deliot & Heitz 2019, section
+// "prefiltering the look-up table"): a level-l texel is the mean g of the G values under it, and
+// the filtered output wanted is the mean of T^-1 over those values, not T^-1(g). For a Gaussian
+// field the level-0 values under a texel of mean g spread as N(g, r^2) with r^2 = var(G_0) -
+// var(G_l), so T^-1_l(g) = E[T^-1(z)], z ~ N(g, r^2). At the top level (one texel, r = sigma)
+// a constant fetch returns the exemplar's mean colour, not T^-1(1/2), its median. The expectation
+// is a midpoint rule over `kPrefilterStrata` equal-probability strata of N(g, r^2), each read from
+// the table like the evaluator does (linear interpolation in the erf parameterisation, eq. 22);
+// row i is the table cell at g_i = 1/2 + sigma Phi^-1((i + 1/2) / size).
+std::vector<KernelRow> prefilter_kernel(int size, double residual_deviation) {
+  std::vector<KernelRow> rows(static_cast<std::size_t>(size));
+  std::vector<double> strata(kPrefilterStrata);
+  for (int q = 0; q < kPrefilterStrata; ++q)
+    strata[q] = normal_quantile((q + 0.5) / kPrefilterStrata);
+  std::vector<double> dense(static_cast<std::size_t>(size));
+  for (int i = 0; i < size; ++i) {
+    std::fill(dense.begin(), dense.end(), 0.0);
+    const double centre = kGaussianMean + kGaussianDeviation * normal_quantile((i + 0.5) / size);
+    int first = size;
+    int last = -1;
+    for (int q = 0; q < kPrefilterStrata; ++q) {
+      const auto g = static_cast<float>(centre + residual_deviation * strata[q]);
+      int cell = 0;
+      const float t = table_coordinate(gaussian_to_uniform(g), size, cell);
+      dense[cell] += (1.0 - t) / kPrefilterStrata;
+      dense[cell + 1] += static_cast<double>(t) / kPrefilterStrata;
+      first = std::min(first, cell);
+      last = std::max(last, cell + 1);
+    }
+    rows[i].first = first;
+    rows[i].weights.assign(dense.begin() + first, dense.begin() + last + 1);
+  }
+  return rows;
+}
+
+// out[i] = sum_a K[i][a] in[a] along one axis of a table with `stride` floats between cells and
+// `count` independent lines, each line's origin given by line_origin(line).
+template <typename Origin>
+void apply_kernel(const std::vector<KernelRow>& rows, const std::vector<float>& in,
+                  std::vector<float>& out, std::size_t stride, std::size_t lines, int components,
+                  Origin line_origin) {
+  for (std::size_t line = 0; line < lines; ++line) {
+    const std::size_t origin = line_origin(line);
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      for (int c = 0; c < components; ++c) {
+        double sum = 0.0;
+        for (std::size_t k = 0; k < rows[i].weights.size(); ++k)
+          sum += rows[i].weights[k] *
+                 in[origin + (static_cast<std::size_t>(rows[i].first) + k) * stride + c];
+        out[origin + i * stride + c] = static_cast<float>(sum);
+      }
+  }
+}
+
+float table_lookup(const float* table, int size, float g) noexcept {
+  int cell = 0;
+  const float t = table_coordinate(gaussian_to_uniform(g), size, cell);
+  return table[cell] + t * (table[cell + 1] - table[cell]);
+}
+
+}  // namespace
+
+TilingLayout tiling_layout(int channels, Transport transport, Blend blend) {
+  TilingLayout layout;
+  layout.has_alpha = channels == 2 || channels == 4;
+  layout.colour_channels = layout.has_alpha ? channels - 1 : channels;
+  if (blend != Blend::histogram) return layout;
+  layout.colour_lut = layout.colour_channels == 3 && transport == Transport::sliced;
+  layout.table_count =
+      (layout.colour_lut ? 0 : layout.colour_channels) + (layout.has_alpha ? 1 : 0);
+  layout.first_alpha_table = layout.colour_lut ? 0 : layout.colour_channels;
+  return layout;
+}
+
+TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
+  const TilingData& d = data_;
+  if (d.channels < 1 || d.channels > 4)
+    throw std::invalid_argument("tiling: channels must be 1 to 4");
+  if (d.width < 2 || d.height < 2 || d.width > kMaxExemplarSide || d.height > kMaxExemplarSide)
+    throw std::invalid_argument("tiling: the exemplar sides must be 2 to 65536 pixels");
+  if (!(d.tile_radius >= kParams[0].min_value && d.tile_radius <= kParams[0].max_value))
+    throw std::invalid_argument("tiling: tile_radius is out of range");
+  if (d.lut_size < 2 || d.lut_size > 64 || d.table_size < 16 || d.table_size > 65536)
+    throw std::invalid_argument("tiling: look-up table size out of range");
+  layout_ = tiling_layout(d.channels, d.transport, d.blend);
+  const auto n = static_cast<std::size_t>(d.lut_size);
+  const auto cc = static_cast<std::size_t>(layout_.colour_channels);
+  const bool colour_tables = d.blend == Blend::histogram && !layout_.colour_lut;
+  if (d.gaussian.size() != static_cast<std::size_t>(d.width) * d.height * d.channels ||
+      d.blend_mean.size() != static_cast<std::size_t>(d.channels) ||
+      d.lut.size() != (layout_.colour_lut ? n * n * n * 3 : 0) ||
+      d.tables.size() != static_cast<std::size_t>(layout_.table_count) * d.table_size ||
+      d.colour_basis.size() != (colour_tables ? cc * cc : 0) ||
+      d.colour_mean.size() != (colour_tables ? cc : 0))
+    throw std::invalid_argument("tiling: an array has the wrong size");
+  edge_ = d.tile_radius * std::min(d.width, d.height);
+
+  std::vector<int> widths;
+  std::vector<int> heights;
+  std::vector<std::vector<float>> texels =
+      build_pyramid(d.gaussian, d.width, d.height, d.channels, widths, heights);
+  for (std::size_t l = 0; l < texels.size(); ++l)
+    levels_.push_back({widths[l], heights[l], std::move(texels[l])});
+  if (d.blend != Blend::histogram) return;
+
+  // T^-1 prefiltered per level (see prefilter_kernel); the residual deviation differs per channel.
+  const std::vector<double> base_variance = channel_variances(levels_.front().texels, d.channels);
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const std::vector<double> variance = channel_variances(levels_[l].texels, d.channels);
+    const auto residual = [&](int channel) {
+      return l == 0 ? 0.0 : std::sqrt(std::max(0.0, base_variance[channel] - variance[channel]));
+    };
+    std::vector<float> lut = d.lut;
+    if (layout_.colour_lut && l > 0) {
+      std::vector<float> scratch(lut.size());
+      // Axis c of the table is channel c of G; the layout is [z][y][x][colour].
+      apply_kernel(prefilter_kernel(d.lut_size, residual(0)), lut, scratch, 3, n * n, 3,
+                   [&](std::size_t line) { return line * n * 3; });
+      apply_kernel(prefilter_kernel(d.lut_size, residual(1)), scratch, lut, n * 3, n * n, 3,
+                   [&](std::size_t line) { return (line / n) * n * n * 3 + (line % n) * 3; });
+      apply_kernel(prefilter_kernel(d.lut_size, residual(2)), lut, scratch, n * n * 3, n * n, 3,
+                   [&](std::size_t line) { return line * 3; });
+      lut = std::move(scratch);
+    }
+    std::vector<float> tables = d.tables;
+    if (l > 0)
+      for (int t = 0; t < layout_.table_count; ++t) {
+        const int channel = layout_.colour_lut ? 3 + t : t;
+        const auto size = static_cast<std::size_t>(d.table_size);
+        apply_kernel(prefilter_kernel(d.table_size, residual(channel)), d.tables, tables, 1, 1, 1,
+                     [&](std::size_t) { return static_cast<std::size_t>(t) * size; });
+      }
+    level_luts_.push_back(std::move(lut));
+    level_tables_.push_back(std::move(tables));
+  }
+}
+
+MipLevel TilingModel::level(int index) const {
+  const PyramidLevel& level = levels_[static_cast<std::size_t>(index)];
+  return {
+      level.width, level.height, static_cast<float>(static_cast<double>(level.width) / data_.width),
+      static_cast<float>(static_cast<double>(level.height) / data_.height), level.texels.data()};
+}
+
+TilingModel TilingModel::from_record(const ModelRecord& record, const std::string& source) {
+  // Scalars are checked against the same ranges as the analysis parameters (params.hpp): a file
+  // must not ask the evaluator for more work or memory than `stochtex analyze` could.
+  const auto read = [&](std::string_view name, double low, double high, bool integer) {
+    const double value = record.scalar(std::string(name), source);
+    if ((integer && value != std::floor(value)) || value < low || value > high)
+      throw Error(ErrorCode::format, "'" + source + "' has an invalid tiling " + std::string(name) +
+                                         " value; re-run `stochtex analyze`");
+    return value;
+  };
+  const auto read_param = [&](std::string_view name) {
+    const auto param = std::find_if(kParams.begin(), kParams.end(),
+                                    [&](const ParamInfo& p) { return p.name == name; });
+    return read(name, param->min_value, param->max_value, param->integer);
+  };
+  TilingData data;
+  data.channels = static_cast<int>(read("channels", 1, 4, true));
+  data.width = static_cast<int>(read("width", 2, kMaxExemplarSide, true));
+  data.height = static_cast<int>(read("height", 2, kMaxExemplarSide, true));
+  data.tile_radius = read_param("tile_radius");
+  data.transport = static_cast<Transport>(static_cast<int>(read_param("transport")));
+  data.lut_size = static_cast<int>(read_param("lut_size"));
+  data.table_size = static_cast<int>(read_param("table_size"));
+  data.blend = static_cast<Blend>(static_cast<int>(read_param("blend")));
+  const TilingLayout layout = tiling_layout(data.channels, data.transport, data.blend);
+  const std::int64_t n = data.lut_size;
+  const std::int64_t cc = layout.colour_channels;
+  const auto take = [&](const std::string& name, const std::vector<std::int64_t>& shape) {
+    const NamedArray& array = record.array(name, shape, source);
+    if (!std::all_of(array.values.begin(), array.values.end(),
+                     [](float x) { return std::isfinite(x); }))
+      throw Error(ErrorCode::format, "'" + source + "' holds non-finite values in tiling array '" +
+                                         name + "'; re-run `stochtex analyze`");
+    return array.values;
+  };
+  data.gaussian = take("gaussian", {data.height, data.width, data.channels});
+  data.blend_mean = take("blend_mean", {data.channels});
+  if (layout.colour_lut) data.lut = take("lut", {n, n, n, 3});
+  if (layout.table_count > 0) data.tables = take("tables", {layout.table_count, data.table_size});
+  if (data.blend == Blend::histogram && !layout.colour_lut) {
+    data.colour_basis = take("colour_basis", {cc, cc});
+    data.colour_mean = take("colour_mean", {cc});
+  }
+  try {
+    return TilingModel(std::move(data));
+  } catch (const std::invalid_argument& e) {
+    throw Error(ErrorCode::format, "'" + source + "' is not a valid tiling model (" + e.what() +
+                                       "); re-run `stochtex analyze`");
+  }
+}
+
+ModelRecord TilingModel::to_record(const ParamValues& params) const {
+  const TilingData& d = data_;
+  ModelRecord record;
+  record.method = std::string(kMethodName);
+  record.params = params;
+  record.scalars = {{"channels", d.channels},
+                    {"width", d.width},
+                    {"height", d.height},
+                    {"tile_radius", d.tile_radius},
+                    {"transport", static_cast<int>(d.transport)},
+                    {"lut_size", d.lut_size},
+                    {"table_size", d.table_size},
+                    {"blend", static_cast<int>(d.blend)}};
+  const std::int64_t n = d.lut_size;
+  const std::int64_t cc = layout_.colour_channels;
+  record.arrays.push_back({"gaussian", {d.height, d.width, d.channels}, d.gaussian});
+  record.arrays.push_back({"blend_mean", {d.channels}, d.blend_mean});
+  if (layout_.colour_lut) record.arrays.push_back({"lut", {n, n, n, 3}, d.lut});
+  if (layout_.table_count > 0)
+    record.arrays.push_back({"tables", {layout_.table_count, d.table_size}, d.tables});
+  if (!d.colour_basis.empty()) {
+    record.arrays.push_back({"colour_basis", {cc, cc}, d.colour_basis});
+    record.arrays.push_back({"colour_mean", {cc}, d.colour_mean});
+  }
+  return record;
+}
+
+LevelOfDetail TilingModel::level_of_detail(const Footprint* footprint) const noexcept {
+  if (footprint == nullptr) return {};
+  // Section 5.4: the footprint is the derivative of the position *before* the random offsets (a
+  // translation does not change it), so the three patches read the same level. Isotropic: the
+  // longer axis decides, as GPU trilinear filtering does without anisotropy.
+  const double width = std::max(std::hypot(footprint->dpdx.x, footprint->dpdx.y),
+                                std::hypot(footprint->dpdy.x, footprint->dpdy.y));
+  if (!(width > 1.0)) return {};
+  const double lod = std::log2(width) - kLodBias;
+  const int top = level_count() - 1;
+  if (!(lod > 0.0)) return {};
+  if (lod >= top) return {top, 0.0f};
+  const int level = static_cast<int>(lod);
+  return {level, static_cast<float>(lod - level)};
+}
+
+void TilingModel::blended_gaussian(Vec2d position, LevelOfDetail lod, std::uint32_t seed,
+                                   float* g) const noexcept {
+  const int channels = data_.channels;
+  const LatticePoint lattice = triangle_lattice(position, edge_);
+  const MipLevel fine = level(lod.level);
+  const MipLevel coarse = level(std::min(lod.level + 1, level_count() - 1));
+  const Point2f wrapped = wrap_position(position, data_.width, data_.height);
+  float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  float weight_squares = 0.0f;
+  for (int v = 0; v < 3; ++v) {
+    const float w = lattice.weight[v];
+    weight_squares += w * w;
+    const Point2f offset =
+        vertex_offset(lattice.vertex_x[v], lattice.vertex_y[v], seed, data_.width, data_.height);
+    const float x = wrapped.x + offset.x;
+    const float y = wrapped.y + offset.y;
+    fetch_bilinear(fine, channels, x, y, w * (1.0f - lod.blend), acc);
+    if (lod.blend > 0.0f) fetch_bilinear(coarse, channels, x, y, w * lod.blend, acc);
+  }
+  // Eq. (8)/(13): (sum w G - E[G]) / sqrt(sum w^2) + E[G], with sum w = 1; eq. (3) for linear.
+  const float inverse_norm = data_.blend == Blend::linear ? 1.0f : 1.0f / std::sqrt(weight_squares);
+  for (int c = 0; c < channels; ++c)
+    g[c] = (acc[c] - data_.blend_mean[c]) * inverse_norm + data_.blend_mean[c];
+}
+
+void TilingModel::inverse_at_level(const float* g, int level, float* out) const noexcept {
+  const std::vector<float>& tables = level_tables_[static_cast<std::size_t>(level)];
+  const int size = data_.table_size;
+  if (layout_.colour_lut) {
+    // Trilinear fetch of the 3-D table at U of eq. (22), [z][y][x][colour] layout.
+    const std::vector<float>& lut = level_luts_[static_cast<std::size_t>(level)];
+    const int n = data_.lut_size;
+    int cell[3];
+    float t[3];
+    for (int c = 0; c < 3; ++c) t[c] = table_coordinate(gaussian_to_uniform(g[c]), n, cell[c]);
+    const std::ptrdiff_t step_y = static_cast<std::ptrdiff_t>(n) * 3;
+    const std::ptrdiff_t step_z = step_y * n;
+    const float* base = lut.data() + cell[2] * step_z + cell[1] * step_y + cell[0] * 3;
+    float acc[3];
+    for (int c = 0; c < 3; ++c) {
+      const float* p = base + c;
+      const float x00 = p[0] + t[0] * (p[3] - p[0]);
+      const float x10 = p[step_y] + t[0] * (p[step_y + 3] - p[step_y]);
+      const float x01 = p[step_z] + t[0] * (p[step_z + 3] - p[step_z]);
+      const float x11 = p[step_z + step_y] + t[0] * (p[step_z + step_y + 3] - p[step_z + step_y]);
+      const float y0 = x00 + t[1] * (x10 - x00);
+      const float y1 = x01 + t[1] * (x11 - x01);
+      acc[c] = y0 + t[2] * (y1 - y0);
+    }
+    for (int c = 0; c < 3; ++c) out[c] = acc[c];
+  } else {
+    // 1-D tables per decorrelated colour channel, then back to the colour basis.
+    const int cc = layout_.colour_channels;
+    float decorrelated[3];
+    for (int c = 0; c < cc; ++c)
+      decorrelated[c] =
+          table_lookup(tables.data() + static_cast<std::ptrdiff_t>(c) * size, size, g[c]);
+    for (int c = 0; c < cc; ++c) {
+      float value = data_.colour_mean[c];
+      for (int k = 0; k < cc; ++k) value += data_.colour_basis[c * cc + k] * decorrelated[k];
+      out[c] = value;
+    }
+  }
+  if (layout_.has_alpha)
+    out[data_.channels - 1] =
+        table_lookup(tables.data() + static_cast<std::ptrdiff_t>(layout_.first_alpha_table) * size,
+                     size, g[data_.channels - 1]);
+}
+
+void TilingModel::inverse_transform(const float* g, LevelOfDetail lod, float* out) const noexcept {
+  const int channels = data_.channels;
+  if (data_.blend != Blend::histogram) {
+    for (int c = 0; c < channels; ++c) out[c] = g[c];
+    return;
+  }
+  inverse_at_level(g, lod.level, out);
+  if (lod.blend > 0.0f) {
+    float coarse[4];
+    inverse_at_level(g, lod.level + 1, coarse);
+    for (int c = 0; c < channels; ++c) out[c] += lod.blend * (coarse[c] - out[c]);
+  }
+}
+
+void TilingModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                           std::uint32_t seed, ImageView<float> out) const noexcept {
+  for (std::size_t index = 0; index < positions.size(); ++index) {
+    const LevelOfDetail lod = level_of_detail(footprints.empty() ? nullptr : &footprints[index]);
+    float g[4];
+    blended_gaussian(positions[index], lod, seed, g);
+    const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
+    const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
+    inverse_transform(g, lod, &out.at(x, y, 0));
+  }
+}
+
+void triplanar(const TilingModel& model, Vec3d position, Vec3d normal, double sharpness,
+               std::uint32_t seed, float* out) noexcept {
+  const int channels = model.channels();
+  const Vec2d planes[3] = {
+      {position.y, position.z}, {position.z, position.x}, {position.x, position.y}};
+  const double axis[3] = {std::abs(normal.x), std::abs(normal.y), std::abs(normal.z)};
+  double weights[3];
+  double total = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    weights[k] = std::pow(axis[k], sharpness);
+    total += weights[k];
+  }
+  if (!(total > 0.0) || !std::isfinite(total)) {
+    weights[0] = weights[1] = 0.0;
+    weights[2] = total = 1.0;
+  }
+  const std::vector<float>& mean = model.data().blend_mean;
+  double acc[4] = {0.0, 0.0, 0.0, 0.0};
+  double weight_squares = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double w = weights[k] / total;
+    if (w == 0.0) continue;
+    weight_squares += w * w;
+    float g[4];
+    model.blended_gaussian(planes[k], {}, cell_key(k, 0, seed, Stream::offsets), g);
+    for (int c = 0; c < channels; ++c) acc[c] += w * (g[c] - mean[c]);
+  }
+  // The same operator as the lattice blend (eq. 13), with the normal's weights.
+  float g[4];
+  const double inverse_norm =
+      model.data().blend == Blend::linear ? 1.0 : 1.0 / std::sqrt(weight_squares);
+  for (int c = 0; c < channels; ++c) g[c] = static_cast<float>(acc[c] * inverse_norm + mean[c]);
+  model.inverse_transform(g, {}, out);
+}
+
+}  // namespace stochtex::tiling

@@ -1,0 +1,126 @@
+#pragma once
+// Histogram-preserving tiling and blending model (Heitz & Neyret 2018): the Gaussianised exemplar
+// G = T(X) (sections 4.1-4.2), the inverse T^-1 as look-up tables (section 4.3), and, derived at
+// construction, the mip pyramid of G and T^-1 prefiltered for each pyramid level (section 5.4 and
+// the follow-up of Deliot & Heitz 2019), plus the triplanar operator of figure 16.
+//
+// Channels: 1 (grey), 2 (grey + alpha), 3 (colour), 4 (colour + alpha). Alpha is carried as its
+// own channel with its own 1-D transport and table: it is tiled and blended like the colour (so its
+// histogram is preserved too) but never enters the colour transport or the colour look-up table.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "methods/tiling/evaluate.hpp"
+#include "model/model_record.hpp"
+#include "stochtex/image.hpp"
+#include "stochtex/model.hpp"
+
+namespace stochtex::tiling {
+
+enum class Transport { sliced = 0, per_channel = 1 };
+// The blending operator (section 3): histogram-preserving (eq. 18), variance-preserving (eq. 8,
+// exact for Gaussian inputs: the fast path of section 6.1) or linear (eq. 3, a baseline).
+enum class Blend { histogram = 0, variance = 1, linear = 2 };
+
+// The plain data of a model, as analysis builds it and the model file stores it.
+struct TilingData {
+  int channels = 0;
+  int width = 0;  // exemplar size in pixels
+  int height = 0;
+  double tile_radius = 0.5;  // lattice edge / min(width, height)
+  Transport transport = Transport::sliced;
+  int lut_size = 32;
+  int table_size = 1024;
+  Blend blend = Blend::histogram;   // variance and linear: no T, no T^-1 (section 6.1)
+  std::vector<float> gaussian;      // height x width x channels: T(X), or X itself without T
+  std::vector<float> blend_mean;    // channels: E[G] in eq. (8)
+  std::vector<float> lut;           // lut_size^3 x 3, T^-1 of the colour (3-D transport), or empty
+  std::vector<float> tables;        // table_count x table_size, 1-D T^-1 tables, or empty
+  std::vector<float> colour_basis;  // colour_channels^2 row-major (1-D colour tables), or empty
+  std::vector<float> colour_mean;   // colour_channels (1-D colour tables), or empty
+};
+
+// How the arrays of TilingData are laid out for a channel count and transport.
+struct TilingLayout {
+  int colour_channels = 0;    // 1 or 3
+  bool has_alpha = false;     // the last channel is alpha
+  bool colour_lut = false;    // colour through the 3-D table (else 1-D tables + basis)
+  int table_count = 0;        // 1-D tables: decorrelated colour channels (if no 3-D table), alpha
+  int first_alpha_table = 0;  // index of the alpha table when has_alpha
+};
+TilingLayout tiling_layout(int channels, Transport transport, Blend blend);
+
+// Which pyramid levels a footprint reads: level `level` blended with level + 1 by `blend`.
+struct LevelOfDetail {
+  int level = 0;
+  float blend = 0.0f;
+};
+
+struct Vec3d {
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+};
+
+class TilingModel {
+ public:
+  static constexpr std::string_view kMethodName = "tiling";
+
+  // Validates sizes and ranges (throws std::invalid_argument) and derives the pyramid and the
+  // prefiltered tables.
+  explicit TilingModel(TilingData data);
+
+  static TilingModel from_record(const ModelRecord& record, const std::string& source);
+  ModelRecord to_record(const ParamValues& params) const;
+
+  int channels() const { return data_.channels; }
+  const TilingData& data() const { return data_; }
+  const TilingLayout& layout() const { return layout_; }
+  double lattice_edge() const { return edge_; }
+  int level_count() const { return static_cast<int>(levels_.size()); }
+  MipLevel level(int index) const;
+
+  // Algorithm 1 at each position, filtered by the footprint when it is wider than a pixel.
+  // noexcept, no allocation.
+  void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                std::uint32_t seed, ImageView<float> out) const noexcept;
+
+  // The pyramid levels a footprint reads (footprint == nullptr: a point sample, level 0).
+  LevelOfDetail level_of_detail(const Footprint* footprint) const noexcept;
+  // Steps 1-2 of Algorithm 1: three patches of G, variance-preserving blend (eq. 13). `g` gets
+  // `channels()` values.
+  void blended_gaussian(Vec2d position, LevelOfDetail lod, std::uint32_t seed,
+                        float* g) const noexcept;
+  // Step 3: T^-1 by the look-up tables prefiltered for `lod` (eq. 22, section 4.3); the identity
+  // for the variance and linear blends.
+  void inverse_transform(const float* g, LevelOfDetail lod, float* out) const noexcept;
+
+ private:
+  void inverse_at_level(const float* g, int level, float* out) const noexcept;
+
+  TilingData data_;
+  TilingLayout layout_;
+  double edge_ = 0.0;
+  // Derived at construction.
+  struct PyramidLevel {
+    int width = 0;
+    int height = 0;
+    std::vector<float> texels;
+  };
+  std::vector<PyramidLevel> levels_;
+  std::vector<std::vector<float>> level_luts_;    // per level: lut_size^3 x 3, or empty
+  std::vector<std::vector<float>> level_tables_;  // per level: table_count x table_size, or empty
+};
+
+// Triplanar histogram-preserving blending (figure 16): the tiling noise projected on the three
+// axis planes (y,z), (z,x), (x,y), blended with weights |n_axis|^sharpness / sum by the same
+// variance-preserving operator in Gaussian space, then one T^-1 look-up. Each plane draws its own
+// patches (its own seed). `out` gets model.channels() values. noexcept, no allocation.
+void triplanar(const TilingModel& model, Vec3d position, Vec3d normal, double sharpness,
+               std::uint32_t seed, float* out) noexcept;
+
+}  // namespace stochtex::tiling

@@ -1,0 +1,385 @@
+// Histogram-preserving tiling and blending against its paper's claims (DESIGN.md section 9): the
+// exemplar's colour histogram is kept (section 3.3), the lattice is invisible (no variance change
+// over a tile, figure 4), Gaussian inputs need no transform (section 6.1), and minified renders
+// match a supersampled reference (section 5.4). Baselines measured in the same tests: linear
+// blending (eq. 3), variance-preserving blending of the raw exemplar (eq. 8) and ADSN.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "io/image_io.hpp"
+#include "methods/tiling/evaluate.hpp"
+#include "methods/tiling/model.hpp"
+#include "metrics/metrics.hpp"
+#include "model/model_data.hpp"
+#include "spectral/adsn.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex {
+namespace {
+
+using tiling::LatticePoint;
+using tiling::MipLevel;
+
+const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
+
+struct Sample {
+  double mean = 0;
+  double deviation = 0;  // sample standard deviation of one measurement
+};
+
+Sample summarise(const std::vector<double>& values) {
+  const double n = static_cast<double>(values.size());
+  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / n;
+  double square = 0.0;
+  for (const double v : values) square += (v - mean) * (v - mean);
+  return {mean, std::sqrt(square / (n - 1.0))};
+}
+
+ImageF render_model(const Model& model, const Grid& grid, std::uint32_t seed, int supersample = 1,
+                    bool filter = true) {
+  ImageF out(grid.width, grid.height, model.channels());
+  RenderOptions options;
+  options.supersample = supersample;
+  options.filter = filter;
+  render(model, grid, seed, out.view(), options);
+  return out;
+}
+
+// Linear blending (eq. 3) of the same three patches the tiling model reads: the baseline whose
+// contrast drops between vertices (figure 4a).
+ImageF render_linear(const ImageF& exemplar, double edge, const Grid& grid, std::uint32_t seed) {
+  const int channels = exemplar.channels();
+  const MipLevel level{exemplar.width(), exemplar.height(), 1.0f, 1.0f, exemplar.pixels().data()};
+  ImageF out(grid.width, grid.height, channels);
+  for (int j = 0; j < grid.height; ++j)
+    for (int i = 0; i < grid.width; ++i) {
+      const Vec2d p{grid.origin.x + grid.scale * (i + 0.5), grid.origin.y + grid.scale * (j + 0.5)};
+      const LatticePoint lattice = tiling::triangle_lattice(p, edge);
+      const tiling::Point2f wrapped = tiling::wrap_position(p, exemplar.width(), exemplar.height());
+      float acc[4] = {0, 0, 0, 0};
+      for (int v = 0; v < 3; ++v) {
+        const tiling::Point2f offset = tiling::vertex_offset(
+            lattice.vertex_x[v], lattice.vertex_y[v], seed, exemplar.width(), exemplar.height());
+        tiling::fetch_bilinear(level, channels, wrapped.x + offset.x, wrapped.y + offset.y,
+                               lattice.weight[v], acc);
+      }
+      for (int c = 0; c < channels; ++c) out.at(i, j, c) = acc[c];
+    }
+  return out;
+}
+
+ImageF half(const ImageF& image, bool bottom) {
+  const int rows = image.height() / 2;
+  ImageF out(image.width(), rows, image.channels());
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < image.width(); ++x)
+      for (int c = 0; c < image.channels(); ++c)
+        out.at(x, y, c) = image.at(x, y + (bottom ? rows : 0), c);
+  return out;
+}
+
+double edge_of(const Model& model) {
+  return std::get<tiling::TilingModel>(model.data().model).lattice_edge();
+}
+
+// `stochastic` and `structured` corpus images (SOURCES.md), grey and colour.
+const std::vector<std::string> kHistogramExemplars = {
+    "moss_ground_512.png",       "sand_height_grey_512.png", "metal_grey_256.png",
+    "bricks_stone_wall_512.png", "nuts_grey_256.png",        "water_caustics_256.png"};
+constexpr int kDirections = 6;
+
+// a - b with the pooled standard deviation of one measurement of each.
+Sample pooled_gap(const Sample& a, const Sample& b) {
+  return {a.mean - b.mean,
+          std::sqrt(0.5 * (a.deviation * a.deviation + b.deviation * b.deviation))};
+}
+
+class TilingHistogram : public testing::TestWithParam<std::string> {};
+
+TEST_P(TilingHistogram, IsPreservedUnlikeLinearBlendingOrAdsn) {
+  {
+    const std::string name = GetParam();
+    const ImageF exemplar = read_image(kTextureDir + "/" + name);
+    const Model model = analyze("tiling", exemplar.view(), {}, 0, name);
+    const Model variance_only = analyze("tiling", exemplar.view(), {{"blend", 1}}, 0, name);
+    const int side = exemplar.width();
+    const Grid grid{{0.0, 0.0}, 1.0, side, side};
+    // Grey images cost one sort per measurement: more seeds make their noise as small as colour's.
+    const int seeds = exemplar.channels() == 1 ? 16 : 4;
+    std::vector<double> ours, linear, variance, gaussian;
+    for (std::uint32_t seed = 1; seed <= static_cast<std::uint32_t>(seeds); ++seed) {
+      ours.push_back(
+          sliced_wasserstein(render_model(model, grid, seed).view(), exemplar.view(), kDirections));
+      linear.push_back(
+          sliced_wasserstein(render_linear(exemplar, edge_of(model), grid, seed).view(),
+                             exemplar.view(), kDirections));
+      variance.push_back(sliced_wasserstein(render_model(variance_only, grid, seed).view(),
+                                            exemplar.view(), kDirections));
+      gaussian.push_back(sliced_wasserstein(adsn(exemplar.view(), side, side, seed).view(),
+                                            exemplar.view(), kDirections));
+    }
+    const double floor =
+        sliced_wasserstein(half(exemplar, false).view(), half(exemplar, true).view(), kDirections);
+    const Sample o = summarise(ours), l = summarise(linear), v = summarise(variance),
+                 g = summarise(gaussian);
+    std::cout << name << ": sliced W2 to the exemplar: tiling " << o.mean << " (sd " << o.deviation
+              << "), linear " << l.mean << " (sd " << l.deviation << "), variance-only " << v.mean
+              << " (sd " << v.deviation << "), ADSN " << g.mean << " (sd " << g.deviation
+              << "); exemplar floor (top vs bottom half) " << floor << "\n";
+    // Bounds from the estimator's noise: `sd` is the seed-to-seed standard deviation of one
+    // measurement, and a difference is judged against the pooled deviation of its two terms.
+    // "Close to the floor": a render is no further from the exemplar than one half of the exemplar
+    // is from the other (the exemplar's own non-stationarity), up to 3 deviations. Measured 0.14
+    // to 0.76 of the floor, 1.09 on sand (within its noise).
+    EXPECT_LE(o.mean, floor + 3.0 * o.deviation) << name;
+    // "Far below" linear blending and ADSN: above ours by more than 4 pooled deviations and, for
+    // linear blending, by a factor 2 (measured 3.2 to 11). The test can fail: with T^-1 skipped
+    // (the output left in Gaussian space) every exemplar fails all of these bounds (checked).
+    const Sample to_linear = pooled_gap(l, o);
+    const Sample to_adsn = pooled_gap(g, o);
+    EXPECT_GT(to_linear.mean, 4.0 * to_linear.deviation) << name;
+    EXPECT_GT(l.mean, 2.0 * o.mean) << name;
+    // DESIGN.md section 9: tiling must beat ADSN on non-Gaussian inputs, i.e. where ADSN's own
+    // error exceeds the floor by more than 4 of its deviations (metal, nuts, water); on the others
+    // (moss, sand, bricks: Gaussian-like histograms) it must not be worse.
+    if (g.mean - floor > 4.0 * g.deviation)
+      EXPECT_GT(to_adsn.mean, 4.0 * to_adsn.deviation) << name;
+    else
+      EXPECT_GT(to_adsn.mean, -3.0 * to_adsn.deviation) << name;
+    // Variance-only blending (eq. 8) keeps the global histogram of near-Gaussian exemplars and
+    // fails on non-Gaussian ones; it is never better than ours beyond the noise. Its pixel-level
+    // failure is tested below, at the triangle centres.
+    const Sample to_variance = pooled_gap(v, o);
+    EXPECT_GT(to_variance.mean, -3.0 * to_variance.deviation) << name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(StochasticAndStructured, TilingHistogram,
+                         testing::ValuesIn(kHistogramExemplars),
+                         [](const testing::TestParamInfo<std::string>& param) {
+                           return param.param.substr(0, param.param.find('_'));
+                         });
+
+// Per-pixel statistics across seeds over a region of the lattice, with each pixel's lattice
+// weight norm W^2 = sum w^2 (1 on a vertex, 1/3 at a triangle centre).
+struct SeedStatistics {
+  std::vector<double> weight_norm;            // per pixel
+  std::vector<std::vector<double>> variance;  // per group of seeds, per pixel (channel sum)
+  std::vector<float> centre_values;           // channel-0 values at pixels with W^2 < 0.4
+};
+
+template <typename Render>
+SeedStatistics seed_statistics(const Grid& grid, double edge, int groups, int seeds_per_group,
+                               Render&& render_seed) {
+  SeedStatistics stats;
+  const std::size_t pixels = static_cast<std::size_t>(grid.width) * grid.height;
+  for (int j = 0; j < grid.height; ++j)
+    for (int i = 0; i < grid.width; ++i) {
+      const LatticePoint lattice = tiling::triangle_lattice(
+          {grid.origin.x + grid.scale * (i + 0.5), grid.origin.y + grid.scale * (j + 0.5)}, edge);
+      double norm = 0.0;
+      for (const float w : lattice.weight) norm += static_cast<double>(w) * w;
+      stats.weight_norm.push_back(norm);
+    }
+  for (int group = 0; group < groups; ++group) {
+    std::vector<double> sum(pixels, 0.0), square(pixels, 0.0);
+    for (int k = 0; k < seeds_per_group; ++k) {
+      const ImageF image = render_seed(static_cast<std::uint32_t>(group * seeds_per_group + k + 1));
+      const int channels = image.channels();
+      for (std::size_t p = 0; p < pixels; ++p) {
+        for (int c = 0; c < channels; ++c) {
+          const double value = image.pixels()[p * channels + c];
+          sum[p] += value;
+          square[p] += value * value;
+        }
+        if (stats.weight_norm[p] < 0.4) stats.centre_values.push_back(image.pixels()[p * channels]);
+      }
+    }
+    std::vector<double> variance(pixels);
+    for (std::size_t p = 0; p < pixels; ++p)
+      variance[p] = (square[p] - sum[p] * sum[p] / seeds_per_group) / (seeds_per_group - 1);
+    stats.variance.push_back(std::move(variance));
+  }
+  return stats;
+}
+
+// Mean per-pixel variance of the pixels near triangle centres (W^2 < 0.4) over that of the
+// pixels near vertices (W^2 > 0.8), per group of seeds: 1 when the lattice is invisible. Returns
+// the mean over groups and its standard error.
+Sample centre_to_vertex_variance(const SeedStatistics& stats) {
+  std::vector<double> ratios;
+  for (const auto& variance : stats.variance) {
+    double centre = 0.0, vertex = 0.0;
+    int centre_count = 0, vertex_count = 0;
+    for (std::size_t p = 0; p < variance.size(); ++p) {
+      if (stats.weight_norm[p] < 0.4) {
+        centre += variance[p];
+        ++centre_count;
+      } else if (stats.weight_norm[p] > 0.8) {
+        vertex += variance[p];
+        ++vertex_count;
+      }
+    }
+    ratios.push_back((centre / centre_count) / (vertex / vertex_count));
+  }
+  Sample ratio = summarise(ratios);
+  ratio.deviation /= std::sqrt(static_cast<double>(ratios.size()));
+  return ratio;
+}
+
+TEST(TilingQuality, LatticeIsInvisibleInThePerPixelVarianceAcrossSeeds) {
+  // Figure 4: linear blending lowers the contrast between vertices (variance x W^2), revealing
+  // the grid; histogram-preserving blending keeps every pixel's distribution, so the per-pixel
+  // variance across seeds is flat over a tile. nuts_grey_256 is bimodal (the hardest case for
+  // blending). The region spans 256 x 256 exemplar pixels (tiles of edge 128) at 64 x 64 point
+  // samples (the blending operator, not the filter, is under test).
+  const ImageF exemplar = read_image(kTextureDir + "/nuts_grey_256.png");
+  const Model model = analyze("tiling", exemplar.view(), {}, 0);
+  const Model variance_only = analyze("tiling", exemplar.view(), {{"blend", 1}}, 0);
+  const double edge = edge_of(model);
+  const Grid grid{{17.5, 29.5}, 4.0, 64, 64};
+  constexpr int kGroups = 8;
+  constexpr int kSeedsPerGroup = 32;
+  const auto statistics = [&](auto&& render_seed) {
+    return seed_statistics(grid, edge, kGroups, kSeedsPerGroup, render_seed);
+  };
+  const SeedStatistics ours =
+      statistics([&](std::uint32_t seed) { return render_model(model, grid, seed, 1, false); });
+  const SeedStatistics linear =
+      statistics([&](std::uint32_t seed) { return render_linear(exemplar, edge, grid, seed); });
+  const SeedStatistics variance = statistics(
+      [&](std::uint32_t seed) { return render_model(variance_only, grid, seed, 1, false); });
+  const Sample r_ours = centre_to_vertex_variance(ours);
+  const Sample r_linear = centre_to_vertex_variance(linear);
+  const Sample r_variance = centre_to_vertex_variance(variance);
+  // The pixel-level histogram at the triangle centres (where three patches mix most) against the
+  // exemplar's: what section 3.3 promises and eq. (8) does not keep for a bimodal histogram.
+  const auto centre_distance = [&](const SeedStatistics& stats) {
+    const ImageView<const float> values{stats.centre_values.data(),
+                                        static_cast<int>(stats.centre_values.size()), 1, 1,
+                                        static_cast<std::ptrdiff_t>(stats.centre_values.size())};
+    return sliced_wasserstein(values, exemplar.view(), 1);
+  };
+  const double floor =
+      sliced_wasserstein(half(exemplar, false).view(), half(exemplar, true).view(), 1);
+  const double d_ours = centre_distance(ours);
+  const double d_linear = centre_distance(linear);
+  const double d_variance = centre_distance(variance);
+  std::cout << "centre/vertex per-pixel variance: tiling " << r_ours.mean << " (se "
+            << r_ours.deviation << "), linear " << r_linear.mean << " (se " << r_linear.deviation
+            << "), variance-only " << r_variance.mean << " (se " << r_variance.deviation
+            << "); W2 of the centre pixels to the exemplar: tiling " << d_ours << ", linear "
+            << d_linear << ", variance-only " << d_variance << " (exemplar floor " << floor
+            << ")\n";
+  // The ratio's standard error comes from the spread of 8 independent groups of 32 seeds; flat
+  // means within 4 of them of 1. Measured: 0.993 (se 0.0045) ours, 0.424 (se 0.0025) linear,
+  // 1.000 variance-only. The samples sit on texel centres, so the fetch is exact and only the
+  // blending is under test: on texel corners (a bilinear average of 4 texels, whose distribution
+  // in Gaussian space is a variance mixture, not a Gaussian) ours measured 0.968 (se 0.004).
+  // The centre pixels' histogram: W2 0.0044 ours (floor 0.0145), 0.17 linear, 0.12 variance-only.
+  // The test can fail: linear blending fails the ratio, and T^-1 skipped (output left in Gaussian
+  // space) fails the histogram bounds (W2 0.24, checked).
+  EXPECT_LT(std::abs(r_ours.mean - 1.0), 4.0 * r_ours.deviation);
+  EXPECT_LT(r_linear.mean, 0.8 - 4.0 * r_linear.deviation);
+  EXPECT_LE(d_ours, floor);
+  EXPECT_GT(d_variance, 3.0 * d_ours);
+  EXPECT_GT(d_linear, 3.0 * d_ours);
+}
+
+TEST(TilingFiltering, MinifiedRenderMatchesTheSupersampledReference) {
+  // render --scale 8 against --supersample 16 (16 x 16 point samples per pixel), same seeds, on a
+  // strongly non-Gaussian exemplar (sparse bright caustics: its mean and median differ). Three
+  // filters: ours (mip level of G from the footprint taken before the offsets, section 5.4, and
+  // T^-1 prefiltered per level), the same mip fetch with the unfiltered T^-1 (the paper's shader:
+  // a minified fetch then maps towards the median), and point samples (aliasing).
+  const ImageF exemplar = read_image(kTextureDir + "/water_caustics_256.png");
+  const Model model = analyze("tiling", exemplar.view(), {}, 0);
+  const tiling::TilingModel& tiling = std::get<tiling::TilingModel>(model.data().model);
+  constexpr int kSize = 64;
+  constexpr double kScale = 8.0;
+  constexpr int kRepeats = 3;
+  const Grid grid{{0.0, 0.0}, kScale, kSize, kSize};
+  const auto total_variance = [](const ImageF& image) {
+    const ColourStatistics stats = colour_statistics(image.view());
+    return stats.covariance[0] + stats.covariance[4] + stats.covariance[8];
+  };
+  double variance[4] = {}, mean_gap[3] = {}, spectral[3] = {}, mean_noise = 0.0;
+  for (std::uint32_t seed = 1; seed <= kRepeats; ++seed) {
+    const ImageF reference = render_model(model, grid, seed, 16);
+    ImageF naive(kSize, kSize, 3);
+    const Footprint footprint{{kScale, 0.0}, {0.0, kScale}};
+    for (int j = 0; j < kSize; ++j)
+      for (int i = 0; i < kSize; ++i) {
+        const tiling::LevelOfDetail lod = tiling.level_of_detail(&footprint);
+        float g[3];
+        tiling.blended_gaussian({kScale * (i + 0.5), kScale * (j + 0.5)}, lod, seed, g);
+        tiling.inverse_transform(g, {}, &naive.at(i, j, 0));
+      }
+    const ImageF images[3] = {render_model(model, grid, seed), naive,
+                              render_model(model, grid, seed, 1, false)};
+    const ColourStatistics r = colour_statistics(reference.view());
+    for (int k = 0; k < 3; ++k) {
+      variance[k] += total_variance(images[k]) / kRepeats;
+      mean_gap[k] += mean_error(colour_statistics(images[k].view()), r) / kRepeats;
+      spectral[k] += spectral_error(images[k].view(), reference.view(), 16) / kRepeats;
+    }
+    variance[3] += total_variance(reference) / kRepeats;
+    // Standard error of a 64 x 64 image mean of the reference, pixels taken as independent (the
+    // filtered field decorrelates within about one output pixel).
+    mean_noise += std::sqrt(total_variance(reference) / (kSize * kSize)) / kRepeats;
+  }
+  std::cout << "scale 8 against supersampled: variance ours " << variance[0] << ", unfiltered T^-1 "
+            << variance[1] << ", point samples " << variance[2] << ", reference " << variance[3]
+            << "; mean gap " << mean_gap[0] << ", " << mean_gap[1] << ", " << mean_gap[2]
+            << " (noise " << mean_noise << "); spectral error " << spectral[0] << ", "
+            << spectral[1] << ", " << spectral[2] << "\n";
+  // Measured (3 seeds): mean gap 0.0013 ours, 0.029 with the unfiltered T^-1 (noise 0.0021);
+  // variance ratio to the reference 0.88 ours, 1.67 point samples; spectral error 0.14 ours,
+  // 0.28 unfiltered T^-1, 0.74 point samples.
+  EXPECT_LT(mean_gap[0], 4.0 * mean_noise);
+  EXPECT_GT(mean_gap[1], 4.0 * mean_noise);  // the median, not the mean: what prefiltering fixes
+  EXPECT_NEAR(variance[0] / variance[3], 1.0, 0.2);
+  EXPECT_GT(variance[2] / variance[3], 1.5);
+  EXPECT_LT(spectral[0], 0.25);
+  EXPECT_LT(spectral[0], 0.5 * spectral[1]);
+}
+
+TEST(TilingGaussian, FastPathReproducesARandomPhaseTexture) {
+  // Section 6.1 (figures 10-11): a Gaussian (random-phase) input needs no T or T^-1. The input is
+  // an ADSN sample of granite; the tiling output must sit at the spectral and histogram level of
+  // ADSN samples of the same input, within 4 pooled deviations of one measurement. Measured
+  // (6 seeds): spectral error 0.31 (sd 0.04) against ADSN's 0.35 (sd 0.015), sliced W2 0.0047
+  // against 0.0055. The test can fail: linear blending (blend=2) of the same input measured 0.50
+  // and 0.036 (`stochtex compare`, one seed).
+  const ImageF granite = read_image(kTextureDir + "/granite_color_256.png");
+  const ImageF exemplar = adsn(granite.view(), 256, 256, 1000);
+  const Model model = analyze("tiling", exemplar.view(), {{"blend", 1}}, 0);
+  const int crop = welch_crop_size(exemplar.view(), exemplar.view());
+  std::vector<double> ours_spectral, adsn_spectral, ours_histogram, adsn_histogram;
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const ImageF noise = render_model(model, Grid{{0.0, 0.0}, 1.0, 256, 256}, seed);
+    const ImageF gaussian = adsn(exemplar.view(), 256, 256, seed);
+    ours_spectral.push_back(spectral_error(noise.view(), exemplar.view(), crop));
+    adsn_spectral.push_back(spectral_error(gaussian.view(), exemplar.view(), crop));
+    ours_histogram.push_back(sliced_wasserstein(noise.view(), exemplar.view(), kDirections));
+    adsn_histogram.push_back(sliced_wasserstein(gaussian.view(), exemplar.view(), kDirections));
+  }
+  const Sample os = summarise(ours_spectral), as = summarise(adsn_spectral);
+  const Sample oh = summarise(ours_histogram), ah = summarise(adsn_histogram);
+  std::cout << "Gaussian input: spectral error tiling " << os.mean << " (sd " << os.deviation
+            << "), ADSN " << as.mean << " (sd " << as.deviation << "); sliced W2 tiling " << oh.mean
+            << " (sd " << oh.deviation << "), ADSN " << ah.mean << " (sd " << ah.deviation << ")\n";
+  const Sample spectral_gap = pooled_gap(os, as);
+  const Sample histogram_gap = pooled_gap(oh, ah);
+  EXPECT_LT(spectral_gap.mean, 4.0 * spectral_gap.deviation);
+  EXPECT_LT(histogram_gap.mean, 4.0 * histogram_gap.deviation);
+}
+
+}  // namespace
+}  // namespace stochtex
