@@ -7,8 +7,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "methods/lrp/analysis.hpp"
+#include "methods/lrp/params.hpp"
 #include "methods/texton/analysis.hpp"
 #include "methods/texton/params.hpp"
+#include "methods/tiling/analysis.hpp"
+#include "methods/tiling/params.hpp"
 #include "model/model_data.hpp"
 #include "spectral/adsn.hpp"
 #include "stochtex/stochtex.hpp"
@@ -30,6 +34,20 @@ const std::array kMethods = {
                  texton::kParams},
                 [](ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
                   return MethodModel(texton::analyze(exemplar, params, seed));
+                }},
+    MethodEntry{{tiling::TilingModel::kMethodName,
+                 "histogram-preserving tiling and blending (Heitz, Neyret 2018): 3 patches of the "
+                 "Gaussianised exemplar and one look-up per sample",
+                 tiling::kParams},
+                [](ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
+                  return MethodModel(tiling::analyze(exemplar, params, seed));
+                }},
+    MethodEntry{{lrp::LrpModel::kMethodName,
+                 "local random-phase noise (Gilet et al. 2014): windowed cosines with random "
+                 "phases on a lattice, 9 (J + L) cosines and windows per channel and sample",
+                 lrp::kParams},
+                [](ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
+                  return MethodModel(lrp::analyze(exemplar, params, seed));
                 }},
 };
 

@@ -5,12 +5,14 @@
 #include <string>
 #include <variant>
 
+#include "methods/lrp/model.hpp"
 #include "methods/texton/model.hpp"
+#include "methods/tiling/model.hpp"
 #include "stochtex/model.hpp"
 
 namespace stochtex {
 
-using MethodModel = std::variant<texton::TextonModel>;
+using MethodModel = std::variant<texton::TextonModel, tiling::TilingModel, lrp::LrpModel>;
 
 struct ModelData {
   ParamValues params;

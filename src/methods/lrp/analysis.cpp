@@ -1,0 +1,568 @@
+#include "methods/lrp/analysis.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "core/hash.hpp"
+#include "methods/lrp/params.hpp"
+#include "metrics/metrics.hpp"
+#include "model/model_data.hpp"
+#include "stochtex/error.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex::lrp {
+namespace {
+
+// Section 4.3: S is shrunk until the disc of radius delta around each kept frequency holds 75% of
+// the window's spectral energy inside S ("the 75% threshold is empirical").
+constexpr double kErosionEnergy = 0.75;
+// The weakest frequencies holding this fraction of the energy belong to no stratum: keeping them
+// would spread the last stratum over the whole plane (e.g. the empty plane around a ring target),
+// making Delta_S tiny and leaking the stratum's energy everywhere. Their energy is given back to
+// the strata in proportion, so the variance is kept.
+constexpr double kNegligibleEnergy = 1e-3;
+constexpr int kKmeansIterations = 50;
+constexpr int kMinWelchSize = 8;
+
+// Squared Euclidean distance transform of one line (Felzenszwalb & Huttenlocher 2012): d(p) =
+// min_q (p - q)^2 + f(q), f = 0 on features and `kFar` elsewhere.
+constexpr double kFar = 1e20;
+void distance_transform_1d(const std::vector<double>& f, std::vector<double>& d,
+                           std::vector<int>& v, std::vector<double>& z) {
+  const int n = static_cast<int>(f.size());
+  int k = 0;
+  v[0] = 0;
+  z[0] = -std::numeric_limits<double>::infinity();
+  z[1] = std::numeric_limits<double>::infinity();
+  for (int q = 1; q < n; ++q) {
+    double s = 0.0;
+    while (true) {
+      const int p = v[static_cast<std::size_t>(k)];
+      s = ((f[static_cast<std::size_t>(q)] + double(q) * q) -
+           (f[static_cast<std::size_t>(p)] + double(p) * p)) /
+          (2.0 * q - 2.0 * p);
+      if (s > z[static_cast<std::size_t>(k)] || k == 0) break;
+      --k;
+    }
+    if (s <= z[static_cast<std::size_t>(k)]) {
+      v[0] = q;
+      z[0] = -std::numeric_limits<double>::infinity();
+      z[1] = std::numeric_limits<double>::infinity();
+      k = 0;
+      continue;
+    }
+    ++k;
+    v[static_cast<std::size_t>(k)] = q;
+    z[static_cast<std::size_t>(k)] = s;
+    z[static_cast<std::size_t>(k) + 1] = std::numeric_limits<double>::infinity();
+  }
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    while (z[static_cast<std::size_t>(k) + 1] < q) ++k;
+    const int p = v[static_cast<std::size_t>(k)];
+    d[static_cast<std::size_t>(q)] = double(q - p) * (q - p) + f[static_cast<std::size_t>(p)];
+  }
+}
+
+// Squared distance from each bin of the size x size torus to the nearest bin outside `inside`:
+// the spectrum of a sampled noise is periodic, so strata wrap around the Nyquist border. Each line
+// is transformed three periods long and read in the middle, which is exact on the torus.
+std::vector<double> periodic_distance_squared(const std::vector<char>& inside, int size) {
+  const auto n = static_cast<std::size_t>(3 * size);
+  std::vector<double> f(n), d(n), z(n + 1), columns(inside.size()), result(inside.size());
+  std::vector<int> v(n);
+  const auto at = [size](int x, int y) { return static_cast<std::size_t>(y) * size + x; };
+  for (int x = 0; x < size; ++x) {
+    for (std::size_t i = 0; i < n; ++i)
+      f[i] = inside[at(x, static_cast<int>(i % size))] ? kFar : 0.0;
+    distance_transform_1d(f, d, v, z);
+    for (int y = 0; y < size; ++y) columns[at(x, y)] = d[static_cast<std::size_t>(y + size)];
+  }
+  for (int y = 0; y < size; ++y) {
+    for (std::size_t i = 0; i < n; ++i) f[i] = columns[at(static_cast<int>(i % size), y)];
+    distance_transform_1d(f, d, v, z);
+    for (int x = 0; x < size; ++x) result[at(x, y)] = d[static_cast<std::size_t>(x + size)];
+  }
+  return result;
+}
+
+// Labels of the 8-connected parts of `inside` on the size x size torus (-1 outside).
+std::vector<int> connected_parts(const std::vector<char>& inside, int size) {
+  std::vector<int> label(inside.size(), -1);
+  std::vector<int> stack;
+  int next = 0;
+  for (std::size_t start = 0; start < inside.size(); ++start) {
+    if (!inside[start] || label[start] >= 0) continue;
+    label[start] = next;
+    stack.push_back(static_cast<int>(start));
+    while (!stack.empty()) {
+      const int index = stack.back();
+      stack.pop_back();
+      const int x = index % size;
+      const int y = index / size;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const auto neighbour =
+              static_cast<std::size_t>(((y + dy + size) % size) * size + (x + dx + size) % size);
+          if (inside[neighbour] && label[neighbour] < 0) {
+            label[neighbour] = next;
+            stack.push_back(static_cast<int>(neighbour));
+          }
+        }
+    }
+    ++next;
+  }
+  return label;
+}
+
+struct Bin {
+  int index = 0;  // ky * size + kx
+  int sx = 0;     // signed frequency coordinates in bins, upper half-plane
+  int sy = 0;
+  double power = 0.0;  // power(k) + power(-k), or power(k) when k == -k
+  bool self_paired = false;
+};
+
+// Lloyd's k-means of `points` into `clusters` groups, initialised on distinct points drawn with
+// `rng` (section 4.3: "k-means with random seeding"). Every group ends non-empty.
+std::vector<std::vector<std::array<int, 2>>> kmeans(const std::vector<std::array<int, 2>>& points,
+                                                    int clusters, CounterRng& rng) {
+  const std::size_t n = points.size();
+  const auto k_count = static_cast<std::size_t>(clusters);
+  std::vector<std::vector<std::array<int, 2>>> groups(k_count);
+  if (n <= k_count) {
+    // Fewer frequencies than cosines: each cosine gets one, cyclically (duplicates carry
+    // independent phases, so they still add power).
+    for (std::size_t j = 0; j < k_count; ++j) groups[j].push_back(points[j % n]);
+    return groups;
+  }
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::vector<std::array<double, 2>> centres(k_count);
+  for (std::size_t j = 0; j < k_count; ++j) {
+    const std::uint32_t draw = rng.next();
+    const std::size_t pick =
+        j + static_cast<std::size_t>((static_cast<std::uint64_t>(draw) * (n - j)) >> 32u);
+    std::swap(order[j], order[pick]);
+    centres[j] = {double(points[order[j]][0]), double(points[order[j]][1])};
+  }
+  std::vector<std::size_t> label(n, k_count);
+  for (int iteration = 0; iteration < kKmeansIterations; ++iteration) {
+    bool changed = false;
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t best = 0;
+      double best_distance = std::numeric_limits<double>::infinity();
+      for (std::size_t j = 0; j < k_count; ++j) {
+        const double dx = points[i][0] - centres[j][0];
+        const double dy = points[i][1] - centres[j][1];
+        const double distance = dx * dx + dy * dy;
+        if (distance < best_distance) {
+          best_distance = distance;
+          best = j;
+        }
+      }
+      changed = changed || label[i] != best;
+      label[i] = best;
+    }
+    // An empty group takes the point farthest from its own centre (the classic repair).
+    std::vector<std::size_t> sizes(k_count, 0);
+    for (const std::size_t l : label) ++sizes[l];
+    for (std::size_t j = 0; j < k_count; ++j) {
+      if (sizes[j] > 0) continue;
+      std::size_t farthest = 0;
+      double farthest_distance = -1.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (sizes[label[i]] < 2) continue;
+        const double dx = points[i][0] - centres[label[i]][0];
+        const double dy = points[i][1] - centres[label[i]][1];
+        if (dx * dx + dy * dy > farthest_distance) {
+          farthest_distance = dx * dx + dy * dy;
+          farthest = i;
+        }
+      }
+      --sizes[label[farthest]];
+      label[farthest] = j;
+      sizes[j] = 1;
+      changed = true;
+    }
+    std::vector<std::array<double, 2>> sums(k_count, {0.0, 0.0});
+    for (std::size_t i = 0; i < n; ++i) {
+      sums[label[i]][0] += points[i][0];
+      sums[label[i]][1] += points[i][1];
+    }
+    for (std::size_t j = 0; j < k_count; ++j)
+      centres[j] = {sums[j][0] / double(sizes[j]), sums[j][1] / double(sizes[j])};
+    if (!changed) break;
+  }
+  for (std::size_t i = 0; i < n; ++i) groups[label[i]].push_back(points[i]);
+  return groups;
+}
+
+void append_channel(LrpData& data, const std::vector<StratumPlan>& plans) {
+  for (const StratumPlan& plan : plans) {
+    data.strata_table.push_back(plan.sampling);
+    for (const auto& substratum : plan.substrata) {
+      data.substratum_first.push_back(static_cast<std::uint32_t>(data.frequencies.size() / 2));
+      data.substratum_count.push_back(static_cast<std::uint32_t>(substratum.size()));
+      for (const auto& bin : substratum) {
+        data.frequencies.push_back(static_cast<float>(bin[0]));
+        data.frequencies.push_back(static_cast<float>(bin[1]));
+      }
+    }
+  }
+}
+
+void check_spectrum_size(int size) {
+  if (size < kMinWelchSize || size % 2 != 0)
+    throw std::invalid_argument("lrp: a target spectrum must be an even size of at least 8, not " +
+                                std::to_string(size));
+}
+
+}  // namespace
+
+int welch_size(int width, int height) {
+  const int side = std::min(width, height);
+  int size = 1;
+  while (size * 2 < side) size *= 2;
+  return size;
+}
+
+double window_energy_radius(double fraction) {
+  // W-hat(rho) = 2 pi int_0^1.5 r w(r) J_0(2 pi rho r) dr (Simpson, 256 intervals), and the
+  // energy inside radius rho, int_0^rho 2 pi t W-hat(t)^2 dt (trapezoids of 1/1000), is compared
+  // with the total 2 pi int r w^2 (Parseval).
+  constexpr int intervals = 256;
+  const double h = kWindowRadius / intervals;
+  std::vector<double> weighted(intervals + 1);
+  for (int i = 0; i <= intervals; ++i) {
+    const double r = i * h;
+    const double simpson = (i == 0 || i == intervals) ? 1.0 : (i % 2 == 1 ? 4.0 : 2.0);
+    weighted[static_cast<std::size_t>(i)] = simpson * h / 3.0 * r * kaiser_bessel_window(r);
+  }
+  const auto transform = [&](double rho) {
+    double sum = 0.0;
+    for (int i = 0; i <= intervals; ++i)
+      sum += weighted[static_cast<std::size_t>(i)] *
+             std::cyl_bessel_j(0.0, 2.0 * std::numbers::pi * rho * i * h);
+    return 2.0 * std::numbers::pi * sum;
+  };
+  const double total = 2.0 * std::numbers::pi * window_radial_energy();
+  constexpr double step = 1e-3;
+  double energy = 0.0;
+  double previous = 0.0;  // rho W-hat(rho)^2 at the previous step
+  for (int i = 1; i < 20000; ++i) {
+    const double rho = i * step;
+    const double value = transform(rho);
+    const double current = rho * value * value;
+    const double next = energy + std::numbers::pi * step * (previous + current);
+    if (next >= fraction * total)
+      return rho - step + step * (fraction * total - energy) / (next - energy);
+    energy = next;
+    previous = current;
+  }
+  throw Error(ErrorCode::numerical, "lrp: the window's spectral energy did not converge");
+}
+
+std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
+                                     int cosines, std::uint32_t key) {
+  check_spectrum_size(size);
+  if (power.size() != static_cast<std::size_t>(size) * size)
+    throw std::invalid_argument("lrp: the power spectrum does not have size x size values");
+  if (strata < 1 || cosines < 1)
+    throw std::invalid_argument("lrp: strata and cosines must be positive");
+  const auto at = [size](int x, int y) { return static_cast<std::size_t>(y) * size + x; };
+
+  // The upper half-plane (section 4.3: "the spectrum is symmetric"): bin k is kept when its index
+  // is not above that of -k, with the power of both.
+  std::vector<Bin> bins;
+  double total = 0.0;
+  for (int ky = 0; ky < size; ++ky)
+    for (int kx = 0; kx < size; ++kx) {
+      const int nx = (size - kx) % size;
+      const int ny = (size - ky) % size;
+      const auto index = at(kx, ky);
+      const auto negative = at(nx, ny);
+      if (index == 0 || index > negative) continue;
+      Bin bin;
+      bin.index = static_cast<int>(index);
+      bin.self_paired = index == negative;
+      bin.power = bin.self_paired ? power[index] : power[index] + power[negative];
+      if (!(bin.power >= 0.0) || !std::isfinite(bin.power))
+        throw std::invalid_argument("lrp: the power spectrum has a negative or non-finite value");
+      // Signed coordinates in the upper half-plane, x in (-size/2, size/2].
+      bin.sx = kx > size / 2 ? kx - size : kx;
+      bin.sy = ky;
+      total += bin.power;
+      bins.push_back(bin);
+    }
+
+  // Section 4.2: strata are intervals of the power, of equal energy. Sorting by decreasing power
+  // and cutting the cumulated energy at multiples of E / L gives exactly those intervals; a single
+  // frequency above E / L fills its stratum alone and the cut moves on.
+  std::stable_sort(bins.begin(), bins.end(),
+                   [](const Bin& a, const Bin& b) { return a.power > b.power; });
+  std::size_t kept = bins.size();
+  double tail = 0.0;
+  while (kept > static_cast<std::size_t>(strata) &&
+         tail + bins[kept - 1].power < kNegligibleEnergy * total)
+    tail += bins[--kept].power;
+  const double kept_energy = total - tail;
+  const double energy_scale = kept_energy > 0.0 ? total / kept_energy : 0.0;
+  const auto stratum_count = std::min<std::size_t>(static_cast<std::size_t>(strata), kept);
+
+  std::vector<StratumPlan> plans(static_cast<std::size_t>(strata));
+  std::vector<std::vector<const Bin*>> members(static_cast<std::size_t>(strata));
+  {
+    std::size_t s = 0;
+    double cumulated = 0.0;
+    for (std::size_t i = 0; i < kept; ++i) {
+      members[s].push_back(&bins[i]);
+      cumulated += bins[i].power;
+      const std::size_t bins_left = kept - i - 1;
+      const std::size_t strata_left = stratum_count - s - 1;
+      if (strata_left > 0 && (cumulated >= double(s + 1) * kept_energy / double(stratum_count) ||
+                              bins_left == strata_left))
+        ++s;
+    }
+  }
+
+  const double radial_energy = window_radial_energy();
+  const double unit_radius = window_energy_radius(kErosionEnergy);
+  std::vector<char> inside(static_cast<std::size_t>(size) * size);
+  for (int s = 0; s < strata; ++s) {
+    StratumPlan& plan = plans[static_cast<std::size_t>(s)];
+    const auto& stratum = members[static_cast<std::size_t>(s)];
+    // J_S = J / L, the remainder going to the first strata, at least one cosine each.
+    plan.sampling.cosines = std::max(1, cosines / strata + (s < cosines % strata ? 1 : 0));
+    const auto j_s = static_cast<double>(plan.sampling.cosines);
+    if (stratum.empty()) {
+      // Fewer non-negligible frequencies than strata (a pure tone, a zero spectrum): the stratum
+      // is silent; its sub-strata point at the strongest frequency (or at 1/size when none).
+      const std::array<int, 2> any =
+          bins.empty() ? std::array<int, 2>{1, 0} : std::array<int, 2>{bins[0].sx, bins[0].sy};
+      plan.sampling.spacing = static_cast<float>(size);
+      plan.substrata.assign(static_cast<std::size_t>(plan.sampling.cosines), {any});
+      continue;
+    }
+    for (const Bin* bin : stratum) {
+      plan.energy += bin->power * energy_scale;
+      plan.bins += bin->self_paired ? 1 : 2;
+    }
+    plan.highest_power = stratum.front()->power;
+    plan.lowest_power = stratum.back()->power;
+    // Delta_S = T sqrt(J_S) / sqrt(2 |S|) (section 4.3): J_S spectral footprints of radius
+    // 1 / Delta_S cover the stratum's area |S| / T^2 with a slight overlap.
+    plan.sampling.spacing = static_cast<float>(size * std::sqrt(j_s / (2.0 * plan.bins)));
+    // Equation (3) with the energy per unit area: the variance of n_S, averaged over a lattice
+    // cell, is A_S^2 J_S / 2 * 2 pi int r w^2 (the mean of sum_i w^2(|x - x_i| / Delta_S)); the
+    // paper's Delta_S^2 converts its per-window energy and cancels here.
+    plan.sampling.amplitude =
+        static_cast<float>(std::sqrt(plan.energy / (j_s * std::numbers::pi * radial_energy)));
+
+    // Erosion (section 4.3) by delta = unit_radius / Delta_S cycles per pixel, in bins.
+    plan.erosion_radius = unit_radius * size / plan.sampling.spacing;
+    std::fill(inside.begin(), inside.end(), char{0});
+    for (const Bin* bin : stratum) {
+      const int kx = bin->index % size;
+      const int ky = bin->index / size;
+      inside[at(kx, ky)] = 1;
+      inside[at((size - kx) % size, (size - ky) % size)] = 1;
+    }
+    const std::vector<double> distance_squared = periodic_distance_squared(inside, size);
+    std::vector<std::pair<double, const Bin*>> by_depth;
+    for (const Bin* bin : stratum)
+      by_depth.emplace_back(std::sqrt(distance_squared[static_cast<std::size_t>(bin->index)]), bin);
+    std::stable_sort(by_depth.begin(), by_depth.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    // Keep the frequencies deeper than delta inside S, "modified so that strata smaller than
+    // delta are not completely swept out": our reading is per connected part of S (8-connected on
+    // the torus). A part thinner than delta keeps its deepest frequencies instead of vanishing, so
+    // the speckled strata of a noisy Welch estimate keep their coverage; then, when fewer than J_S
+    // frequencies remain in all, the J_S deepest are kept.
+    const std::vector<int> part = connected_parts(inside, size);
+    std::vector<double> part_depth(static_cast<std::size_t>(size) * size, 0.0);
+    for (const auto& [depth, bin] : by_depth) {
+      double& deepest =
+          part_depth[static_cast<std::size_t>(part[static_cast<std::size_t>(bin->index)])];
+      deepest = std::max(deepest, depth);
+    }
+    const std::size_t needed = std::min(by_depth.size(), static_cast<std::size_t>(j_s));
+    std::vector<char> kept_bin(by_depth.size(), 0);
+    std::size_t keep_count = 0;
+    for (std::size_t i = 0; i < by_depth.size(); ++i) {
+      const auto& [depth, bin] = by_depth[i];
+      const double deepest =
+          part_depth[static_cast<std::size_t>(part[static_cast<std::size_t>(bin->index)])];
+      if (depth > plan.erosion_radius || (deepest <= plan.erosion_radius && depth == deepest)) {
+        kept_bin[i] = 1;
+        ++keep_count;
+        plan.eroded_radius = std::max(plan.eroded_radius, std::min(depth, plan.erosion_radius));
+      }
+    }
+    for (std::size_t i = 0; i < by_depth.size() && keep_count < needed; ++i)
+      if (!kept_bin[i]) {
+        kept_bin[i] = 1;
+        ++keep_count;
+      }
+    std::vector<std::array<int, 2>> points;
+    for (std::size_t i = 0; i < by_depth.size(); ++i)
+      if (kept_bin[i]) points.push_back({by_depth[i].second->sx, by_depth[i].second->sy});
+    // k-means with a seeded random initialisation: one stream per stratum.
+    CounterRng rng(cell_key(s, 0, key, Stream::analysis));
+    plan.substrata = kmeans(points, plan.sampling.cosines, rng);
+  }
+  return plans;
+}
+
+SpectrumTarget ring_spectrum(int size, double radius, double width, double variance) {
+  check_spectrum_size(size);
+  if (!(radius >= 0.0 && radius <= 0.5) || !(width > 0.0) || !(variance >= 0.0))
+    throw std::invalid_argument("lrp: a ring needs 0 <= radius <= 1/2, width > 0, variance >= 0");
+  SpectrumTarget target{size, std::vector<double>(static_cast<std::size_t>(size) * size), 0.0};
+  double sum = 0.0;
+  for (int ky = 0; ky < size; ++ky)
+    for (int kx = 0; kx < size; ++kx) {
+      const double fx = double(kx > size / 2 ? kx - size : kx) / size;
+      const double fy = double(ky > size / 2 ? ky - size : ky) / size;
+      const double offset = (std::hypot(fx, fy) - radius) / width;
+      const double value = (kx == 0 && ky == 0) ? 0.0 : std::exp(-0.5 * offset * offset);
+      target.power[static_cast<std::size_t>(ky) * size + kx] = value;
+      sum += value;
+    }
+  for (double& value : target.power) value *= sum > 0.0 ? variance / sum : 0.0;
+  return target;
+}
+
+SpectrumTarget gaussian_spectrum(int size, double centre_x, double centre_y, double along,
+                                 double across, double variance) {
+  check_spectrum_size(size);
+  if (!(along > 0.0) || !(across > 0.0) || !(variance >= 0.0))
+    throw std::invalid_argument("lrp: a Gaussian target needs positive widths and variance >= 0");
+  const double length = std::hypot(centre_x, centre_y);
+  const double ux = length > 0.0 ? centre_x / length : 1.0;
+  const double uy = length > 0.0 ? centre_y / length : 0.0;
+  SpectrumTarget target{size, std::vector<double>(static_cast<std::size_t>(size) * size), 0.0};
+  double sum = 0.0;
+  for (int ky = 0; ky < size; ++ky)
+    for (int kx = 0; kx < size; ++kx) {
+      const double fx = double(kx > size / 2 ? kx - size : kx) / size;
+      const double fy = double(ky > size / 2 ? ky - size : ky) / size;
+      double value = 0.0;
+      for (const double sign : {1.0, -1.0}) {
+        const double dx = fx - sign * centre_x;
+        const double dy = fy - sign * centre_y;
+        const double a = (dx * ux + dy * uy) / along;
+        const double b = (-dx * uy + dy * ux) / across;
+        value += std::exp(-0.5 * (a * a + b * b));
+      }
+      if (kx == 0 && ky == 0) value = 0.0;
+      target.power[static_cast<std::size_t>(ky) * size + kx] = value;
+      sum += value;
+    }
+  for (double& value : target.power) value *= sum > 0.0 ? variance / sum : 0.0;
+  return target;
+}
+
+LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
+  const int width = exemplar.width;
+  const int height = exemplar.height;
+  const int channels = exemplar.channels;
+  const int size = welch_size(width, height);
+  if (size < kMinWelchSize)
+    throw Error(ErrorCode::invalid_input,
+                "lrp needs an exemplar of at least 9x9 pixels (its Welch crops are the largest "
+                "power of two below its side, at least 8), not " +
+                    std::to_string(width) + "x" + std::to_string(height));
+  const int strata = static_cast<int>(params.at("strata"));
+  const int cosines = static_cast<int>(params.at("cosines"));
+
+  // Colour (section 6 defers it to a decorrelated space): PCA of the colour channels, so the
+  // per-channel noises, independent, keep the exemplar's colour covariance. Alpha (channel 2 of
+  // 2 or 4 of 4) is its own channel and never mixes with colour (DESIGN.md section 1).
+  const int colour_channels = channels >= 3 ? 3 : 1;
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(channels);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < channels; ++c) mean[c] += exemplar.at(x, y, c);
+  mean /= static_cast<double>(pixels);
+  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(channels, channels);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int i = 0; i < channels; ++i)
+        for (int j = 0; j < channels; ++j)
+          if ((i < colour_channels) == (j < colour_channels))
+            covariance(i, j) += (exemplar.at(x, y, i) - mean[i]) * (exemplar.at(x, y, j) - mean[j]);
+  covariance /= static_cast<double>(pixels);
+  // Block-diagonal, so the eigenvectors do not mix colour and alpha.
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(covariance);
+  const Eigen::MatrixXd basis = solver.eigenvectors();
+  const Eigen::VectorXd variances = solver.eigenvalues().cwiseMax(0.0);
+
+  LrpData data;
+  data.channels = channels;
+  data.strata = strata;
+  data.normalise_envelope = params.at("envelope") != 0.0;
+  for (int c = 0; c < channels; ++c) {
+    data.mean.push_back(static_cast<float>(mean[c]));
+    for (int k = 0; k < channels; ++k) data.colour_basis.push_back(static_cast<float>(basis(c, k)));
+  }
+  ImageF component(width, height, 1);
+  for (int k = 0; k < channels; ++k) {
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        double value = 0.0;
+        for (int c = 0; c < channels; ++c) value += basis(c, k) * (exemplar.at(x, y, c) - mean[c]);
+        component.at(x, y, 0) = static_cast<float>(value);
+      }
+    // Section 4.4: Welch's power spectrum on crops of side T; the DC term is the mean, not noise.
+    std::vector<double> power = welch_power_spectrum(component.view(), size);
+    power[0] = 0.0;
+    const double sum = std::accumulate(power.begin(), power.end(), 0.0);
+    // Welch's estimate has the variance of the Hann-weighted pixels; the noise gets the
+    // component's exact variance. A component without variance (grey exemplar stored as RGB)
+    // gets a zero spectrum, hence silent strata.
+    const double scale =
+        sum > 0.0 && variances[k] > 1e-12 * variances.sum() ? variances[k] / sum : 0.0;
+    for (double& value : power) value *= scale;
+    append_channel(
+        data, plan_strata(power, size, strata, cosines, cell_key(k, 0, seed, Stream::analysis)));
+  }
+  // Frequencies were stored in bins; the model holds cycles per pixel.
+  for (float& f : data.frequencies) f /= static_cast<float>(size);
+  return LrpModel(std::move(data));
+}
+
+LrpModel analyze_spectrum(const SpectrumTarget& target, const ParamValues& params,
+                          std::uint32_t seed) {
+  check_spectrum_size(target.size);
+  if (!std::isfinite(target.mean))
+    throw std::invalid_argument("lrp: the target's mean must be finite");
+  LrpData data;
+  data.channels = 1;
+  data.strata = static_cast<int>(params.at("strata"));
+  data.normalise_envelope = params.at("envelope") != 0.0;
+  data.mean = {static_cast<float>(target.mean)};
+  data.colour_basis = {1.0f};
+  append_channel(data, plan_strata(target.power, target.size, data.strata,
+                                   static_cast<int>(params.at("cosines")),
+                                   cell_key(0, 0, seed, Stream::analysis)));
+  for (float& f : data.frequencies) f /= static_cast<float>(target.size);
+  return LrpModel(std::move(data));
+}
+
+Model spectrum_model(const SpectrumTarget& target, const ParamValues& params, std::uint32_t seed) {
+  ParamValues resolved = resolve_params(LrpModel::kMethodName, params);
+  LrpModel model = analyze_spectrum(target, resolved, seed);
+  return Model(std::make_shared<const ModelData>(
+      ModelData{std::move(resolved), MethodModel(std::move(model))}));
+}
+
+}  // namespace stochtex::lrp

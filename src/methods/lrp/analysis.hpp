@@ -1,0 +1,67 @@
+#pragma once
+// Analysis of local random-phase noise (sections 4.1-4.4 of the paper): a target power spectrum,
+// from an exemplar (Welch's method) or given as a continuous function sampled on a grid, is cut
+// into L equal-energy strata, each shrunk by erosion and broken into J_S sub-strata by k-means.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "methods/lrp/model.hpp"
+#include "stochtex/image.hpp"
+#include "stochtex/model.hpp"
+
+namespace stochtex::lrp {
+
+// A power spectrum on the size x size grid of frequencies k / size (cycles per pixel): row-major,
+// the vertical frequency as the row, DC at (0, 0), symmetric (power(k) == power(-k)). Its sum is
+// the variance of the noise; `mean` is added to it.
+struct SpectrumTarget {
+  int size = 0;
+  std::vector<double> power;
+  double mean = 0.0;
+};
+
+// Continuous targets of the paper's figure 10, sampled on a size x size grid (size >= 8, even).
+// A ring of radius `radius` and Gaussian profile of standard deviation `width` (cycles per pixel).
+SpectrumTarget ring_spectrum(int size, double radius, double width, double variance);
+// An anisotropic Gaussian pair at +-(centre_x, centre_y) with standard deviations `along` in the
+// direction of the centre and `across` perpendicular to it (cycles per pixel); a centre of (0, 0)
+// gives a low-pass blob elongated along x.
+SpectrumTarget gaussian_spectrum(int size, double centre_x, double centre_y, double along,
+                                 double across, double variance);
+
+// One stratum as the analysis builds it; exposed for tests and docs.
+struct StratumPlan {
+  double energy = 0.0;        // E_S, the stratum's share of the variance
+  int bins = 0;               // |S|: frequencies of the stratum on the full plane
+  double lowest_power = 0.0;  // the stratum is {k : power(k) in [lowest_power, highest_power]}
+  double highest_power = 0.0;
+  Stratum sampling;             // J_S, Delta_S, A_S
+  double erosion_radius = 0.0;  // delta in frequency bins (section 4.3)
+  double eroded_radius = 0.0;   // the radius actually used (smaller when delta would empty S)
+  std::vector<std::vector<std::array<int, 2>>> substrata;  // signed bins, upper half-plane
+};
+
+// The largest power of two strictly below the exemplar's smaller side (section 4.4).
+int welch_size(int width, int height);
+// The radius, in cycles per lattice spacing, of the disc holding `fraction` of the energy of the
+// 2-D window's spectrum |W-hat|^2 (W(x) = w(|x|)), by numerical Hankel transform (section 4.3).
+double window_energy_radius(double fraction);
+// Sections 4.2-4.3 for one channel: `power` is a SpectrumTarget's power (size x size). `key`
+// seeds the k-means initialisation of each stratum.
+std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
+                                     int cosines, std::uint32_t key);
+
+// The model of an exemplar: PCA-decorrelated channels, Welch spectrum of each, strata. `params`
+// holds every entry of kParams (see registry: resolve_params).
+LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed);
+// The grey model of a continuous target (section 6.1, figure 10).
+LrpModel analyze_spectrum(const SpectrumTarget& target, const ParamValues& params,
+                          std::uint32_t seed);
+// The same as a library Model (render, evaluate, save_model work on it); `params` may be partial.
+Model spectrum_model(const SpectrumTarget& target, const ParamValues& params = {},
+                     std::uint32_t seed = 0);
+
+}  // namespace stochtex::lrp

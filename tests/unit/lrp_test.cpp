@@ -1,0 +1,322 @@
+// Local random-phase noise: the window and its Bessel function, the stratified spectral sampling
+// (sections 3.6, 4.2, 4.3 of Gilet et al. 2014), model records and determinism.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <numbers>
+#include <numeric>
+#include <random>
+
+#include "methods/lrp/analysis.hpp"
+#include "methods/lrp/evaluate.hpp"
+#include "methods/lrp/model.hpp"
+#include "methods/lrp/window.hpp"
+#include "model/model_data.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex::lrp {
+namespace {
+
+TEST(LrpWindow, BesselMatchesTheStandardLibraryEverywhere) {
+  // The tails are where a truncated series fails: at 3 pi (the window's centre) 5 terms of I_3
+  // are 19% low, and the series alone loses accuracy near the switch to the asymptotic expansion.
+  // A 5-term series fails this test at x = 3 pi already (relative error 0.19).
+  for (const int order : {0, 1, 3})
+    for (const double x :
+         {0.0, 1e-6, 0.5, 2.0, kKaiserArgument, 15.0, 29.999, 30.001, 45.0, 100.0, 400.0, 700.0}) {
+      const double expected = std::cyl_bessel_i(static_cast<double>(order), x);
+      const double actual = bessel_i(order, x);
+      if (expected == 0.0)
+        EXPECT_EQ(actual, 0.0) << "order " << order << " at " << x;
+      else
+        EXPECT_NEAR(actual / expected, 1.0, 1e-13) << "order " << order << " at " << x;
+    }
+}
+
+TEST(LrpWindow, KaiserBesselShapeAndTheConstantOfEquationThree) {
+  EXPECT_DOUBLE_EQ(kaiser_bessel_window(0.0), 1.0);
+  EXPECT_EQ(kaiser_bessel_window(1.5), 0.0);
+  EXPECT_EQ(kaiser_bessel_window(-2.0), 0.0);
+  // Continuous at the edge: w ~ t^(3/2) with t = 1 - (y / 1.5)^2.
+  EXPECT_LT(kaiser_bessel_window(1.4999), 1e-7);
+  EXPECT_GT(kaiser_bessel_window(1.4), 0.0);
+  for (double y = 0.0; y < 1.5; y += 0.01) {
+    EXPECT_LE(kaiser_bessel_window(y + 0.01), kaiser_bessel_window(y));  // decreasing
+    EXPECT_DOUBLE_EQ(kaiser_bessel_window(y), kaiser_bessel_window(-y));
+  }
+  // The paper's constant int_0^inf r w^2 dr ~ 0.1126 (section 4.3) identifies the order-3
+  // Bessel function; the printed series ((m+2)! instead of (m+3)!) gives 0.1049, I_0 gives 0.1196.
+  EXPECT_NEAR(window_radial_energy(), 0.1126, 5e-5);
+  // The evaluator's polynomial form agrees with the exact window to float precision.
+  const auto coefficients = window_coefficients();
+  for (double y = 0.0; y <= 1.6; y += 0.001)
+    EXPECT_NEAR(window_from_square(coefficients, static_cast<float>(y * y)),
+                kaiser_bessel_window(y), 1e-6)
+        << y;
+}
+
+TEST(LrpWindow, FastCosineIsAccurate) {
+  for (float t = -60.0f; t < 60.0f; t += 0.0137f)
+    EXPECT_NEAR(cos_turns(t), std::cos(2.0 * std::numbers::pi * static_cast<double>(t)), 3e-6) << t;
+  EXPECT_FLOAT_EQ(clamp_weight(0.0f), 1.0f);
+  EXPECT_FLOAT_EQ(clamp_weight(kClampEnd), 0.0f);
+  EXPECT_FLOAT_EQ(clamp_weight(1.0f), 0.0f);
+}
+
+TEST(LrpWindow, SeventyFivePercentRadius) {
+  // delta holds 75% of the window's spectral energy; 100% needs the whole (infinite) spectrum,
+  // and the radius grows with the fraction.
+  const double half = window_energy_radius(0.5);
+  const double three_quarters = window_energy_radius(0.75);
+  EXPECT_GT(three_quarters, half);
+  EXPECT_GT(half, 0.05);
+  EXPECT_LT(three_quarters, 2.0);
+}
+
+// An irregular but smooth spectrum: a sum of anisotropic Gaussians.
+SpectrumTarget lumpy_spectrum(int size) {
+  SpectrumTarget target = gaussian_spectrum(size, 0.1, 0.05, 0.03, 0.01, 1.0);
+  const SpectrumTarget wide = gaussian_spectrum(size, 0.0, 0.0, 0.15, 0.08, 1.0);
+  for (std::size_t i = 0; i < target.power.size(); ++i) target.power[i] += wide.power[i];
+  return target;
+}
+
+TEST(LrpStrata, EqualEnergyPowerIntervals) {
+  const SpectrumTarget target = lumpy_spectrum(64);
+  const double total = std::accumulate(target.power.begin(), target.power.end(), 0.0);
+  for (const int strata : {1, 2, 4, 8}) {
+    const std::vector<StratumPlan> plans = plan_strata(target.power, 64, strata, 50, 1);
+    ASSERT_EQ(plans.size(), static_cast<std::size_t>(strata));
+    double energy = 0.0;
+    for (std::size_t s = 0; s < plans.size(); ++s) {
+      energy += plans[s].energy;
+      // Equal energy up to one frequency's worth (the largest value of the spectrum).
+      EXPECT_NEAR(plans[s].energy, total / strata, 2.0 * plans[0].highest_power + 1e-3 * total)
+          << strata << " strata, stratum " << s;
+      // Strata are intervals of the power, strongest first (section 4.2).
+      if (s > 0) {
+        EXPECT_LE(plans[s].highest_power, plans[s - 1].lowest_power);
+      }
+    }
+    EXPECT_NEAR(energy, total, 1e-9 * total);
+  }
+}
+
+TEST(LrpStrata, SpacingAmplitudeAndSubstrata) {
+  const SpectrumTarget target = lumpy_spectrum(64);
+  const std::vector<StratumPlan> plans = plan_strata(target.power, 64, 4, 50, 7);
+  const double radial = window_radial_energy();
+  int cosines = 0;
+  for (const StratumPlan& plan : plans) {
+    const Stratum& s = plan.sampling;
+    cosines += s.cosines;
+    // Delta_S = T sqrt(J_S) / sqrt(2 |S|) and equation (3) (energy per unit area).
+    EXPECT_NEAR(s.spacing / (64.0 * std::sqrt(s.cosines / (2.0 * plan.bins))), 1.0, 1e-7);
+    EXPECT_NEAR(
+        double(s.amplitude) * s.amplitude * s.cosines * std::numbers::pi * radial / plan.energy,
+        1.0, 1e-6);
+    // Erosion never empties a stratum: one non-empty sub-stratum per cosine, and the radius used
+    // is at most delta.
+    EXPECT_LE(plan.eroded_radius, plan.erosion_radius);
+    ASSERT_EQ(plan.substrata.size(), static_cast<std::size_t>(s.cosines));
+    for (const auto& substratum : plan.substrata) {
+      ASSERT_FALSE(substratum.empty());
+      for (const auto& bin : substratum) {
+        EXPECT_GE(bin[1], 0);  // upper half-plane
+        EXPECT_LE(std::abs(bin[0]), 32);
+        EXPECT_LE(bin[1], 32);
+      }
+    }
+  }
+  // 50 = 13 + 13 + 12 + 12.
+  EXPECT_EQ(cosines, 50);
+  EXPECT_EQ(plans[0].sampling.cosines, 13);
+  EXPECT_EQ(plans[3].sampling.cosines, 12);
+  // Stronger strata are smaller, so their windows are wider (finer spectral resolution).
+  EXPECT_GT(plans[0].sampling.spacing, plans[3].sampling.spacing);
+}
+
+TEST(LrpStrata, KmeansIsSeededAndDeterministic) {
+  const SpectrumTarget target = lumpy_spectrum(64);
+  const auto a = plan_strata(target.power, 64, 4, 50, 3);
+  const auto b = plan_strata(target.power, 64, 4, 50, 3);
+  const auto c = plan_strata(target.power, 64, 4, 50, 4);
+  bool differs = false;
+  for (std::size_t s = 0; s < a.size(); ++s) {
+    EXPECT_EQ(a[s].substrata, b[s].substrata);
+    differs = differs || a[s].substrata != c[s].substrata;
+  }
+  EXPECT_TRUE(differs);
+}
+
+ImageF random_exemplar(int side, int channels, unsigned seed) {
+  std::mt19937 engine(seed);
+  std::normal_distribution<float> normal(0.5f, 0.1f);
+  ImageF exemplar(side, side, channels);
+  // Correlated channels, so that the PCA basis is not the identity.
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      const float shared = normal(engine);
+      for (int c = 0; c < channels; ++c)
+        exemplar.at(x, y, c) = 0.5f * shared + 0.5f * normal(engine) + 0.1f * static_cast<float>(c);
+    }
+  return exemplar;
+}
+
+const Model& colour_model() {
+  static const Model model =
+      analyze("lrp", random_exemplar(40, 3, 2).view(), {{"cosines", 20}}, 5, "random");
+  return model;
+}
+
+ImageF render_model(const Model& model, const Grid& grid, std::uint32_t seed, int threads = 1) {
+  ImageF out(grid.width, grid.height, model.channels());
+  RenderOptions options;
+  options.threads = threads;
+  options.tile_size = 16;
+  render(model, grid, seed, out.view(), options);
+  return out;
+}
+
+bool same_bytes(const ImageF& a, const ImageF& b) {
+  return a.pixels().size() == b.pixels().size() &&
+         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()) == 0;
+}
+
+TEST(LrpModelFile, RoundTripRendersTheSameBytes) {
+  const Model& model = colour_model();
+  const Model loaded = deserialize_model(serialize_model(model), "memory");
+  EXPECT_EQ(loaded.method(), "lrp");
+  const LrpData& a = std::get<LrpModel>(model.data().model).data();
+  const LrpData& b = std::get<LrpModel>(loaded.data().model).data();
+  EXPECT_EQ(a.mean, b.mean);
+  EXPECT_EQ(a.colour_basis, b.colour_basis);
+  EXPECT_EQ(a.frequencies, b.frequencies);
+  EXPECT_EQ(a.substratum_first, b.substratum_first);
+  EXPECT_EQ(a.substratum_count, b.substratum_count);
+  for (std::size_t s = 0; s < a.strata_table.size(); ++s) {
+    EXPECT_EQ(a.strata_table[s].spacing, b.strata_table[s].spacing);
+    EXPECT_EQ(a.strata_table[s].amplitude, b.strata_table[s].amplitude);
+  }
+  const Grid grid{{-3.0, 7.5}, 0.7, 40, 30};
+  EXPECT_TRUE(same_bytes(render_model(model, grid, 9), render_model(loaded, grid, 9)));
+}
+
+TEST(LrpModelFile, CorruptRecordsAreRejected) {
+  const LrpModel& lrp = std::get<LrpModel>(colour_model().data().model);
+  const ModelRecord good = lrp.to_record(colour_model().params());
+  EXPECT_NO_THROW(LrpModel::from_record(good, "good"));
+  const auto rejects = [](ModelRecord record, const std::string& what) {
+    try {
+      LrpModel::from_record(record, "bad.stx");
+      ADD_FAILURE() << what << " was accepted";
+    } catch (const Error& error) {
+      EXPECT_EQ(error.code(), ErrorCode::format) << what;
+      EXPECT_NE(std::string(error.what()).find("bad.stx"), std::string::npos) << what;
+    }
+  };
+  const auto array = [](ModelRecord& record, const std::string& name) -> std::vector<float>& {
+    for (auto& a : record.arrays)
+      if (a.name == name) return a.values;
+    throw std::logic_error("no array " + name);
+  };
+  for (const auto& [name, value] :
+       std::vector<std::pair<std::string, double>>{{"channels", 5},
+                                                   {"channels", 2},
+                                                   {"strata", 0},
+                                                   {"strata", 17},
+                                                   {"strata", 2.5},
+                                                   {"envelope", 2},
+                                                   {"substrata", 1e12},
+                                                   {"frequencies", 0},
+                                                   {"frequencies", 1e12}}) {
+    ModelRecord record = good;
+    record.scalars[name] = value;
+    rejects(record, name + " = " + std::to_string(value));
+  }
+  {
+    ModelRecord record = good;
+    record.scalars.erase("strata");
+    rejects(record, "missing strata");
+  }
+  const std::vector<std::pair<std::string, std::pair<std::size_t, float>>> edits = {
+      {"mean", {0, NAN}},        {"colour_basis", {1, INFINITY}}, {"frequencies", {0, 0.75f}},
+      {"frequencies", {3, NAN}}, {"strata", {0, 0.0f}},  // zero cosines
+      {"strata", {0, 2.5f}},                             // fractional cosines
+      {"strata", {1, -1.0f}},                            // negative spacing
+      {"strata", {1, 0.0f}},                             // zero spacing
+      {"strata", {2, -1.0f}},                            // negative amplitude
+      {"strata", {2, 1e30f}},                            // absurd amplitude
+      {"substrata", {0, 1e7f}},                          // first frequency out of the table
+      {"substrata", {1, 0.0f}},                          // empty sub-stratum
+      {"substrata", {1, 1e6f}},                          // runs past the table
+      {"substrata", {0, -1.0f}},
+  };
+  for (const auto& [name, edit] : edits) {
+    ModelRecord record = good;
+    array(record, name)[edit.first] = edit.second;
+    rejects(record, name + "[" + std::to_string(edit.first) + "] = " + std::to_string(edit.second));
+  }
+  {
+    ModelRecord record = good;
+    array(record, "frequencies").pop_back();
+    rejects(record, "short frequency table");
+  }
+}
+
+TEST(LrpEvaluation, DeterministicWhateverTheThreadsAndSplits) {
+  const Model& model = colour_model();
+  const Grid grid{{-20.0, 3.0}, 1.3, 50, 45};
+  const ImageF reference = render_model(model, grid, 11, 1);
+  EXPECT_TRUE(same_bytes(reference, render_model(model, grid, 11, 2)));
+  EXPECT_TRUE(same_bytes(reference, render_model(model, grid, 11, 3)));
+  EXPECT_FALSE(same_bytes(reference, render_model(model, grid, 12, 1)));
+  // One position evaluated alone gives the same value as inside a batch.
+  const std::vector<Vec2d> one = {{grid.origin.x + grid.scale * 7.5, grid.origin.y + 4.5 * 1.3}};
+  const std::vector<Footprint> footprint = {{{1.3, 0.0}, {0.0, 1.3}}};
+  ImageF single(1, 1, 3);
+  evaluate(model, one, footprint, 11, single.view());
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(single.at(0, 0, c), reference.at(7, 4, c));
+}
+
+TEST(LrpEvaluation, FarFromTheOriginIsAsPreciseAsAtTheOrigin) {
+  // A line of samples 0.001 pixel apart: the noise is smooth at that scale, so its second
+  // differences are tiny at the origin. If positions were rounded to float near 1e7 (spacing 1)
+  // the samples would repeat then jump, and the second differences would be as large as the noise.
+  const Model& model = colour_model();
+  const auto roughness = [&](double origin) {
+    std::vector<Vec2d> line;
+    for (int i = 0; i < 200; ++i) line.push_back({origin + 0.001 * i, -origin + 0.0007 * i});
+    ImageF out(1, 200, 3);
+    evaluate(model, line, {}, 3, out.view());
+    double largest = 0.0;
+    for (int i = 1; i + 1 < 200; ++i)
+      largest = std::max(largest,
+                         static_cast<double>(std::abs(out.at(0, i + 1, 0) - 2.0f * out.at(0, i, 0) +
+                                                      out.at(0, i - 1, 0))));
+    return largest;
+  };
+  const double near = roughness(0.25);
+  const double far = roughness(1e7 + 0.25);
+  EXPECT_LT(far, 1e-3);
+  EXPECT_LT(near, 1e-3);
+}
+
+TEST(LrpAnalysis, RejectsTooSmallExemplarsAndKeepsTheMean) {
+  EXPECT_THROW(analyze("lrp", random_exemplar(8, 1, 1).view(), {}, 0), Error);
+  const ImageF exemplar = random_exemplar(24, 1, 3);
+  const Model model = analyze("lrp", exemplar.view(), {}, 0);
+  const ImageF out = render_model(model, {{0.0, 0.0}, 1.0, 64, 64}, 1);
+  double sum = 0.0, exemplar_sum = 0.0;
+  for (const float v : out.pixels()) sum += v;
+  for (const float v : exemplar.pixels()) exemplar_sum += v;
+  EXPECT_NEAR(sum / 4096.0, exemplar_sum / 576.0, 0.02);
+  EXPECT_THROW(ring_spectrum(6, 0.1, 0.01, 1.0), std::invalid_argument);
+  EXPECT_THROW(spectrum_model(ring_spectrum(16, 0.1, 0.01, 1.0), {{"strata", 0}}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace stochtex::lrp
