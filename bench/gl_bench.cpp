@@ -8,7 +8,7 @@
 #include <memory>
 #include <string>
 
-#include "io/image_io.hpp"
+#include "bench_support.hpp"
 #include "stochtex/gpu.hpp"
 #include "stochtex/stochtex.hpp"
 
@@ -23,8 +23,7 @@ void BM_GlTextonFrame(benchmark::State& state) {
   std::unique_ptr<GlRenderer> renderer;
   Model model;
   try {
-    const ImageF exemplar = read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/moss_ground_512.png");
-    model = analyze("texton", exemplar.view(), {{"support", support}}, 0);
+    model = analyze("texton", bench::colour_exemplar().view(), {{"support", support}}, 0);
     renderer = std::make_unique<GlRenderer>(model);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());

@@ -6,35 +6,20 @@
 
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <exception>
-#include <map>
 #include <string>
 #include <utility>
 
-#include "io/image_io.hpp"
+#include "bench_support.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace {
 
 using namespace stochtex;
+using namespace stochtex::bench;
 
 constexpr int kRenderSide = 128;
 constexpr std::uint32_t kSeed = 7;
-
-const ImageF& grey_exemplar() {
-  static const ImageF image =
-      read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/sand_height_grey_512.png");
-  return image;
-}
-
-ImageF crop_top_left(const ImageF& image, int side) {
-  ImageF result(side, side, image.channels());
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x)
-      for (int c = 0; c < image.channels(); ++c) result.at(x, y, c) = image.at(x, y, c);
-  return result;
-}
 
 void BM_LrpAnalysis(benchmark::State& state) {
   const int side = static_cast<int>(state.range(0));
@@ -74,19 +59,10 @@ void BM_LrpRender(benchmark::State& state) {
   options.filter = false;
   const Grid grid{{0.0, 0.0}, 1.0, kRenderSide, kRenderSide};
   ImageF out(kRenderSide, kRenderSide, 1);
-  const auto start = std::chrono::steady_clock::now();
-  for (auto _ : state) {
-    render(model, grid, kSeed, out.view(), options);
-    benchmark::ClobberMemory();
-  }
-  const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
-  const double samples = static_cast<double>(state.iterations()) * kRenderSide * kRenderSide;
-  state.SetItemsProcessed(state.iterations() * kRenderSide * kRenderSide);
-  if (samples > 0) {
-    const double per_sample = elapsed.count() / samples;
-    state.counters["ns_per_sample"] = per_sample;
-    state.counters["ns_per_call"] = per_sample / (9.0 * (cosines + 4));
-  }
+  time_samples(state, std::int64_t{kRenderSide} * kRenderSide,
+               [&] { render(model, grid, kSeed, out.view(), options); });
+  const double per_sample = state.counters["ns_per_sample"];
+  state.counters["ns_per_call"] = per_sample / (9.0 * (cosines + 4));
 }
 BENCHMARK(BM_LrpRender)
     ->ArgName("cosines")

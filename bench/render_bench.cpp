@@ -8,7 +8,7 @@
 #include <exception>
 #include <string>
 
-#include "io/image_io.hpp"
+#include "bench_support.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace {
@@ -20,9 +20,8 @@ constexpr int kSide = 256;
 // A quick texton model (support 64 on a 256² colour exemplar) stands in for any method.
 const Model& render_model() {
   static const Model model = [] {
-    const ImageF exemplar =
-        read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/granite_color_256.png");
-    return analyze("texton", exemplar.view(), {{"support", 64}}, 0, "granite_color_256.png");
+    return analyze("texton", bench::corpus_image("granite_color_256.png").view(), {{"support", 64}},
+                   0, "granite_color_256.png");
   }();
   return model;
 }

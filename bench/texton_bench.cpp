@@ -4,7 +4,6 @@
 
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -12,31 +11,17 @@
 #include <string>
 #include <vector>
 
-#include "io/image_io.hpp"
+#include "bench_support.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace {
 
 using namespace stochtex;
+using namespace stochtex::bench;
 
 constexpr int kRenderSide = 256;
 constexpr std::int64_t kRenderSamples = std::int64_t{kRenderSide} * kRenderSide;
 constexpr std::uint32_t kSeed = 7;
-
-// A 512² colour exemplar: analysis sizes crop it, so every size sees the same kind of texture.
-const ImageF& colour_exemplar() {
-  static const ImageF image =
-      read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/moss_ground_512.png");
-  return image;
-}
-
-ImageF crop_top_left(const ImageF& image, int side) {
-  ImageF result(side, side, image.channels());
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x)
-      for (int c = 0; c < image.channels(); ++c) result.at(x, y, c) = image.at(x, y, c);
-  return result;
-}
 
 // Analysing the 512² exemplar takes about half a second, so each model is built once and shared by
 // every evaluation benchmark that uses it.
@@ -49,22 +34,6 @@ const Model& texton_model(int support) {
     found = cache.emplace(support, model).first;
   }
   return found->second;
-}
-
-// Runs `body` once per benchmark iteration and reports items_per_second (samples) and
-// ns_per_sample. Both use wall-clock time, like the benchmarks' UseRealTime(): a render's work is
-// done by its worker threads, which the calling thread's CPU time does not see.
-template <typename Body>
-void time_samples(benchmark::State& state, std::int64_t samples_per_iteration, Body&& body) {
-  const auto start = std::chrono::steady_clock::now();
-  for (auto _ : state) {
-    body();
-    benchmark::ClobberMemory();
-  }
-  const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
-  const std::int64_t samples = state.iterations() * samples_per_iteration;
-  state.SetItemsProcessed(samples);
-  if (samples > 0) state.counters["ns_per_sample"] = elapsed.count() / static_cast<double>(samples);
 }
 
 void BM_TextonAnalysis(benchmark::State& state) {

@@ -5,36 +5,22 @@
 
 #include <benchmark/benchmark.h>
 
-#include <chrono>
 #include <cstdint>
 #include <exception>
 #include <map>
 #include <string>
 
-#include "io/image_io.hpp"
+#include "bench_support.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace {
 
 using namespace stochtex;
+using namespace stochtex::bench;
 
 constexpr int kRenderSide = 256;
 constexpr std::int64_t kRenderSamples = std::int64_t{kRenderSide} * kRenderSide;
 constexpr std::uint32_t kSeed = 7;
-
-const ImageF& colour_exemplar() {
-  static const ImageF image =
-      read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/moss_ground_512.png");
-  return image;
-}
-
-ImageF crop_top_left(const ImageF& image, int side) {
-  ImageF result(side, side, image.channels());
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x)
-      for (int c = 0; c < image.channels(); ++c) result.at(x, y, c) = image.at(x, y, c);
-  return result;
-}
 
 // Models of the 256² crop, built once: 0 sliced transport (3-D table), 1 per-channel transport,
 // 2 Gaussian fast path.
@@ -49,20 +35,6 @@ const Model& tiling_model(int variant) {
     found = cache.emplace(variant, analyze("tiling", exemplar.view(), params, 0)).first;
   }
   return found->second;
-}
-
-// Wall-clock ns per sample, as the texton benchmarks (a render's work is on worker threads).
-template <typename Body>
-void time_samples(benchmark::State& state, std::int64_t samples_per_iteration, Body&& body) {
-  const auto start = std::chrono::steady_clock::now();
-  for (auto _ : state) {
-    body();
-    benchmark::ClobberMemory();
-  }
-  const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
-  const std::int64_t samples = state.iterations() * samples_per_iteration;
-  state.SetItemsProcessed(samples);
-  if (samples > 0) state.counters["ns_per_sample"] = elapsed.count() / static_cast<double>(samples);
 }
 
 void BM_TilingAnalysis(benchmark::State& state) {

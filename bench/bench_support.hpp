@@ -1,0 +1,58 @@
+#pragma once
+// What every method's benchmark needs: corpus exemplars, square crops of them, and the
+// nanoseconds-per-sample measure (DESIGN.md section 10).
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "io/image_io.hpp"
+#include "stochtex/image.hpp"
+
+namespace stochtex::bench {
+
+// A corpus image by file name, read once (throws stochtex::Error if it cannot be read).
+inline const ImageF& corpus_image(const std::string& name) {
+  static std::map<std::string, ImageF> images;
+  auto found = images.find(name);
+  if (found == images.end())
+    found = images.emplace(name, read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/" + name)).first;
+  return found->second;
+}
+
+// The 512² colour and grey exemplars: analysis sizes crop them, so every size sees the same kind
+// of texture.
+inline const ImageF& colour_exemplar() {
+  return corpus_image("moss_ground_512.png");
+}
+inline const ImageF& grey_exemplar() {
+  return corpus_image("sand_height_grey_512.png");
+}
+
+inline ImageF crop_top_left(const ImageF& image, int side) {
+  ImageF result(side, side, image.channels());
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      for (int c = 0; c < image.channels(); ++c) result.at(x, y, c) = image.at(x, y, c);
+  return result;
+}
+
+// Runs body() per iteration and reports items (samples) per second and the counter ns_per_sample,
+// from the wall clock: a render's work happens on worker threads, which CPU time would miss.
+template <typename Body>
+void time_samples(benchmark::State& state, std::int64_t samples_per_iteration, Body&& body) {
+  const auto start = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    body();
+    benchmark::ClobberMemory();
+  }
+  const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
+  const std::int64_t samples = state.iterations() * samples_per_iteration;
+  state.SetItemsProcessed(samples);
+  if (samples > 0) state.counters["ns_per_sample"] = elapsed.count() / static_cast<double>(samples);
+}
+
+}  // namespace stochtex::bench
