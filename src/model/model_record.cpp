@@ -1,6 +1,8 @@
 #include "model/model_record.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "stochtex/error.hpp"
 
@@ -39,6 +41,24 @@ double ModelRecord::scalar(const std::string& name, const std::string& source) c
     throw Error(ErrorCode::format, "'" + source + "' has no valid value for '" + name +
                                        "'; the file is corrupt, re-run `stochtex analyze`");
   return found->second;
+}
+
+double ModelRecord::scalar_in(const std::string& name, double low, double high, bool integer,
+                              const std::string& source) const {
+  const double value = scalar(name, source);
+  if ((integer && value != std::floor(value)) || value < low || value > high)
+    throw Error(ErrorCode::format, "'" + source + "' has an invalid " + method + " " + name +
+                                       " value; re-run `stochtex analyze`");
+  return value;
+}
+
+double ModelRecord::param_scalar(std::string_view name, std::span<const ParamInfo> method_params,
+                                 const std::string& source) const {
+  const auto param = std::find_if(method_params.begin(), method_params.end(),
+                                  [&](const ParamInfo& p) { return p.name == name; });
+  if (param == method_params.end())
+    throw std::logic_error("param_scalar: '" + std::string(name) + "' is not a parameter");
+  return scalar_in(std::string(name), param->min_value, param->max_value, param->integer, source);
 }
 
 }  // namespace stochtex

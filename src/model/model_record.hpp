@@ -4,7 +4,9 @@
 // (model_file.hpp) reads and writes records and knows nothing about methods.
 
 #include <cstdint>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "stochtex/model.hpp"
@@ -28,6 +30,13 @@ struct ModelRecord {
                           const std::string& source) const;
   // Throws Error(format) naming `source` when the scalar is missing or not finite.
   double scalar(const std::string& name, const std::string& source) const;
+  // The same, also refusing a value outside [low, high] or, when `integer`, not an integer: a
+  // file must not ask the evaluator for more work or memory than `stochtex analyze` could.
+  double scalar_in(const std::string& name, double low, double high, bool integer,
+                   const std::string& source) const;
+  // A scalar named like one of the method's parameters, checked against that parameter's range.
+  double param_scalar(std::string_view name, std::span<const ParamInfo> method_params,
+                      const std::string& source) const;
 };
 
 }  // namespace stochtex

@@ -217,19 +217,12 @@ MipLevel TilingModel::level(int index) const {
 }
 
 TilingModel TilingModel::from_record(const ModelRecord& record, const std::string& source) {
-  // Scalars are checked against the same ranges as the analysis parameters (params.hpp): a file
-  // must not ask the evaluator for more work or memory than `stochtex analyze` could.
-  const auto read = [&](std::string_view name, double low, double high, bool integer) {
-    const double value = record.scalar(std::string(name), source);
-    if ((integer && value != std::floor(value)) || value < low || value > high)
-      throw Error(ErrorCode::format, "'" + source + "' has an invalid tiling " + std::string(name) +
-                                         " value; re-run `stochtex analyze`");
-    return value;
+  // Scalars are checked against the analysis parameters' ranges (params.hpp).
+  const auto read = [&](const char* name, double low, double high, bool integer) {
+    return record.scalar_in(name, low, high, integer, source);
   };
   const auto read_param = [&](std::string_view name) {
-    const auto param = std::find_if(kParams.begin(), kParams.end(),
-                                    [&](const ParamInfo& p) { return p.name == name; });
-    return read(name, param->min_value, param->max_value, param->integer);
+    return record.param_scalar(name, kParams, source);
   };
   TilingData data;
   data.channels = static_cast<int>(read("channels", 1, 4, true));
