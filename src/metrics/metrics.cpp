@@ -182,17 +182,22 @@ int welch_crop_size(ImageView<const float> a, ImageView<const float> b) {
   return crop;
 }
 
-double spectral_error(ImageView<const float> image, ImageView<const float> reference, int crop) {
-  require_same_channels(image, reference, "spectral_error");
-  const std::vector<double> image_power = welch_power_spectrum(image, crop);
-  const std::vector<double> reference_power = welch_power_spectrum(reference, crop);
+double relative_l1_distance(std::span<const double> a, std::span<const double> reference) {
+  if (a.size() != reference.size())
+    throw std::invalid_argument("relative_l1_distance: the spectra have different sizes");
   double difference = 0.0;
   double total = 0.0;
-  for (std::size_t i = 0; i < image_power.size(); ++i) {
-    difference += std::abs(image_power[i] - reference_power[i]);
-    total += std::abs(reference_power[i]);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    difference += std::abs(a[i] - reference[i]);
+    total += std::abs(reference[i]);
   }
   return relative(difference, total);
+}
+
+double spectral_error(ImageView<const float> image, ImageView<const float> reference, int crop) {
+  require_same_channels(image, reference, "spectral_error");
+  return relative_l1_distance(welch_power_spectrum(image, crop),
+                              welch_power_spectrum(reference, crop));
 }
 
 double sliced_wasserstein(ImageView<const float> a, ImageView<const float> b, int directions) {

@@ -6,6 +6,7 @@
 // term is zero too, +infinity otherwise.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ std::vector<double> welch_power_spectrum(ImageView<const float> image, int crop)
 // largest power of two <= that side (a single crop per axis); a side below 2 throws.
 int welch_crop_size(ImageView<const float> a, ImageView<const float> b);
 // Relative L1 distance sum|Sa - Sb| / sum|Sb| of the Welch spectra of a and of the reference b.
+// Relative L1 distance sum|a - r| / sum|r| of two spectra of the same layout (the measure of
+// spectral_error, for spectra averaged over several renders).
+double relative_l1_distance(std::span<const double> a, std::span<const double> reference);
+
 double spectral_error(ImageView<const float> image, ImageView<const float> reference, int crop);
 
 inline constexpr int default_sliced_directions = 64;

@@ -16,6 +16,7 @@
 #include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
 #include "spectral/adsn.hpp"
+#include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex {
@@ -23,31 +24,12 @@ namespace {
 
 const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
 
+using test_support::mean_spectrum;
+
 ImageF render_model(const Model& model, int size, std::uint32_t seed) {
   ImageF out(size, size, model.channels());
   render(model, Grid{{0.0, 0.0}, 1.0, size, size}, seed, out.view());
   return out;
-}
-
-// Welch spectrum averaged over `seeds` images: an estimate of the expected spectrum.
-template <typename Make>
-std::vector<double> mean_spectrum(Make&& make, int seeds, int crop) {
-  std::vector<double> mean;
-  for (std::uint32_t seed = 1; seed <= static_cast<std::uint32_t>(seeds); ++seed) {
-    const std::vector<double> spectrum = welch_power_spectrum(make(seed).view(), crop);
-    mean.resize(spectrum.size(), 0.0);
-    for (std::size_t i = 0; i < spectrum.size(); ++i) mean[i] += spectrum[i] / seeds;
-  }
-  return mean;
-}
-
-double relative_l1(const std::vector<double>& a, const std::vector<double>& reference) {
-  double difference = 0.0, norm = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    difference += std::abs(a[i] - reference[i]);
-    norm += std::abs(reference[i]);
-  }
-  return difference / norm;
 }
 
 TEST(LrpQuality, SpectrumAndCovarianceAgainstAdsnAsCosinesGrow) {
@@ -60,7 +42,7 @@ TEST(LrpQuality, SpectrumAndCovarianceAgainstAdsnAsCosinesGrow) {
   for (const std::string name : {"brushed_aluminium_grey_256.png", "granite_color_256.png"}) {
     const ImageF exemplar = read_image(kTextureDir + "/" + name);
     const std::vector<double> target = welch_power_spectrum(exemplar.view(), kCrop);
-    const double adsn_error = relative_l1(
+    const double adsn_error = relative_l1_distance(
         mean_spectrum([&](std::uint32_t s) { return adsn(exemplar.view(), kSize, kSize, s); },
                       kSeeds, kCrop),
         target);
@@ -68,14 +50,15 @@ TEST(LrpQuality, SpectrumAndCovarianceAgainstAdsnAsCosinesGrow) {
     // the variance, metrics.hpp).
     const double variance =
         std::accumulate(target.begin(), target.end(), 0.0) / static_cast<double>(target.size());
-    const double white_error = relative_l1(std::vector<double>(target.size(), variance), target);
+    const double white_error =
+        relative_l1_distance(std::vector<double>(target.size(), variance), target);
     const ColourStatistics exemplar_stats = colour_statistics(exemplar.view());
     std::cout << name << ": averaged-spectrum error ADSN " << adsn_error << ", white noise "
               << white_error << "\n";
     for (const double cosines : {10.0, 25.0, 50.0, 100.0}) {
       const Model model = analyze("lrp", exemplar.view(), {{"cosines", cosines}}, 0, name);
       double covariance = 0.0;
-      const double error = relative_l1(
+      const double error = relative_l1_distance(
           mean_spectrum(
               [&](std::uint32_t s) {
                 ImageF image = render_model(model, kSize, s);

@@ -16,10 +16,15 @@
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
 #include "spectral/adsn.hpp"
+#include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex {
 namespace {
+
+using test_support::mean_spectrum;
+using test_support::Sample;
+using test_support::summarise;
 
 const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
 // The corpus images SOURCES.md classes as `gaussian` (micro-textures a Gaussian field models).
@@ -28,19 +33,6 @@ const std::vector<std::string> kGaussianExemplars = {
     "granite_color_256.png",   "roughcast_wall_256.png", "denim_256.png",
     "red_fleece_128.png"};
 constexpr int kSeeds = 6;
-
-struct Sample {
-  double mean = 0;
-  double deviation = 0;  // sample standard deviation of one measurement
-};
-
-Sample summarise(const std::vector<double>& values) {
-  const double n = static_cast<double>(values.size());
-  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / n;
-  double square = 0.0;
-  for (const double v : values) square += (v - mean) * (v - mean);
-  return {mean, std::sqrt(square / (n - 1.0))};
-}
 
 double pooled(const Sample& a, const Sample& b) {
   return std::sqrt(0.5 * (a.deviation * a.deviation + b.deviation * b.deviation));
@@ -95,29 +87,6 @@ TEST(TextonQuality, SpectrumMeanAndCovarianceReachTheAdsnLevel) {
   }
 }
 
-// Welch spectrum averaged over `seeds` renders: the estimate of the noise's expected spectrum.
-std::vector<double> mean_spectrum(const std::function<ImageF(std::uint32_t)>& make, int seeds,
-                                  int crop) {
-  std::vector<double> mean;
-  for (std::uint32_t seed = 1; seed <= static_cast<std::uint32_t>(seeds); ++seed) {
-    const ImageF image = make(seed);
-    const std::vector<double> spectrum = welch_power_spectrum(image.view(), crop);
-    mean.resize(spectrum.size(), 0.0);
-    for (std::size_t i = 0; i < spectrum.size(); ++i) mean[i] += spectrum[i] / seeds;
-  }
-  return mean;
-}
-
-double relative_l1(const std::vector<double>& a, const std::vector<double>& reference) {
-  double difference = 0.0;
-  double norm = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    difference += std::abs(a[i] - reference[i]);
-    norm += std::abs(reference[i]);
-  }
-  return difference / norm;
-}
-
 TEST(TextonQuality, SpectrumErrorDecreasesAsSupportGrows) {
   // Paper figure 6: the averaged spectrum of the noise approaches the Gaussian model's as the
   // texton support grows. The reference is the ADSN's averaged spectrum; the estimator floor is
@@ -132,11 +101,12 @@ TEST(TextonQuality, SpectrumErrorDecreasesAsSupportGrows) {
     };
   };
   const std::vector<double> reference = mean_spectrum(gaussian(0), kAveraged, kCrop);
-  const double floor = relative_l1(mean_spectrum(gaussian(1000), kAveraged, kCrop), reference);
+  const double floor =
+      relative_l1_distance(mean_spectrum(gaussian(1000), kAveraged, kCrop), reference);
   std::vector<double> errors;
   for (const double support : {16.0, 32.0, 64.0, 128.0}) {
     const Model model = analyze("texton", exemplar.view(), {{"support", support}}, 0);
-    errors.push_back(relative_l1(
+    errors.push_back(relative_l1_distance(
         mean_spectrum([&](std::uint32_t seed) { return render_texton(model, kSize, kSize, seed); },
                       kAveraged, kCrop),
         reference));

@@ -18,6 +18,7 @@
 #include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
 #include "spectral/adsn.hpp"
+#include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex {
@@ -28,18 +29,8 @@ using tiling::MipLevel;
 
 const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
 
-struct Sample {
-  double mean = 0;
-  double deviation = 0;  // sample standard deviation of one measurement
-};
-
-Sample summarise(const std::vector<double>& values) {
-  const double n = static_cast<double>(values.size());
-  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / n;
-  double square = 0.0;
-  for (const double v : values) square += (v - mean) * (v - mean);
-  return {mean, std::sqrt(square / (n - 1.0))};
-}
+using test_support::Sample;
+using test_support::summarise;
 
 ImageF render_model(const Model& model, const Grid& grid, std::uint32_t seed, int supersample = 1,
                     bool filter = true) {
