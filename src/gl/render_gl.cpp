@@ -1,8 +1,3 @@
-#include <EGL/egl.h>
-#define GL_GLEXT_PROTOTYPES
-#include <GL/gl.h>
-#include <GL/glext.h>
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -12,6 +7,7 @@
 #include <vector>
 
 #include "gl/context.hpp"
+#include "gl/program.hpp"
 #include "gl/shaders.hpp"
 #include "gl/texton_glsl.hpp"
 #include "methods/texton/evaluate.hpp"
@@ -22,78 +18,9 @@
 namespace stochtex {
 namespace {
 
-[[noreturn]] void gl_failure(const std::string& what) {
-  throw Error(ErrorCode::numerical, "the OpenGL backend failed: " + what +
-                                        "; use --backend cpu, and report this with `stochtex "
-                                        "render --backend gl` and your driver");
-}
-
-void check_gl(const char* step) {
-  const GLenum error = glGetError();
-  if (error != GL_NO_ERROR)
-    gl_failure(std::string(step) + " (GL error " + std::to_string(error) + ")");
-}
-
-class Program {
- public:
-  explicit Program(const std::string& source) {
-    const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    const char* text = source.c_str();
-    glShaderSource(shader, 1, &text, nullptr);
-    glCompileShader(shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-      std::string log(4096, '\0');
-      glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
-      glDeleteShader(shader);
-      gl_failure("the compute shader does not compile: " + std::string(log.c_str()));
-    }
-    id_ = glCreateProgram();
-    glAttachShader(id_, shader);
-    glLinkProgram(id_);
-    glDeleteShader(shader);
-    glGetProgramiv(id_, GL_LINK_STATUS, &ok);
-    if (!ok) gl_failure("the compute shader does not link");
-  }
-  ~Program() { glDeleteProgram(id_); }
-  Program(const Program&) = delete;
-  Program& operator=(const Program&) = delete;
-
-  GLint location(const char* name) const { return glGetUniformLocation(id_, name); }
-  void set(const char* name, int value) const { glProgramUniform1i(id_, location(name), value); }
-  void set(const char* name, unsigned value) const {
-    glProgramUniform1ui(id_, location(name), value);
-  }
-  void set(const char* name, float value) const { glProgramUniform1f(id_, location(name), value); }
-  void set2(const char* name, int x, int y) const { glProgramUniform2i(id_, location(name), x, y); }
-  void set2(const char* name, unsigned x, unsigned y) const {
-    glProgramUniform2ui(id_, location(name), x, y);
-  }
-  void set2(const char* name, float x, float y) const {
-    glProgramUniform2f(id_, location(name), x, y);
-  }
-  GLuint id() const { return id_; }
-
- private:
-  GLuint id_ = 0;
-};
-
-class Buffer {
- public:
-  explicit Buffer(std::size_t bytes) {
-    glCreateBuffers(1, &id_);
-    glNamedBufferData(id_, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 4)), nullptr,
-                      GL_DYNAMIC_READ);
-  }
-  ~Buffer() { glDeleteBuffers(1, &id_); }
-  Buffer(const Buffer&) = delete;
-  Buffer& operator=(const Buffer&) = delete;
-  GLuint id() const { return id_; }
-
- private:
-  GLuint id_ = 0;
-};
+using gl::Buffer;
+using gl::check_gl;
+using gl::Program;
 
 // The texton evaluator's GPU state: the program (compiled with the model's constants) and the
 // texel atlas, made once per model.

@@ -9,12 +9,9 @@
 #include <string>
 #include <vector>
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/gl.h>
-#include <GL/glext.h>
-
 #include "core/hash.hpp"
 #include "gl/context.hpp"
+#include "gl/program.hpp"
 #include "gl/shaders.hpp"
 #include "io/image_io.hpp"
 #include "stochtex/gpu.hpp"
@@ -79,26 +76,16 @@ void main() {
   values[i * 4u + 3u] = floatBitsToUint(rng_uniform(rng));
 }
 )glsl";
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  ASSERT_TRUE(ok);
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
+  const gl::Program program(source);
   constexpr std::uint32_t kCount = 1024;
-  GLuint buffer = 0;
-  glCreateBuffers(1, &buffer);
-  glNamedBufferData(buffer, kCount * 4 * sizeof(std::uint32_t), nullptr, GL_DYNAMIC_READ);
-  glUseProgram(program);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
+  const gl::Buffer buffer(kCount * 4 * sizeof(std::uint32_t));
+  glUseProgram(program.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
   glDispatchCompute(kCount / 64, 1, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   std::vector<std::uint32_t> values(kCount * 4);
-  glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(values.size() * sizeof(std::uint32_t)),
+  glGetNamedBufferSubData(buffer.id(), 0,
+                          static_cast<GLsizeiptr>(values.size() * sizeof(std::uint32_t)),
                           values.data());
   ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   for (std::uint32_t i = 0; i < kCount; ++i) {
@@ -115,9 +102,6 @@ void main() {
     ASSERT_EQ(values[i * 4 + 2], first) << i;
     ASSERT_EQ(values[i * 4 + 3], uniform_bits) << i;
   }
-  glDeleteBuffers(1, &buffer);
-  glDeleteProgram(program);
-  glDeleteShader(shader);
 }
 
 struct ParityCase {
@@ -199,39 +183,27 @@ void main() {
       stochtex_texton(p, vec2(scale, 0.0), vec2(0.0, scale), 11u);
 }
 )glsl";
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  ASSERT_TRUE(ok);
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
+  const gl::Program program(source);
   GLuint texture = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &texture);
   glTextureStorage2D(texture, 1, GL_RGBA32F, atlas.width(), atlas.height());
   glTextureSubImage2D(texture, 0, 0, 0, atlas.width(), atlas.height(), GL_RGBA, GL_FLOAT,
                       atlas.pixels().data());
   glBindTextureUnit(0, texture);
-  glProgramUniform1i(program, glGetUniformLocation(program, "stochtex_texton_atlas"), 0);
+  program.set("stochtex_texton_atlas", 0);
   constexpr int kSize = 48;
   for (const double scale : {1.0, 3.0}) {
-    glProgramUniform1i(program, glGetUniformLocation(program, "width"), kSize);
-    glProgramUniform1f(program, glGetUniformLocation(program, "scale"), static_cast<float>(scale));
-    GLuint buffer = 0;
-    glCreateBuffers(1, &buffer);
-    glNamedBufferData(buffer, kSize * kSize * 4 * sizeof(float), nullptr, GL_DYNAMIC_READ);
-    glUseProgram(program);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer);
+    program.set("width", kSize);
+    program.set("scale", static_cast<float>(scale));
+    const gl::Buffer buffer(kSize * kSize * 4 * sizeof(float));
+    glUseProgram(program.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
     glDispatchCompute(kSize / 8, kSize / 8, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<float> values(kSize * kSize * 4);
-    glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(values.size() * sizeof(float)),
+    glGetNamedBufferSubData(buffer.id(), 0, static_cast<GLsizeiptr>(values.size() * sizeof(float)),
                             values.data());
     ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-    glDeleteBuffers(1, &buffer);
     const ImageF cpu = render_cpu(model, Grid{{0.0, 0.0}, scale, kSize, kSize}, 11);
     float worst = 0.0f;
     for (int y = 0; y < kSize; ++y)
@@ -245,8 +217,6 @@ void main() {
     EXPECT_LT(worst, 1e-4f) << "scale " << scale;
   }
   glDeleteTextures(1, &texture);
-  glDeleteProgram(program);
-  glDeleteShader(shader);
 }
 
 }  // namespace
