@@ -447,7 +447,7 @@ int run(int argc, char** argv) {
         for (const auto& method : methods()) {
           fmt::print("{}: {}\n", method.name, method.summary);
           for (const auto& p : method.params)
-            fmt::print("  -p {}={:<8} {}\n", p.name, p.default_value, p.help);
+            fmt::print("  -p {:<20} {}\n", fmt::format("{}={}", p.name, p.default_value), p.help);
         }
       }
     }
