@@ -20,7 +20,7 @@ struct GpuRenderOptions {
   bool filter = true;    // pass each pixel's footprint (scale) to the evaluator
 };
 
-// Methods the GL backend evaluates (texton so far).
+// Methods the GL backend evaluates (texton and tiling so far).
 bool gl_supports(std::string_view method);
 
 // A model made ready on the GPU: an OpenGL context, the compiled evaluator and the model's data,

@@ -49,10 +49,10 @@ Program::~Program() {
   glDeleteProgram(id_);
 }
 
-Buffer::Buffer(std::size_t bytes) {
+Buffer::Buffer(std::size_t bytes, const void* data) {
   glCreateBuffers(1, &id_);
-  glNamedBufferData(id_, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 4)), nullptr,
-                    GL_DYNAMIC_READ);
+  glNamedBufferData(id_, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 4)), data,
+                    data ? GL_STATIC_DRAW : GL_DYNAMIC_READ);
 }
 
 Buffer::~Buffer() {

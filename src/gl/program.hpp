@@ -41,10 +41,11 @@ class Program {
   GLuint id_ = 0;
 };
 
-// A shader storage buffer of `bytes` bytes, for results read back to the CPU.
+// A shader storage buffer of `bytes` bytes: filled with `data` (model data), or left for results
+// read back to the CPU when `data` is null.
 class Buffer {
  public:
-  explicit Buffer(std::size_t bytes);
+  explicit Buffer(std::size_t bytes, const void* data = nullptr);
   ~Buffer();
   Buffer(const Buffer&) = delete;
   Buffer& operator=(const Buffer&) = delete;

@@ -10,6 +10,7 @@
 #include "gl/program.hpp"
 #include "gl/shaders.hpp"
 #include "gl/texton_glsl.hpp"
+#include "gl/tiling_glsl.hpp"
 #include "methods/texton/evaluate.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/error.hpp"
@@ -22,9 +23,31 @@ using gl::Buffer;
 using gl::check_gl;
 using gl::Program;
 
+// One method's GPU state, made once per model: prepare() sets a render's uniforms, dispatch()
+// evaluates one tile of it into `result`. (A virtual call per dispatch, never per sample.)
+class Pass {
+ public:
+  virtual ~Pass() = default;
+  virtual void prepare(const Grid& grid, std::uint32_t seed, bool filter) const = 0;
+  virtual void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
+                        const Buffer& result) const = 0;
+};
+
+// Runs `program` over width x height pixels of the grid, writing into `result` (binding 1).
+void run_tile(const Program& program, std::int64_t first_x, std::int64_t first_y, int width,
+              int height, const Buffer& result) {
+  program.set2("first_pixel", static_cast<int>(first_x), static_cast<int>(first_y));
+  program.set2("dispatch_size", width, height);
+  glUseProgram(program.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, result.id());
+  glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8), 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  glUseProgram(0);
+}
+
 // The texton evaluator's GPU state: the program (compiled with the model's constants) and the
-// texel atlas, made once per model.
-class TextonPass {
+// texel atlas.
+class TextonPass final : public Pass {
  public:
   explicit TextonPass(const texton::TextonModel& model)
       : model_(model),
@@ -42,8 +65,7 @@ class TextonPass {
   TextonPass(const TextonPass&) = delete;
   TextonPass& operator=(const TextonPass&) = delete;
 
-  // Sets the per-render uniforms; then dispatch() runs one tile.
-  void prepare(const Grid& grid, std::uint32_t seed, bool filter) const {
+  void prepare(const Grid& grid, std::uint32_t seed, bool filter) const override {
     const int top_level = static_cast<int>(model_.pyramid().size()) - 1;
     const texton::FilterSetup setup =
         filter ? texton::filter_setup(Footprint{{grid.scale, 0.0}, {0.0, grid.scale}}, top_level)
@@ -69,18 +91,10 @@ class TextonPass {
     check_gl("setting the texton uniforms");
   }
 
-  // Evaluates the pixels [first, first + size) of the grid into `result` (size x channels).
   void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
-                const Buffer& result) const {
-    program_.set2("first_pixel", static_cast<int>(first_x), static_cast<int>(first_y));
-    program_.set2("dispatch_size", width, height);
-    glUseProgram(program_.id());
+                const Buffer& result) const override {
     glBindTextureUnit(0, atlas_);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, result.id());
-    glDispatchCompute(static_cast<GLuint>((width + 7) / 8), static_cast<GLuint>((height + 7) / 8),
-                      1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glUseProgram(0);
+    run_tile(program_, first_x, first_y, width, height, result);
   }
 
  private:
@@ -88,6 +102,59 @@ class TextonPass {
   gl::TextonGlsl glsl_;
   Program program_;
   GLuint atlas_ = 0;
+};
+
+// The tiling evaluator's GPU state: the program (compiled with the model's constants) and the
+// storage buffer of its pyramid and tables.
+class TilingPass final : public Pass {
+ public:
+  explicit TilingPass(const tiling::TilingModel& model)
+      : model_(model),
+        glsl_(gl::tiling_glsl(model)),
+        program_(std::string("#version 450\n") + gl::tiling_library_source(glsl_) +
+                 gl::kTilingRenderGlsl),
+        data_(glsl_.data.size() * sizeof(float), glsl_.data.data()) {
+    check_gl("uploading the tiling model");
+  }
+
+  void prepare(const Grid& grid, std::uint32_t seed, bool filter) const override {
+    const Footprint footprint{{grid.scale, 0.0}, {0.0, grid.scale}};
+    const tiling::LevelOfDetail lod = model_.level_of_detail(filter ? &footprint : nullptr);
+    // The origin's skewed lattice cell (low 32 bits, as cell_key takes them) and its fraction, and
+    // the origin modulo the period, formed in double as triangle_lattice and wrap_position do.
+    constexpr double kInverseSqrt3 = 0.57735026918962576;
+    const double edge = model_.lattice_edge();
+    const double skewed_x = (grid.origin.x - grid.origin.y * kInverseSqrt3) / edge;
+    const double skewed_y = (2.0 * kInverseSqrt3 * grid.origin.y) / edge;
+    const double cell_x = std::floor(skewed_x);
+    const double cell_y = std::floor(skewed_y);
+    const auto low_bits = [](double cell) {
+      return static_cast<unsigned>(static_cast<std::uint64_t>(static_cast<std::int64_t>(cell)));
+    };
+    const tiling::Point2f wrapped =
+        tiling::wrap_position(grid.origin, model_.data().width, model_.data().height);
+    program_.set2("origin_cell", low_bits(cell_x), low_bits(cell_y));
+    program_.set2("origin_skewed", static_cast<float>(skewed_x - cell_x),
+                  static_cast<float>(skewed_y - cell_y));
+    program_.set2("origin_wrapped", wrapped.x, wrapped.y);
+    program_.set("scale", static_cast<float>(grid.scale));
+    program_.set("seed", static_cast<unsigned>(seed));
+    program_.set("lod_level", lod.level);
+    program_.set("lod_blend", lod.blend);
+    check_gl("setting the tiling uniforms");
+  }
+
+  void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
+                const Buffer& result) const override {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data_.id());
+    run_tile(program_, first_x, first_y, width, height, result);
+  }
+
+ private:
+  const tiling::TilingModel& model_;
+  gl::TilingGlsl glsl_;
+  Program program_;
+  Buffer data_;
 };
 
 // How to use an exported shader (written as README.md beside it).
@@ -131,27 +198,30 @@ its own B-spline interpolation and footprint filtering, the same as the CPU refe
 }  // namespace
 
 bool gl_supports(std::string_view method) {
-  return method == texton::TextonModel::kMethodName;
+  return method == texton::TextonModel::kMethodName || method == tiling::TilingModel::kMethodName;
 }
 
 struct GlRenderer::Impl {
   gl::Context context;
   const Model model;
-  std::unique_ptr<TextonPass> texton;
+  std::unique_ptr<Pass> pass;
   GLuint timer = 0;
   double milliseconds = 0.0;
 
   explicit Impl(const Model& m) : model(m) {
     std::visit(
         [&](const auto& method_model) {
-          if constexpr (std::is_same_v<std::decay_t<decltype(method_model)>, texton::TextonModel>)
-            texton = std::make_unique<TextonPass>(method_model);
+          using Method = std::decay_t<decltype(method_model)>;
+          if constexpr (std::is_same_v<Method, texton::TextonModel>)
+            pass = std::make_unique<TextonPass>(method_model);
+          else if constexpr (std::is_same_v<Method, tiling::TilingModel>)
+            pass = std::make_unique<TilingPass>(method_model);
         },
         model.data().model);
     glCreateQueries(GL_TIME_ELAPSED, 1, &timer);
   }
   ~Impl() {
-    texton.reset();
+    pass.reset();
     glDeleteQueries(1, &timer);
   }
 };
@@ -163,7 +233,7 @@ const Model& checked_model(const Model& model) {
   if (!gl_supports(model.method()))
     throw Error(ErrorCode::invalid_input, "the gl backend does not evaluate method '" +
                                               std::string(model.method()) +
-                                              "' yet (only texton); use --backend cpu");
+                                              "' yet (texton and tiling only); use --backend cpu");
   return model;
 }
 
@@ -183,7 +253,7 @@ void GlRenderer::render(const Grid& grid, std::uint32_t seed, ImageView<float> o
       std::abs(grid.first_pixel_y) + grid.height > kMaxPixelIndex)
     throw std::invalid_argument(
         "render_gl: the region's pixel indices exceed 2^30; move the origin instead");
-  const TextonPass& pass = *impl_->texton;
+  const Pass& pass = *impl_->pass;
   pass.prepare(grid, seed, options.filter);
   const int tile_width = std::clamp(options.tile_size, 1, std::max(grid.width, 1));
   const int tile_height = std::clamp(options.tile_size, 1, std::max(grid.height, 1));
@@ -232,7 +302,7 @@ std::string gl_device_description() {
 
 ShaderExport export_shader(const Model& model) {
   if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
-  if (!gl_supports(model.method()))
+  if (model.method() != texton::TextonModel::kMethodName)
     throw Error(ErrorCode::invalid_input, "export-shader does not support method '" +
                                               std::string(model.method()) + "' yet (only texton)");
   const auto& texton_model = std::get<texton::TextonModel>(model.data().model);

@@ -7,5 +7,7 @@ namespace stochtex::gl {
 extern const char* const kRandomGlsl;        // src/gl/random.glsl
 extern const char* const kTextonGlsl;        // src/methods/texton/evaluate.glsl
 extern const char* const kTextonRenderGlsl;  // src/gl/texton_render.glsl
+extern const char* const kTilingGlsl;        // src/methods/tiling/evaluate.glsl
+extern const char* const kTilingRenderGlsl;  // src/gl/tiling_render.glsl
 
 }  // namespace stochtex::gl

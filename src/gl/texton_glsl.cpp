@@ -1,42 +1,12 @@
 #include "gl/texton_glsl.hpp"
 
-#include <array>
-#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "gl/glsl_text.hpp"
 #include "gl/shaders.hpp"
 
 namespace stochtex::gl {
-namespace {
-
-// A float as a GLSL literal that reads back as the same float: 9 significant digits identify a
-// float uniquely, and a decimal that close to it rounds to it even through a double. (GLSL has no
-// hexadecimal float literal, and not every compiler folds uintBitsToFloat in a const initialiser.)
-std::string exact(float value) {
-  std::array<char, 32> text{};
-  std::snprintf(text.data(), text.size(), "%.9g", static_cast<double>(value));
-  std::string literal(text.data());
-  if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
-  return literal;
-}
-
-template <typename T, typename Format>
-std::string array(const char* type, const char* name, const std::vector<T>& values, Format format) {
-  std::string text = "const " + std::string(type) + " " + name + "[" +
-                     std::to_string(values.size()) + "] = " + type + "[](";
-  for (std::size_t i = 0; i < values.size(); ++i) text += (i == 0 ? "" : ", ") + format(values[i]);
-  return text + ");\n";
-}
-
-std::string vec4_of(std::span<const float> values) {
-  std::string text = "vec4(";
-  for (std::size_t c = 0; c < 4; ++c)
-    text += (c == 0 ? "" : ", ") + exact(c < values.size() ? values[c] : 0.0f);
-  return text + ")";
-}
-
-}  // namespace
 
 TextonGlsl texton_glsl(const texton::TextonModel& model) {
   const auto& pyramid = model.pyramid();
@@ -65,23 +35,25 @@ TextonGlsl texton_glsl(const texton::TextonModel& model) {
                                       static_cast<std::size_t>(c)];
 
   const auto& cdf = model.cell_count().cdf();
-  const auto as_int = [](int v) { return std::to_string(v); };
   std::string& text = glsl.constants;
   text += "const int TEXTON_CHANNELS = " + std::to_string(channels) + ";\n";
   text += "const int TEXTON_ORDER = " + std::to_string(model.order()) + ";\n";
-  text += "const float TEXTON_CELL_SIZE = " + exact(static_cast<float>(model.cell_size())) + ";\n";
-  text += array("float", "TEXTON_POISSON_CDF", std::vector<float>(cdf.begin(), cdf.end()), exact);
+  text +=
+      "const float TEXTON_CELL_SIZE = " + glsl_float(static_cast<float>(model.cell_size())) + ";\n";
+  text += glsl_array("float", "TEXTON_POISSON_CDF", std::span<const float>(cdf), glsl_float);
   text +=
       "const uint TEXTON_POISSON_CHUNKS = " + std::to_string(model.cell_count().chunks()) + "u;\n";
-  text += "const float TEXTON_INVERSE_SQRT_INTENSITY = " + exact(model.inverse_sqrt_intensity()) +
-          ";\n";
-  text += "const vec4 TEXTON_CONSTANT_TERM = " + vec4_of(model.constant_term()) + ";\n";
-  text += "const vec4 TEXTON_MEAN = " + vec4_of(model.mean()) + ";\n";
+  text +=
+      "const float TEXTON_INVERSE_SQRT_INTENSITY = " + glsl_float(model.inverse_sqrt_intensity()) +
+      ";\n";
+  text += "const vec4 TEXTON_CONSTANT_TERM = " + glsl_vec4(model.constant_term()) + ";\n";
+  text += "const vec4 TEXTON_MEAN = " + glsl_vec4(model.mean()) + ";\n";
   text += "const int TEXTON_LEVELS = " + std::to_string(pyramid.size()) + ";\n";
-  text += array("int", "TEXTON_LEVEL_ROW", rows, as_int);
-  text += array("float", "TEXTON_LEVEL_SPACING", spacing, exact);
-  text += array("float", "TEXTON_LEVEL_FIRST_TEXEL", first, exact);
-  text += array("float", "TEXTON_LEVEL_HALF_WIDTH", half, exact);
+  text += glsl_array("int", "TEXTON_LEVEL_ROW", std::span<const int>(rows), glsl_int);
+  text += glsl_array("float", "TEXTON_LEVEL_SPACING", std::span<const float>(spacing), glsl_float);
+  text +=
+      glsl_array("float", "TEXTON_LEVEL_FIRST_TEXEL", std::span<const float>(first), glsl_float);
+  text += glsl_array("float", "TEXTON_LEVEL_HALF_WIDTH", std::span<const float>(half), glsl_float);
   return glsl;
 }
 

@@ -216,6 +216,9 @@ fi
 # The OpenGL backend (llvmpipe without a GPU): same grid and seed, same picture as the CPU.
 expect_ok "render --backend gl" "$stochtex" render "$model" -o "$models/gl.png" --size 48x40 \
   --seed 5 --backend gl && expect_file "render --backend gl writes the image" "$models/gl.png"
+expect_ok "render tiling --backend gl" "$stochtex" synth "$exemplar" -m tiling -p transport=1 \
+  -o "$models/tiling_gl.png" --size 40x32 --backend gl &&
+  expect_file "synth tiling --backend gl writes the image" "$models/tiling_gl.png"
 expect_parse_error "unknown backend" "$stochtex" render "$model" -o "$out/x.png" "${size[@]}" \
   --backend vulkan
 expect_error "--supersample with --backend gl" 2 "--supersample" \

@@ -83,6 +83,19 @@ class TilingModel {
   double lattice_edge() const { return edge_; }
   int level_count() const { return static_cast<int>(levels_.size()); }
   MipLevel level(int index) const;
+  // T^-1 prefiltered for pyramid level `index`: the 3-D table and the 1-D tables, each empty when
+  // the model has none (no T^-1 at all for the variance and linear blends). For the GLSL twin of
+  // the evaluator (src/gl).
+  std::span<const float> level_lut(int index) const {
+    const auto i = static_cast<std::size_t>(index);
+    return i < level_luts_.size() ? std::span<const float>(level_luts_[i])
+                                  : std::span<const float>();
+  }
+  std::span<const float> level_tables(int index) const {
+    const auto i = static_cast<std::size_t>(index);
+    return i < level_tables_.size() ? std::span<const float>(level_tables_[i])
+                                    : std::span<const float>();
+  }
 
   // Algorithm 1 at each position, filtered by the footprint when it is wider than a pixel.
   // noexcept, no allocation.

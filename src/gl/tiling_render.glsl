@@ -1,0 +1,30 @@
+// The compute shader of `render --backend gl` for histogram-preserving tiling and blending: one
+// invocation per output pixel. Requires random.glsl, the model's constants and tiling
+// evaluate.glsl.
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 1) writeonly buffer Result { float result[]; };
+
+uniform ivec2 first_pixel;    // grid.first_pixel + the dispatch's offset
+uniform ivec2 dispatch_size;
+uniform uvec2 origin_cell;    // low 32 bits of the skewed lattice cell of the grid origin
+uniform vec2 origin_skewed;   // the origin's position in that cell, skewed lattice units
+uniform vec2 origin_wrapped;  // the origin modulo the exemplar's period
+uniform float scale;
+uniform uint seed;
+// The grid's footprint gives one level of detail for the render (level_of_detail in C++).
+uniform int lod_level;
+uniform float lod_blend;
+
+void main() {
+  ivec2 local_pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (local_pixel.x >= dispatch_size.x || local_pixel.y >= dispatch_size.y) return;
+  vec2 p = scale * (vec2(first_pixel + local_pixel) + 0.5);
+  vec2 skewed = origin_skewed + vec2(p.x - p.y * TILING_INVERSE_SQRT3,
+                                     2.0 * TILING_INVERSE_SQRT3 * p.y) / TILING_EDGE;
+  vec4 g = tiling_blended_gaussian(skewed, origin_cell, origin_wrapped + p, seed, lod_level,
+                                   lod_blend);
+  vec4 value = tiling_inverse(g, lod_level, lod_blend);
+  int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * TILING_CHANNELS;
+  for (int c = 0; c < TILING_CHANNELS; ++c) result[index + c] = value[c];
+}
