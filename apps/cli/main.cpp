@@ -168,7 +168,7 @@ void add_render_options(CLI::App* command, RenderSettings& settings, bool size_r
       ->check(CLI::IsMember({8, 16}));
   command
       ->add_option("--backend", settings.backend,
-                   "cpu (the reference) or gl (OpenGL 4.5 compute, headless; texton and tiling)")
+                   "cpu (the reference) or gl (OpenGL 4.5 compute, headless; texton, tiling, lrp)")
       ->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
 }

@@ -6,7 +6,9 @@
 #include <variant>
 #include <vector>
 
+#include "core/hash.hpp"
 #include "gl/context.hpp"
+#include "gl/lrp_glsl.hpp"
 #include "gl/program.hpp"
 #include "gl/shaders.hpp"
 #include "gl/texton_glsl.hpp"
@@ -157,6 +159,67 @@ class TilingPass final : public Pass {
   Buffer data_;
 };
 
+// The LRP evaluator's GPU state: the program (compiled with the model's constants) and the
+// frequency and sub-stratum tables.
+class LrpPass final : public Pass {
+ public:
+  explicit LrpPass(const lrp::LrpModel& model)
+      : model_(model),
+        glsl_(gl::lrp_glsl(model)),
+        program_(std::string("#version 450\n") + gl::lrp_library_source(glsl_) +
+                 gl::kLrpRenderGlsl),
+        frequencies_(glsl_.frequencies.size() * sizeof(float), glsl_.frequencies.data()),
+        substrata_(glsl_.substrata.size() * sizeof(std::uint32_t), glsl_.substrata.data()) {
+    check_gl("uploading the lrp model");
+  }
+
+  void prepare(const Grid& grid, std::uint32_t seed, bool filter) const override {
+    // Per stratum, as the CPU evaluator: the nearest lattice node of the origin (in double) and
+    // the stratum's stream cell_key(channel, stratum, seed, phases).
+    const lrp::LrpData& d = model_.data();
+    const std::size_t strata = d.strata_table.size();
+    std::vector<GLuint> nodes(2 * strata);
+    std::vector<float> offsets(2 * strata);
+    std::vector<GLuint> seeds(strata);
+    for (std::size_t s = 0; s < strata; ++s) {
+      const double inverse_spacing = 1.0 / static_cast<double>(d.strata_table[s].spacing);
+      const double u = grid.origin.x * inverse_spacing;
+      const double v = grid.origin.y * inverse_spacing;
+      const double node_x = std::floor(u + 0.5);
+      const double node_y = std::floor(v + 0.5);
+      nodes[2 * s] =
+          static_cast<GLuint>(static_cast<std::uint64_t>(static_cast<std::int64_t>(node_x)));
+      nodes[2 * s + 1] =
+          static_cast<GLuint>(static_cast<std::uint64_t>(static_cast<std::int64_t>(node_y)));
+      offsets[2 * s] = static_cast<float>(u - node_x);
+      offsets[2 * s + 1] = static_cast<float>(v - node_y);
+      seeds[s] = cell_key(static_cast<std::int64_t>(s) / d.strata,
+                          static_cast<std::int64_t>(s) % d.strata, seed, Stream::phases);
+    }
+    const auto count = static_cast<GLsizei>(strata);
+    glProgramUniform2uiv(program_.id(), program_.location("origin_node"), count, nodes.data());
+    glProgramUniform2fv(program_.id(), program_.location("origin_offset"), count, offsets.data());
+    glProgramUniform1uiv(program_.id(), program_.location("stratum_seed"), count, seeds.data());
+    program_.set("scale", static_cast<float>(grid.scale));
+    program_.set("filtered", filter ? 1 : 0);
+    check_gl("setting the lrp uniforms");
+  }
+
+  void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
+                const Buffer& result) const override {
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frequencies_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, substrata_.id());
+    run_tile(program_, first_x, first_y, width, height, result);
+  }
+
+ private:
+  const lrp::LrpModel& model_;
+  gl::LrpGlsl glsl_;
+  Program program_;
+  Buffer frequencies_;
+  Buffer substrata_;
+};
+
 // How to use an exported shader (written as README.md beside it).
 constexpr const char* kExportReadme = R"md(# stochtex texton noise shader
 
@@ -198,7 +261,8 @@ its own B-spline interpolation and footprint filtering, the same as the CPU refe
 }  // namespace
 
 bool gl_supports(std::string_view method) {
-  return method == texton::TextonModel::kMethodName || method == tiling::TilingModel::kMethodName;
+  return method == texton::TextonModel::kMethodName || method == tiling::TilingModel::kMethodName ||
+         method == lrp::LrpModel::kMethodName;
 }
 
 struct GlRenderer::Impl {
@@ -216,6 +280,8 @@ struct GlRenderer::Impl {
             pass = std::make_unique<TextonPass>(method_model);
           else if constexpr (std::is_same_v<Method, tiling::TilingModel>)
             pass = std::make_unique<TilingPass>(method_model);
+          else if constexpr (std::is_same_v<Method, lrp::LrpModel>)
+            pass = std::make_unique<LrpPass>(method_model);
         },
         model.data().model);
     glCreateQueries(GL_TIME_ELAPSED, 1, &timer);
@@ -231,9 +297,9 @@ namespace {
 const Model& checked_model(const Model& model) {
   if (model.empty()) throw std::invalid_argument("GlRenderer: the model is empty");
   if (!gl_supports(model.method()))
-    throw Error(ErrorCode::invalid_input, "the gl backend does not evaluate method '" +
-                                              std::string(model.method()) +
-                                              "' yet (texton and tiling only); use --backend cpu");
+    throw Error(ErrorCode::invalid_input,
+                "the gl backend does not evaluate method '" + std::string(model.method()) +
+                    "' yet (texton, tiling and lrp only); use --backend cpu");
   return model;
 }
 

@@ -9,5 +9,7 @@ extern const char* const kTextonGlsl;        // src/methods/texton/evaluate.glsl
 extern const char* const kTextonRenderGlsl;  // src/gl/texton_render.glsl
 extern const char* const kTilingGlsl;        // src/methods/tiling/evaluate.glsl
 extern const char* const kTilingRenderGlsl;  // src/gl/tiling_render.glsl
+extern const char* const kLrpGlsl;           // src/methods/lrp/evaluate.glsl
+extern const char* const kLrpRenderGlsl;     // src/gl/lrp_render.glsl
 
 }  // namespace stochtex::gl

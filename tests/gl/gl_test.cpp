@@ -137,34 +137,41 @@ TEST(Gl, TextonMatchesTheCpuReference) {
   }
 }
 
-TEST(Gl, TilingMatchesTheCpuReference) {
-  // Tolerance as for texton; here GLSL's erf is Abramowitz-Stegun 7.1.26 (error 1.5e-7, the C++
-  // uses std::erf) before the table look-up: measured maximum 1e-5 over these cases.
-  struct Case {
-    const char* exemplar;
-    ParamValues params;
-    Grid grid;
-  };
-  const std::vector<Case> cases = {
-      {"red_fleece_128.png", {}, {{0.0, 0.0}, 1.0, 80, 70}},
-      {"red_fleece_128.png", {{"transport", 1}}, {{1e7, -3e6}, 3.0, 60, 50}},
-      {"metal_grey_256.png", {}, {{-77.5, 12.0}, 0.5, 64, 64}},
-      {"metal_grey_256.png", {}, {{5.0, 5.0}, 8.0, 40, 40}},
-      {"red_fleece_128.png", {{"blend", 1}}, {{3.0, 4.0}, 2.0, 50, 50}},
+struct MethodCase {
+  const char* method;
+  const char* exemplar;
+  ParamValues params;
+  Grid grid;
+  bool filter = true;
+};
+
+// Tolerance as for texton (TextonMatchesTheCpuReference). tiling: GLSL's erf is Abramowitz-Stegun
+// 7.1.26 (error 1.5e-7; the C++ uses std::erf) before the table look-up; lrp: the same polynomial
+// cosine and window in both. Measured maxima 1e-5 and 2e-6 over these cases.
+TEST(Gl, TilingAndLrpMatchTheCpuReference) {
+  const std::vector<MethodCase> cases = {
+      {"tiling", "red_fleece_128.png", {}, {{0.0, 0.0}, 1.0, 80, 70}},
+      {"tiling", "red_fleece_128.png", {{"transport", 1}}, {{1e7, -3e6}, 3.0, 60, 50}},
+      {"tiling", "metal_grey_256.png", {}, {{-77.5, 12.0}, 0.5, 64, 64}},
+      {"tiling", "metal_grey_256.png", {}, {{5.0, 5.0}, 8.0, 40, 40}},
+      {"tiling", "red_fleece_128.png", {{"blend", 1}}, {{3.0, 4.0}, 2.0, 50, 50}},
+      {"lrp", "red_fleece_128.png", {{"cosines", 20}}, {{0.0, 0.0}, 1.0, 48, 40}},
+      {"lrp", "metal_grey_256.png", {{"cosines", 10}}, {{1e7, -3e6}, 4.0, 40, 40}},
+      {"lrp", "metal_grey_256.png", {{"cosines", 10}}, {{-9.5, 2.0}, 2.0, 40, 40}, false},
   };
   for (const auto& c : cases) {
     const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
-    const Model model = analyze("tiling", exemplar.view(), c.params, 0);
-    const ImageF cpu = render_cpu(model, c.grid, 9);
-    const ImageF gpu = render_gpu(model, c.grid, 9);
+    const Model model = analyze(c.method, exemplar.view(), c.params, 0);
+    const ImageF cpu = render_cpu(model, c.grid, 9, c.filter);
+    const ImageF gpu = render_gpu(model, c.grid, 9, 4096, c.filter);
     float worst = 0.0f;
     for (std::size_t i = 0; i < cpu.pixels().size(); ++i)
       worst = std::max(worst, std::abs(cpu.pixels()[i] - gpu.pixels()[i]));
-    std::cout << "tiling " << c.exemplar << " scale " << c.grid.scale
+    std::cout << c.method << " " << c.exemplar << " scale " << c.grid.scale
               << ": max |cpu - gl| = " << worst << "\n";
-    EXPECT_LT(worst, 1e-4f) << c.exemplar << " scale " << c.grid.scale;
+    EXPECT_LT(worst, 1e-4f) << c.method << " " << c.exemplar << " scale " << c.grid.scale;
     // Dispatch tiles change nothing on this backend either.
-    EXPECT_TRUE(same_bytes(gpu, render_gpu(model, c.grid, 9, 16)));
+    EXPECT_TRUE(same_bytes(gpu, render_gpu(model, c.grid, 9, 16, c.filter)));
   }
 }
 

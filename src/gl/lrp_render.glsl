@@ -1,0 +1,33 @@
+// The compute shader of `render --backend gl` for local random-phase noise: one invocation per
+// output pixel. Requires random.glsl, the model's constants and lrp evaluate.glsl.
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 1) writeonly buffer Result { float result[]; };
+
+uniform ivec2 first_pixel;  // grid.first_pixel + the dispatch's offset
+uniform ivec2 dispatch_size;
+uniform float scale;
+uniform bool filtered;
+// Per stratum: the lattice node nearest the grid origin (low 32 bits), the origin's position
+// relative to it in lattice units, and the stratum's random stream.
+uniform uvec2 origin_node[LRP_STRATA_TOTAL];
+uniform vec2 origin_offset[LRP_STRATA_TOTAL];
+uniform uint stratum_seed[LRP_STRATA_TOTAL];
+
+void main() {
+  ivec2 local_pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (local_pixel.x >= dispatch_size.x || local_pixel.y >= dispatch_size.y) return;
+  vec2 p = scale * (vec2(first_pixel + local_pixel) + 0.5);
+  vec2 axis_a = filtered ? vec2(scale, 0.0) : vec2(0.0);
+  vec2 axis_b = filtered ? vec2(0.0, scale) : vec2(0.0);
+  vec4 noise = vec4(0.0);
+  for (int s = 0; s < LRP_STRATA_TOTAL; ++s) {
+    if (LRP_STRATUM_AMPLITUDE[s] == 0.0) continue;
+    vec2 u = origin_offset[s] + p / LRP_STRATUM_SPACING[s];
+    noise[LRP_STRATUM_CHANNEL[s]] += lrp_stratum_noise(s, u, origin_node[s], stratum_seed[s],
+                                                       filtered, axis_a, axis_b);
+  }
+  vec4 value = lrp_colour(noise);
+  int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * LRP_CHANNELS;
+  for (int c = 0; c < LRP_CHANNELS; ++c) result[index + c] = value[c];
+}

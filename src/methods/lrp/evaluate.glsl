@@ -1,0 +1,96 @@
+// Local random-phase noise in GLSL: the twin of LrpModel::evaluate_typed (model.cpp,
+// evaluate.hpp, window.hpp), same lattices, same draws, same polynomial cosine and window.
+// Requires random.glsl, then the model's constants (lrp_glsl() in src/gl writes them) and the
+// storage buffers `lrp_frequencies` (f_x, f_y pairs) and `lrp_substrata` (first, count pairs).
+
+layout(std430, binding = 0) readonly buffer LrpFrequencies { float lrp_frequencies[]; };
+layout(std430, binding = 2) readonly buffer LrpSubstrata { uint lrp_substrata[]; };
+
+const uint STREAM_PHASES = 0x7f4a7c15u;
+
+// cos(2 pi t), t in turns (cos_turns).
+float lrp_cos_turns(float t) {
+  t -= float(int(t));
+  t = abs(t);
+  t = t > 0.5 ? 1.0 - t : t;
+  float sign = t > 0.25 ? -1.0 : 1.0;
+  t = t > 0.25 ? 0.5 - t : t;
+  float x = 6.283185307179586 * t;
+  float x2 = x * x;
+  float p = 1.0 + x2 * (-1.0 / 2.0 +
+                        x2 * (1.0 / 24.0 +
+                              x2 * (-1.0 / 720.0 +
+                                    x2 * (1.0 / 40320.0 +
+                                          x2 * (-1.0 / 3628800.0 + x2 * (1.0 / 479001600.0))))));
+  return sign * p;
+}
+
+// Frequency clamping, section 6.4 (clamp_weight).
+float lrp_clamp_weight(float cycles) { return clamp((1.0 - cycles) * 2.0, 0.0, 1.0); }
+
+// The Kaiser-Bessel window at squared distance r2 in lattice units (window_from_square).
+float lrp_window(float r2) {
+  float t = 1.0 - r2 * (1.0 / 2.25);
+  if (t <= 0.0) return 0.0;
+  float sum = LRP_WINDOW[19];
+  for (int m = 18; m >= 0; --m) sum = sum * t + LRP_WINDOW[m];
+  return sum * t * sqrt(t);
+}
+
+// One stratum's noise at `u`, the position in lattice units relative to the lattice node
+// `origin_node` (low 32 bits; formed on the CPU in double for the far part). `axis_a`, `axis_b`:
+// the footprint's axes in exemplar pixels, zero for point samples.
+float lrp_stratum_noise(int s, vec2 u, uvec2 origin_node, uint stratum_seed, bool filtered,
+                        vec2 axis_a, vec2 axis_b) {
+  vec2 node = floor(u + 0.5);
+  vec2 offset = u - node;
+  float spacing = LRP_STRATUM_SPACING[s];
+  float sum = 0.0;
+  float window_square = 0.0;
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      float rx = offset.x - float(dx);
+      float ry = offset.y - float(dy);
+      float w = lrp_window(rx * rx + ry * ry);
+      if (w <= 0.0) continue;
+      float px = rx * spacing;
+      float py = ry * spacing;
+      uvec2 cell = origin_node + uvec2(ivec2(node) + ivec2(dx, dy));
+      CounterRng rng = CounterRng(cell_key(cell.x, cell.y, stratum_seed, STREAM_PHASES), 0u);
+      float local = 0.0;
+      for (int j = 0; j < LRP_STRATUM_COSINES[s]; ++j) {
+        uint draw = rng_next(rng);
+        int k = LRP_STRATUM_FIRST[s] + j;
+        uint high;
+        uint low;
+        umulExtended(draw & 0xfffffu, lrp_substrata[2 * k + 1], high, low);
+        uint pick = lrp_substrata[2 * k] + ((high << 12u) | (low >> 20u));
+        float fx = lrp_frequencies[2 * pick];
+        float fy = lrp_frequencies[2 * pick + 1];
+        float phase = float(draw >> 20u) * (1.0 / 4096.0);
+        float c = lrp_cos_turns(fx * px + fy * py + phase);
+        if (filtered) {
+          float along_a = abs(fx * axis_a.x + fy * axis_a.y);
+          float along_b = abs(fx * axis_b.x + fy * axis_b.y);
+          c *= lrp_clamp_weight(along_a > along_b ? along_a : along_b);
+        }
+        local += c;
+      }
+      sum += w * local;
+      window_square += w * w;
+    }
+  }
+  float scale = LRP_STRATUM_AMPLITUDE[s];
+  if (LRP_NORMALISE_ENVELOPE) scale *= sqrt(LRP_MEAN_ENVELOPE / window_square);
+  return scale * sum;
+}
+
+// mean + basis * noise (equation 2 in the decorrelated colour space).
+vec4 lrp_colour(vec4 noise) {
+  vec4 value = vec4(0.0);
+  for (int c = 0; c < LRP_CHANNELS; ++c) {
+    value[c] = LRP_MEAN[c];
+    for (int k = 0; k < LRP_CHANNELS; ++k) value[c] += LRP_BASIS[c * LRP_CHANNELS + k] * noise[k];
+  }
+  return value;
+}
