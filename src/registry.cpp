@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "methods/gabor/analysis.hpp"
+#include "methods/gabor/params.hpp"
 #include "methods/lrp/analysis.hpp"
 #include "methods/lrp/params.hpp"
 #include "methods/texton/analysis.hpp"
@@ -48,6 +50,13 @@ const std::array kMethods = {
                  lrp::kParams},
                 [](ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
                   return MethodModel(lrp::analyze(exemplar, params, seed));
+                }},
+    MethodEntry{{gabor::GaborModel::kMethodName,
+                 "Gabor noise by example (Galerne, Lagae, Lefebvre, Drettakis 2012): a sparse sum "
+                 "of bandwidth-quantised Gaussians fitted to the spectrum, ~2N kernels per sample",
+                 gabor::kParams},
+                [](ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
+                  return MethodModel(gabor::analyze(exemplar, params, seed));
                 }},
 };
 

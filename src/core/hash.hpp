@@ -40,6 +40,7 @@ enum class Stream : std::uint32_t {
   phases = 0x7f4a7c15u,
   offsets = 0x85ebca6bu,
   analysis = 0xc2b2ae35u,  // white noise of the analyses (ADSN, texton initialisation)
+  kernels = 0x165667b1u,   // Gabor noise: per-grid seeds and kernel parameters (alias, phase)
 };
 
 // The key of lattice cell (x, y) for a seed and a stream. Cell coordinates are 64-bit signed

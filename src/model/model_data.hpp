@@ -5,6 +5,7 @@
 #include <string>
 #include <variant>
 
+#include "methods/gabor/model.hpp"
 #include "methods/lrp/model.hpp"
 #include "methods/texton/model.hpp"
 #include "methods/tiling/model.hpp"
@@ -12,7 +13,8 @@
 
 namespace stochtex {
 
-using MethodModel = std::variant<texton::TextonModel, tiling::TilingModel, lrp::LrpModel>;
+using MethodModel =
+    std::variant<texton::TextonModel, tiling::TilingModel, lrp::LrpModel, gabor::GaborModel>;
 
 struct ModelData {
   ParamValues params;

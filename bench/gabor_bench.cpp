@@ -1,0 +1,111 @@
+// Gabor noise by example costs (DESIGN.md section 10): analysis time for 128² and 256² exemplars
+// (the paper's Matlab takes about 2 minutes for 128² grey, section 9.1), and evaluation cost per
+// sample against the impulse budget N (the paper: roughly linear in N), point-sampled and with
+// scale-8 footprints, on one thread through the batch `evaluate`.
+
+#include <benchmark/benchmark.h>
+
+#include <cstdint>
+#include <exception>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "bench_support.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace {
+
+using namespace stochtex;
+using namespace stochtex::bench;
+
+constexpr int kSide = 128;
+constexpr std::int64_t kSamples = std::int64_t{kSide} * kSide;
+constexpr std::uint32_t kSeed = 7;
+
+void analysis(benchmark::State& state, const std::string& name) {
+  ImageF exemplar;
+  try {
+    exemplar = crop_top_left(corpus_image(name), static_cast<int>(state.range(0)));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  for (auto _ : state) {
+    Model model = analyze("gabor", exemplar.view(), {}, 0);
+    benchmark::DoNotOptimize(model);
+  }
+}
+
+void BM_GaborAnalysisGrey(benchmark::State& state) {
+  analysis(state, "sand_height_grey_512.png");
+}
+BENCHMARK(BM_GaborAnalysisGrey)
+    ->ArgName("side")
+    ->Arg(128)
+    ->Arg(256)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+void BM_GaborAnalysisColour(benchmark::State& state) {
+  analysis(state, "moss_ground_512.png");
+}
+BENCHMARK(BM_GaborAnalysisColour)
+    ->ArgName("side")
+    ->Arg(128)
+    ->Arg(256)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// One model per budget, analysed once from the 128² colour crop and shared.
+const Model& model_with_budget(int impulses) {
+  static std::map<int, Model> cache;
+  auto found = cache.find(impulses);
+  if (found == cache.end()) {
+    const ImageF exemplar = crop_top_left(colour_exemplar(), 128);
+    found = cache.emplace(impulses, analyze("gabor", exemplar.view(), {{"impulses", impulses}}, 0))
+                .first;
+  }
+  return found->second;
+}
+
+void evaluate_batch(benchmark::State& state, double scale, bool filtered) {
+  const Model* model = nullptr;
+  try {
+    model = &model_with_budget(static_cast<int>(state.range(0)));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  std::vector<Vec2d> positions;
+  for (int j = 0; j < kSide; ++j)
+    for (int i = 0; i < kSide; ++i) positions.push_back({scale * (i + 0.5), scale * (j + 0.5)});
+  std::vector<Footprint> footprints;
+  if (filtered) footprints.assign(positions.size(), Footprint{{scale, 0.0}, {0.0, scale}});
+  ImageF out(kSide * kSide, 1, model->channels());
+  time_samples(state, kSamples,
+               [&] { evaluate(*model, positions, footprints, kSeed, out.view()); });
+}
+
+void BM_GaborEvaluatePoint(benchmark::State& state) {
+  evaluate_batch(state, 1.0, false);
+}
+BENCHMARK(BM_GaborEvaluatePoint)
+    ->ArgName("impulses")
+    ->Arg(64)
+    ->Arg(256)
+    ->Arg(1024)
+    ->Arg(4096)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+void BM_GaborEvaluateFiltered8(benchmark::State& state) {
+  evaluate_batch(state, 8.0, true);
+}
+BENCHMARK(BM_GaborEvaluateFiltered8)
+    ->ArgName("impulses")
+    ->Arg(1024)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace

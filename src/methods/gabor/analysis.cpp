@@ -1,0 +1,604 @@
+#include "methods/gabor/analysis.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "methods/gabor/params.hpp"
+#include "spectral/periodic.hpp"
+#include "stochtex/error.hpp"
+
+namespace stochtex::gabor {
+namespace {
+
+using Complex = std::complex<float>;
+constexpr double kPi = std::numbers::pi;
+// Power iterations for ||S_n||^2; the estimate approaches from below, so the FISTA step uses a
+// 10% margin (a too long step can diverge, a slightly short one only slows down).
+constexpr int kPowerIterations = 30;
+constexpr double kLipschitzMargin = 1.1;
+// FISTA checks the duality gap every this many iterations (a check costs one more S_n S_n^T).
+constexpr int kGapCheckInterval = 10;
+constexpr double kIntermediateGapFactor = 5.0;
+// Lags |xi|_inf <= 4 of the lagged correlation matrices (section 7): 81 matrices. Longer lags of a
+// 128^2 exemplar carry mostly estimation noise.
+constexpr int kMaxLag = 4;
+
+double dot(std::span<const float> a, std::span<const float> b) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) sum += static_cast<double>(a[i]) * b[i];
+  return sum;
+}
+
+Eigen::MatrixXd to_eigen(const Matrix& m, int n) {
+  Eigen::MatrixXd result(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) result(i, j) = m[static_cast<std::size_t>(i) * n + j];
+  return result;
+}
+
+Matrix from_eigen(const Eigen::MatrixXd& m) {
+  const auto n = static_cast<int>(m.rows());
+  Matrix result(static_cast<std::size_t>(n) * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) result[static_cast<std::size_t>(i) * n + j] = m(i, j);
+  return result;
+}
+
+// Step of band b's sub-grid (section 5.3): about half the band's FWHM of 2^-b * size bins, so
+// neighbouring Gaussians overlap at half height, and a power of two that divides the size so the
+// band can be transformed on the coarse grid alone.
+int grid_step(int size, int band) {
+  const double target = std::ldexp(static_cast<double>(size), -band) / 2.0;
+  int step = 1;
+  while (2 * step <= target && size % (2 * step) == 0) step *= 2;
+  return step;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Dictionary (eq. 7)
+
+GaussianDictionary::GaussianDictionary(int width, int height)
+    : width_(width), height_(height), fft_(std::make_unique<Fft2d>(width, height)) {
+  const int longest = std::max(width, height);
+  const std::size_t plane = plane_size();
+  work_spectrum_.resize(fft_->spectrum_size());
+  sum_spectrum_.resize(fft_->spectrum_size());
+  // Band b has a FWHM of 2^-b cycles per pixel = 2^-b * size bins (section 4.3); the narrowest
+  // band kept spans one bin of the longer side.
+  for (int b = 0; b < kMaxBands && std::ldexp(static_cast<double>(longest), -b) >= 1.0; ++b) {
+    Band band;
+    band.band = b;
+    const double sigma = bandwidth(b) / (2.0 * std::sqrt(kPi));  // cycles per pixel (eq. 3)
+    const int step_x = grid_step(width, b);
+    const int step_y = grid_step(height, b);
+    band.step_x = step_x;
+    band.step_y = step_y;
+    if (step_x > 1 || step_y > 1) {
+      band.coarse_fft = std::make_unique<Fft2d>(width / step_x, height / step_y);
+      band.coarse_plane.resize(band.coarse_fft->image_size());
+      band.coarse_spectrum.resize(band.coarse_fft->spectrum_size());
+      band.coarse_row.resize(band.coarse_fft->image_size());
+    }
+    band.mask.assign(plane, 0.0f);
+    band.kernel.assign(plane, 0.0f);
+    double squared = 0.0;
+    for (int y = 0; y < height; ++y) {
+      const int signed_y = y <= height / 2 ? y : y - height;
+      for (int x = 0; x < width; ++x) {
+        const int signed_x = x <= width / 2 ? x : x - width;
+        // The steps divide the sizes: the sub-grid is symmetric under m -> -m, so symmetric
+        // iterates stay symmetric.
+        if (x % step_x == 0 && y % step_y == 0)
+          band.mask[static_cast<std::size_t>(y) * width + x] = 1.0f;
+        double value = 0.0;
+        for (int ky = -2; ky <= 2; ++ky)
+          for (int kx = -2; kx <= 2; ++kx) {
+            const double fx = (signed_x + kx * width) / static_cast<double>(width);
+            const double fy = (signed_y + ky * height) / static_cast<double>(height);
+            value += std::exp(-(fx * fx + fy * fy) / (2.0 * sigma * sigma));
+          }
+        band.kernel[static_cast<std::size_t>(y) * width + x] = static_cast<float>(value);
+        squared += value * value;
+      }
+    }
+    const double norm = std::sqrt(squared);
+    band.mass = 0.0;
+    for (float& v : band.kernel) {
+      v = static_cast<float>(v / norm);
+      band.mass += v;
+    }
+    fft_->forward(band.kernel, work_spectrum_);
+    band.kernel_spectrum.resize(work_spectrum_.size());
+    for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
+      band.kernel_spectrum[i] = work_spectrum_[i].real();
+    bands_.push_back(std::move(band));
+  }
+}
+
+// A band on a sub-grid of steps (sx, sy) is an upsampled image of (W / sx) x (H / sy) values:
+// its DFT is the coarse DFT repeated sx x sy times, and decimating a full image to the sub-grid
+// folds its DFT onto the coarse one. So a sub-sampled band costs a coarse FFT, not a full one.
+void GaussianDictionary::apply(const std::vector<std::vector<float>>& alpha,
+                               std::vector<float>& spectrum) const {
+  std::fill(sum_spectrum_.begin(), sum_spectrum_.end(), Complex(0.0f, 0.0f));
+  const int half = width_ / 2 + 1;
+  for (std::size_t b = 0; b < bands_.size(); ++b) {
+    const Band& band = bands_[b];
+    const std::vector<float>& kernel = band.kernel_spectrum;
+    if (!band.coarse_fft) {
+      fft_->forward(alpha[b], work_spectrum_);
+      for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
+        sum_spectrum_[i] += work_spectrum_[i] * kernel[i];
+      continue;
+    }
+    const int coarse_width = width_ / band.step_x;
+    const int coarse_height = height_ / band.step_y;
+    const int coarse_half = coarse_width / 2 + 1;
+    for (int j = 0; j < coarse_height; ++j)
+      for (int i = 0; i < coarse_width; ++i)
+        band.coarse_plane[static_cast<std::size_t>(j) * coarse_width + i] =
+            alpha[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x];
+    band.coarse_fft->forward(band.coarse_plane, band.coarse_spectrum);
+    // The coarse DFT is Hermitian: its missing half comes from the conjugate at -k. Bin k of the
+    // full spectrum reads coarse bin k mod (coarse size), tiled row by row without divisions.
+    const std::size_t coarse_rows = static_cast<std::size_t>(coarse_height);
+    std::vector<Complex>& row = band.coarse_row;
+    for (std::size_t cy = 0; cy < coarse_rows; ++cy) {
+      const std::size_t mirror_y = (coarse_rows - cy) % coarse_rows;
+      for (int cx = 0; cx < coarse_width; ++cx)
+        row[static_cast<std::size_t>(cy) * coarse_width + cx] =
+            cx < coarse_half
+                ? band.coarse_spectrum[cy * coarse_half + cx]
+                : std::conj(band.coarse_spectrum[mirror_y * coarse_half + (coarse_width - cx)]);
+    }
+    for (int ky = 0, cy = 0; ky < height_; ++ky, cy = cy + 1 == coarse_height ? 0 : cy + 1) {
+      const Complex* coarse = &row[static_cast<std::size_t>(cy) * coarse_width];
+      const std::size_t offset = static_cast<std::size_t>(ky) * half;
+      for (int kx = 0, cx = 0; kx < half; ++kx, cx = cx + 1 == coarse_width ? 0 : cx + 1)
+        sum_spectrum_[offset + kx] += coarse[cx] * kernel[offset + kx];
+    }
+  }
+  spectrum.resize(plane_size());
+  fft_->inverse(sum_spectrum_, spectrum);
+}
+
+void GaussianDictionary::adjoint(std::span<const float> spectrum,
+                                 std::vector<std::vector<float>>& out) const {
+  // The kernels are even, so the adjoint of a convolution by them is the same convolution.
+  fft_->forward(spectrum, sum_spectrum_);
+  out.resize(bands_.size());
+  const int half = width_ / 2 + 1;
+  for (std::size_t b = 0; b < bands_.size(); ++b) {
+    const Band& band = bands_[b];
+    const std::vector<float>& kernel = band.kernel_spectrum;
+    for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
+      work_spectrum_[i] = sum_spectrum_[i] * kernel[i];
+    out[b].resize(plane_size());
+    if (!band.coarse_fft) {
+      fft_->inverse(work_spectrum_, out[b]);
+      continue;
+    }
+    const int coarse_width = width_ / band.step_x;
+    const int coarse_height = height_ / band.step_y;
+    const int coarse_half = coarse_width / 2 + 1;
+    // Fold the full spectrum onto the coarse one: every full bin k adds to coarse bin
+    // k mod (coarse size). The full spectrum's missing half is the conjugate at -k.
+    std::vector<Complex>& row = band.coarse_row;
+    std::fill(row.begin(), row.end(), Complex(0.0f, 0.0f));
+    for (int ky = 0, cy = 0; ky < height_; ++ky, cy = cy + 1 == coarse_height ? 0 : cy + 1) {
+      Complex* coarse = &row[static_cast<std::size_t>(cy) * coarse_width];
+      const std::size_t offset = static_cast<std::size_t>(ky) * half;
+      const std::size_t mirror = static_cast<std::size_t>((height_ - ky) % height_) * half;
+      for (int kx = 0, cx = 0; kx < width_; ++kx, cx = cx + 1 == coarse_width ? 0 : cx + 1)
+        coarse[cx] += kx < half ? work_spectrum_[offset + kx]
+                                : std::conj(work_spectrum_[mirror + (width_ - kx)]);
+    }
+    for (int cy = 0; cy < coarse_height; ++cy)
+      for (int cx = 0; cx < coarse_half; ++cx)
+        band.coarse_spectrum[static_cast<std::size_t>(cy) * coarse_half + cx] =
+            row[static_cast<std::size_t>(cy) * coarse_width + cx];
+    // Decimation keeps 1 / (sx sy) of the samples; Fft2d::inverse divides by the coarse size.
+    const auto fold = static_cast<float>(1.0 / (band.step_x * band.step_y));
+    for (Complex& value : band.coarse_spectrum) value *= fold;
+    band.coarse_fft->inverse(band.coarse_spectrum, band.coarse_plane);
+    std::fill(out[b].begin(), out[b].end(), 0.0f);
+    for (int j = 0; j < coarse_height; ++j)
+      for (int i = 0; i < coarse_width; ++i)
+        out[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x] =
+            band.coarse_plane[static_cast<std::size_t>(j) * coarse_width + i];
+  }
+}
+
+double GaussianDictionary::squared_norm() const {
+  if (squared_norm_ > 0.0) return squared_norm_;
+  // Power iteration on S_n^T S_n from a positive start (the top eigenvector is positive: the
+  // operator has non-negative entries).
+  std::vector<std::vector<float>> v(bands_.size());
+  for (std::size_t b = 0; b < bands_.size(); ++b) v[b] = bands_[b].mask;
+  std::vector<float> image;
+  double estimate = 0.0;
+  for (int iteration = 0; iteration < kPowerIterations; ++iteration) {
+    double norm = 0.0;
+    for (const auto& plane : v) norm += dot(plane, plane);
+    norm = std::sqrt(norm);
+    for (auto& plane : v)
+      for (float& x : plane) x = static_cast<float>(x / norm);
+    apply(v, image);
+    estimate = dot(image, image);  // ||S_n v||^2 with ||v|| = 1
+    adjoint(image, v);
+  }
+  squared_norm_ = estimate;
+  return squared_norm_;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Non-negative basis pursuit denoising (eq. 8)
+
+DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const float> target,
+                       const std::vector<std::vector<float>>& alpha, double nu) {
+  // Primal: ||S_n(alpha) - s||^2 + nu sum(alpha), alpha >= 0. Its Lagrange dual (Kim et al. 2007,
+  // section III, with the sign constraint) is max_z -||z||^2 / 4 - z^T s subject to
+  // S_n^T z >= -nu. The dual point is the scaled residual z = -2 t r, r = s - S_n(alpha), with the
+  // best t that stays feasible: t <= nu / max(2 S_n^T r) and t* = r^T s / ||r||^2 unconstrained.
+  std::vector<float> model;
+  dictionary.apply(alpha, model);
+  std::vector<float> residual(model.size());
+  for (std::size_t i = 0; i < model.size(); ++i) residual[i] = target[i] - model[i];
+  std::vector<std::vector<float>> correlation;
+  dictionary.adjoint(residual, correlation);
+  double largest = 0.0;
+  double l1 = 0.0;
+  for (std::size_t b = 0; b < alpha.size(); ++b) {
+    for (const float c : correlation[b]) largest = std::max(largest, 2.0 * c);
+    for (const float a : alpha[b]) l1 += a;
+  }
+  const double residual_squared = dot(residual, residual);
+  const double residual_target = dot(residual, target);
+  DualityGap result;
+  result.primal = residual_squared + nu * l1;
+  double t = residual_squared > 0.0 ? residual_target / residual_squared : 0.0;
+  if (largest > 0.0) t = std::min(t, nu / largest);
+  t = std::max(t, 0.0);
+  result.dual = -t * t * residual_squared + 2.0 * t * residual_target;
+  result.gap = std::max(0.0, result.primal - result.dual);
+  return result;
+}
+
+SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const float> target,
+                         const FitOptions& options) {
+  const auto bands = static_cast<std::size_t>(dictionary.band_count());
+  const std::size_t plane = dictionary.plane_size();
+  if (target.size() != plane)
+    throw std::invalid_argument("fit_spectrum: the target does not match the dictionary");
+  SpectrumFit fit;
+  fit.alpha.assign(bands, std::vector<float>(plane, 0.0f));
+  fit.target_norm = std::sqrt(dot(target, target));
+  std::vector<std::vector<float>> correlation;
+  dictionary.adjoint(target, correlation);
+  for (const auto& c : correlation)
+    for (const float v : c) fit.nu_max = std::max(fit.nu_max, 2.0 * v);
+  fit.residual_norm = fit.target_norm;
+  if (!(fit.nu_max > 0.0)) {
+    fit.converged = true;  // alpha = 0 is optimal for every nu
+    return fit;
+  }
+  // Gradient of ||S_n a - s||^2 is 2 S_n^T (S_n a - s): Lipschitz constant 2 ||S_n||^2.
+  const double lipschitz = 2.0 * dictionary.squared_norm() * kLipschitzMargin;
+  const double step = 1.0 / lipschitz;
+
+  std::vector<std::vector<float>> extrapolated = fit.alpha;
+  std::vector<std::vector<float>> previous = fit.alpha;
+  std::vector<std::vector<float>> gradient;
+  std::vector<float> model;
+  std::vector<float> residual(plane);
+  // Homotopy (section 5.2): kappa = 1/2, 1/4, ..., then options.kappa, each step warm-started.
+  std::vector<double> kappas;
+  for (double kappa = 0.5; kappa > options.kappa; kappa *= 0.5) kappas.push_back(kappa);
+  kappas.push_back(options.kappa);
+  for (const double kappa : kappas) {
+    const double nu = kappa * fit.nu_max;
+    fit.nu = nu;
+    ++fit.steps;
+    fit.converged = false;
+    extrapolated = fit.alpha;
+    double momentum = 1.0;
+    for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
+      ++fit.iterations;
+      dictionary.apply(extrapolated, model);
+      for (std::size_t i = 0; i < plane; ++i) residual[i] = model[i] - target[i];
+      dictionary.adjoint(residual, gradient);
+      // Proximal step of nu ||a||_1 + indicator(a >= 0): a shifted, clipped gradient step.
+      const auto threshold = static_cast<float>(nu * step);
+      const auto scale = static_cast<float>(2.0 * step);
+      double restart_test = 0.0;
+      // Only the bins of each band's sub-grid carry coefficients: the other entries stay zero.
+      for (std::size_t b = 0; b < bands; ++b) {
+        const int step_x = dictionary.step_x(static_cast<int>(b));
+        const int step_y = dictionary.step_y(static_cast<int>(b));
+        for (int y = 0; y < dictionary.height(); y += step_y)
+          for (int x = 0; x < dictionary.width(); x += step_x) {
+            const std::size_t i = static_cast<std::size_t>(y) * dictionary.width() + x;
+            previous[b][i] = fit.alpha[b][i];
+            const float value =
+                std::max(0.0f, extrapolated[b][i] - scale * gradient[b][i] - threshold);
+            fit.alpha[b][i] = value;
+            restart_test +=
+                static_cast<double>(extrapolated[b][i] - value) * (value - previous[b][i]);
+          }
+      }
+      // Adaptive restart (O'Donoghue & Candes 2015): when the step goes against the momentum,
+      // the momentum is reset. FISTA keeps its O(1/k^2) rate and gains linear convergence once
+      // the support of the sparse solution has settled.
+      if (restart_test > 0.0) momentum = 1.0;
+      const double next_momentum = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum * momentum));
+      const auto blend = static_cast<float>((momentum - 1.0) / next_momentum);
+      momentum = next_momentum;
+      for (std::size_t b = 0; b < bands; ++b) {
+        const int step_x = dictionary.step_x(static_cast<int>(b));
+        const int step_y = dictionary.step_y(static_cast<int>(b));
+        for (int y = 0; y < dictionary.height(); y += step_y)
+          for (int x = 0; x < dictionary.width(); x += step_x) {
+            const std::size_t i = static_cast<std::size_t>(y) * dictionary.width() + x;
+            extrapolated[b][i] = fit.alpha[b][i] + blend * (fit.alpha[b][i] - previous[b][i]);
+          }
+      }
+      if (iteration % kGapCheckInterval == 0 || iteration == options.max_iterations) {
+        const DualityGap gap = duality_gap(dictionary, target, fit.alpha, nu);
+        fit.primal = gap.primal;
+        fit.gap = gap.gap;
+        // Intermediate homotopy steps only seed the next one: a looser gap is enough there.
+        const double tolerance = kappa == kappas.back()
+                                     ? options.gap_tolerance
+                                     : kIntermediateGapFactor * options.gap_tolerance;
+        if (gap.gap <= tolerance * gap.primal) {
+          fit.converged = true;
+          break;
+        }
+      }
+    }
+  }
+  dictionary.apply(fit.alpha, model);
+  double residual_squared = 0.0;
+  for (std::size_t i = 0; i < plane; ++i)
+    residual_squared += (static_cast<double>(model[i]) - target[i]) * (model[i] - target[i]);
+  fit.residual_norm = std::sqrt(residual_squared);
+  return fit;
+}
+
+std::vector<float> periodogram(std::span<const float> plane, int width, int height) {
+  const Fft2d fft(width, height);
+  std::vector<Complex> spectrum(fft.spectrum_size());
+  fft.forward(plane, spectrum);
+  const int half = fft.spectrum_width();
+  const double pixels = static_cast<double>(width) * height;
+  const double normalisation = 1.0 / (pixels * pixels);
+  std::vector<float> result(static_cast<std::size_t>(width) * height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      // The other half-plane by Hermitian symmetry: X(-m) = conj(X(m)).
+      const bool stored = x < half;
+      const int sx = stored ? x : width - x;
+      const int sy = stored ? y : (height - y) % height;
+      const Complex value = spectrum[static_cast<std::size_t>(sy) * half + sx];
+      result[static_cast<std::size_t>(y) * width + x] =
+          static_cast<float>(std::norm(value) * normalisation);
+    }
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Colour (section 7)
+
+std::vector<Matrix> lagged_correlations(const std::vector<std::vector<float>>& channels, int width,
+                                        int height, int max_lag) {
+  const auto n = static_cast<int>(channels.size());
+  const Fft2d fft(width, height);
+  std::vector<std::vector<Complex>> spectra(channels.size(),
+                                            std::vector<Complex>(fft.spectrum_size()));
+  for (std::size_t c = 0; c < channels.size(); ++c) fft.forward(channels[c], spectra[c]);
+  const int lags = 2 * max_lag + 1;
+  std::vector<Matrix> result(static_cast<std::size_t>(lags) * lags,
+                             Matrix(static_cast<std::size_t>(n) * n));
+  std::vector<Complex> cross(fft.spectrum_size());
+  std::vector<float> correlation(fft.image_size());
+  // C_ij(xi) = 1/|Omega| sum_x I_i(x) I_j(x + xi) = inverse DFT of conj(X_i) X_j (circular).
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      for (std::size_t k = 0; k < cross.size(); ++k)
+        cross[k] = std::conj(spectra[i][k]) * spectra[j][k];
+      fft.inverse(cross, correlation);
+      std::size_t index = 0;
+      // C(0) first, then the other lags in raster order.
+      const auto store = [&](int lx, int ly, std::size_t slot) {
+        const int x = (lx + width) % width;
+        const int y = (ly + height) % height;
+        result[slot][static_cast<std::size_t>(i) * n + j] =
+            correlation[static_cast<std::size_t>(y) * width + x];
+      };
+      store(0, 0, index++);
+      for (int ly = -max_lag; ly <= max_lag; ++ly)
+        for (int lx = -max_lag; lx <= max_lag; ++lx)
+          if (lx != 0 || ly != 0) store(lx, ly, index++);
+    }
+  return result;
+}
+
+Matrix principal_axes(const Matrix& covariance, int n) {
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(to_eigen(covariance, n));
+  // Eigen sorts eigenvalues in increasing order: reverse the rows, largest variance first.
+  return from_eigen(solver.eigenvectors().rowwise().reverse().transpose());
+}
+
+Matrix joint_diagonalizer(const std::vector<Matrix>& correlations, int n) {
+  // Whitening: W = Lambda^-1/2 E^T makes W C(0) W^T = I; eigenvalues are floored so a channel with
+  // no variance (a grey image stored as RGB) stays finite.
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(to_eigen(correlations.front(), n));
+  const double floor = 1e-9 * std::max(1e-30, solver.eigenvalues().maxCoeff());
+  const Eigen::VectorXd scale = solver.eigenvalues().cwiseMax(floor).cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd whitening = scale.asDiagonal() * solver.eigenvectors().transpose();
+  std::vector<Eigen::MatrixXd> matrices;
+  for (std::size_t k = 1; k < correlations.size(); ++k) {
+    const Eigen::MatrixXd c = to_eigen(correlations[k], n);
+    matrices.push_back(whitening * (0.5 * (c + c.transpose())) * whitening.transpose());
+  }
+  // Cardoso & Souloumiac (1996): sweeps of Givens rotations; for the pair (p, q) the angle that
+  // minimises the off-diagonal energy of all matrices together is the principal direction of the
+  // 2 x 2 matrix G = sum_k g_k g_k^T, g_k = (A_pp - A_qq, A_pq + A_qp).
+  Eigen::MatrixXd rotation = Eigen::MatrixXd::Identity(n, n);
+  constexpr double kThreshold = 1e-12;
+  constexpr int kMaxSweeps = 100;
+  for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
+    bool rotated = false;
+    for (int p = 0; p < n - 1; ++p)
+      for (int q = p + 1; q < n; ++q) {
+        double g00 = 0.0, g01 = 0.0, g11 = 0.0;
+        for (const auto& a : matrices) {
+          const double u = a(p, p) - a(q, q);
+          const double v = a(p, q) + a(q, p);
+          g00 += u * u;
+          g01 += u * v;
+          g11 += v * v;
+        }
+        const double ton = g00 - g11;
+        const double toff = 2.0 * g01;
+        const double theta = 0.5 * std::atan2(toff, ton + std::sqrt(ton * ton + toff * toff));
+        const double c = std::cos(theta);
+        const double s = std::sin(theta);
+        if (std::abs(s) <= kThreshold) continue;
+        rotated = true;
+        Eigen::MatrixXd givens = Eigen::MatrixXd::Identity(n, n);
+        givens(p, p) = c;
+        givens(p, q) = -s;
+        givens(q, p) = s;
+        givens(q, q) = c;
+        rotation = rotation * givens;
+        for (auto& a : matrices) a = givens.transpose() * a * givens;
+      }
+    if (!rotated) break;
+  }
+  return from_eigen(rotation.transpose() * whitening);
+}
+
+double off_diagonality(const Matrix& transform, const std::vector<Matrix>& correlations, int n) {
+  Eigen::MatrixXd t = to_eigen(transform, n);
+  const Eigen::MatrixXd covariance = t * to_eigen(correlations.front(), n) * t.transpose();
+  for (int i = 0; i < n; ++i) {
+    const double variance = covariance(i, i);
+    if (variance > 0.0) t.row(i) /= std::sqrt(variance);
+  }
+  double off = 0.0;
+  double total = 0.0;
+  for (const Matrix& c : correlations) {
+    const Eigen::MatrixXd a = t * to_eigen(c, n) * t.transpose();
+    total += a.squaredNorm();
+    off += a.squaredNorm() - a.diagonal().squaredNorm();
+  }
+  return total > 0.0 ? off / total : 0.0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The analysis
+
+GaborModel analyze(ImageView<const float> exemplar, const ParamValues& params,
+                   std::uint32_t /*seed*/) {
+  const int width = exemplar.width;
+  const int height = exemplar.height;
+  const int channels = exemplar.channels;
+  const auto colour_space = static_cast<int>(params.at("colour_space"));
+  FitOptions options;
+  options.kappa = params.at("kappa");
+  options.max_iterations = static_cast<int>(params.at("iterations"));
+
+  // The periodic component (section 3.2, [Moisan 2011]): no cross artefact in its spectrum.
+  const ImageF periodic = periodic_component(exemplar);
+  const std::size_t pixels = periodic.pixel_count();
+  std::vector<float> mean(static_cast<std::size_t>(channels));
+  std::vector<std::vector<float>> centred(static_cast<std::size_t>(channels),
+                                          std::vector<float>(pixels));
+  for (int c = 0; c < channels; ++c) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < pixels; ++i) sum += periodic.pixels()[i * channels + c];
+    mean[c] = static_cast<float>(sum / static_cast<double>(pixels));
+    for (std::size_t i = 0; i < pixels; ++i)
+      centred[c][i] = periodic.pixels()[i * channels + c] - mean[c];
+  }
+
+  // Colour space (section 7): T maps centred colours to the synthesis channels.
+  FitReport report;
+  Matrix transform(static_cast<std::size_t>(channels) * channels, 0.0);
+  for (int c = 0; c < channels; ++c) transform[static_cast<std::size_t>(c) * channels + c] = 1.0;
+  if (channels > 1) {
+    const std::vector<Matrix> correlations =
+        lagged_correlations(centred, width, height, std::min({kMaxLag, width / 2, height / 2}));
+    const Matrix independent = joint_diagonalizer(correlations, channels);
+    const Matrix pca = principal_axes(correlations.front(), channels);
+    report.offdiagonality_independent = off_diagonality(independent, correlations, channels);
+    report.offdiagonality_pca = off_diagonality(pca, correlations, channels);
+    report.offdiagonality_rgb = off_diagonality(transform, correlations, channels);
+    if (colour_space == static_cast<int>(ColourSpace::independent)) transform = independent;
+    if (colour_space == static_cast<int>(ColourSpace::pca)) transform = pca;
+  }
+  const Eigen::MatrixXd forward = to_eigen(transform, channels);
+  const Eigen::MatrixXd backward = forward.inverse();
+  std::vector<float> mixing(static_cast<std::size_t>(channels) * channels);
+  for (int i = 0; i < channels; ++i)
+    for (int j = 0; j < channels; ++j)
+      mixing[static_cast<std::size_t>(i) * channels + j] = static_cast<float>(backward(i, j));
+  if (!std::all_of(mixing.begin(), mixing.end(), [](float v) { return std::isfinite(v); }))
+    throw Error(ErrorCode::numerical, "gabor: the colour transform is singular");
+
+  // Each synthesis channel's spectrum is fitted on its own (independent channel synthesis).
+  const GaussianDictionary dictionary(width, height);
+  std::vector<GaussianComponent> gaussians;
+  double residual_squared = 0.0;
+  double target_squared = 0.0;
+  std::vector<float> plane(pixels);
+  for (int k = 0; k < channels; ++k) {
+    for (std::size_t i = 0; i < pixels; ++i) {
+      double value = 0.0;
+      for (int c = 0; c < channels; ++c)
+        value += forward(k, c) * static_cast<double>(centred[c][i]);
+      plane[i] = static_cast<float>(value);
+    }
+    const std::vector<float> target = periodogram(plane, width, height);
+    const SpectrumFit fit = fit_spectrum(dictionary, target, options);
+    residual_squared += fit.residual_norm * fit.residual_norm;
+    target_squared += fit.target_norm * fit.target_norm;
+    // Every non-zero coefficient is a Gaussian (section 5.1). The fit runs on the full plane with
+    // a symmetric target, so its iterates are symmetric: the Gaussians at m and -m form one pair
+    // of eq. (6) with variance alpha(m) + alpha(-m) (half-plane, section 5.3).
+    for (int b = 0; b < dictionary.band_count(); ++b) {
+      const std::vector<float>& alpha = fit.alpha[static_cast<std::size_t>(b)];
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+          const std::size_t index = static_cast<std::size_t>(y) * width + x;
+          const std::size_t mirror =
+              static_cast<std::size_t>((height - y) % height) * width + (width - x) % width;
+          if (mirror < index) continue;
+          const auto variance = static_cast<float>(
+              dictionary.mass(b) * (mirror == index ? alpha[index] : alpha[index] + alpha[mirror]));
+          if (!(variance > 0.0f)) continue;
+          const int signed_x = x < (width + 1) / 2 ? x : x - width;
+          const int signed_y = y < (height + 1) / 2 ? y : y - height;
+          gaussians.push_back(
+              {k, dictionary.band(b), static_cast<float>(static_cast<double>(signed_x) / width),
+               static_cast<float>(static_cast<double>(signed_y) / height), variance});
+        }
+    }
+  }
+  report.sparseness =
+      static_cast<double>(gaussians.size()) / (static_cast<double>(pixels) * channels);
+  report.fit_error = target_squared > 0.0 ? std::sqrt(residual_squared / target_squared) : 0.0;
+  if (gaussians.size() > kMaxGaussians)
+    throw Error(ErrorCode::invalid_input,
+                "gabor: the fit has more Gaussians than a model may hold; raise kappa");
+  return GaborModel(channels, params.at("impulses"), colour_space, std::move(gaussians),
+                    std::move(mixing), std::move(mean), report);
+}
+
+}  // namespace stochtex::gabor

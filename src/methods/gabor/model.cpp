@@ -1,0 +1,479 @@
+#include "methods/gabor/model.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+
+#include "core/hash.hpp"
+#include "methods/gabor/alias.hpp"
+#include "methods/gabor/params.hpp"
+#include "methods/texton/evaluate.hpp"
+#include "stochtex/error.hpp"
+
+namespace stochtex::gabor {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+// The kernel is truncated where its envelope exp(-pi a^2 |x|^2) falls to e^-pi, at r = 1/a
+// (section 6.1). The truncated kernel keeps 1 - e^-2pi of the energy; the amplitude is raised by
+// the inverse square root so the noise keeps the fitted variance.
+const double kTruncationGain = 1.0 / std::sqrt(1.0 - std::exp(-2.0 * kPi));
+// Cells hold about this many impulses on average: denser grids visit fewer empty margins, sparser
+// ones fewer cells. The cell side stays within [r/4, 2r].
+constexpr double kPointsPerCell = 64.0;
+// A grid whose least attenuated Gaussian is scaled by less than e^-12 (6e-6) by the footprint's
+// filter contributes nothing visible and is skipped.
+constexpr double kNegligibleAttenuation = 12.0;
+// Footprints wider than the kernel make it cover more cells; the process is then thinned by 4 per
+// level (cells twice as wide, a quarter of the intensity, amplitudes doubled so the variance is
+// unchanged) so that the cost per sample stays bounded. At most this many levels; wider
+// footprints make the grid vanish.
+constexpr int kMaxLevels = 40;
+// Variance per axis of a box of one pixel.
+constexpr double kPixelVariance = 1.0 / 12.0;
+static_assert(kParams[1].name == "impulses", "the evaluator reads the impulse budget's range");
+constexpr std::array<const char*, 5> kReportNames = {"sparseness", "fit_error",
+                                                     "offdiagonality_independent",
+                                                     "offdiagonality_pca", "offdiagonality_rgb"};
+
+}  // namespace
+
+double bandwidth(int band) {
+  return std::ldexp(std::sqrt(kPi / (2.0 * std::numbers::ln2)), -band);
+}
+
+GaborModel::GaborModel(int channels, double impulses, int colour_space,
+                       std::vector<GaussianComponent> gaussians, std::vector<float> mixing,
+                       std::vector<float> mean, const FitReport& report)
+    : channels_(channels),
+      impulses_(impulses),
+      colour_space_(colour_space),
+      gaussians_(std::move(gaussians)),
+      mixing_(std::move(mixing)),
+      mean_(std::move(mean)),
+      report_(report) {
+  if (channels_ < 1 || channels_ > 4) throw std::invalid_argument("gabor: channels must be 1 to 4");
+  if (!(impulses_ >= kParams[1].min_value && impulses_ <= kParams[1].max_value) ||
+      impulses_ != std::floor(impulses_))
+    throw std::invalid_argument("gabor: impulses must be an integer from 1 to 65536");
+  if (colour_space_ < 0 || colour_space_ > 2)
+    throw std::invalid_argument("gabor: colour_space must be 0, 1 or 2");
+  if (mixing_.size() != static_cast<std::size_t>(channels_) * channels_ ||
+      mean_.size() != static_cast<std::size_t>(channels_))
+    throw std::invalid_argument("gabor: colour matrix or mean has the wrong size");
+  if (gaussians_.size() > kMaxGaussians) throw std::invalid_argument("gabor: too many Gaussians");
+  const auto finite = [](float v) { return std::isfinite(v); };
+  if (!std::all_of(mixing_.begin(), mixing_.end(), finite) ||
+      !std::all_of(mean_.begin(), mean_.end(), finite))
+    throw std::invalid_argument("gabor: non-finite colour matrix or mean");
+  for (const GaussianComponent& g : gaussians_) {
+    if (g.channel < 0 || g.channel >= channels_ || g.band < 0 || g.band >= kMaxBands)
+      throw std::invalid_argument("gabor: a Gaussian has an invalid channel or bandwidth index");
+    if (!(std::abs(g.frequency_x) <= 0.5f) || !(std::abs(g.frequency_y) <= 0.5f))
+      throw std::invalid_argument("gabor: a Gaussian frequency is beyond the Nyquist limit");
+    if (!(g.variance > 0.0f) || !std::isfinite(g.variance))
+      throw std::invalid_argument("gabor: a Gaussian variance is not a positive number");
+  }
+  for (const double value :
+       {report_.sparseness, report_.fit_error, report_.offdiagonality_independent,
+        report_.offdiagonality_pca, report_.offdiagonality_rgb})
+    if (!(value >= 0.0) || !std::isfinite(value))
+      throw std::invalid_argument("gabor: the fit report holds an invalid value");
+
+  // Group the Gaussians by (channel, band): one grid each (section 6.1).
+  std::vector<std::size_t> order(gaussians_.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const GaussianComponent& ga = gaussians_[a];
+    const GaussianComponent& gb = gaussians_[b];
+    return ga.channel != gb.channel ? ga.channel < gb.channel : ga.band < gb.band;
+  });
+  frequency_x_.resize(order.size());
+  frequency_y_.resize(order.size());
+  alias_probability_.resize(order.size());
+  alias_index_.resize(order.size());
+  std::vector<double> grid_variance;
+  for (std::size_t begin = 0; begin < order.size();) {
+    const GaussianComponent& head = gaussians_[order[begin]];
+    std::size_t end = begin;
+    double variance = 0.0;
+    Grid grid;
+    grid.channel = head.channel;
+    grid.band = head.band;
+    grid.first = static_cast<std::uint32_t>(begin);
+    grid.min_frequency_squared = 1.0f;
+    std::vector<double> weights;
+    for (; end < order.size() && gaussians_[order[end]].channel == head.channel &&
+           gaussians_[order[end]].band == head.band;
+         ++end) {
+      const GaussianComponent& g = gaussians_[order[end]];
+      frequency_x_[end] = g.frequency_x;
+      frequency_y_[end] = g.frequency_y;
+      weights.push_back(g.variance);
+      variance += g.variance;
+      grid.min_frequency_squared =
+          std::min(grid.min_frequency_squared,
+                   g.frequency_x * g.frequency_x + g.frequency_y * g.frequency_y);
+    }
+    grid.count = static_cast<std::uint32_t>(end - begin);
+    // p_{b,g} = sigma_{b,g}^2 / sigma_b^2 (section 6.2).
+    build_alias_table(weights, std::span(alias_probability_).subspan(begin, grid.count),
+                      std::span(alias_index_).subspan(begin, grid.count));
+    grids_.push_back(grid);
+    grid_variance.push_back(variance);
+    begin = end;
+  }
+
+  // The impulse budget is split over the grids by the variance each adds to the output colour,
+  // N_b = (sigma_b^2 / sigma^2) N (section 6.2); in colour, the channel's variance counts through
+  // the mixing column that spreads it over the exemplar's channels.
+  std::vector<double> contribution(grids_.size());
+  double total = 0.0;
+  for (std::size_t i = 0; i < grids_.size(); ++i) {
+    double column = 0.0;
+    for (int c = 0; c < channels_; ++c) {
+      const double m = mixing_[static_cast<std::size_t>(c) * channels_ + grids_[i].channel];
+      column += m * m;
+    }
+    contribution[i] = grid_variance[i] * std::max(column, 1e-30);
+    total += contribution[i];
+  }
+  for (std::size_t i = 0; i < grids_.size(); ++i) {
+    Grid& grid = grids_[i];
+    const double a = bandwidth(grid.band);
+    grid.bandwidth = static_cast<float>(a);
+    grid.radius = 1.0 / a;
+    grid.impulses = impulses_ * contribution[i] / total;
+    // lambda_b = N_b / (pi r_b^2) (section 6.2).
+    const double intensity = grid.impulses / (kPi * grid.radius * grid.radius);
+    grid.cell_size =
+        grid.radius *
+        std::clamp(std::sqrt(kPointsPerCell / (intensity * grid.radius * grid.radius)), 0.25, 2.0);
+    grid.cell_count = PoissonSampler(intensity * grid.cell_size * grid.cell_size);
+    // With p = sigma_g^2 / sigma_b^2 and K_g = 2 a sigma_g, every kernel of eq. (5) has the same
+    // weight K_g / sqrt(lambda_b p_g) = 2 a sigma_b / sqrt(lambda_b): its variance is then
+    // lambda_b * E[K^2 / (lambda_b p)] / (4 a^2) = sigma_b^2.
+    grid.amplitude =
+        static_cast<float>(2.0 * a * std::sqrt(grid_variance[i] / intensity) * kTruncationGain);
+  }
+}
+
+GaborModel GaborModel::from_record(const ModelRecord& record, const std::string& source) {
+  const auto fail = [&](const std::string& what) {
+    return Error(ErrorCode::format, "'" + source + "' is not a valid gabor model (" + what +
+                                        "); re-run `stochtex analyze`");
+  };
+  const auto read = [&](const std::string& name, double low, double high, bool integer) {
+    const double value = record.scalar(name, source);
+    if ((integer && value != std::floor(value)) || value < low || value > high)
+      throw fail("invalid " + name + " value");
+    return value;
+  };
+  const int channels = static_cast<int>(read("channels", 1, 4, true));
+  const double impulses =
+      read("impulses", kParams[1].min_value, kParams[1].max_value, kParams[1].integer);
+  const int colour_space = static_cast<int>(read("colour_space", 0, 2, true));
+  const double count = read("gaussians", 0, static_cast<double>(kMaxGaussians), true);
+  FitReport report;
+  double* const report_values[] = {&report.sparseness, &report.fit_error,
+                                   &report.offdiagonality_independent, &report.offdiagonality_pca,
+                                   &report.offdiagonality_rgb};
+  for (std::size_t i = 0; i < kReportNames.size(); ++i)
+    *report_values[i] = read(kReportNames[i], 0, 1e30, false);
+  const NamedArray& table =
+      record.array("gaussians", {static_cast<std::int64_t>(count), 5}, source);
+  const NamedArray& mixing = record.array("colour", {channels, channels}, source);
+  const NamedArray& mean = record.array("mean", {channels}, source);
+  std::vector<GaussianComponent> gaussians(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < gaussians.size(); ++i) {
+    const float* row = &table.values[5 * i];
+    // Indices are stored as floats: exact integers below 2^24, checked before the conversion.
+    for (int k = 0; k < 2; ++k)
+      if (!(row[k] >= 0.0f && row[k] < 16.0f) || row[k] != std::floor(row[k]))
+        throw fail("a Gaussian has an invalid channel or bandwidth index");
+    gaussians[i] = {static_cast<int>(row[0]), static_cast<int>(row[1]), row[2], row[3], row[4]};
+  }
+  try {
+    return GaborModel(channels, impulses, colour_space, std::move(gaussians), mixing.values,
+                      mean.values, report);
+  } catch (const std::invalid_argument& e) {
+    std::string what = e.what();
+    throw fail(what.substr(what.find(':') + 2));
+  }
+}
+
+ModelRecord GaborModel::to_record(const ParamValues& params) const {
+  ModelRecord record;
+  record.method = std::string(kMethodName);
+  record.params = params;
+  record.scalars = {{"channels", channels_},
+                    {"impulses", impulses_},
+                    {"colour_space", colour_space_},
+                    {"gaussians", static_cast<double>(gaussians_.size())}};
+  const double report_values[] = {report_.sparseness, report_.fit_error,
+                                  report_.offdiagonality_independent, report_.offdiagonality_pca,
+                                  report_.offdiagonality_rgb};
+  for (std::size_t i = 0; i < kReportNames.size(); ++i)
+    record.scalars[kReportNames[i]] = report_values[i];
+  std::vector<float> table;
+  table.reserve(5 * gaussians_.size());
+  for (const GaussianComponent& g : gaussians_)
+    table.insert(table.end(), {static_cast<float>(g.channel), static_cast<float>(g.band),
+                               g.frequency_x, g.frequency_y, g.variance});
+  record.arrays.push_back(
+      {"gaussians", {static_cast<std::int64_t>(gaussians_.size()), 5}, std::move(table)});
+  record.arrays.push_back({"colour", {channels_, channels_}, mixing_});
+  record.arrays.push_back({"mean", {channels_}, mean_});
+  record.arrays.push_back(
+      {"spectrum", {kPreviewSide, kPreviewSide, channels_}, spectrum_preview()});
+  return record;
+}
+
+std::vector<float> GaborModel::spectrum_preview() const {
+  // Eq. (6) sampled at frequencies (i - side / 2) / side, each Gaussian splatted within 4
+  // standard deviations (periodically: the pixel grid aliases beyond Nyquist). The fourth root
+  // compresses the dynamic range as the paper's insets do (figures 1, 4, 5).
+  std::vector<double> power(static_cast<std::size_t>(kPreviewSide) * kPreviewSide * channels_, 0.0);
+  constexpr double kSide = kPreviewSide;
+  for (const GaussianComponent& g : gaussians_) {
+    const double sigma = bandwidth(g.band) / (2.0 * std::sqrt(kPi));
+    const double peak = g.variance / (2.0 * 2.0 * kPi * sigma * sigma);  // sigma^2 / 2 per lobe
+    const int reach = std::min(kPreviewSide / 2, static_cast<int>(std::ceil(4.0 * sigma * kSide)));
+    for (const double sign : {1.0, -1.0}) {
+      const double centre_x = sign * g.frequency_x * kSide + kSide / 2;
+      const double centre_y = sign * g.frequency_y * kSide + kSide / 2;
+      const int first_x = static_cast<int>(std::floor(centre_x)) - reach;
+      const int first_y = static_cast<int>(std::floor(centre_y)) - reach;
+      for (int y = first_y; y <= first_y + 2 * reach + 1; ++y)
+        for (int x = first_x; x <= first_x + 2 * reach + 1; ++x) {
+          const double fx = (x - centre_x) / kSide;
+          const double fy = (y - centre_y) / kSide;
+          const int wx = ((x % kPreviewSide) + kPreviewSide) % kPreviewSide;
+          const int wy = ((y % kPreviewSide) + kPreviewSide) % kPreviewSide;
+          power[(static_cast<std::size_t>(wy) * kPreviewSide + wx) * channels_ + g.channel] +=
+              peak * std::exp(-(fx * fx + fy * fy) / (2.0 * sigma * sigma));
+        }
+    }
+  }
+  double peak = 0.0;
+  for (double& value : power) {
+    value = std::sqrt(std::sqrt(value));
+    peak = std::max(peak, value);
+  }
+  std::vector<float> preview(power.size());
+  for (std::size_t i = 0; i < power.size(); ++i)
+    preview[i] = static_cast<float>(peak > 0.0 ? 2.0 * power[i] / peak - 1.0 : -1.0);
+  return preview;
+}
+
+void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                          std::uint32_t seed, ImageView<float> out) const noexcept {
+  const auto width = static_cast<std::size_t>(out.width);
+  const auto pixel = [&](std::size_t index, int c) -> float& {
+    return out.at(static_cast<int>(index % width), static_cast<int>(index / width), c);
+  };
+  // `out` accumulates the noise of each synthesis channel, then is mixed back to colour.
+  for (std::size_t index = 0; index < positions.size(); ++index)
+    for (int c = 0; c < channels_; ++c) pixel(index, c) = 0.0f;
+
+  // Grid-major: all samples of the batch visit one grid before the next, so one cell cache serves
+  // them and the sum per sample runs over grids, cells and impulses in a fixed order (the output
+  // does not depend on the batch).
+  for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
+    const Grid& grid = grids_[grid_index];
+    const float* frequency_x = frequency_x_.data() + grid.first;
+    const float* frequency_y = frequency_y_.data() + grid.first;
+    const float* probability = alias_probability_.data() + grid.first;
+    const std::uint32_t* alias = alias_index_.data() + grid.first;
+    const double a2 = static_cast<double>(grid.bandwidth) * grid.bandwidth;
+    std::optional<texton::CellCache> cells;
+    int cached_level = -1;
+    std::uint32_t level_seed = 0;
+    for (std::size_t index = 0; index < positions.size(); ++index) {
+      const Vec2d p = positions[index];
+      // Kernel envelope exp(-x^T E x) and frequency map omega' = F omega, attenuation
+      // exp(-omega^T D omega) and amplitude gain, all from the footprint (see below).
+      double e00 = kPi * a2, e01 = 0.0, e11 = kPi * a2;
+      double f00 = 1.0, f01 = 0.0, f11 = 1.0;
+      double d00 = 0.0, d01 = 0.0, d11 = 0.0;
+      double gain = 1.0;
+      double reach = grid.radius;
+      bool filtered = false;
+      if (!footprints.empty()) {
+        // Filtering (Lagae et al. 2009, as the paper inherits in section 9.1): a Gabor kernel
+        // convolved with a Gaussian stays a Gabor kernel. The pixel filter is the Gaussian with
+        // the covariance of the footprint's box, Sigma_f = (dpdx dpdx^T + dpdy dpdy^T) / 12. In
+        // frequency the kernel is exp(-(xi - omega)^T P (xi - omega)) with P = (pi / a^2) I and
+        // the filter exp(-xi^T Q xi) with Q = 2 pi^2 Sigma_f. Their product is a Gaussian of
+        // precision S = P + Q centred at omega' = S^-1 P omega, scaled by exp(-omega^T D omega)
+        // with D = P - P S^-1 P; in space the envelope becomes exp(-pi^2 x^T S^-1 x) and the
+        // amplitude gains sqrt(det P / det S).
+        // The fitted spectrum already describes exemplar pixels, i.e. the field integrated over
+        // one pixel: the filter adds only the footprint's covariance beyond that pixel's I / 12
+        // (eigenvalues clipped at 0), so a scale-1 render is unfiltered and matches point
+        // samples, and a scale-s render matches the average of s x s point samples.
+        const Footprint& fp = footprints[index];
+        double q00 = (fp.dpdx.x * fp.dpdx.x + fp.dpdy.x * fp.dpdy.x) / 12.0;
+        double q01 = (fp.dpdx.x * fp.dpdx.y + fp.dpdy.x * fp.dpdy.y) / 12.0;
+        double q11 = (fp.dpdx.y * fp.dpdx.y + fp.dpdy.y * fp.dpdy.y) / 12.0;
+        const double centre = 0.5 * (q00 + q11);
+        const double radius = std::sqrt(0.25 * (q00 - q11) * (q00 - q11) + q01 * q01);
+        const double major = centre + radius - kPixelVariance;
+        const double minor = centre - radius - kPixelVariance;
+        if (major <= 0.0) {
+          q00 = q01 = q11 = 0.0;
+        } else if (minor < 0.0) {
+          // Only the major axis is wider than a pixel: keep (major) v v^T, v v^T read from
+          // (Sigma - lambda_min I) / (lambda_max - lambda_min).
+          const double lambda_min = centre - radius;
+          const double scale = major / (2.0 * radius);
+          q00 = scale * (q00 - lambda_min);
+          q01 = scale * q01;
+          q11 = scale * (q11 - lambda_min);
+        } else {
+          q00 -= kPixelVariance;
+          q11 -= kPixelVariance;
+        }
+        q00 *= 2.0 * kPi * kPi;
+        q01 *= 2.0 * kPi * kPi;
+        q11 *= 2.0 * kPi * kPi;
+        if (q00 + q11 > 0.0 && std::isfinite(q00 + q11 + q01)) {
+          filtered = true;
+          const double pp = kPi / a2;
+          const double s00 = pp + q00, s01 = q01, s11 = pp + q11;
+          const double det = s00 * s11 - s01 * s01;
+          const double i00 = s11 / det, i01 = -s01 / det, i11 = s00 / det;
+          e00 = kPi * kPi * i00;
+          e01 = kPi * kPi * i01;
+          e11 = kPi * kPi * i11;
+          f00 = pp * i00;
+          f01 = pp * i01;
+          f11 = pp * i11;
+          d00 = pp - pp * pp * i00;
+          d01 = -pp * pp * i01;
+          d11 = pp - pp * pp * i11;
+          gain = pp / std::sqrt(det);
+          // The envelope reaches e^-pi where x^T S^-1 x = 1 / pi: at most sqrt(lmax(S) / pi).
+          const double half_trace = 0.5 * (s00 + s11);
+          const double spread = std::sqrt(0.25 * (s00 - s11) * (s00 - s11) + s01 * s01);
+          reach = std::sqrt((half_trace + spread) / kPi);
+          const double d_half_trace = 0.5 * (d00 + d11);
+          const double d_spread = std::sqrt(0.25 * (d00 - d11) * (d00 - d11) + d01 * d01);
+          if ((d_half_trace - d_spread) * grid.min_frequency_squared > kNegligibleAttenuation)
+            continue;
+        }
+      }
+      int level = 0;
+      if (filtered && reach > grid.radius) {
+        const double wanted = std::ceil(std::log2(reach / grid.radius));
+        // Beyond the last level the kernel's amplitude gain (r / reach)^2 is below 4^-40: the
+        // filtered grid is zero to float precision, and skipping it bounds the cells visited.
+        if (!(wanted <= kMaxLevels)) continue;
+        level = static_cast<int>(wanted);
+      }
+      if (level != cached_level) {
+        cached_level = level;
+        level_seed = cell_key(static_cast<std::int64_t>(grid_index), level, seed, Stream::kernels);
+        cells.emplace(level_seed, grid.cell_count);
+      }
+      const double cell_size = std::ldexp(grid.cell_size, level);
+      const auto cell_size_f = static_cast<float>(cell_size);
+      const auto ex = static_cast<float>(e00), exy = static_cast<float>(2.0 * e01),
+                 ey = static_cast<float>(e11);
+      const auto fxx = static_cast<float>(f00), fxy = static_cast<float>(f01),
+                 fyy = static_cast<float>(f11);
+      const auto dxx = static_cast<float>(d00), dxy = static_cast<float>(2.0 * d01),
+                 dyy = static_cast<float>(d11);
+      constexpr auto kTwoPi = static_cast<float>(2.0 * kPi);
+      constexpr auto kPiF = static_cast<float>(kPi);
+      float sum = 0.0f;
+      // Cells meeting p + [-reach, reach]^2; 64-bit indices, offsets from the cell corner taken in
+      // double before going to float, so p = 1e7 is as precise as p = 0 (DESIGN.md section 4).
+      const auto first_x = static_cast<std::int64_t>(std::floor((p.x - reach) / cell_size));
+      const auto last_x = static_cast<std::int64_t>(std::floor((p.x + reach) / cell_size));
+      const auto first_y = static_cast<std::int64_t>(std::floor((p.y - reach) / cell_size));
+      const auto last_y = static_cast<std::int64_t>(std::floor((p.y + reach) / cell_size));
+      for (std::int64_t cell_y = first_y; cell_y <= last_y; ++cell_y) {
+        const auto offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * cell_size);
+        for (std::int64_t cell_x = first_x; cell_x <= last_x; ++cell_x) {
+          const auto offset_x = static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size);
+          // The kernel parameters of the cell's impulses come in the impulses' order from their
+          // own stream, so cached positions and fresh parameters stay paired.
+          CounterRng kernel_rng(cell_key(cell_x, cell_y, level_seed, Stream::kernels));
+          cells->for_each_point(cell_x, cell_y, [&](float u, float v) {
+            const std::uint32_t k = draw_alias(probability, alias, grid.count, kernel_rng);
+            const float phase = kernel_rng.uniform();
+            const float dx = offset_x - u * cell_size_f;
+            const float dy = offset_y - v * cell_size_f;
+            const float envelope = ex * dx * dx + exy * dx * dy + ey * dy * dy;
+            if (envelope >= kPiF) return;
+            float wx = frequency_x[k];
+            float wy = frequency_y[k];
+            float attenuation = 0.0f;
+            if (filtered) {
+              attenuation = dxx * wx * wx + dxy * wx * wy + dyy * wy * wy;
+              const float mapped_x = fxx * wx + fxy * wy;
+              wy = fxy * wx + fyy * wy;
+              wx = mapped_x;
+            }
+            sum +=
+                std::exp(-envelope - attenuation) * std::cos(kTwoPi * (wx * dx + wy * dy + phase));
+          });
+        }
+      }
+      pixel(index, grid.channel) +=
+          static_cast<float>(std::ldexp(grid.amplitude * gain, level)) * sum;
+    }
+  }
+
+  // Back to the exemplar's colours: colour = mean + mixing * noise (section 7).
+  for (std::size_t index = 0; index < positions.size(); ++index) {
+    float noise[4] = {};
+    for (int c = 0; c < channels_; ++c) noise[c] = pixel(index, c);
+    for (int c = 0; c < channels_; ++c) {
+      float value = mean_[static_cast<std::size_t>(c)];
+      for (int k = 0; k < channels_; ++k)
+        value += mixing_[static_cast<std::size_t>(c) * channels_ + k] * noise[k];
+      pixel(index, c) = value;
+    }
+  }
+}
+
+bool GaussianGroup::contains(const GaussianComponent& g) const {
+  const double frequency = std::hypot(g.frequency_x, g.frequency_y);
+  return (channel < 0 || g.channel == channel) && g.band >= first_band && g.band <= last_band &&
+         frequency >= min_frequency && frequency <= max_frequency;
+}
+
+GaborModel edit_gaussians(const GaborModel& model, const GaussianGroup& group,
+                          const SpectrumEdit& edit) {
+  if (!std::isfinite(edit.rotation) || !std::isfinite(edit.scale) ||
+      !std::isfinite(edit.translation_x) || !std::isfinite(edit.translation_y) ||
+      !(edit.magnitude >= 0.0) || !std::isfinite(edit.magnitude))
+    throw std::invalid_argument("gabor edit: every transform value must be finite, magnitude >= 0");
+  const double c = std::cos(edit.rotation);
+  const double s = std::sin(edit.rotation);
+  std::vector<GaussianComponent> edited;
+  edited.reserve(model.gaussians().size());
+  for (GaussianComponent g : model.gaussians()) {
+    if (group.contains(g)) {
+      const double x = edit.scale * (c * g.frequency_x - s * g.frequency_y) + edit.translation_x;
+      const double y = edit.scale * (s * g.frequency_x + c * g.frequency_y) + edit.translation_y;
+      if (std::abs(x) > 0.5 || std::abs(y) > 0.5) continue;
+      g.frequency_x = static_cast<float>(x);
+      g.frequency_y = static_cast<float>(y);
+      g.variance = static_cast<float>(g.variance * edit.magnitude);
+      g.band = std::clamp(g.band + edit.bandwidth_shift, 0, kMaxBands - 1);
+      if (!(g.variance > 0.0f) || !std::isfinite(g.variance)) continue;
+    }
+    edited.push_back(g);
+  }
+  return GaborModel(model.channels(), model.impulses(), model.colour_space(), std::move(edited),
+                    std::vector<float>(model.mixing().begin(), model.mixing().end()),
+                    std::vector<float>(model.mean().begin(), model.mean().end()), model.report());
+}
+
+}  // namespace stochtex::gabor

@@ -1,0 +1,150 @@
+#pragma once
+// Bandwidth-quantised Gabor noise (section 4, eq. 5): for each colour channel of the synthesis
+// colour space, a sparse set of Gaussians in frequency, each a symmetric pair with a frequency
+// omega, one of the quantised bandwidths a_b and a variance; the colour transform back to the
+// exemplar's channels (section 7) and the mean. Evaluation (section 6) runs one Poisson grid per
+// (channel, bandwidth) and draws kernel parameters with the alias method.
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/poisson.hpp"
+#include "model/model_record.hpp"
+#include "stochtex/image.hpp"
+#include "stochtex/model.hpp"
+
+namespace stochtex::gabor {
+
+// Quantised bandwidths a_b = 2^-b sqrt(pi / (2 ln 2)) (section 4.3), b = 0 .. kMaxBands - 1, in
+// cycles per exemplar pixel: the spectral Gaussian of band b has a full width at half maximum of
+// 2^-b cycles per pixel, i.e. 2^-b M frequency bins of an M-pixel exemplar.
+inline constexpr int kMaxBands = 16;
+double bandwidth(int band);
+
+// A model holds at most this many Gaussians (a 1024^2 RGBA exemplar fitted at full density):
+// loading refuses more, so a file cannot ask for more memory or set-up work than analysis makes.
+inline constexpr std::size_t kMaxGaussians = std::size_t{1} << 22;
+
+// One symmetric pair of Gaussians of eq. (6): frequency +-omega in cycles per pixel, bandwidth
+// a_band, variance sigma^2 = K^2 / (4 a^2) of its Gabor noise.
+struct GaussianComponent {
+  int channel = 0;
+  int band = 0;
+  float frequency_x = 0;
+  float frequency_y = 0;
+  float variance = 0;
+};
+
+// Values reported by the analysis, kept in the model file so that `stochtex info` shows them.
+struct FitReport {
+  double sparseness = 0;                  // Gaussians / (channels x pixels) (section 5.1)
+  double fit_error = 0;                   // ||S_n(alpha) - S_ex||_2 / ||S_ex||_2 over all channels
+  double offdiagonality_independent = 0;  // J(T) of eq. (10) for the three colour spaces
+  double offdiagonality_pca = 0;
+  double offdiagonality_rgb = 0;
+};
+
+class GaborModel {
+ public:
+  static constexpr std::string_view kMethodName = "gabor";
+
+  // `mixing` (channels x channels, row-major) maps the synthesis channels back to the exemplar's:
+  // colour = mean + mixing * noise. Throws std::invalid_argument on inconsistent data.
+  GaborModel(int channels, double impulses, int colour_space,
+             std::vector<GaussianComponent> gaussians, std::vector<float> mixing,
+             std::vector<float> mean, const FitReport& report);
+
+  static GaborModel from_record(const ModelRecord& record, const std::string& source);
+  ModelRecord to_record(const ParamValues& params) const;
+
+  int channels() const { return channels_; }
+  double impulses() const { return impulses_; }
+  int colour_space() const { return colour_space_; }
+  const std::vector<GaussianComponent>& gaussians() const { return gaussians_; }
+  std::span<const float> mixing() const { return mixing_; }
+  std::span<const float> mean() const { return mean_; }
+  const FitReport& report() const { return report_; }
+
+  // For inspection (`stochtex info --export` writes it as an image): the fourth root of the
+  // fitted power spectrum of each synthesis channel on kPreviewSide^2 frequencies, DC centred,
+  // mapped to [-1, 1] (the export maps [-1, 1] to black..white). Derived from the Gaussians; the
+  // model file carries it and loading ignores it.
+  static constexpr int kPreviewSide = 128;
+  std::vector<float> spectrum_preview() const;
+
+  // Bandwidth-quantised Gabor noise (eq. 5) per synthesis channel, mixed back to colour. Each
+  // kernel is attenuated analytically by the footprint's Gaussian pixel filter. noexcept, no
+  // allocation.
+  void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                std::uint32_t seed, ImageView<float> out) const noexcept;
+
+  // One Poisson grid of the multi-grid evaluation (section 6.1): the Gaussians of one channel
+  // and one bandwidth, with their alias table (section 6.2). Public for tests.
+  struct Grid {
+    int channel = 0;
+    int band = 0;
+    float bandwidth = 0;      // a_b
+    double radius = 0;        // r_b = 1 / a_b, where the kernel envelope falls to e^-pi
+    double cell_size = 0;     // side of the grid cells
+    float amplitude = 0;      // kernel amplitude K / sqrt(lambda p) of eq. (5), the same for all
+    std::uint32_t first = 0;  // range of the grid's Gaussians in the flat arrays
+    std::uint32_t count = 0;
+    float min_frequency_squared = 0;
+    double impulses = 0;  // N_b, this grid's share of the impulse budget
+    PoissonSampler cell_count;
+  };
+  const std::vector<Grid>& grids() const { return grids_; }
+  std::span<const float> alias_probability() const { return alias_probability_; }
+  std::span<const std::uint32_t> alias_index() const { return alias_index_; }
+
+ private:
+  int channels_;
+  double impulses_;
+  int colour_space_;
+  std::vector<GaussianComponent> gaussians_;
+  std::vector<float> mixing_;
+  std::vector<float> mean_;
+  FitReport report_;
+
+  // Derived at construction: Gaussians sorted by grid, flat for the evaluator.
+  std::vector<Grid> grids_;
+  std::vector<float> frequency_x_;
+  std::vector<float> frequency_y_;
+  std::vector<float> alias_probability_;
+  std::vector<std::uint32_t> alias_index_;
+};
+
+// Editing (section 8): transforms of the Gaussians in frequency, for all of them or a group.
+// Which Gaussians an edit touches: a channel (-1 = all), a band range and a range of |omega|.
+struct GaussianGroup {
+  int channel = -1;
+  int first_band = 0;
+  int last_band = kMaxBands - 1;
+  double min_frequency = 0.0;  // cycles per pixel
+  double max_frequency = 1.0;
+  bool contains(const GaussianComponent& g) const;
+};
+
+// omega' = scale * R(rotation) * omega + translation (rotation in radians, counter-clockwise),
+// variance' = magnitude * variance, band' = band + bandwidth_shift (clamped to the quantised
+// set: +1 halves the bandwidth a_b, i.e. a narrower spectral Gaussian and a wider kernel).
+struct SpectrumEdit {
+  double rotation = 0.0;
+  double scale = 1.0;
+  double translation_x = 0.0;
+  double translation_y = 0.0;
+  double magnitude = 1.0;
+  int bandwidth_shift = 0;
+};
+
+// The model with the group's Gaussians edited; Gaussians moved beyond Nyquist (|omega_x| or
+// |omega_y| > 1/2) are dropped, as the pixel grid cannot show them. The alias tables and budget
+// split are rebuilt in linear time (section 6.2). Throws std::invalid_argument for a
+// non-finite edit or a negative magnitude.
+GaborModel edit_gaussians(const GaborModel& model, const GaussianGroup& group,
+                          const SpectrumEdit& edit);
+
+}  // namespace stochtex::gabor

@@ -1,0 +1,153 @@
+// Gabor noise by example against its paper's claims, on `gaussian` exemplars of the corpus
+// (DESIGN.md section 9). Bounds are derived from the estimator's own noise, measured over fixed
+// seeds: the procedural noise must be as close to the exemplar as an ADSN sample (the exact
+// Gaussian texture, the paper's ground truth of section 3.1) up to a few standard deviations of
+// one sample's measurement.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "io/image_io.hpp"
+#include "metrics/metrics.hpp"
+#include "spectral/adsn.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex {
+namespace {
+
+const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
+
+struct Sample {
+  double mean = 0;
+  double deviation = 0;  // sample standard deviation of one measurement
+};
+
+Sample summarise(const std::vector<double>& values) {
+  const double n = static_cast<double>(values.size());
+  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / n;
+  double square = 0.0;
+  for (const double v : values) square += (v - mean) * (v - mean);
+  return {mean, std::sqrt(square / (n - 1.0))};
+}
+
+double pooled(const Sample& a, const Sample& b) {
+  return std::sqrt(0.5 * (a.deviation * a.deviation + b.deviation * b.deviation));
+}
+
+ImageF render_noise(const Model& model, int width, int height, std::uint32_t seed,
+                    double scale = 1.0, int supersample = 1, bool filter = true) {
+  ImageF out(width, height, model.channels());
+  RenderOptions options;
+  options.supersample = supersample;
+  options.filter = filter;
+  render(model, Grid{{0.0, 0.0}, scale, width, height}, seed, out.view(), options);
+  return out;
+}
+
+struct Errors {
+  Sample noise_spectral, adsn_spectral, noise_covariance, adsn_covariance;
+};
+
+// Spectral and covariance errors against the exemplar of `seeds` renders of side `size` and of
+// as many ADSN samples of the same size (DESIGN.md section 9).
+Errors measure(const Model& model, const ImageF& exemplar, int size, int seeds) {
+  const int crop = size / 2;
+  const ColourStatistics target = colour_statistics(exemplar.view());
+  std::vector<double> noise_spectral, adsn_spectral, noise_cov, adsn_cov;
+  for (std::uint32_t seed = 1; seed <= static_cast<std::uint32_t>(seeds); ++seed) {
+    const ImageF noise = render_noise(model, size, size, seed);
+    const ImageF gaussian = adsn(exemplar.view(), size, size, seed);
+    noise_spectral.push_back(spectral_error(noise.view(), exemplar.view(), crop));
+    adsn_spectral.push_back(spectral_error(gaussian.view(), exemplar.view(), crop));
+    noise_cov.push_back(covariance_error(colour_statistics(noise.view()), target));
+    adsn_cov.push_back(covariance_error(colour_statistics(gaussian.view()), target));
+  }
+  return {summarise(noise_spectral), summarise(adsn_spectral), summarise(noise_cov),
+          summarise(adsn_cov)};
+}
+
+void print(const std::string& what, const Errors& e) {
+  std::cout << what << ": spectral error gabor " << e.noise_spectral.mean << " (sd "
+            << e.noise_spectral.deviation << "), ADSN " << e.adsn_spectral.mean << " (sd "
+            << e.adsn_spectral.deviation << "); covariance error gabor " << e.noise_covariance.mean
+            << " (sd " << e.noise_covariance.deviation << "), ADSN " << e.adsn_covariance.mean
+            << " (sd " << e.adsn_covariance.deviation << ")\n";
+}
+
+// The bound of "at the ADSN level": the mean gap over the seeds within 4 pooled standard
+// deviations of one sample's measurement (the estimator's own noise) plus `bias` of the ADSN
+// error.
+double spectral_bound(const Errors& e, double bias) {
+  return 4.0 * pooled(e.noise_spectral, e.adsn_spectral) + bias * e.adsn_spectral.mean;
+}
+double covariance_bound(const Errors& e) {
+  return 4.0 * pooled(e.noise_covariance, e.adsn_covariance);
+}
+
+TEST(GaborQuality, DefaultsStayNearTheAdsnLevel) {
+  // Renders of 128^2 (Welch crops of 64) keep the suite fast; the docs list full-size numbers.
+  // At the default budget N = 1024 the shot noise is not yet Gaussian: each 64^2 crop sees a
+  // finite set of kernels, each a narrow-band wave, so its periodogram is spikier than a Gaussian
+  // field's and the spectral error sits from 7% below to 49% above ADSN's (measured; the gap closes
+  // with N, see the next test). The bound allows that bias (50%) plus 4 pooled sd. The test can
+  // fail: with kappa = 1/2 (a handful of Gaussians) the fit loses half the variance and the
+  // covariance gap is 0.4 against bounds below 0.3, and the spectral gap 0.29-0.30 reaches its
+  // bound (measured on fleece and grass). Granite, the fourth exemplar measured in the docs, is
+  // left out to keep the suite near a minute on two cores.
+  for (const std::string name :
+       {"brushed_aluminium_grey_256.png", "grass_lawn_256.png", "red_fleece_128.png"}) {
+    const ImageF exemplar = read_image(kTextureDir + "/" + name);
+    const Model model = analyze("gabor", exemplar.view(), {}, 0, name);
+    const Errors e = measure(model, exemplar, 128, 3);
+    print(name, e);
+    EXPECT_LE(e.noise_spectral.mean - e.adsn_spectral.mean, spectral_bound(e, 0.5)) << name;
+    EXPECT_LE(e.noise_covariance.mean - e.adsn_covariance.mean, covariance_bound(e) + 0.05) << name;
+  }
+}
+
+TEST(GaborQuality, SpectrumReachesTheAdsnLevelAsTheImpulseBudgetGrows) {
+  // Section 9.1: N trades quality for speed. At N = 4096 the noise is Gaussian enough that its
+  // spectral error is at the ADSN level (4 pooled sd plus 10% for the fit's own bias; the gap
+  // measured 0.036, 11% of ADSN's error, against a bound of 0.074), and more impulses never make it
+  // worse beyond the estimator's noise.
+  const ImageF exemplar = read_image(kTextureDir + "/red_fleece_128.png");
+  std::vector<Errors> errors;
+  for (const double impulses : {256.0, 1024.0, 4096.0}) {
+    const Model model = analyze("gabor", exemplar.view(), {{"impulses", impulses}}, 0);
+    errors.push_back(measure(model, exemplar, 128, 4));
+    print("red_fleece_128, N = " + std::to_string(static_cast<int>(impulses)), errors.back());
+  }
+  EXPECT_LE(errors[2].noise_spectral.mean - errors[2].adsn_spectral.mean,
+            spectral_bound(errors[2], 0.1));
+  for (std::size_t i = 1; i < errors.size(); ++i)
+    EXPECT_LT(errors[i].noise_spectral.mean,
+              errors[i - 1].noise_spectral.mean +
+                  2.0 * pooled(errors[i].noise_spectral, errors[i - 1].noise_spectral))
+        << "budget step " << i;
+}
+
+TEST(GaborQuality, ColourCovarianceInEachColourSpace) {
+  // Section 7: channels are synthesised independently, so the colour space must decorrelate
+  // them. The maximally independent and PCA spaces keep the exemplar's covariance at the ADSN
+  // level; RGB loses the cross-channel covariance (the fleece's channels are correlated: error
+  // 0.8 against 0.16, measured), which shows the test can fail.
+  const ImageF exemplar = read_image(kTextureDir + "/red_fleece_128.png");
+  for (const double space : {0.0, 1.0, 2.0}) {
+    const Model model = analyze("gabor", exemplar.view(), {{"colour_space", space}}, 0);
+    const Errors e = measure(model, exemplar, 128, 3);
+    print("red_fleece_128, colour_space " + std::to_string(static_cast<int>(space)), e);
+    const double gap = e.noise_covariance.mean - e.adsn_covariance.mean;
+    if (space < 2.0)
+      EXPECT_LE(gap, covariance_bound(e) + 0.05) << "colour space " << space;
+    else
+      EXPECT_GT(gap, covariance_bound(e) + 0.05) << "RGB keeps no cross-covariance";
+  }
+}
+
+}  // namespace
+}  // namespace stochtex

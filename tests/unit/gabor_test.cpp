@@ -1,0 +1,487 @@
+// Gabor noise by example (gabor-noise-by-example-2012): the alias tables (section 6.2), the
+// spectrum fit by FISTA with its duality gap (section 5), the joint diagonalisation of the colour
+// space (section 7), the evaluator's normalisation (eq. 5) and the model file.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "core/hash.hpp"
+#include "methods/gabor/alias.hpp"
+#include "methods/gabor/analysis.hpp"
+#include "methods/gabor/model.hpp"
+#include "model/model_data.hpp"
+#include "stochtex/error.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex::gabor {
+namespace {
+
+// The probability that the table returns i: its own column's share plus the columns that alias
+// to it, each column drawn with probability 1 / n.
+std::vector<double> alias_distribution(const std::vector<float>& probability,
+                                       const std::vector<std::uint32_t>& alias) {
+  const std::size_t n = probability.size();
+  std::vector<double> result(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    result[i] += probability[i] / static_cast<double>(n);
+    result[alias[i]] += (1.0 - probability[i]) / static_cast<double>(n);
+  }
+  return result;
+}
+
+TEST(GaborAlias, TablesReproduceTheDistributionExactly) {
+  std::mt19937 engine(3);
+  std::exponential_distribution<double> exponential(1.0);
+  std::vector<std::vector<double>> cases = {
+      {1.0}, {1.0, 1.0, 1.0}, {5.0, 1.0}, {0.0, 3.0, 0.0, 1.0}, {1e-9, 1.0, 1e9}};
+  std::vector<double> skewed(1000);
+  for (double& w : skewed) w = std::pow(exponential(engine), 4.0);
+  cases.push_back(skewed);
+  for (const auto& weights : cases) {
+    std::vector<float> probability(weights.size());
+    std::vector<std::uint32_t> alias(weights.size());
+    build_alias_table(weights, probability, alias);
+    double total = 0.0;
+    for (const double w : weights) total += w;
+    const std::vector<double> distribution = alias_distribution(probability, alias);
+    for (std::size_t i = 0; i < weights.size(); ++i) {
+      EXPECT_GE(probability[i], 0.0f);
+      EXPECT_LE(probability[i], 1.0f);
+      EXPECT_LT(alias[i], weights.size());
+      // Float storage of the column probabilities: relative error 2^-24 per column.
+      EXPECT_NEAR(distribution[i], weights[i] / total, 1e-7) << "entry " << i;
+    }
+  }
+}
+
+TEST(GaborAlias, DrawsFollowTheDistribution) {
+  const std::vector<double> weights = {0.1, 0.4, 0.2, 0.3};
+  std::vector<float> probability(4);
+  std::vector<std::uint32_t> alias(4);
+  build_alias_table(weights, probability, alias);
+  constexpr int kDraws = 400000;
+  std::vector<int> counts(4, 0);
+  CounterRng rng(cell_key(1, 2, 3, Stream::kernels));
+  for (int i = 0; i < kDraws; ++i) ++counts[draw_alias(probability.data(), alias.data(), 4, rng)];
+  // Chi-square with 3 degrees of freedom: 16.3 is the 0.1% quantile.
+  double chi_square = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const double expected = weights[static_cast<std::size_t>(i)] * kDraws;
+    chi_square += (counts[i] - expected) * (counts[i] - expected) / expected;
+  }
+  EXPECT_LT(chi_square, 16.3);
+}
+
+// A synthetic spectrum made of known Gaussians of the dictionary (each with its mirror).
+struct KnownAtom {
+  int band_index;
+  int x;
+  int y;
+  float coefficient;
+};
+
+std::vector<std::vector<float>> place(const GaussianDictionary& dictionary,
+                                      const std::vector<KnownAtom>& atoms) {
+  const int w = dictionary.width();
+  const int h = dictionary.height();
+  std::vector<std::vector<float>> alpha(static_cast<std::size_t>(dictionary.band_count()),
+                                        std::vector<float>(dictionary.plane_size(), 0.0f));
+  for (const KnownAtom& atom : atoms) {
+    auto& plane = alpha[static_cast<std::size_t>(atom.band_index)];
+    plane[static_cast<std::size_t>((atom.y + h) % h) * w + (atom.x + w) % w] = atom.coefficient;
+    plane[static_cast<std::size_t>((-atom.y + h) % h) * w + (-atom.x + w) % w] = atom.coefficient;
+  }
+  return alpha;
+}
+
+TEST(GaborFit, RecoversKnownGaussiansAndTheGapCertifiesTheStop) {
+  const GaussianDictionary dictionary(64, 64);
+  ASSERT_EQ(dictionary.band_count(), 7);  // FWHM 64, 32, ..., 1 bins
+  // Bands 2, 4 and 6 (FWHM 16, 4 and 1 bins; sub-grid steps 8, 2 and 1) at positions on their
+  // sub-grids, well apart.
+  const std::vector<KnownAtom> atoms = {
+      {2, 16, 16, 2.0f}, {4, -20, 8, 1.0f}, {6, 5, -12, 0.5f}, {6, 24, -24, 0.25f}};
+  for (const KnownAtom& atom : atoms)
+    ASSERT_EQ(dictionary.mask(atom.band_index)[static_cast<std::size_t>((atom.y + 64) % 64) * 64 +
+                                               (atom.x + 64) % 64],
+              1.0f);
+  std::vector<float> target;
+  dictionary.apply(place(dictionary, atoms), target);
+
+  FitOptions options;
+  options.kappa = 1.0 / 1024.0;
+  options.max_iterations = 3000;
+  options.gap_tolerance = 1e-3;
+  const SpectrumFit fit = fit_spectrum(dictionary, target, options);
+  EXPECT_TRUE(fit.converged);
+  EXPECT_EQ(fit.steps, 10);  // kappa = 1/2, ..., 1/1024
+  EXPECT_LE(fit.gap, 1e-3 * fit.primal);
+
+  // Positions and bandwidths: each known atom keeps its coefficient up to the l1 shrinkage
+  // (nu / 2 per unit-norm column, below 1% here), and what lands elsewhere is a small fraction.
+  double elsewhere = 0.0;
+  double total = 0.0;
+  const std::vector<std::vector<float>> truth = place(dictionary, atoms);
+  for (int b = 0; b < dictionary.band_count(); ++b)
+    for (std::size_t i = 0; i < dictionary.plane_size(); ++i) {
+      const float value = fit.alpha[static_cast<std::size_t>(b)][i];
+      total += value;
+      if (truth[static_cast<std::size_t>(b)][i] == 0.0f) elsewhere += value;
+    }
+  EXPECT_LT(elsewhere, 0.02 * total);
+  for (const KnownAtom& atom : atoms) {
+    const float found =
+        fit.alpha[static_cast<std::size_t>(atom.band_index)]
+                 [static_cast<std::size_t>((atom.y + 64) % 64) * 64 + (atom.x + 64) % 64];
+    EXPECT_NEAR(found, atom.coefficient, 0.03 * atom.coefficient)
+        << "band " << atom.band_index << " at " << atom.x << ", " << atom.y;
+  }
+  EXPECT_LT(fit.residual_norm, 0.01 * fit.target_norm);
+
+  // The certificate: the primal value at the stop exceeds the optimum (approached here by a much
+  // longer run) by no more than the gap reported at the stop.
+  options.kappa = fit.nu / fit.nu_max;
+  options.gap_tolerance = 1e-5;
+  options.max_iterations = 6000;
+  const SpectrumFit optimum = fit_spectrum(dictionary, target, options);
+  EXPECT_GE(fit.primal - optimum.primal, -1e-6 * fit.primal);
+  EXPECT_LE(fit.primal - optimum.primal, fit.gap + 1e-6 * fit.primal);
+}
+
+double squared_norm(const std::vector<float>& values) {
+  double sum = 0.0;
+  for (const float v : values) sum += static_cast<double>(v) * v;
+  return sum;
+}
+
+TEST(GaborFit, DualityGapIsZeroOnlyAtTheOptimum) {
+  const GaussianDictionary dictionary(32, 32);
+  const std::vector<KnownAtom> atoms = {{3, 4, 4, 1.0f}};
+  std::vector<float> target;
+  dictionary.apply(place(dictionary, atoms), target);
+  const std::vector<std::vector<float>> zero(static_cast<std::size_t>(dictionary.band_count()),
+                                             std::vector<float>(dictionary.plane_size(), 0.0f));
+  // At alpha = 0 with nu >= nu_max, 0 is optimal: the gap vanishes; with nu below it does not.
+  FitOptions options;
+  const SpectrumFit fit = fit_spectrum(dictionary, target, options);
+  EXPECT_NEAR(duality_gap(dictionary, target, zero, fit.nu_max).gap, 0.0,
+              1e-6 * squared_norm(target));
+  EXPECT_GT(duality_gap(dictionary, target, zero, 0.5 * fit.nu_max).gap,
+            0.1 * squared_norm(target));
+}
+
+Matrix multiply(const Matrix& a, const Matrix& b, int n, bool transpose_b = false) {
+  Matrix result(static_cast<std::size_t>(n) * n, 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+        result[static_cast<std::size_t>(i) * n + j] +=
+            a[static_cast<std::size_t>(i) * n + k] * (transpose_b
+                                                          ? b[static_cast<std::size_t>(j) * n + k]
+                                                          : b[static_cast<std::size_t>(k) * n + j]);
+  return result;
+}
+
+TEST(GaborColour, JointDiagonalisationFindsTheCommonBasis) {
+  // C_k = B D_k B^T for a non-orthogonal mixing B and random diagonal D_k (C_0 positive): the
+  // matrices share the basis B^-T exactly. T must diagonalise all of them, so T B is a scaled
+  // permutation; PCA (which only diagonalises C_0) must not.
+  constexpr int n = 3;
+  const Matrix mixing = {1.0, 0.6, 0.2, 0.3, 1.0, -0.4, 0.5, 0.1, 1.0};
+  std::mt19937 engine(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<Matrix> correlations;
+  for (int k = 0; k < 12; ++k) {
+    Matrix diagonal(n * n, 0.0);
+    for (int i = 0; i < n; ++i)
+      diagonal[static_cast<std::size_t>(i) * n + i] = k == 0 ? 1.0 + i : normal(engine);
+    correlations.push_back(multiply(multiply(mixing, diagonal, n), mixing, n, true));
+  }
+  const Matrix transform = joint_diagonalizer(correlations, n);
+  EXPECT_LT(off_diagonality(transform, correlations, n), 1e-12);
+  const Matrix product = multiply(transform, mixing, n);
+  for (int i = 0; i < n; ++i) {
+    double largest = 0.0;
+    double row = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const double v = product[static_cast<std::size_t>(i) * n + j];
+      largest = std::max(largest, v * v);
+      row += v * v;
+    }
+    EXPECT_GT(largest / row, 1.0 - 1e-10) << "row " << i;
+  }
+  EXPECT_GT(off_diagonality(principal_axes(correlations.front(), n), correlations, n), 1e-3);
+}
+
+// A model made of given Gaussians (grey unless `channels` says otherwise).
+GaborModel model_of(std::vector<GaussianComponent> gaussians, int channels = 1,
+                    double impulses = 256) {
+  std::vector<float> mixing(static_cast<std::size_t>(channels) * channels, 0.0f);
+  for (int c = 0; c < channels; ++c) mixing[static_cast<std::size_t>(c) * channels + c] = 1.0f;
+  return GaborModel(channels, impulses, 0, std::move(gaussians), mixing,
+                    std::vector<float>(static_cast<std::size_t>(channels), 0.5f), FitReport{});
+}
+
+struct Moments {
+  double mean = 0;
+  double variance = 0;
+};
+
+Moments sample_moments(const GaborModel& model, std::uint32_t seed, double spacing = 37.3,
+                       const std::vector<Footprint>& footprints = {}) {
+  constexpr int kSamples = 20000;
+  std::vector<Vec2d> positions;
+  for (int i = 0; i < kSamples; ++i)
+    positions.push_back({spacing * (i % 200), spacing * (i / 200)});
+  std::vector<Footprint> fps = footprints;
+  if (!fps.empty()) fps.assign(positions.size(), footprints.front());
+  ImageF out(kSamples, 1, model.channels());
+  model.evaluate(positions, fps, seed, out.view());
+  double sum = 0.0, square = 0.0;
+  for (const float v : out.pixels()) {
+    sum += v;
+    square += static_cast<double>(v) * v;
+  }
+  const double count = static_cast<double>(out.pixels().size());
+  return {sum / count, square / count - (sum / count) * (sum / count)};
+}
+
+TEST(GaborEvaluate, VarianceIsTheSumOfTheGaussiansVariances) {
+  // Eq. (5) with p = sigma_g^2 / sigma_b^2: whatever the budget split, the noise variance is the
+  // sum of the variances (samples 37 pixels apart are nearly independent: relative standard error
+  // of the variance ~ sqrt(2 / 20000) = 1%).
+  const GaborModel model = model_of({{0, 3, 0.05f, 0.02f, 0.004f},
+                                     {0, 3, -0.1f, 0.2f, 0.002f},
+                                     {0, 5, 0.01f, 0.0f, 0.003f},
+                                     {0, 1, 0.3f, -0.25f, 0.001f}});
+  ASSERT_EQ(model.grids().size(), 3u);
+  double variance = 0.0;
+  for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+    const Moments moments = sample_moments(model, seed);
+    EXPECT_NEAR(moments.mean, 0.5, 4.0 * std::sqrt(0.01 / 20000.0));
+    variance += moments.variance / 3.0;
+  }
+  EXPECT_NEAR(variance / 0.01, 1.0, 0.05);
+}
+
+TEST(GaborEvaluate, FootprintAttenuatesAsTheGaussianPixelFilter) {
+  // One Gaussian at frequency 0.25 of bandwidth a_3: a footprint of scale s (box variance s^2/12
+  // beyond the exemplar pixel's 1/12) scales its power by exp(-4 pi^2 (s^2 - 1) / 12 |omega'|^2)
+  // in the narrow-band limit; the exact attenuation of eq. (3) filtered is computed here as the
+  // integral of the filtered spectrum.
+  const GaborModel model = model_of({{0, 3, 0.25f, 0.0f, 0.01f}}, 1, 1024);
+  const double scale = 2.0;
+  const double filter = 2.0 * std::numbers::pi * std::numbers::pi * (scale * scale - 1.0) / 12.0;
+  const double a = bandwidth(3);
+  const double precision = std::numbers::pi / (a * a);
+  // Power spectrum of the kernel ~ exp(-2 P |xi - omega|^2) (P = pi / a^2); the filter squared
+  // is exp(-2 Q |xi|^2): the filtered power is exp(-2 P Q / (P + Q) |omega|^2) (P / (P + Q)).
+  const double expected = std::exp(-2.0 * precision * filter / (precision + filter) * 0.0625) *
+                          precision / (precision + filter);
+  const Moments point = sample_moments(model, 4);
+  const Moments filtered = sample_moments(model, 4, 37.3, {Footprint{{scale, 0.0}, {0.0, scale}}});
+  EXPECT_NEAR(filtered.variance / point.variance, expected, 0.06 * expected);
+}
+
+TEST(GaborEvaluate, HugeFootprintsGiveTheMeanQuickly) {
+  // A footprint of 1e12 pixels averages the noise away; the thinned levels end and the grids are
+  // skipped instead of visiting ~1e12 cells. A DC Gaussian is the slowest to vanish.
+  const GaborModel model = model_of({{0, 8, 0.0f, 0.0f, 0.01f}, {0, 2, 0.2f, 0.1f, 0.01f}});
+  const std::vector<Vec2d> positions = {{0.5, 0.5}, {3e6, -2e6}};
+  const std::vector<Footprint> footprints(2, Footprint{{1e12, 0.0}, {0.0, 1e12}});
+  ImageF out(2, 1, 1);
+  model.evaluate(positions, footprints, 1, out.view());
+  EXPECT_NEAR(out.at(0, 0, 0), 0.5f, 1e-6f);
+  EXPECT_NEAR(out.at(1, 0, 0), 0.5f, 1e-6f);
+}
+
+TEST(GaborEvaluate, FarFromTheOriginIsAsPreciseAsAtTheOrigin) {
+  // A narrow-band noise sampled 0.05 pixels apart: with positions in float near 1e7 (spacing 1)
+  // neighbouring samples would repeat; with 64-bit cells and local offsets they vary as at 0.
+  const GaborModel model = model_of({{0, 6, 0.2f, 0.1f, 0.01f}});
+  // The ratio of the squared increments to the variance along the path measures the local
+  // frequency content, the same at every position for a stationary field: it is ~(2 pi 0.05)^2
+  // |omega . direction|^2 here, and collapses to ~0 when the positions lose their precision.
+  const auto roughness = [&](double origin) {
+    double energy = 0.0;
+    double sum = 0.0;
+    double square = 0.0;
+    for (std::uint32_t seed = 1; seed <= 4; ++seed) {
+      std::vector<Vec2d> positions;
+      for (int i = 0; i < 4000; ++i) positions.push_back({origin + 0.05 * i, origin - 0.05 * i});
+      ImageF out(4000, 1, 1);
+      model.evaluate(positions, {}, seed, out.view());
+      for (int i = 0; i < 4000; ++i) {
+        const double v = out.at(i, 0, 0);
+        sum += v;
+        square += v * v;
+        if (i > 0) {
+          const double d = v - out.at(i - 1, 0, 0);
+          energy += d * d;
+        }
+      }
+    }
+    const double count = 16000.0;
+    return energy / (square / count - (sum / count) * (sum / count)) / count;
+  };
+  const double near = roughness(0.0);
+  const double far = roughness(1e7);
+  const double expected = std::pow(2.0 * std::numbers::pi * 0.05 * (0.2 - 0.1), 2.0);
+  EXPECT_NEAR(near / expected, 1.0, 0.2);
+  EXPECT_NEAR(far / expected, 1.0, 0.2);
+}
+
+Model analysed_model(int channels, double colour_space = 0) {
+  std::mt19937 engine(4);
+  std::normal_distribution<float> normal(0.5f, 0.1f);
+  ImageF exemplar(32, 32, channels);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const float shared = normal(engine);
+      for (int c = 0; c < channels; ++c)
+        exemplar.at(x, y, c) = 0.6f * shared + 0.4f * normal(engine) +
+                               0.05f * static_cast<float>(std::sin(0.7 * x + c));
+    }
+  return analyze("gabor", exemplar.view(), {{"colour_space", colour_space}, {"impulses", 64}}, 1);
+}
+
+TEST(GaborModelFile, RoundTripIsExactAndEvaluatesTheSame) {
+  for (const int channels : {1, 3, 4}) {
+    const Model model = analysed_model(channels);
+    EXPECT_EQ(model.method(), "gabor");
+    const std::vector<std::uint8_t> bytes = serialize_model(model);
+    const Model loaded = deserialize_model(bytes, "memory");
+    EXPECT_EQ(serialize_model(loaded), bytes);
+    const std::vector<Vec2d> points = {{0.5, 0.5}, {100.25, -7.0}, {1e7, 3e6}};
+    const std::vector<Footprint> footprints(3, Footprint{{3.0, 0.5}, {0.0, 2.0}});
+    ImageF a(3, 1, channels), b(3, 1, channels);
+    evaluate(model, points, footprints, 5, a.view());
+    evaluate(loaded, points, footprints, 5, b.view());
+    EXPECT_EQ(0, std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()));
+  }
+}
+
+TEST(GaborModelFile, RenderIsBitIdenticalWhateverTheThreadsAndTiles) {
+  const Model model = analysed_model(3);
+  for (const double scale : {1.0, 5.0}) {
+    const Grid grid{{-30.5, 12.25}, scale, 41, 37};
+    ImageF a(41, 37, 3), b(41, 37, 3);
+    RenderOptions one;
+    one.threads = 1;
+    RenderOptions many;
+    many.threads = 3;
+    many.tile_size = 7;
+    render(model, grid, 3, a.view(), one);
+    render(model, grid, 3, b.view(), many);
+    EXPECT_EQ(0, std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()));
+  }
+}
+
+TEST(GaborModelFile, CorruptRecordsAreRejected) {
+  const Model model = analysed_model(3);
+  const ModelRecord good = std::get<GaborModel>(model.data().model).to_record(model.params());
+  ASSERT_NO_THROW(GaborModel::from_record(good, "model.stx"));
+  const auto gaussian_value = [](ModelRecord& r, std::size_t column) -> float& {
+    for (auto& array : r.arrays)
+      if (array.name == "gaussians") return array.values[column];
+    throw std::logic_error("no gaussians");
+  };
+  const std::vector<std::pair<std::string, std::function<void(ModelRecord&)>>> corruptions = {
+      {"channel out of range", [&](ModelRecord& r) { gaussian_value(r, 0) = 3.0f; }},
+      {"fractional band", [&](ModelRecord& r) { gaussian_value(r, 1) = 1.5f; }},
+      {"band too large", [&](ModelRecord& r) { gaussian_value(r, 1) = 16.0f; }},
+      {"frequency beyond Nyquist", [&](ModelRecord& r) { gaussian_value(r, 2) = 0.7f; }},
+      {"NaN frequency", [&](ModelRecord& r) { gaussian_value(r, 3) = NAN; }},
+      {"negative variance", [&](ModelRecord& r) { gaussian_value(r, 4) = -1.0f; }},
+      {"infinite variance", [&](ModelRecord& r) { gaussian_value(r, 4) = INFINITY; }},
+      {"impulse budget too large", [](ModelRecord& r) { r.scalars["impulses"] = 1e9; }},
+      {"impulse budget zero", [](ModelRecord& r) { r.scalars["impulses"] = 0; }},
+      {"channels", [](ModelRecord& r) { r.scalars["channels"] = 5; }},
+      {"count mismatch", [](ModelRecord& r) { r.scalars["gaussians"] += 1; }},
+      {"too many Gaussians", [](ModelRecord& r) { r.scalars["gaussians"] = 1e12; }},
+      {"negative report", [](ModelRecord& r) { r.scalars["fit_error"] = -1; }},
+      {"missing colour", [](ModelRecord& r) { r.arrays.erase(r.arrays.begin() + 1); }},
+      {"NaN colour", [](ModelRecord& r) { r.arrays[1].values[4] = NAN; }},
+      {"NaN mean", [](ModelRecord& r) { r.arrays[2].values[0] = NAN; }},
+  };
+  for (const auto& [what, corrupt] : corruptions) {
+    ModelRecord record = good;
+    corrupt(record);
+    try {
+      GaborModel::from_record(record, "model.stx");
+      ADD_FAILURE() << what << ": accepted";
+    } catch (const Error& error) {
+      EXPECT_EQ(error.code(), ErrorCode::format) << what;
+      EXPECT_NE(std::string(error.what()).find("'model.stx'"), std::string::npos) << what;
+    }
+  }
+}
+
+TEST(GaborAnalysis, ReportsSparsenessFitErrorAndOffDiagonality) {
+  const Model model = analysed_model(3);
+  const GaborModel& gabor = std::get<GaborModel>(model.data().model);
+  const FitReport& report = gabor.report();
+  EXPECT_GT(report.sparseness, 0.0);
+  EXPECT_LT(report.sparseness, 1.0);
+  EXPECT_GT(report.fit_error, 0.0);
+  EXPECT_LT(report.fit_error, 1.0);
+  // The channels share most of their signal: RGB is far from diagonal, the two decorrelating
+  // spaces are not, and the joint diagonaliser is at least as good as PCA on its own criterion.
+  EXPECT_GT(report.offdiagonality_rgb, 0.3);
+  EXPECT_LT(report.offdiagonality_pca, report.offdiagonality_rgb);
+  EXPECT_LE(report.offdiagonality_independent, report.offdiagonality_pca * 1.0001);
+}
+
+TEST(GaborEdit, TransformsTheSelectedGaussiansOnly) {
+  const GaborModel model = model_of(
+      {{0, 3, 0.1f, 0.0f, 0.004f}, {0, 5, 0.0f, 0.2f, 0.002f}, {0, 7, 0.4f, 0.0f, 0.001f}});
+  // Rotate by 90 degrees and double the magnitude of bands 3-5.
+  GaussianGroup group;
+  group.last_band = 5;
+  SpectrumEdit rotate;
+  rotate.rotation = std::numbers::pi / 2.0;
+  rotate.magnitude = 2.0;
+  const GaborModel rotated = edit_gaussians(model, group, rotate);
+  ASSERT_EQ(rotated.gaussians().size(), 3u);
+  EXPECT_NEAR(rotated.gaussians()[0].frequency_x, 0.0f, 1e-7f);
+  EXPECT_NEAR(rotated.gaussians()[0].frequency_y, 0.1f, 1e-7f);
+  EXPECT_NEAR(rotated.gaussians()[1].frequency_x, -0.2f, 1e-7f);
+  EXPECT_FLOAT_EQ(rotated.gaussians()[1].variance, 0.004f);
+  EXPECT_FLOAT_EQ(rotated.gaussians()[2].frequency_x, 0.4f);  // band 7: not in the group
+  EXPECT_FLOAT_EQ(rotated.gaussians()[2].variance, 0.001f);
+
+  // Scaling all frequencies by 2 pushes 0.4 beyond Nyquist: that Gaussian is dropped. A band
+  // shift of +1 narrows the spectral Gaussians (a_{b+1} = a_b / 2).
+  SpectrumEdit scale;
+  scale.scale = 2.0;
+  scale.bandwidth_shift = 1;
+  const GaborModel scaled = edit_gaussians(model, GaussianGroup{}, scale);
+  ASSERT_EQ(scaled.gaussians().size(), 2u);
+  EXPECT_FLOAT_EQ(scaled.gaussians()[0].frequency_x, 0.2f);
+  EXPECT_EQ(scaled.gaussians()[0].band, 4);
+  EXPECT_EQ(scaled.gaussians()[1].band, 6);
+
+  // The edited model is a valid model: its noise has the edited variance.
+  SpectrumEdit louder;
+  louder.magnitude = 3.0;
+  double before = 0.0, after = 0.0;
+  for (std::uint32_t seed = 1; seed <= 2; ++seed) {
+    before += sample_moments(model, seed).variance;
+    after += sample_moments(edit_gaussians(model, GaussianGroup{}, louder), seed).variance;
+  }
+  EXPECT_NEAR(after / before, 3.0, 1e-3);  // same seeds, same impulses: only amplitudes change
+
+  SpectrumEdit bad;
+  bad.magnitude = -1.0;
+  EXPECT_THROW(edit_gaussians(model, GaussianGroup{}, bad), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace stochtex::gabor
