@@ -5,16 +5,8 @@
 # filtering row (zoomed out 8x: filtered, point-sampled, supersampled 16x16). Only MIT/CC0 corpus
 # images are used, because the outputs are committed. Usage: bash scripts/gallery_gabor.sh [build]
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$root/build}"
-textures="$root/../shared/textures"
-out="$root/docs/images/gabor"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" --parallel --target stochtex
-stochtex="$build/stochtex"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
+gallery=gabor
+source "$(dirname "$0")/gallery_common.sh"
 
 for name in grass_lawn_256 brushed_aluminium_grey_256 concrete_cement_512 sand_height_grey_512 \
   bricks_stone_wall_512; do
@@ -28,9 +20,5 @@ for name in grass_lawn_256 brushed_aluminium_grey_256 concrete_cement_512 sand_h
 done
 
 model="$work/grass_lawn_256.stx"
-"$stochtex" render "$model" -o "$out/scale8_filtered.png" --size 128x128 --scale 8 --seed 1
-"$stochtex" render "$model" -o "$out/scale8_unfiltered.png" --size 128x128 --scale 8 --seed 1 \
-  --no-filter
-"$stochtex" render "$model" -o "$out/scale8_supersampled.png" --size 128x128 --scale 8 --seed 1 \
-  --supersample 16
+gallery_filtering_row "$model" 128x128
 echo "gallery written to $out"

@@ -5,16 +5,8 @@
 # 8x: filtered, point-sampled, supersampled 16x16). Only MIT/CC0 corpus images are used, because
 # the outputs are committed. Usage: bash scripts/gallery_tiling.sh [build-dir]
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$root/build}"
-textures="$root/../shared/textures"
-out="$root/docs/images/tiling"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" --parallel --target stochtex
-stochtex="$build/stochtex"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
+gallery=tiling
+source "$(dirname "$0")/gallery_common.sh"
 
 for name in moss_ground_512 sand_height_grey_512 metal_grey_256 nuts_grey_256 \
   water_caustics_256 bricks_stone_wall_512; do
@@ -40,9 +32,5 @@ done
   -o "$out/moss_ground_512_tiling_per_channel.png" --size 256x256 --seed 1
 
 model="$work/water_caustics_256.stx"
-"$stochtex" render "$model" -o "$out/scale8_filtered.png" --size 256x256 --scale 8 --seed 1
-"$stochtex" render "$model" -o "$out/scale8_unfiltered.png" --size 256x256 --scale 8 --seed 1 \
-  --no-filter
-"$stochtex" render "$model" -o "$out/scale8_supersampled.png" --size 256x256 --scale 8 --seed 1 \
-  --supersample 16
+gallery_filtering_row "$model" 256x256
 echo "gallery written to $out"

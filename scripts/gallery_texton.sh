@@ -2,18 +2,10 @@
 # Regenerates the picture gallery of docs/methods/texton.md: for each exemplar, the exemplar, its
 # Gaussian version (ADSN), the texton and texton noise; then the filtering row (zoomed out 8x:
 # filtered, point-sampled, supersampled 16x16). Only MIT/CC0 corpus images are used, because the
-# outputs are committed. Usage: bash scripts/gallery.sh [build-dir]
+# outputs are committed. Usage: bash scripts/gallery_texton.sh [build-dir]
 set -euo pipefail
-root="$(cd "$(dirname "$0")/.." && pwd)"
-build="${1:-$root/build}"
-textures="$root/../shared/textures"
-out="$root/docs/images/texton"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" --parallel --target stochtex
-stochtex="$build/stochtex"
-work="$(mktemp -d)"
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
+gallery=texton
+source "$(dirname "$0")/gallery_common.sh"
 
 for name in grass_lawn_256 concrete_cement_512 moss_ground_512 sand_height_grey_512 \
   bricks_stone_wall_512; do
@@ -27,9 +19,5 @@ for name in grass_lawn_256 concrete_cement_512 moss_ground_512 sand_height_grey_
 done
 
 model="$work/concrete_cement_512.stx"
-"$stochtex" render "$model" -o "$out/scale8_filtered.png" --size 256x256 --scale 8 --seed 1
-"$stochtex" render "$model" -o "$out/scale8_unfiltered.png" --size 256x256 --scale 8 --seed 1 \
-  --no-filter
-"$stochtex" render "$model" -o "$out/scale8_supersampled.png" --size 256x256 --scale 8 --seed 1 \
-  --supersample 16
+gallery_filtering_row "$model" 256x256
 echo "gallery written to $out"
