@@ -1,0 +1,89 @@
+// The four methods side by side (DESIGN.md section 10): analysis time and evaluation cost per
+// sample of every registered method on the same exemplar, in one process, at 1 thread and at all
+// hardware threads, with the ratio of each to the fastest.
+// Usage: stochtex_methods_compare [EXEMPLAR.png] (default: the corpus's moss_ground_512.png).
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "io/image_io.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace {
+
+using namespace stochtex;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kSide = 256;
+constexpr double kMinimumSeconds = 0.5;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Wall-clock nanoseconds per sample of kSide x kSide renders, repeated for at least
+// kMinimumSeconds.
+double ns_per_sample(const Model& model, int threads) {
+  ImageF out(kSide, kSide, model.channels());
+  RenderOptions options;
+  options.threads = threads;
+  const Grid grid{{0.0, 0.0}, 1.0, kSide, kSide};
+  render(model, grid, 0, out.view(), options);  // warm-up: caches, thread start
+  int renders = 0;
+  const auto start = Clock::now();
+  do {
+    render(model, grid, static_cast<std::uint32_t>(++renders), out.view(), options);
+  } while (seconds_since(start) < kMinimumSeconds);
+  return seconds_since(start) * 1e9 / (static_cast<double>(renders) * kSide * kSide);
+}
+
+struct Row {
+  std::string method;
+  double analysis_ms = 0.0;
+  double single = 0.0;
+  double all = 0.0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const std::string path =
+        argc > 1 ? argv[1] : std::string(STOCHTEX_TEXTURE_DIR) + "/moss_ground_512.png";
+    const ImageF exemplar = read_image(path);
+    const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<Row> rows;
+    for (const auto& method : methods()) {
+      Row row{std::string(method.name)};
+      const auto start = Clock::now();
+      const Model model = analyze(method.name, exemplar.view(), {}, 0, path);
+      row.analysis_ms = seconds_since(start) * 1e3;
+      row.single = ns_per_sample(model, 1);
+      row.all = ns_per_sample(model, threads);
+      rows.push_back(row);
+      fmt::print(stderr, "measured {}\n", row.method);
+    }
+    const double fastest =
+        std::min_element(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+          return a.single < b.single;
+        })->single;
+    fmt::print("{} ({}x{} {}-channel), {}x{} renders, default parameters, {} hardware threads\n",
+               path, exemplar.width(), exemplar.height(), exemplar.channels(), kSide, kSide,
+               threads);
+    fmt::print("{:<8} {:>12} {:>16} {:>16} {:>12}\n", "method", "analysis ms", "ns/sample 1 thr",
+               fmt::format("ns/sample {} thr", threads), "x fastest");
+    for (const Row& row : rows)
+      fmt::print("{:<8} {:>12.1f} {:>16.1f} {:>16.1f} {:>12.1f}\n", row.method, row.analysis_ms,
+                 row.single, row.all, row.single / fastest);
+    return 0;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "stochtex_methods_compare: error: {}\n", e.what());
+    return 1;
+  }
+}
