@@ -6,11 +6,14 @@
 
 #include <chrono>
 #include <cstdint>
+#include <exception>
 #include <map>
 #include <string>
+#include <string_view>
 
 #include "io/image_io.hpp"
 #include "stochtex/image.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex::bench {
 
@@ -25,11 +28,13 @@ inline const ImageF& corpus_image(const std::string& name) {
 
 // The 512² colour and grey exemplars: analysis sizes crop them, so every size sees the same kind
 // of texture.
+inline constexpr const char* kColourExemplar = "moss_ground_512.png";
+inline constexpr const char* kGreyExemplar = "sand_height_grey_512.png";
 inline const ImageF& colour_exemplar() {
-  return corpus_image("moss_ground_512.png");
+  return corpus_image(kColourExemplar);
 }
 inline const ImageF& grey_exemplar() {
-  return corpus_image("sand_height_grey_512.png");
+  return corpus_image(kGreyExemplar);
 }
 
 inline ImageF crop_top_left(const ImageF& image, int side) {
@@ -53,6 +58,23 @@ void time_samples(benchmark::State& state, std::int64_t samples_per_iteration, B
   const std::int64_t samples = state.iterations() * samples_per_iteration;
   state.SetItemsProcessed(samples);
   if (samples > 0) state.counters["ns_per_sample"] = elapsed.count() / static_cast<double>(samples);
+}
+
+// Times `analyze(method)` on the top-left side x side crop of the corpus image `name`; skips the
+// benchmark with the reason when the image cannot be read.
+inline void analysis_benchmark(benchmark::State& state, std::string_view method,
+                               const std::string& name, int side, const ParamValues& params = {}) {
+  ImageF exemplar;
+  try {
+    exemplar = crop_top_left(corpus_image(name), side);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  for (auto _ : state) {
+    Model model = analyze(method, exemplar.view(), params, 0);
+    benchmark::DoNotOptimize(model);
+  }
 }
 
 }  // namespace stochtex::bench

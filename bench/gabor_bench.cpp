@@ -23,22 +23,8 @@ constexpr int kSide = 128;
 constexpr std::int64_t kSamples = std::int64_t{kSide} * kSide;
 constexpr std::uint32_t kSeed = 7;
 
-void analysis(benchmark::State& state, const std::string& name) {
-  ImageF exemplar;
-  try {
-    exemplar = crop_top_left(corpus_image(name), static_cast<int>(state.range(0)));
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
-  for (auto _ : state) {
-    Model model = analyze("gabor", exemplar.view(), {}, 0);
-    benchmark::DoNotOptimize(model);
-  }
-}
-
 void BM_GaborAnalysisGrey(benchmark::State& state) {
-  analysis(state, "sand_height_grey_512.png");
+  analysis_benchmark(state, "gabor", kGreyExemplar, static_cast<int>(state.range(0)));
 }
 BENCHMARK(BM_GaborAnalysisGrey)
     ->ArgName("side")
@@ -48,7 +34,7 @@ BENCHMARK(BM_GaborAnalysisGrey)
     ->Unit(benchmark::kMillisecond);
 
 void BM_GaborAnalysisColour(benchmark::State& state) {
-  analysis(state, "moss_ground_512.png");
+  analysis_benchmark(state, "gabor", kColourExemplar, static_cast<int>(state.range(0)));
 }
 BENCHMARK(BM_GaborAnalysisColour)
     ->ArgName("side")

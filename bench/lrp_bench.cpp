@@ -22,18 +22,7 @@ constexpr int kRenderSide = 128;
 constexpr std::uint32_t kSeed = 7;
 
 void BM_LrpAnalysis(benchmark::State& state) {
-  const int side = static_cast<int>(state.range(0));
-  ImageF exemplar;
-  try {
-    exemplar = crop_top_left(grey_exemplar(), side);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
-  for (auto _ : state) {
-    Model model = analyze("lrp", exemplar.view(), {}, 0);
-    benchmark::DoNotOptimize(model);
-  }
+  analysis_benchmark(state, "lrp", kGreyExemplar, static_cast<int>(state.range(0)));
 }
 BENCHMARK(BM_LrpAnalysis)
     ->ArgName("side")

@@ -37,18 +37,7 @@ const Model& texton_model(int support) {
 }
 
 void BM_TextonAnalysis(benchmark::State& state) {
-  const int side = static_cast<int>(state.range(0));
-  ImageF exemplar;
-  try {
-    exemplar = crop_top_left(colour_exemplar(), side);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
-  for (auto _ : state) {
-    Model model = analyze("texton", exemplar.view(), {}, 0);
-    benchmark::DoNotOptimize(model);
-  }
+  analysis_benchmark(state, "texton", kColourExemplar, static_cast<int>(state.range(0)));
 }
 BENCHMARK(BM_TextonAnalysis)
     ->ArgName("side")

@@ -38,19 +38,8 @@ const Model& tiling_model(int variant) {
 }
 
 void BM_TilingAnalysis(benchmark::State& state) {
-  const int side = static_cast<int>(state.range(0));
-  const double transport = static_cast<double>(state.range(1));
-  ImageF exemplar;
-  try {
-    exemplar = crop_top_left(colour_exemplar(), side);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
-  for (auto _ : state) {
-    Model model = analyze("tiling", exemplar.view(), {{"transport", transport}}, 0);
-    benchmark::DoNotOptimize(model);
-  }
+  analysis_benchmark(state, "tiling", kColourExemplar, static_cast<int>(state.range(0)),
+                     {{"transport", static_cast<double>(state.range(1))}});
 }
 BENCHMARK(BM_TilingAnalysis)
     ->ArgNames({"side", "transport"})
