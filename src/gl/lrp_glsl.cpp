@@ -11,7 +11,11 @@ namespace stochtex::gl {
 LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   const lrp::LrpData& d = model.data();
   LrpGlsl glsl;
-  glsl.frequencies = d.frequencies;
+  for (std::size_t f = 0; f < d.weights.size(); ++f) {
+    glsl.frequencies.push_back(d.frequencies[2 * f]);
+    glsl.frequencies.push_back(d.frequencies[2 * f + 1]);
+    glsl.frequencies.push_back(d.weights[f]);
+  }
   for (std::size_t k = 0; k < d.substratum_first.size(); ++k) {
     glsl.substrata.push_back(d.substratum_first[k]);
     glsl.substrata.push_back(d.substratum_count[k]);

@@ -12,7 +12,7 @@ namespace stochtex::gl {
 
 struct LrpGlsl {
   std::string constants;                 // GLSL const declarations, LRP_* (exact float literals)
-  std::vector<float> frequencies;        // `lrp_frequencies`: (f_x, f_y) pairs
+  std::vector<float> frequencies;        // `lrp_frequencies`: (f_x, f_y, weight) triples
   std::vector<std::uint32_t> substrata;  // `lrp_substrata`: (first, count) pairs
 };
 

@@ -87,7 +87,7 @@ TEST(LrpStrata, EqualEnergyPowerIntervals) {
   const SpectrumTarget target = lumpy_spectrum(64);
   const double total = std::accumulate(target.power.begin(), target.power.end(), 0.0);
   for (const int strata : {1, 2, 4, 8}) {
-    const std::vector<StratumPlan> plans = plan_strata(target.power, 64, strata, 50, 1);
+    const std::vector<StratumPlan> plans = plan_strata(target.power, 64, strata, 50, true, 1);
     ASSERT_EQ(plans.size(), static_cast<std::size_t>(strata));
     double energy = 0.0;
     for (std::size_t s = 0; s < plans.size(); ++s) {
@@ -106,7 +106,7 @@ TEST(LrpStrata, EqualEnergyPowerIntervals) {
 
 TEST(LrpStrata, SpacingAmplitudeAndSubstrata) {
   const SpectrumTarget target = lumpy_spectrum(64);
-  const std::vector<StratumPlan> plans = plan_strata(target.power, 64, 4, 50, 7);
+  const std::vector<StratumPlan> plans = plan_strata(target.power, 64, 4, 50, true, 7);
   const double radial = window_radial_energy();
   int cosines = 0;
   for (const StratumPlan& plan : plans) {
@@ -138,11 +138,51 @@ TEST(LrpStrata, SpacingAmplitudeAndSubstrata) {
   EXPECT_GT(plans[0].sampling.spacing, plans[3].sampling.spacing);
 }
 
+TEST(LrpStrata, ShapedAmplitudesFollowThePowerAndKeepTheEnergy) {
+  const int size = 64;
+  const SpectrumTarget target = lumpy_spectrum(size);
+  const auto power_of = [&](const std::array<int, 2>& bin) {
+    // The pair power of a half-plane bin: power(k) + power(-k), one term when k == -k.
+    const int kx = bin[0] < 0 ? bin[0] + size : bin[0];
+    const int nx = (size - kx) % size;
+    const int ny = (size - bin[1]) % size;
+    const double p = target.power[static_cast<std::size_t>(bin[1]) * size + kx];
+    return (nx == kx && ny == bin[1]) ? p : 2.0 * p;
+  };
+  for (const bool shaped : {false, true}) {
+    const std::vector<StratumPlan> plans = plan_strata(target.power, size, 4, 50, shaped, 7);
+    for (const StratumPlan& plan : plans) {
+      ASSERT_EQ(plan.weights.size(), plan.substrata.size());
+      // Each sub-stratum is drawn uniformly, so a cosine's expected squared weight is the mean of
+      // w^2 over its sub-stratum; J_S cosines must carry the stratum's energy, as A_S assumes.
+      double expected = 0.0;
+      for (std::size_t k = 0; k < plan.substrata.size(); ++k) {
+        ASSERT_EQ(plan.weights[k].size(), plan.substrata[k].size());
+        double square = 0.0;
+        for (const float w : plan.weights[k]) square += double(w) * w;
+        expected += square / double(plan.weights[k].size());
+        for (std::size_t i = 0; i < plan.weights[k].size(); ++i) {
+          if (!shaped) {
+            EXPECT_EQ(plan.weights[k][i], 1.0f);
+            continue;
+          }
+          // Inside a sub-stratum, w^2 is proportional to the target's power.
+          const double ratio = double(plan.weights[k][i]) * plan.weights[k][i] /
+                               (double(plan.weights[k][0]) * plan.weights[k][0]);
+          EXPECT_NEAR(ratio, power_of(plan.substrata[k][i]) / power_of(plan.substrata[k][0]),
+                      1e-5 * ratio);
+        }
+      }
+      EXPECT_NEAR(expected, plan.sampling.cosines, 1e-5 * plan.sampling.cosines);
+    }
+  }
+}
+
 TEST(LrpStrata, KmeansIsSeededAndDeterministic) {
   const SpectrumTarget target = lumpy_spectrum(64);
-  const auto a = plan_strata(target.power, 64, 4, 50, 3);
-  const auto b = plan_strata(target.power, 64, 4, 50, 3);
-  const auto c = plan_strata(target.power, 64, 4, 50, 4);
+  const auto a = plan_strata(target.power, 64, 4, 50, true, 3);
+  const auto b = plan_strata(target.power, 64, 4, 50, true, 3);
+  const auto c = plan_strata(target.power, 64, 4, 50, true, 4);
   bool differs = false;
   for (std::size_t s = 0; s < a.size(); ++s) {
     EXPECT_EQ(a[s].substrata, b[s].substrata);

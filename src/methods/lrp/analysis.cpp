@@ -205,16 +205,83 @@ std::vector<std::vector<std::array<int, 2>>> kmeans(const std::vector<std::array
   return groups;
 }
 
+// Our addition (docs/methods/lrp.md, parameter `amplitudes`): an amplitude per frequency, so that
+// the expected spectrum of n_S follows the target inside the stratum instead of being flat at A_S
+// (section 4.3 targets a constant A_S because "S contains homogeneous amplitudes", which only
+// holds for many strata; with L = 4 the flat strata are the error floor). Each frequency f of
+// the stratum, eroded or not, gives its power to the nearest sub-stratum centre (ties split
+// equally), so sub-stratum k carries E_k; inside k the drawable frequencies share E_k in
+// proportion to their own power. A frequency drawn with probability 1 / n_k at amplitude
+// A_S w_f has expected power A_S^2 w_f^2 / n_k (in units where J_S cosines of weight 1 carry E_S),
+// so w_f^2 = n_k J_S P'(f) / E_S with P'(f) = E_k P(f) / sum_{g in k} P(g). Weights of 1 give the
+// paper's constant A_S back.
+std::vector<std::vector<float>> frequency_weights(
+    const std::vector<const Bin*>& stratum,
+    const std::vector<std::vector<std::array<int, 2>>>& substrata,
+    const std::vector<double>& pair_power, int size) {
+  const std::size_t count = substrata.size();
+  std::vector<std::array<double, 2>> centres(count, {0.0, 0.0});
+  for (std::size_t k = 0; k < count; ++k) {
+    for (const auto& point : substrata[k]) {
+      centres[k][0] += point[0];
+      centres[k][1] += point[1];
+    }
+    centres[k][0] /= double(substrata[k].size());
+    centres[k][1] /= double(substrata[k].size());
+  }
+  double stratum_energy = 0.0;
+  std::vector<double> energy(count, 0.0);
+  std::vector<std::size_t> nearest;
+  for (const Bin* bin : stratum) {
+    stratum_energy += bin->power;
+    double best = std::numeric_limits<double>::infinity();
+    nearest.clear();
+    for (std::size_t k = 0; k < count; ++k) {
+      const double dx = bin->sx - centres[k][0];
+      const double dy = bin->sy - centres[k][1];
+      const double distance = dx * dx + dy * dy;
+      if (distance < best) {
+        best = distance;
+        nearest.clear();
+      }
+      if (distance == best) nearest.push_back(k);
+    }
+    for (const std::size_t k : nearest) energy[k] += bin->power / double(nearest.size());
+  }
+  const auto power_of = [&](const std::array<int, 2>& point) {
+    const int kx = point[0] < 0 ? point[0] + size : point[0];
+    return pair_power[static_cast<std::size_t>(point[1]) * size + kx];
+  };
+  std::vector<std::vector<float>> weights(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto n = static_cast<double>(substrata[k].size());
+    double drawable = 0.0;
+    for (const auto& point : substrata[k]) drawable += power_of(point);
+    for (const auto& point : substrata[k]) {
+      if (!(stratum_energy > 0.0)) {
+        weights[k].push_back(1.0f);
+        continue;
+      }
+      const double share = drawable > 0.0 ? power_of(point) / drawable : 1.0 / n;
+      weights[k].push_back(
+          static_cast<float>(std::sqrt(n * double(count) * energy[k] * share / stratum_energy)));
+    }
+  }
+  return weights;
+}
+
 void append_channel(LrpData& data, const std::vector<StratumPlan>& plans) {
   for (const StratumPlan& plan : plans) {
     data.strata_table.push_back(plan.sampling);
-    for (const auto& substratum : plan.substrata) {
+    for (std::size_t k = 0; k < plan.substrata.size(); ++k) {
+      const auto& substratum = plan.substrata[k];
       data.substratum_first.push_back(static_cast<std::uint32_t>(data.frequencies.size() / 2));
       data.substratum_count.push_back(static_cast<std::uint32_t>(substratum.size()));
       for (const auto& bin : substratum) {
         data.frequencies.push_back(static_cast<float>(bin[0]));
         data.frequencies.push_back(static_cast<float>(bin[1]));
       }
+      data.weights.insert(data.weights.end(), plan.weights[k].begin(), plan.weights[k].end());
     }
   }
 }
@@ -271,7 +338,7 @@ double window_energy_radius(double fraction) {
 }
 
 std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
-                                     int cosines, std::uint32_t key) {
+                                     int cosines, bool shaped, std::uint32_t key) {
   check_spectrum_size(size);
   if (power.size() != static_cast<std::size_t>(size) * size)
     throw std::invalid_argument("lrp: the power spectrum does not have size x size values");
@@ -282,6 +349,7 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
   // The upper half-plane (section 4.3: "the spectrum is symmetric"): bin k is kept when its index
   // is not above that of -k, with the power of both.
   std::vector<Bin> bins;
+  std::vector<double> pair_power(power.size(), 0.0);
   double total = 0.0;
   for (int ky = 0; ky < size; ++ky)
     for (int kx = 0; kx < size; ++kx) {
@@ -299,6 +367,7 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
       // Signed coordinates in the upper half-plane, x in (-size/2, size/2].
       bin.sx = kx > size / 2 ? kx - size : kx;
       bin.sy = ky;
+      pair_power[index] = bin.power;
       total += bin.power;
       bins.push_back(bin);
     }
@@ -336,6 +405,21 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
   const double radial_energy = window_radial_energy();
   const double unit_radius = window_energy_radius(kErosionEnergy);
   std::vector<char> inside(static_cast<std::size_t>(size) * size);
+  const auto mark = [&](const Bin& bin) {
+    const int kx = bin.index % size;
+    const int ky = bin.index / size;
+    inside[at(kx, ky)] = 1;
+    inside[at((size - kx) % size, (size - ky) % size)] = 1;
+  };
+  // With shaped amplitudes, the erosion keeps energy inside the target's support (the union of
+  // the strata) rather than inside each stratum: a neighbouring stratum's power is close to this
+  // one's, so leaking into it is what the window does to any spectrum, while eroding each
+  // stratum's boundary concentrates the draws on a few inner frequencies (docs/methods/lrp.md).
+  std::vector<double> support_distance_squared;
+  if (shaped) {
+    for (std::size_t i = 0; i < kept; ++i) mark(bins[i]);
+    support_distance_squared = periodic_distance_squared(inside, size);
+  }
   for (int s = 0; s < strata; ++s) {
     StratumPlan& plan = plans[static_cast<std::size_t>(s)];
     const auto& stratum = members[static_cast<std::size_t>(s)];
@@ -349,6 +433,7 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
           bins.empty() ? std::array<int, 2>{1, 0} : std::array<int, 2>{bins[0].sx, bins[0].sy};
       plan.sampling.spacing = static_cast<float>(size);
       plan.substrata.assign(static_cast<std::size_t>(plan.sampling.cosines), {any});
+      plan.weights.assign(plan.substrata.size(), {1.0f});
       continue;
     }
     for (const Bin* bin : stratum) {
@@ -369,13 +454,9 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
     // Erosion (section 4.3) by delta = unit_radius / Delta_S cycles per pixel, in bins.
     plan.erosion_radius = unit_radius * size / plan.sampling.spacing;
     std::fill(inside.begin(), inside.end(), char{0});
-    for (const Bin* bin : stratum) {
-      const int kx = bin->index % size;
-      const int ky = bin->index / size;
-      inside[at(kx, ky)] = 1;
-      inside[at((size - kx) % size, (size - ky) % size)] = 1;
-    }
-    const std::vector<double> distance_squared = periodic_distance_squared(inside, size);
+    for (const Bin* bin : stratum) mark(*bin);
+    const std::vector<double> distance_squared =
+        shaped ? support_distance_squared : periodic_distance_squared(inside, size);
     std::vector<std::pair<double, const Bin*>> by_depth;
     for (const Bin* bin : stratum)
       by_depth.emplace_back(std::sqrt(distance_squared[static_cast<std::size_t>(bin->index)]), bin);
@@ -417,6 +498,13 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
     // k-means with a seeded random initialisation: one stream per stratum.
     CounterRng rng(cell_key(s, 0, key, Stream::analysis));
     plan.substrata = kmeans(points, plan.sampling.cosines, rng);
+    if (shaped) {
+      plan.weights = frequency_weights(stratum, plan.substrata, pair_power, size);
+    } else {
+      plan.weights.clear();
+      for (const auto& substratum : plan.substrata)
+        plan.weights.emplace_back(substratum.size(), 1.0f);
+    }
   }
   return plans;
 }
@@ -482,6 +570,7 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
                     std::to_string(width) + "x" + std::to_string(height));
   const int strata = static_cast<int>(params.at("strata"));
   const int cosines = static_cast<int>(params.at("cosines"));
+  const bool shaped = params.at("amplitudes") != 0.0;
 
   // Colour (section 6 defers it to a decorrelated space): PCA of the colour channels, so the
   // per-channel noises, independent, keep the exemplar's colour covariance. Alpha (channel 2 of
@@ -532,8 +621,8 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
     const double scale =
         sum > 0.0 && variances[k] > 1e-12 * variances.sum() ? variances[k] / sum : 0.0;
     for (double& value : power) value *= scale;
-    append_channel(
-        data, plan_strata(power, size, strata, cosines, cell_key(k, 0, seed, Stream::analysis)));
+    append_channel(data, plan_strata(power, size, strata, cosines, shaped,
+                                     cell_key(k, 0, seed, Stream::analysis)));
   }
   // Frequencies were stored in bins; the model holds cycles per pixel.
   for (float& f : data.frequencies) f /= static_cast<float>(size);
@@ -551,9 +640,10 @@ LrpModel analyze_spectrum(const SpectrumTarget& target, const ParamValues& param
   data.normalise_envelope = params.at("envelope") != 0.0;
   data.mean = {static_cast<float>(target.mean)};
   data.colour_basis = {1.0f};
-  append_channel(data, plan_strata(target.power, target.size, data.strata,
-                                   static_cast<int>(params.at("cosines")),
-                                   cell_key(0, 0, seed, Stream::analysis)));
+  append_channel(
+      data,
+      plan_strata(target.power, target.size, data.strata, static_cast<int>(params.at("cosines")),
+                  params.at("amplitudes") != 0.0, cell_key(0, 0, seed, Stream::analysis)));
   for (float& f : data.frequencies) f /= static_cast<float>(target.size);
   return LrpModel(std::move(data));
 }

@@ -42,6 +42,9 @@ struct StratumPlan {
   double erosion_radius = 0.0;  // delta in frequency bins (section 4.3)
   double eroded_radius = 0.0;   // the radius actually used (smaller when delta would empty S)
   std::vector<std::vector<std::array<int, 2>>> substrata;  // signed bins, upper half-plane
+  // Amplitude of each frequency of `substrata` relative to A_S: all 1 as published (section
+  // 4.3), or shaped by the target's power (parameter `amplitudes`, analysis.cpp).
+  std::vector<std::vector<float>> weights;
 };
 
 // The largest power of two strictly below the exemplar's smaller side (section 4.4).
@@ -49,10 +52,11 @@ int welch_size(int width, int height);
 // The radius, in cycles per lattice spacing, of the disc holding `fraction` of the energy of the
 // 2-D window's spectrum |W-hat|^2 (W(x) = w(|x|)), by numerical Hankel transform (section 4.3).
 double window_energy_radius(double fraction);
-// Sections 4.2-4.3 for one channel: `power` is a SpectrumTarget's power (size x size). `key`
-// seeds the k-means initialisation of each stratum.
+// Sections 4.2-4.3 for one channel: `power` is a SpectrumTarget's power (size x size). `shaped`:
+// per-frequency amplitudes (parameter `amplitudes`). `key` seeds the k-means initialisation of
+// each stratum.
 std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
-                                     int cosines, std::uint32_t key);
+                                     int cosines, bool shaped, std::uint32_t key);
 
 // The model of an exemplar: PCA-decorrelated channels, Welch spectrum of each, strata. `params`
 // holds every entry of kParams (see registry: resolve_params).

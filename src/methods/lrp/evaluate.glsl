@@ -1,7 +1,7 @@
 // Local random-phase noise in GLSL: the twin of LrpModel::evaluate_typed (model.cpp,
 // evaluate.hpp, window.hpp), same lattices, same draws, same polynomial cosine and window.
 // Requires random.glsl, then the model's constants (lrp_glsl() in src/gl writes them) and the
-// storage buffers `lrp_frequencies` (f_x, f_y pairs) and `lrp_substrata` (first, count pairs).
+// storage buffers `lrp_frequencies` (f_x, f_y, weight triples) and `lrp_substrata` (first, count pairs).
 
 layout(std430, binding = 0) readonly buffer LrpFrequencies { float lrp_frequencies[]; };
 layout(std430, binding = 2) readonly buffer LrpSubstrata { uint lrp_substrata[]; };
@@ -65,8 +65,8 @@ float lrp_stratum_noise(int s, vec2 u, uvec2 origin_node, uint stratum_seed, boo
         uint low;
         umulExtended(draw & 0xfffffu, lrp_substrata[2 * k + 1], high, low);
         uint pick = lrp_substrata[2 * k] + ((high << 12u) | (low >> 20u));
-        float fx = lrp_frequencies[2 * pick];
-        float fy = lrp_frequencies[2 * pick + 1];
+        float fx = lrp_frequencies[3 * pick];
+        float fy = lrp_frequencies[3 * pick + 1];
         float phase = float(draw >> 20u) * (1.0 / 4096.0);
         float c = lrp_cos_turns(fx * px + fy * py + phase);
         if (filtered) {
@@ -74,7 +74,7 @@ float lrp_stratum_noise(int s, vec2 u, uvec2 origin_node, uint stratum_seed, boo
           float along_b = abs(fx * axis_b.x + fy * axis_b.y);
           c *= lrp_clamp_weight(along_a > along_b ? along_a : along_b);
         }
-        local += c;
+        local += lrp_frequencies[3 * pick + 2] * c;
       }
       sum += w * local;
       window_square += w * w;

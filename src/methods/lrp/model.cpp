@@ -17,6 +17,8 @@ constexpr int kMaxChannels = 4;
 constexpr double kMinSpacing = 0.25;  // Delta_S = T sqrt(J_S / (2 |S|)) >= 1/2 for any stratum
 constexpr double kMaxSpacing = 1e6;
 constexpr double kMaxAmplitude = 1e6;
+// w_f^2 = n_k J_S P'(f) / E_S <= 2^20 * 2000 (analysis.cpp, frequency_weights).
+constexpr double kMaxWeight = 1e5;
 // A frequency is picked by multiply-shift on 20 random bits (model.cpp, evaluate_typed), so a
 // sub-stratum holds at most 2^20 frequencies; analysis builds at most T^2 / 2 (T <= 1024).
 constexpr std::uint32_t kMaxSubstratumSize = 1u << 20;
@@ -61,6 +63,10 @@ LrpModel::LrpModel(LrpData data) : data_(std::move(data)) {
   if (data_.frequencies.size() % 2 != 0)
     throw std::invalid_argument("lrp: the frequency table has an odd size");
   const std::size_t frequency_count = data_.frequencies.size() / 2;
+  if (data_.weights.size() != frequency_count ||
+      !std::all_of(data_.weights.begin(), data_.weights.end(),
+                   [](float w) { return w >= 0.0f && w <= kMaxWeight; }))
+    throw std::invalid_argument("lrp: the frequency weights are missing or out of range");
   for (std::size_t k = 0; k < substrata; ++k) {
     const std::uint32_t first = data_.substratum_first[k];
     const std::uint32_t count = data_.substratum_count[k];
@@ -109,6 +115,7 @@ LrpModel LrpModel::from_record(const ModelRecord& record, const std::string& sou
   const NamedArray& table = record.array("strata", {channels * strata, 3}, source);
   const NamedArray& ranges = record.array("substrata", {substrata, 2}, source);
   const NamedArray& frequency = record.array("frequencies", {frequencies, 2}, source);
+  const NamedArray& weights = record.array("weights", {frequencies}, source);
   if (!finite(table.values) || !finite(ranges.values)) throw invalid("strata table");
 
   LrpData data;
@@ -118,6 +125,7 @@ LrpModel LrpModel::from_record(const ModelRecord& record, const std::string& sou
   data.mean = mean.values;
   data.colour_basis = basis.values;
   data.frequencies = frequency.values;
+  data.weights = weights.values;
   for (std::size_t s = 0; s < table.values.size(); s += 3) {
     const float cosines = table.values[s];
     if (cosines != std::floor(cosines) || cosines < 1 || cosines > param("cosines").max_value)
@@ -172,6 +180,7 @@ ModelRecord LrpModel::to_record(const ParamValues& params) const {
   record.arrays.push_back({"strata", {channels * strata, 3}, std::move(table)});
   record.arrays.push_back({"substrata", {substrata, 2}, std::move(ranges)});
   record.arrays.push_back({"frequencies", {frequencies, 2}, data_.frequencies});
+  record.arrays.push_back({"weights", {frequencies}, data_.weights});
   return record;
 }
 
@@ -212,6 +221,7 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
   const std::uint32_t* substratum_first = data_.substratum_first.data();
   const std::uint32_t* substratum_count = data_.substratum_count.data();
   const float* frequencies = data_.frequencies.data();
+  const float* weights = data_.weights.data();
 
   for (std::size_t index = 0; index < positions.size(); ++index) {
     const Vec2d p = positions[index];
@@ -273,7 +283,7 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
               const float along_b = std::abs(fx * axis_b_x + fy * axis_b_y);
               c *= clamp_weight(along_a > along_b ? along_a : along_b);
             }
-            local += c;
+            local += weights[pick] * c;
           }
           sum += w * local;
           window_square += w * w;

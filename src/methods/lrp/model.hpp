@@ -39,6 +39,8 @@ struct LrpData {
   std::vector<std::uint32_t> substratum_first;
   std::vector<std::uint32_t> substratum_count;
   std::vector<float> frequencies;  // (count x 2) cycles per pixel, |f_x|, |f_y| <= 1/2
+  // (count) amplitude of each frequency relative to its stratum's A_S (1 as published).
+  std::vector<float> weights;
 };
 
 class LrpModel {

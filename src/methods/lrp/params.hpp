@@ -11,7 +11,7 @@ namespace stochtex::lrp {
 
 inline constexpr std::array<double, 2> kAllowedSwitch = {0, 1};
 
-inline constexpr std::array<ParamInfo, 3> kParams = {{
+inline constexpr std::array<ParamInfo, 4> kParams = {{
     {"cosines", 50, 1, 2000, true,
      "cosine budget J per channel (sections 4.1, 6.3): each stratum gets J_S = J / L cosines (at "
      "least one); a sample costs 9 (J + L) cosines and windows per channel"},
@@ -21,6 +21,11 @@ inline constexpr std::array<ParamInfo, 3> kParams = {{
      "1: divide each stratum's noise by the root of the local sum of squared windows so that the "
      "variance is the same everywhere (our addition, docs/methods/lrp.md); 0: equation (1) as "
      "published, whose variance varies over a lattice cell",
+     kAllowedSwitch},
+    {"amplitudes", 1, 0, 1, true,
+     "1: each frequency's amplitude follows the target's power inside its sub-stratum, so the "
+     "expected spectrum follows the target within a stratum (our addition, docs/methods/lrp.md); "
+     "0: one amplitude A_S per stratum (equation 3 as published)",
      kAllowedSwitch},
 }};
 
