@@ -168,7 +168,7 @@ void add_render_options(CLI::App* command, RenderSettings& settings, bool size_r
       ->check(CLI::IsMember({8, 16}));
   command
       ->add_option("--backend", settings.backend,
-                   "cpu (the reference) or gl (OpenGL 4.5 compute, headless; texton, tiling, lrp)")
+                   "cpu (the reference) or gl (OpenGL 4.5 compute, headless; every method)")
       ->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
 }
@@ -330,7 +330,7 @@ int run(int argc, char** argv) {
                        "NAME.exr (values) and NAME.png (preview: 0.5 + 0.5 v / max|v|)");
 
   auto* export_cmd = app.add_subcommand(
-      "export-shader", "model file -> self-contained GLSL + data images for engines (texton)");
+      "export-shader", "model file -> self-contained GLSL + data images for engines");
   export_cmd->add_option("MODEL", model_path, "model file (.stx)")->required();
   export_cmd->add_option("-o,--output", output, "folder to write (created if missing)")->required();
 

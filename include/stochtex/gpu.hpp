@@ -20,7 +20,7 @@ struct GpuRenderOptions {
   bool filter = true;    // pass each pixel's footprint (scale) to the evaluator
 };
 
-// Methods the GL backend evaluates (texton and tiling so far).
+// Methods the GL backend evaluates (texton, tiling, lrp and gabor).
 bool gl_supports(std::string_view method);
 
 // A model made ready on the GPU: an OpenGL context, the compiled evaluator and the model's data,
@@ -57,7 +57,8 @@ void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageVi
 struct ShaderExport {
   std::string glsl_file_name;
   std::string glsl;
-  std::vector<NamedImage> images;  // write each as <name>.exr (float32, exact)
+  // Write each as <name>.exr (float32, exact); it binds to `uniform sampler2D stochtex_<name>`.
+  std::vector<NamedImage> images;
   std::string readme;
 };
 ShaderExport export_shader(const Model& model);

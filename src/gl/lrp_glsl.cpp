@@ -1,8 +1,8 @@
 #include "gl/lrp_glsl.hpp"
 
+#include <algorithm>
 #include <span>
 
-#include "gl/glsl_text.hpp"
 #include "gl/shaders.hpp"
 #include "methods/lrp/window.hpp"
 
@@ -37,6 +37,7 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
     text += "const " + std::string(type) + " " + name + " = " + value + ";\n";
   };
   constant("int", "LRP_CHANNELS", glsl_int(d.channels));
+  constant("int", "LRP_STRATA", glsl_int(d.strata));
   constant("int", "LRP_STRATA_TOTAL", glsl_int(static_cast<int>(d.strata_table.size())));
   constant("bool", "LRP_NORMALISE_ENVELOPE", d.normalise_envelope ? "true" : "false");
   constant("float", "LRP_MEAN_ENVELOPE", glsl_float(static_cast<float>(model.mean_envelope())));
@@ -52,8 +53,52 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   return glsl;
 }
 
-std::string lrp_library_source(const LrpGlsl& glsl) {
-  return std::string(kRandomGlsl) + glsl.constants + kLrpGlsl;
+std::string lrp_library_source(const LrpGlsl& glsl, DataSource source) {
+  std::string readers;
+  if (source == DataSource::storage_buffers) {
+    readers = R"glsl(
+layout(std430, binding = 0) readonly buffer LrpFrequencies { float lrp_frequencies[]; };
+layout(std430, binding = 2) readonly buffer LrpSubstrata { uint lrp_substrata[]; };
+vec2 lrp_frequency(uint index) {
+  return vec2(lrp_frequencies[2u * index], lrp_frequencies[2u * index + 1u]);
+}
+uvec2 lrp_substratum(int index) {
+  return uvec2(lrp_substrata[2 * index], lrp_substrata[2 * index + 1]);
+}
+)glsl";
+  } else {
+    readers = "uniform sampler2D stochtex_lrp_tables;\nconst int LRP_TABLES_WIDTH = " +
+              std::to_string(kDataTextureWidth) + ";\n" + R"glsl(
+vec4 lrp_table_texel(int index) {
+  return texelFetch(stochtex_lrp_tables,
+                    ivec2(index % LRP_TABLES_WIDTH, index / LRP_TABLES_WIDTH), 0);
+}
+vec2 lrp_frequency(uint index) { return lrp_table_texel(int(index)).xy; }
+uvec2 lrp_substratum(int index) { return uvec2(lrp_table_texel(index).zw); }
+)glsl";
+  }
+  return std::string(kRandomGlsl) + glsl.constants + readers + kLrpGlsl;
+}
+
+ImageF lrp_tables_image(const LrpGlsl& glsl) {
+  const std::size_t frequencies = glsl.frequencies.size() / 2;
+  const std::size_t substrata = glsl.substrata.size() / 2;
+  const std::size_t texels = std::max<std::size_t>(std::max(frequencies, substrata), 1);
+  ImageF image(kDataTextureWidth,
+               static_cast<int>((texels + kDataTextureWidth - 1) / kDataTextureWidth), 4);
+  const auto texel = [&](std::size_t index, int c) -> float& {
+    return image.at(static_cast<int>(index % kDataTextureWidth),
+                    static_cast<int>(index / kDataTextureWidth), c);
+  };
+  for (std::size_t i = 0; i < frequencies; ++i) {
+    texel(i, 0) = glsl.frequencies[2 * i];
+    texel(i, 1) = glsl.frequencies[2 * i + 1];
+  }
+  for (std::size_t i = 0; i < substrata; ++i) {
+    texel(i, 2) = static_cast<float>(glsl.substrata[2 * i]);
+    texel(i, 3) = static_cast<float>(glsl.substrata[2 * i + 1]);
+  }
+  return image;
 }
 
 }  // namespace stochtex::gl

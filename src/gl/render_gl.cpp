@@ -1,13 +1,13 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "core/hash.hpp"
 #include "gl/context.hpp"
+#include "gl/gabor_glsl.hpp"
 #include "gl/lrp_glsl.hpp"
 #include "gl/program.hpp"
 #include "gl/shaders.hpp"
@@ -220,49 +220,51 @@ class LrpPass final : public Pass {
   Buffer substrata_;
 };
 
-// How to use an exported shader (written as README.md beside it).
-constexpr const char* kExportReadme = R"md(# stochtex texton noise shader
+// The Gabor noise evaluator's GPU state: the program (compiled with the model's per-grid
+// constants) and the texture of its Gaussians, alias tables and Poisson tables.
+class GaborPass final : public Pass {
+ public:
+  explicit GaborPass(const gabor::GaborModel& model)
+      : glsl_(gl::gabor_glsl(model)),
+        program_(std::string("#version 450\n") + gl::gabor_library_source(glsl_) +
+                 gl::kGaborRenderGlsl) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &data_);
+    glTextureStorage2D(data_, 1, GL_RGBA32F, glsl_.data.width(), glsl_.data.height());
+    glTextureSubImage2D(data_, 0, 0, 0, glsl_.data.width(), glsl_.data.height(), GL_RGBA, GL_FLOAT,
+                        glsl_.data.pixels().data());
+    program_.set("stochtex_gabor_data", 0);
+    check_gl("uploading the gabor model");
+  }
+  ~GaborPass() { glDeleteTextures(1, &data_); }
+  GaborPass(const GaborPass&) = delete;
+  GaborPass& operator=(const GaborPass&) = delete;
 
-Files: `stochtex_texton.glsl` (the noise, self-contained) and `texton_atlas.exr` (the texton
-pyramid, RGBA float32). The GLSL declares `uniform sampler2D stochtex_texton_atlas;` and exposes
+  void prepare(const Grid& grid, std::uint32_t seed, bool filter) const override {
+    // Positions are formed in double on the GPU as on the CPU (see gabor evaluate.glsl).
+    glProgramUniform2d(program_.id(), program_.location("origin"), grid.origin.x, grid.origin.y);
+    glProgramUniform1d(program_.id(), program_.location("scale"), grid.scale);
+    program_.set("seed", static_cast<unsigned>(seed));
+    program_.set("filtered", filter ? 1 : 0);
+    check_gl("setting the gabor uniforms");
+  }
 
-    vec4 stochtex_texton(vec2 p, vec2 dpdx, vec2 dpdy, uint seed);
+  void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
+                const Buffer& result) const override {
+    glBindTextureUnit(0, data_);
+    run_tile(program_, first_x, first_y, width, height, result);
+  }
 
-`p` is in exemplar pixels (1 unit = 1 pixel of the analysed image), `dpdx`/`dpdy` its screen
-derivatives (`dFdx(p)`, `dFdy(p)` in a fragment shader; `vec2(0)` for no filtering) and `seed`
-picks the random pattern. The result's first `channels` components are the colour.
-
-Binding it in a plain OpenGL 4.5 program (load the EXR with any EXR reader into `texels`):
-
-```c
-GLuint atlas;
-glCreateTextures(GL_TEXTURE_2D, 1, &atlas);
-glTextureStorage2D(atlas, 1, GL_RGBA32F, width, height);
-glTextureSubImage2D(atlas, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels);
-glBindTextureUnit(0, atlas);
-glProgramUniform1i(program, glGetUniformLocation(program, "stochtex_texton_atlas"), 0);
-```
-
-```glsl
-#version 450
-// ... contents of stochtex_texton.glsl ...
-in vec2 uv;  // your surface coordinate
-out vec4 colour;
-void main() {
-  vec2 p = uv * 512.0;  // scaled to exemplar pixels
-  colour = vec4(stochtex_texton(p, dFdx(p), dFdy(p), 7u).rgb, 1.0);
-}
-```
-
-The atlas is read with `texelFetch` (exact texels, no sampler filtering needed): the shader does
-its own B-spline interpolation and footprint filtering, the same as the CPU reference.
-)md";
+ private:
+  gl::GaborGlsl glsl_;
+  Program program_;
+  GLuint data_ = 0;
+};
 
 }  // namespace
 
 bool gl_supports(std::string_view method) {
   return method == texton::TextonModel::kMethodName || method == tiling::TilingModel::kMethodName ||
-         method == lrp::LrpModel::kMethodName;
+         method == lrp::LrpModel::kMethodName || method == gabor::GaborModel::kMethodName;
 }
 
 struct GlRenderer::Impl {
@@ -282,6 +284,8 @@ struct GlRenderer::Impl {
             pass = std::make_unique<TilingPass>(method_model);
           else if constexpr (std::is_same_v<Method, lrp::LrpModel>)
             pass = std::make_unique<LrpPass>(method_model);
+          else if constexpr (std::is_same_v<Method, gabor::GaborModel>)
+            pass = std::make_unique<GaborPass>(method_model);
         },
         model.data().model);
     glCreateQueries(GL_TIME_ELAPSED, 1, &timer);
@@ -297,9 +301,8 @@ namespace {
 const Model& checked_model(const Model& model) {
   if (model.empty()) throw std::invalid_argument("GlRenderer: the model is empty");
   if (!gl_supports(model.method()))
-    throw Error(ErrorCode::invalid_input,
-                "the gl backend does not evaluate method '" + std::string(model.method()) +
-                    "' yet (texton, tiling and lrp only); use --backend cpu");
+    throw Error(ErrorCode::invalid_input, "the gl backend has no GLSL evaluator for method '" +
+                                              std::string(model.method()) + "'; use --backend cpu");
   return model;
 }
 
@@ -364,28 +367,6 @@ void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageVi
 
 std::string gl_device_description() {
   return gl::Context().description();
-}
-
-ShaderExport export_shader(const Model& model) {
-  if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
-  if (model.method() != texton::TextonModel::kMethodName)
-    throw Error(ErrorCode::invalid_input, "export-shader does not support method '" +
-                                              std::string(model.method()) + "' yet (only texton)");
-  const auto& texton_model = std::get<texton::TextonModel>(model.data().model);
-  gl::TextonGlsl glsl = gl::texton_glsl(texton_model);
-  ShaderExport result;
-  result.glsl_file_name = "stochtex_texton.glsl";
-  std::ostringstream header;
-  header << "// Texton noise exported by `stochtex export-shader` (" << texton_model.channels()
-         << " channels, texton " << texton_model.support() << "x" << texton_model.support()
-         << ", MNI " << texton_model.mean_impacts() << ").\n"
-         << "// Paste or include after `#version 450` (GLSL 4.30+). Bind texton_atlas.exr as an "
-            "RGBA32F texture to\n// `stochtex_texton_atlas`, then call stochtex_texton(p, dpdx, "
-            "dpdy, seed). See README.md.\n\n";
-  result.glsl = header.str() + gl::texton_library_source(glsl);
-  result.images.push_back({"texton_atlas", std::move(glsl.atlas)});
-  result.readme = kExportReadme;
-  return result;
 }
 
 }  // namespace stochtex

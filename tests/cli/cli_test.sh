@@ -228,6 +228,16 @@ expect_ok "export-shader" "$stochtex" export-shader "$model" -o "$models/shader"
   expect_file "export-shader writes the GLSL" "$models/shader/stochtex_texton.glsl" &&
   expect_file "export-shader writes the atlas" "$models/shader/texton_atlas.exr" &&
   expect_file "export-shader writes the README" "$models/shader/README.md"
+if expect_ok "analyze gabor" "$stochtex" analyze "$exemplar" -m gabor -p impulses=64 \
+  -o "$models/gabor.stx"; then
+  expect_ok "render gabor --backend gl" "$stochtex" render "$models/gabor.stx" \
+    -o "$models/gabor_gl.png" --size 24x24 --backend gl &&
+    expect_file "render gabor --backend gl writes the image" "$models/gabor_gl.png"
+  expect_ok "export-shader gabor" "$stochtex" export-shader "$models/gabor.stx" \
+    -o "$models/gabor_shader" &&
+    expect_file "export-shader gabor writes the GLSL" "$models/gabor_shader/stochtex_gabor.glsl" &&
+    expect_file "export-shader gabor writes the data" "$models/gabor_shader/gabor_data.exr"
+fi
 
 # --- bad inputs ---------------------------------------------------------------------------------
 
