@@ -1,7 +1,8 @@
 // GPU frame times of the GLSL evaluators (stochtex::gl), to compare with the papers' shader
 // timings: texton noise 1024^2 in 4.9 ms (64^2 texton) on a Quadro K5000 (texton paper, Table 1);
 // tiling and blending 1080p in 0.29 ms (0.11 ms on the Gaussian fast path) on a GTX 980; LRP noise
-// 128^2 in about 0.5 ms on a GTX 780.
+// 128^2 in about 0.5 ms on a GTX 780; Gabor noise by example 128^2 grey at about 30 fps (33 ms),
+// default parameters, CUDA on a Quadro 5000 (Gabor paper, section 9.1).
 // gpu_ms is the GPU time of the compute dispatch (GL timer query), without the read-back.
 // On a machine without a GPU this measures Mesa llvmpipe (the CPU), which says nothing about GPUs.
 
@@ -18,13 +19,13 @@ namespace {
 
 using namespace stochtex;
 
-// Renders width x height frames of `method` analysed on the 512² colour exemplar, point samples.
+// Renders width x height frames of `method` analysed on `exemplar`, point samples.
 void frame_benchmark(benchmark::State& state, const char* method, const ParamValues& params,
-                     int width, int height) {
+                     int width, int height, const ImageF& exemplar = bench::colour_exemplar()) {
   std::unique_ptr<GlRenderer> renderer;
   Model model;
   try {
-    model = analyze(method, bench::colour_exemplar().view(), params, 0);
+    model = analyze(method, exemplar.view(), params, 0);
     renderer = std::make_unique<GlRenderer>(model);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
@@ -91,6 +92,25 @@ BENCHMARK(BM_GlLrpFrame)
     ->Args({128, 128})
     ->Args({1920, 1080})
     ->Iterations(10)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// Gabor noise, impulse budget N (default 1024), on the 128² top-left crops of the grey and colour
+// exemplars (the paper's timing is 128² grey at the default parameters).
+void BM_GlGaborFrame(benchmark::State& state) {
+  static const ImageF grey = bench::crop_top_left(bench::grey_exemplar(), 128);
+  static const ImageF colour = bench::crop_top_left(bench::colour_exemplar(), 128);
+  frame_benchmark(state, "gabor", {{"impulses", static_cast<double>(state.range(1))}},
+                  static_cast<int>(state.range(2)), static_cast<int>(state.range(3)),
+                  state.range(0) == 1 ? grey : colour);
+}
+BENCHMARK(BM_GlGaborFrame)
+    ->ArgNames({"grey", "impulses", "width", "height"})
+    ->Args({1, 1024, 128, 128})
+    ->Args({0, 1024, 128, 128})
+    ->Args({1, 256, 128, 128})
+    ->Args({1, 1024, 1920, 1080})
+    ->Iterations(3)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -137,6 +137,7 @@ struct RenderSettings {
   bool no_filter = false;
   int bit_depth = 8;
   std::string backend = "cpu";
+  std::string gl_filter = "exact";
 };
 
 void add_render_options(CLI::App* command, RenderSettings& settings, bool size_required) {
@@ -171,6 +172,13 @@ void add_render_options(CLI::App* command, RenderSettings& settings, bool size_r
                    "cpu (the reference) or gl (OpenGL 4.5 compute, headless; every method)")
       ->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
+  command
+      ->add_option("--gl-filter", settings.gl_filter,
+                   "with --backend gl: exact (the CPU's filter, to float rounding) or hardware "
+                   "(texton, tiling: mip-mapped textures, trilinear + anisotropic; equal to the "
+                   "CPU in distribution)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"exact", "hardware"}));
 }
 
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
@@ -211,6 +219,8 @@ void run_render(const Model& model, const RenderSettings& settings, const std::s
 #ifdef STOCHTEX_WITH_GL
     GpuRenderOptions gpu_options;
     gpu_options.filter = options.filter;
+    gpu_options.texture_filter =
+        settings.gl_filter == "hardware" ? GlFilter::hardware : GlFilter::exact;
     if (options.supersample != 1)
       throw UsageError("--supersample is a CPU reference: use it with --backend cpu");
     render_gl(model, grid, settings.seed, image.view(), gpu_options);

@@ -15,9 +15,20 @@
 
 namespace stochtex {
 
+// How the GL backend filters footprints wider than a pixel (`render --gl-filter`).
+//   exact:    the GLSL twin of the CPU filter (texelFetch, the shader's own interpolation and
+//             pyramid levels): the CPU's output to float rounding. The default.
+//   hardware: texton (order 1) and tiling read their pyramids as mip-mapped GL textures with
+//             textureGrad (trilinear, anisotropic up to 16x where the driver has it), as the
+//             papers' shaders do: faster on GPUs, equal to the CPU in distribution (mean,
+//             variance; tested), not pixel for pixel. lrp, gabor and other texton orders filter
+//             analytically and render as `exact`.
+enum class GlFilter { exact, hardware };
+
 struct GpuRenderOptions {
   int tile_size = 4096;  // pixels per side of one dispatch; affects speed only, never the output
   bool filter = true;    // pass each pixel's footprint (scale) to the evaluator
+  GlFilter texture_filter = GlFilter::exact;
 };
 
 // Methods the GL backend evaluates (texton, tiling, lrp and gabor).

@@ -219,6 +219,11 @@ expect_ok "render --backend gl" "$stochtex" render "$model" -o "$models/gl.png" 
 expect_ok "render tiling --backend gl" "$stochtex" synth "$exemplar" -m tiling -p transport=1 \
   -o "$models/tiling_gl.png" --size 40x32 --backend gl &&
   expect_file "synth tiling --backend gl writes the image" "$models/tiling_gl.png"
+expect_ok "render --gl-filter hardware" "$stochtex" render "$model" -o "$models/gl_hw.png" \
+  --size 32x32 --scale 4 --backend gl --gl-filter hardware &&
+  expect_file "render --gl-filter hardware writes the image" "$models/gl_hw.png"
+expect_parse_error "unknown --gl-filter" "$stochtex" render "$model" -o "$out/x.png" "${size[@]}" \
+  --backend gl --gl-filter bicubic
 expect_parse_error "unknown backend" "$stochtex" render "$model" -o "$out/x.png" "${size[@]}" \
   --backend vulkan
 expect_error "--supersample with --backend gl" 2 "--supersample" \

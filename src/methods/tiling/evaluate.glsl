@@ -10,6 +10,10 @@ const float TILING_INVERSE_SQRT3 = 0.57735026918962576;
 const float TILING_LOD_BIAS = 0.79248125036057809;  // log2(3) / 2, see level_of_detail
 const uint STREAM_OFFSETS = 0x85ebca6bu;
 
+#ifdef TILING_TEXTURE_FILTER
+vec4 tiling_texture_fetch(float x, float y);  // src/gl/tiling_hardware.glsl
+#endif
+
 // erf to 1.5e-7 (Abramowitz & Stegun 7.1.26): GLSL has none; the C++ uses std::erf.
 float tiling_erf(float x) {
   float t = 1.0 / (1.0 + 0.3275911 * abs(x));
@@ -85,8 +89,14 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
     float offset_y = float(high);
     float x = wrapped.x + offset_x;
     float y = wrapped.y + offset_y;
+#ifdef TILING_TEXTURE_FILTER
+    // `render --gl-filter hardware` (src/gl/tiling_hardware.glsl): one mip-mapped, anisotropic
+    // texture fetch of the patch instead of the exact trilinear reads of the pyramid.
+    acc += w[v] * tiling_texture_fetch(x, y);
+#else
     tiling_fetch(level, x, y, w[v] * (1.0 - level_blend), acc);
     if (level_blend > 0.0) tiling_fetch(coarse, x, y, w[v] * level_blend, acc);
+#endif
   }
   float inverse_norm = TILING_BLEND == 2 ? 1.0 : 1.0 / sqrt(weight_squares);
   return (acc - TILING_BLEND_MEAN) * inverse_norm + TILING_BLEND_MEAN;
