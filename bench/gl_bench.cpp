@@ -19,9 +19,11 @@ namespace {
 
 using namespace stochtex;
 
-// Renders width x height frames of `method` analysed on `exemplar`, point samples.
+// Renders width x height frames of `method` analysed on `exemplar`, point samples by default,
+// or zoomed out by `scale` and filtered by `texture_filter`.
 void frame_benchmark(benchmark::State& state, const char* method, const ParamValues& params,
-                     int width, int height, const ImageF& exemplar = bench::colour_exemplar()) {
+                     int width, int height, const ImageF& exemplar = bench::colour_exemplar(),
+                     double scale = 1.0, GlFilter texture_filter = GlFilter::exact) {
   std::unique_ptr<GlRenderer> renderer;
   Model model;
   try {
@@ -38,11 +40,13 @@ void frame_benchmark(benchmark::State& state, const char* method, const ParamVal
     return;
   }
   ImageF out(width, height, model.channels());
-  const Grid grid{{0.0, 0.0}, 1.0, width, height};
+  const Grid grid{{0.0, 0.0}, scale, width, height};
+  GpuRenderOptions options;
+  options.texture_filter = texture_filter;
   std::uint32_t seed = 0;
   double gpu_milliseconds = 0.0;
   for (auto _ : state) {
-    renderer->render(grid, seed++, out.view());
+    renderer->render(grid, seed++, out.view(), options);
     gpu_milliseconds += renderer->last_gpu_milliseconds();
   }
   // Real time per iteration includes the read-back of the image to the CPU; gpu_ms is the
@@ -91,6 +95,23 @@ BENCHMARK(BM_GlLrpFrame)
     ->ArgNames({"width", "height"})
     ->Args({128, 128})
     ->Args({1920, 1080})
+    ->Iterations(10)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// Zoomed out by 4 (footprint filtering), --gl-filter exact (0) against hardware (1): texton
+// (support 64) and tiling, the colour exemplar, 256x256 and 1080p frames.
+void BM_GlFilteredFrame(benchmark::State& state) {
+  const bool texton = state.range(0) == 1;
+  frame_benchmark(
+      state, texton ? "texton" : "tiling", texton ? ParamValues{{"support", 64}} : ParamValues{},
+      static_cast<int>(state.range(2)), static_cast<int>(state.range(3)), bench::colour_exemplar(),
+      4.0, state.range(1) == 1 ? GlFilter::hardware : GlFilter::exact);
+}
+BENCHMARK(BM_GlFilteredFrame)
+    ->ArgNames({"texton", "hardware", "width", "height"})
+    ->ArgsProduct({{0, 1}, {0, 1}, {256}, {256}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {1920}, {1080}})
     ->Iterations(10)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
