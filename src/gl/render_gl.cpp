@@ -207,8 +207,9 @@ class TextonPass final : public Pass {
 };
 
 // The tiling evaluator's GPU state: the program (compiled with the model's constants) and the
-// storage buffer of its pyramid and tables; for --gl-filter hardware, a second program and the
-// Gaussianised exemplar as a mip-mapped texture, made on first use.
+// storage buffer of its pyramid and tables; for --gl-filter hardware, a second program, the
+// Gaussianised exemplar as a mip-mapped texture and T^-1's 3-D tables as a 3-D texture, made on
+// first use.
 class TilingPass final : public Pass {
  public:
   explicit TilingPass(const tiling::TilingModel& model)
@@ -219,7 +220,10 @@ class TilingPass final : public Pass {
         data_(glsl_.data.size() * sizeof(float), glsl_.data.data()) {
     check_gl("uploading the tiling model");
   }
-  ~TilingPass() { glDeleteTextures(1, &exemplar_); }
+  ~TilingPass() {
+    glDeleteTextures(1, &exemplar_);
+    glDeleteTextures(1, &lut_);
+  }
   TilingPass(const TilingPass&) = delete;
   TilingPass& operator=(const TilingPass&) = delete;
 
@@ -262,6 +266,7 @@ class TilingPass final : public Pass {
                 const Buffer& result) const override {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data_.id());
     glBindTextureUnit(0, exemplar_);
+    glBindTextureUnit(1, lut_);
     run_tile(*active_, first_x, first_y, width, height, result);
   }
 
@@ -284,6 +289,22 @@ class TilingPass final : public Pass {
     }
     exemplar_ = mipmapped_texture(width, height, levels, GL_REPEAT);
     hardware_->set("stochtex_tiling_exemplar", 0);
+    if (model_.layout().colour_lut && !model_.level_lut(0).empty()) {
+      // Each level's 3-D table (lut_size^3 RGB, x fastest) as lut_size slices of one 3-D texture.
+      const int n = model_.data().lut_size;
+      glCreateTextures(GL_TEXTURE_3D, 1, &lut_);
+      glTextureStorage3D(lut_, 1, GL_RGBA32F, n, n, n * model_.level_count());
+      for (int l = 0; l < model_.level_count(); ++l) {
+        const std::vector<float> rgba =
+            to_rgba(model_.level_lut(l).data(), static_cast<std::size_t>(n) * n * n, 3);
+        glTextureSubImage3D(lut_, 0, 0, 0, l * n, n, n, n, GL_RGBA, GL_FLOAT, rgba.data());
+      }
+      glTextureParameteri(lut_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(lut_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      for (const GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTextureParameteri(lut_, axis, GL_CLAMP_TO_EDGE);
+      hardware_->set("stochtex_tiling_lut", 1);
+    }
     check_gl("uploading the tiling exemplar texture");
   }
 
@@ -293,6 +314,7 @@ class TilingPass final : public Pass {
   Buffer data_;
   std::unique_ptr<Program> hardware_;
   GLuint exemplar_ = 0;
+  GLuint lut_ = 0;
   const Program* active_ = &exact_;
 };
 

@@ -11,7 +11,9 @@ const float TILING_LOD_BIAS = 0.79248125036057809;  // log2(3) / 2, see level_of
 const uint STREAM_OFFSETS = 0x85ebca6bu;
 
 #ifdef TILING_TEXTURE_FILTER
-vec4 tiling_texture_fetch(float x, float y);  // src/gl/tiling_hardware.glsl
+// src/gl/tiling_hardware.glsl
+vec4 tiling_texture_fetch(float x, float y);
+vec3 tiling_texture_lut(vec3 g, int level);
 #endif
 
 // erf to 1.5e-7 (Abramowitz & Stegun 7.1.26): GLSL has none; the C++ uses std::erf.
@@ -113,6 +115,9 @@ float tiling_table(int offset, float g) {
 vec4 tiling_inverse_at_level(vec4 g, int level) {
   vec4 result = vec4(0.0);
   if (TILING_COLOUR_LUT) {
+#ifdef TILING_TEXTURE_FILTER
+    result.rgb = tiling_texture_lut(g.rgb, level);
+#else
     int n = TILING_LUT_SIZE;
     ivec3 cell;
     vec3 t;
@@ -137,6 +142,7 @@ vec4 tiling_inverse_at_level(vec4 g, int level) {
       float y1 = x01 + t.y * (x11 - x01);
       result[c] = y0 + t.z * (y1 - y0);
     }
+#endif
   } else {
     vec3 decorrelated = vec3(0.0);
     for (int c = 0; c < TILING_COLOUR_CHANNELS; ++c)
