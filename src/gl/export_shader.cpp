@@ -28,10 +28,10 @@ std::string export_readme(const std::string& method, const std::string& title,
                           const std::string& notes) {
   std::ostringstream text;
   text << "# stochtex " << title << " shader\n\nFiles: `" << glsl_file
-       << "` (the noise, self-contained) and";
+       << "` (the noise, self-contained)\nand";
   for (std::size_t i = 0; i < textures.size(); ++i)
     text << (i == 0 ? " `" : ", `") << textures[i].stem << ".exr`";
-  text << " (the model's data, RGBA float32). The GLSL declares";
+  text << " (the model's data, RGBA float32).\nThe GLSL declares";
   for (const Texture& t : textures) text << " `uniform sampler2D " << t.sampler << ";`";
   text << " and exposes\n\n    vec4 stochtex_" << method
        << "(vec2 p, vec2 dpdx, vec2 dpdy, uint seed);\n\n"
@@ -64,9 +64,9 @@ std::string export_header(const std::string& what, const std::string& glsl_file,
                           const std::vector<Texture>& textures) {
   std::ostringstream text;
   text << "// " << what << " exported by `stochtex export-shader`.\n"
-       << "// Paste or include after `#version 450`. Bind";
+       << "// Paste or include after `#version 450`.\n// Bind";
   for (std::size_t i = 0; i < textures.size(); ++i)
-    text << (i == 0 ? " " : ", ") << textures[i].stem << ".exr as an RGBA32F texture to `"
+    text << (i == 0 ? " " : ",\n// ") << textures[i].stem << ".exr as an RGBA32F texture to `"
          << textures[i].sampler << "`";
   text << ",\n// then call " << glsl_file.substr(0, glsl_file.size() - 5)
        << "(p, dpdx, dpdy, seed). See README.md.\n\n";

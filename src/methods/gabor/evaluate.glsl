@@ -149,17 +149,16 @@ uint gabor_poisson_count(int g, inout CounterRng rng) {
   return total;
 }
 
-// draw_alias (alias.hpp): a uniform column from the high word of word * count, then a coin.
-uint gabor_draw_alias(int g, inout CounterRng rng, out vec4 gaussian) {
+// draw_alias (alias.hpp): a uniform column from the high word of word * count, then a coin; the
+// drawn Gaussian's texel.
+vec4 gabor_draw_alias(int g, inout CounterRng rng) {
   uint word = rng_next(rng);
   uint column;
   uint low;
   umulExtended(word, GABOR_GRID_COUNT[g], column, low);
   float coin = rng_uniform(rng);
   vec4 entry = gabor_texel(GABOR_GRID_FIRST[g] + int(column));
-  uint k = coin < entry.z ? column : uint(entry.w);
-  gaussian = k == column ? entry : gabor_texel(GABOR_GRID_FIRST[g] + int(k));
-  return k;
+  return coin < entry.z ? entry : gabor_texel(GABOR_GRID_FIRST[g] + int(entry.w));
 }
 
 // The low 32 bits (two's complement) of an integral double, as cell_key takes int64 cells.
@@ -194,8 +193,7 @@ float gabor_grid_sum(int g, dvec2 p, GaborGridFilter f, uint level_seed) {
       for (uint n = 0u; n < impulses; ++n) {
         float u = rng_uniform(point_rng);
         float v = rng_uniform(point_rng);
-        vec4 gaussian;
-        gabor_draw_alias(g, kernel_rng, gaussian);
+        vec4 gaussian = gabor_draw_alias(g, kernel_rng);
         float phase = rng_uniform(kernel_rng);
         precise float dx = offset_x - u * cell_size_f;
         precise float dy = offset_y - v * cell_size_f;
