@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -196,6 +197,17 @@ TEST(GlGabor, BitIdenticalWhateverTheDispatchTilesAndRegions) {
       for (int c = 0; c < model.channels(); ++c)
         ASSERT_EQ(part.at(x, y, c), reference.at(17 + x, y, c));
   EXPECT_FALSE(same_bytes(reference, render_gpu(model, grid, 5, 512)));
+}
+
+TEST(GlGabor, AModelWithoutGaussiansRendersItsMean) {
+  // An edit can drop every Gaussian: no grids, GLSL arrays of one unused element.
+  const gabor::GaborModel empty(1, 256, 0, {}, {1.0f}, {0.25f}, gabor::FitReport{});
+  ASSERT_TRUE(empty.grids().empty());
+  const Model model(std::make_shared<ModelData>(ModelData{{}, empty}));
+  const Grid grid{{1.0, 2.0}, 2.0, 9, 7};
+  const ImageF gpu = render_gpu(model, grid, 3);
+  for (const float value : gpu.pixels()) ASSERT_EQ(value, 0.25f);
+  EXPECT_TRUE(same_bytes(gpu, render_cpu(model, grid, 3)));
 }
 
 }  // namespace
