@@ -173,10 +173,11 @@ void add_render_options(CLI::App* command, RenderSettings& settings, bool size_r
       ->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
   command
-      ->add_option("--gl-filter", settings.gl_filter,
-                   "with --backend gl: exact (the CPU's filter, to float rounding) or hardware "
-                   "(texton, tiling: mip-mapped textures, trilinear + anisotropic; equal to the "
-                   "CPU in distribution)")
+      ->add_option(
+          "--gl-filter", settings.gl_filter,
+          "with --backend gl: exact (the CPU's filter, to float rounding) or hardware "
+          "(texton order 1, tiling: mip-mapped textures, trilinear + anisotropic; equal to the "
+          "CPU in distribution)")
       ->capture_default_str()
       ->check(CLI::IsMember({"exact", "hardware"}));
 }

@@ -2,7 +2,8 @@
 // GPU rendering through OpenGL 4.5 compute shaders (library stochtex::gl): the same grid, model
 // and seed as render() in render.hpp, evaluated by the GLSL twin of each method's evaluator.
 // Runs headless through EGL: on NVIDIA drivers where a GPU exists, on Mesa llvmpipe where not.
-// The CPU evaluator is the reference; the GPU output matches it within float rounding (tested).
+// The CPU evaluator is the reference; the GPU output matches it within float rounding (tested),
+// or in distribution with GlFilter::hardware.
 
 #include <cstdint>
 #include <memory>
