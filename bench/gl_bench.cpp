@@ -1,7 +1,8 @@
 // GPU frame times of the GLSL evaluators (stochtex::gl), to compare with the papers' shader
 // timings: texton noise 1024^2 in 4.9 ms (64^2 texton) on a Quadro K5000 (texton paper, Table 1);
 // tiling and blending 1080p in 0.29 ms (0.11 ms on the Gaussian fast path) on a GTX 980; LRP noise
-// 128^2 in about 0.5 ms on a GTX 780.
+// 128^2 in about 0.5 ms on a GTX 780; Gabor noise by example 128^2 grey at about 30 fps (33 ms),
+// default parameters, CUDA on a Quadro 5000 (Gabor paper, section 9.1).
 // gpu_ms is the GPU time of the compute dispatch (GL timer query), without the read-back.
 // On a machine without a GPU this measures Mesa llvmpipe (the CPU), which says nothing about GPUs.
 
@@ -18,13 +19,15 @@ namespace {
 
 using namespace stochtex;
 
-// Renders width x height frames of `method` analysed on the 512² colour exemplar, point samples.
+// Renders width x height frames of `method` analysed on `exemplar`, point samples by default,
+// or zoomed out by `scale` and filtered by `texture_filter`.
 void frame_benchmark(benchmark::State& state, const char* method, const ParamValues& params,
-                     int width, int height) {
+                     int width, int height, const ImageF& exemplar = bench::colour_exemplar(),
+                     double scale = 1.0, GlFilter texture_filter = GlFilter::exact) {
   std::unique_ptr<GlRenderer> renderer;
   Model model;
   try {
-    model = analyze(method, bench::colour_exemplar().view(), params, 0);
+    model = analyze(method, exemplar.view(), params, 0);
     renderer = std::make_unique<GlRenderer>(model);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
@@ -37,11 +40,13 @@ void frame_benchmark(benchmark::State& state, const char* method, const ParamVal
     return;
   }
   ImageF out(width, height, model.channels());
-  const Grid grid{{0.0, 0.0}, 1.0, width, height};
+  const Grid grid{{0.0, 0.0}, scale, width, height};
+  GpuRenderOptions options;
+  options.texture_filter = texture_filter;
   std::uint32_t seed = 0;
   double gpu_milliseconds = 0.0;
   for (auto _ : state) {
-    renderer->render(grid, seed++, out.view());
+    renderer->render(grid, seed++, out.view(), options);
     gpu_milliseconds += renderer->last_gpu_milliseconds();
   }
   // Real time per iteration includes the read-back of the image to the CPU; gpu_ms is the
@@ -91,6 +96,42 @@ BENCHMARK(BM_GlLrpFrame)
     ->Args({128, 128})
     ->Args({1920, 1080})
     ->Iterations(10)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// Zoomed out by 4 (footprint filtering), --gl-filter exact (0) against hardware (1): texton
+// (support 64) and tiling, the colour exemplar, 256x256 and 1080p frames.
+void BM_GlFilteredFrame(benchmark::State& state) {
+  const bool texton = state.range(0) == 1;
+  frame_benchmark(
+      state, texton ? "texton" : "tiling", texton ? ParamValues{{"support", 64}} : ParamValues{},
+      static_cast<int>(state.range(2)), static_cast<int>(state.range(3)), bench::colour_exemplar(),
+      4.0, state.range(1) == 1 ? GlFilter::hardware : GlFilter::exact);
+}
+BENCHMARK(BM_GlFilteredFrame)
+    ->ArgNames({"texton", "hardware", "width", "height"})
+    ->ArgsProduct({{0, 1}, {0, 1}, {256}, {256}})
+    ->ArgsProduct({{0, 1}, {0, 1}, {1920}, {1080}})
+    ->Iterations(10)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// Gabor noise, impulse budget N (default 1024), on the 128² top-left crops of the grey and colour
+// exemplars (the paper's timing is 128² grey at the default parameters).
+void BM_GlGaborFrame(benchmark::State& state) {
+  static const ImageF grey = bench::crop_top_left(bench::grey_exemplar(), 128);
+  static const ImageF colour = bench::crop_top_left(bench::colour_exemplar(), 128);
+  frame_benchmark(state, "gabor", {{"impulses", static_cast<double>(state.range(1))}},
+                  static_cast<int>(state.range(2)), static_cast<int>(state.range(3)),
+                  state.range(0) == 1 ? grey : colour);
+}
+BENCHMARK(BM_GlGaborFrame)
+    ->ArgNames({"grey", "impulses", "width", "height"})
+    ->Args({1, 1024, 128, 128})
+    ->Args({0, 1024, 128, 128})
+    ->Args({1, 256, 128, 128})
+    ->Args({1, 1024, 1920, 1080})
+    ->Iterations(3)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -137,6 +137,7 @@ struct RenderSettings {
   bool no_filter = false;
   int bit_depth = 8;
   std::string backend = "cpu";
+  std::string gl_filter = "exact";
 };
 
 void add_render_options(CLI::App* command, RenderSettings& settings, bool size_required) {
@@ -168,9 +169,17 @@ void add_render_options(CLI::App* command, RenderSettings& settings, bool size_r
       ->check(CLI::IsMember({8, 16}));
   command
       ->add_option("--backend", settings.backend,
-                   "cpu (the reference) or gl (OpenGL 4.5 compute, headless; texton, tiling, lrp)")
+                   "cpu (the reference) or gl (OpenGL 4.5 compute, headless; every method)")
       ->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
+  command
+      ->add_option(
+          "--gl-filter", settings.gl_filter,
+          "with --backend gl: exact (the CPU's filter, to float rounding) or hardware "
+          "(texton order 1, tiling: mip-mapped textures, trilinear + anisotropic; equal to the "
+          "CPU in distribution)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"exact", "hardware"}));
 }
 
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
@@ -211,6 +220,8 @@ void run_render(const Model& model, const RenderSettings& settings, const std::s
 #ifdef STOCHTEX_WITH_GL
     GpuRenderOptions gpu_options;
     gpu_options.filter = options.filter;
+    gpu_options.texture_filter =
+        settings.gl_filter == "hardware" ? GlFilter::hardware : GlFilter::exact;
     if (options.supersample != 1)
       throw UsageError("--supersample is a CPU reference: use it with --backend cpu");
     render_gl(model, grid, settings.seed, image.view(), gpu_options);
@@ -330,7 +341,7 @@ int run(int argc, char** argv) {
                        "NAME.exr (values) and NAME.png (preview: 0.5 + 0.5 v / max|v|)");
 
   auto* export_cmd = app.add_subcommand(
-      "export-shader", "model file -> self-contained GLSL + data images for engines (texton)");
+      "export-shader", "model file -> self-contained GLSL + data images for engines");
   export_cmd->add_option("MODEL", model_path, "model file (.stx)")->required();
   export_cmd->add_option("-o,--output", output, "folder to write (created if missing)")->required();
 

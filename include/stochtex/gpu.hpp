@@ -2,7 +2,8 @@
 // GPU rendering through OpenGL 4.5 compute shaders (library stochtex::gl): the same grid, model
 // and seed as render() in render.hpp, evaluated by the GLSL twin of each method's evaluator.
 // Runs headless through EGL: on NVIDIA drivers where a GPU exists, on Mesa llvmpipe where not.
-// The CPU evaluator is the reference; the GPU output matches it within float rounding (tested).
+// The CPU evaluator is the reference; the GPU output matches it within float rounding (tested),
+// or in distribution with GlFilter::hardware.
 
 #include <cstdint>
 #include <memory>
@@ -15,12 +16,23 @@
 
 namespace stochtex {
 
+// How the GL backend filters footprints wider than a pixel (`render --gl-filter`).
+//   exact:    the GLSL twin of the CPU filter (texelFetch, the shader's own interpolation and
+//             pyramid levels): the CPU's output to float rounding. The default.
+//   hardware: texton (order 1) and tiling read their pyramids as mip-mapped GL textures with
+//             textureGrad (trilinear, anisotropic up to 16x where the driver has it), as the
+//             papers' shaders do: faster on GPUs, equal to the CPU in distribution (mean,
+//             variance; tested), not pixel for pixel. lrp, gabor and other texton orders filter
+//             analytically and render as `exact`.
+enum class GlFilter { exact, hardware };
+
 struct GpuRenderOptions {
   int tile_size = 4096;  // pixels per side of one dispatch; affects speed only, never the output
   bool filter = true;    // pass each pixel's footprint (scale) to the evaluator
+  GlFilter texture_filter = GlFilter::exact;
 };
 
-// Methods the GL backend evaluates (texton and tiling so far).
+// Methods the GL backend evaluates (texton, tiling, lrp and gabor).
 bool gl_supports(std::string_view method);
 
 // A model made ready on the GPU: an OpenGL context, the compiled evaluator and the model's data,
@@ -57,7 +69,8 @@ void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageVi
 struct ShaderExport {
   std::string glsl_file_name;
   std::string glsl;
-  std::vector<NamedImage> images;  // write each as <name>.exr (float32, exact)
+  // Write each as <name>.exr (float32, exact); it binds to `uniform sampler2D stochtex_<name>`.
+  std::vector<NamedImage> images;
   std::string readme;
 };
 ShaderExport export_shader(const Model& model);

@@ -1,10 +1,14 @@
 #pragma once
-// Writing model data as GLSL constants that read back exactly.
+// Writing model data as GLSL constants that read back exactly, and as RGBA float textures.
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <span>
 #include <string>
+#include <vector>
+
+#include "stochtex/image.hpp"
 
 namespace stochtex::gl {
 
@@ -17,6 +21,15 @@ inline std::string glsl_float(float value) {
   std::string literal(text.data());
   if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
   return literal;
+}
+
+// A double as a GLSL double literal that reads back exactly (17 significant digits).
+inline std::string glsl_double(double value) {
+  std::array<char, 40> text{};
+  std::snprintf(text.data(), text.size(), "%.17g", value);
+  std::string literal(text.data());
+  if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
+  return literal + "lf";
 }
 
 inline std::string glsl_int(int value) {
@@ -41,6 +54,32 @@ inline std::string glsl_vec4(std::span<const float> values) {
   for (std::size_t c = 0; c < 4; ++c)
     text += (c == 0 ? "" : ", ") + glsl_float(c < values.size() ? values[c] : 0.0f);
   return text + ")";
+}
+
+// Where a method's GLSL reads its large arrays from: storage buffers (the renderer), or RGBA32F
+// textures read with texelFetch (an exported shader: engines load them from EXR files).
+enum class DataSource { storage_buffers, textures };
+
+// Rows of data textures: 1024 RGBA texels, so 64 M floats fit GL 4.5's guaranteed 16384 rows.
+inline constexpr int kDataTextureWidth = 1024;
+
+// `values` packed four floats per RGBA texel in row-major texel order (zero-padded).
+inline ImageF pack_rgba(std::span<const float> values) {
+  const std::size_t texels = std::max<std::size_t>((values.size() + 3) / 4, 1);
+  ImageF image(kDataTextureWidth,
+               static_cast<int>((texels + kDataTextureWidth - 1) / kDataTextureWidth), 4);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    image.at(static_cast<int>(i / 4 % kDataTextureWidth),
+             static_cast<int>(i / 4 / kDataTextureWidth), static_cast<int>(i % 4)) = values[i];
+  return image;
+}
+
+// GLSL reading float `index` of a pack_rgba texture bound to `sampler`.
+inline std::string glsl_packed_read(const std::string& sampler, const std::string& function) {
+  const std::string width = std::to_string(kDataTextureWidth);
+  return "uniform sampler2D " + sampler + ";\nfloat " + function +
+         "(int index) {\n  int texel = index >> 2;\n  return texelFetch(" + sampler +
+         ", ivec2(texel % " + width + ", texel / " + width + "), 0)[index & 3];\n}\n";
 }
 
 }  // namespace stochtex::gl

@@ -1,8 +1,8 @@
 #include "gl/lrp_glsl.hpp"
 
+#include <algorithm>
 #include <span>
 
-#include "gl/glsl_text.hpp"
 #include "gl/shaders.hpp"
 #include "methods/lrp/window.hpp"
 
@@ -41,6 +41,7 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
     text += "const " + std::string(type) + " " + name + " = " + value + ";\n";
   };
   constant("int", "LRP_CHANNELS", glsl_int(d.channels));
+  constant("int", "LRP_STRATA", glsl_int(d.strata));
   constant("int", "LRP_STRATA_TOTAL", glsl_int(static_cast<int>(d.strata_table.size())));
   constant("bool", "LRP_NORMALISE_ENVELOPE", d.normalise_envelope ? "true" : "false");
   constant("float", "LRP_MEAN_ENVELOPE", glsl_float(static_cast<float>(model.mean_envelope())));
@@ -56,8 +57,55 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   return glsl;
 }
 
-std::string lrp_library_source(const LrpGlsl& glsl) {
-  return std::string(kRandomGlsl) + glsl.constants + kLrpGlsl;
+std::string lrp_library_source(const LrpGlsl& glsl, DataSource source) {
+  std::string readers;
+  if (source == DataSource::storage_buffers) {
+    readers = R"glsl(
+layout(std430, binding = 0) readonly buffer LrpFrequencies { float lrp_frequencies[]; };
+layout(std430, binding = 2) readonly buffer LrpSubstrata { uint lrp_substrata[]; };
+vec3 lrp_frequency(uint index) {
+  return vec3(lrp_frequencies[3u * index], lrp_frequencies[3u * index + 1u],
+              lrp_frequencies[3u * index + 2u]);
+}
+uvec2 lrp_substratum(int index) {
+  return uvec2(lrp_substrata[2 * index], lrp_substrata[2 * index + 1]);
+}
+)glsl";
+  } else {
+    readers = "uniform sampler2D stochtex_lrp_tables;\nconst int LRP_TABLES_WIDTH = " +
+              std::to_string(kDataTextureWidth) +
+              ";\nconst int LRP_SUBSTRATA_TEXEL = " + std::to_string(glsl.frequencies.size() / 3) +
+              ";\n" + R"glsl(
+vec4 lrp_table_texel(int index) {
+  return texelFetch(stochtex_lrp_tables,
+                    ivec2(index % LRP_TABLES_WIDTH, index / LRP_TABLES_WIDTH), 0);
+}
+vec3 lrp_frequency(uint index) { return lrp_table_texel(int(index)).xyz; }
+uvec2 lrp_substratum(int index) { return uvec2(lrp_table_texel(LRP_SUBSTRATA_TEXEL + index).xy); }
+)glsl";
+  }
+  return std::string(kRandomGlsl) + glsl.constants + readers + kLrpGlsl;
+}
+
+ImageF lrp_tables_image(const LrpGlsl& glsl) {
+  // Texels [0, F): (f_x, f_y, weight, 0); texels [F, F + S): (first, count, 0, 0) as floats,
+  // exact below 2^24 (LrpModel::from_record).
+  const std::size_t frequencies = glsl.frequencies.size() / 3;
+  const std::size_t substrata = glsl.substrata.size() / 2;
+  const std::size_t texels = std::max<std::size_t>(frequencies + substrata, 1);
+  ImageF image(kDataTextureWidth,
+               static_cast<int>((texels + kDataTextureWidth - 1) / kDataTextureWidth), 4);
+  const auto texel = [&](std::size_t index, int c) -> float& {
+    return image.at(static_cast<int>(index % kDataTextureWidth),
+                    static_cast<int>(index / kDataTextureWidth), c);
+  };
+  for (std::size_t i = 0; i < frequencies; ++i)
+    for (int c = 0; c < 3; ++c) texel(i, c) = glsl.frequencies[3 * i + static_cast<std::size_t>(c)];
+  for (std::size_t i = 0; i < substrata; ++i) {
+    texel(frequencies + i, 0) = static_cast<float>(glsl.substrata[2 * i]);
+    texel(frequencies + i, 1) = static_cast<float>(glsl.substrata[2 * i + 1]);
+  }
+  return image;
 }
 
 }  // namespace stochtex::gl

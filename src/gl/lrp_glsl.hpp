@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "gl/glsl_text.hpp"
 #include "methods/lrp/model.hpp"
 
 namespace stochtex::gl {
@@ -18,7 +19,15 @@ struct LrpGlsl {
 
 LrpGlsl lrp_glsl(const lrp::LrpModel& model);
 
-// random.glsl, the constants and lrp evaluate.glsl: all but `#version`.
-std::string lrp_library_source(const LrpGlsl& glsl);
+// random.glsl, the constants, the table readers and lrp evaluate.glsl: all but `#version`. The
+// tables are the storage buffers at bindings 0 and 2, or the texture `stochtex_lrp_tables` of
+// lrp_tables_image().
+std::string lrp_library_source(const LrpGlsl& glsl,
+                               DataSource source = DataSource::storage_buffers);
+
+// The tables as one RGBA image for an exported shader: texel i < F holds frequency i (f_x, f_y,
+// weight), texel F + k sub-stratum k (first, count, as floats: exact below 2^24, which
+// export_shader checks), F = LRP_SUBSTRATA_TEXEL.
+ImageF lrp_tables_image(const LrpGlsl& glsl);
 
 }  // namespace stochtex::gl

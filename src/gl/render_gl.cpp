@@ -1,13 +1,13 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "core/hash.hpp"
 #include "gl/context.hpp"
+#include "gl/gabor_glsl.hpp"
 #include "gl/lrp_glsl.hpp"
 #include "gl/program.hpp"
 #include "gl/shaders.hpp"
@@ -25,15 +25,82 @@ using gl::Buffer;
 using gl::check_gl;
 using gl::Program;
 
-// One method's GPU state, made once per model: prepare() sets a render's uniforms, dispatch()
-// evaluates one tile of it into `result`. (A virtual call per dispatch, never per sample.)
+// One method's GPU state, made once per model: prepare() sets a render's uniforms (and picks the
+// program for options.texture_filter), dispatch() evaluates one tile of it into `result`. (A
+// virtual call per dispatch, never per sample.)
 class Pass {
  public:
   virtual ~Pass() = default;
-  virtual void prepare(const Grid& grid, std::uint32_t seed, bool filter) const = 0;
+  virtual void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) = 0;
   virtual void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
                         const Buffer& result) const = 0;
 };
+
+// The footprint side given to textureGrad by --gl-filter hardware: the grid's scale over sqrt(3),
+// so that the hardware's level of detail log2(scale / sqrt(3)) is the CPU pyramids' (see
+// kLodBias in texton and tiling), or zero for point samples.
+float hardware_footprint(const Grid& grid, bool filter) {
+  return filter ? static_cast<float>(grid.scale / std::sqrt(3.0)) : 0.0f;
+}
+
+// The anisotropy a mip-mapped texture may use: the driver's maximum up to 16 (GL 4.6 core or
+// GL_EXT/ARB_texture_filter_anisotropic), 1 without the extension. Not on Mesa llvmpipe: its
+// anisotropic sampling (Mesa 22.3) blurs even isotropic and magnified reads (measured: texels
+// off by 0.03 at level 0, variance of the scale-8 renders 0.2-0.5x the trilinear one).
+float max_anisotropy() {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (renderer != nullptr && std::string(renderer).find("llvmpipe") != std::string::npos)
+    return 1.0f;
+  GLint extensions = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+  bool available = false;
+  for (GLint i = 0; i < extensions; ++i) {
+    const std::string name(
+        reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i))));
+    available = available || name == "GL_EXT_texture_filter_anisotropic" ||
+                name == "GL_ARB_texture_filter_anisotropic";
+  }
+  if (!available) return 1.0f;
+  GLfloat maximum = 1.0f;
+  glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &maximum);
+  return std::min(maximum, 16.0f);
+}
+
+// An RGBA32F texture with a full mip chain for hardware filtering: `levels[l]` (RGBA texels of
+// max(1, width >> l) x max(1, height >> l)) where the caller has the level, glGenerateTextureMipmap
+// for the rest. Trilinear, anisotropic where available, `wrap` on both axes.
+GLuint mipmapped_texture(int width, int height, const std::vector<std::vector<float>>& levels,
+                         GLenum wrap) {
+  int count = 1;
+  while ((std::max(width, height) >> count) > 0) ++count;
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, count, GL_RGBA32F, width, height);
+  for (std::size_t l = 0; l < levels.size() && static_cast<int>(l) < count; ++l)
+    glTextureSubImage2D(texture, static_cast<GLint>(l), 0, 0, std::max(1, width >> l),
+                        std::max(1, height >> l), GL_RGBA, GL_FLOAT, levels[l].data());
+  if (static_cast<int>(levels.size()) < count) {
+    glTextureParameteri(texture, GL_TEXTURE_BASE_LEVEL, static_cast<GLint>(levels.size()) - 1);
+    glGenerateTextureMipmap(texture);
+    glTextureParameteri(texture, GL_TEXTURE_BASE_LEVEL, 0);
+  }
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
+  glTextureParameterf(texture, GL_TEXTURE_MAX_ANISOTROPY, max_anisotropy());
+  return texture;
+}
+
+// `values` with `channels` floats per texel as RGBA (missing channels zero).
+std::vector<float> to_rgba(const float* values, std::size_t texels, int channels) {
+  std::vector<float> rgba(texels * 4, 0.0f);
+  for (std::size_t i = 0; i < texels; ++i)
+    for (int c = 0; c < channels; ++c)
+      rgba[i * 4 + static_cast<std::size_t>(c)] =
+          values[i * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)];
+  return rgba;
+}
 
 // Runs `program` over width x height pixels of the grid, writing into `result` (binding 1).
 void run_tile(const Program& program, std::int64_t first_x, std::int64_t first_y, int width,
@@ -48,26 +115,38 @@ void run_tile(const Program& program, std::int64_t first_x, std::int64_t first_y
 }
 
 // The texton evaluator's GPU state: the program (compiled with the model's constants) and the
-// texel atlas.
+// texel atlas; for --gl-filter hardware (order-1 models), a second program and level 0 of the
+// pyramid as a mip-mapped texture, made on first use.
 class TextonPass final : public Pass {
  public:
   explicit TextonPass(const texton::TextonModel& model)
       : model_(model),
         glsl_(gl::texton_glsl(model)),
-        program_(std::string("#version 450\n") + gl::texton_library_source(glsl_) +
-                 gl::kTextonRenderGlsl) {
+        exact_(std::string("#version 450\n") + gl::texton_library_source(glsl_) +
+               gl::kTextonRenderGlsl) {
     glCreateTextures(GL_TEXTURE_2D, 1, &atlas_);
     glTextureStorage2D(atlas_, 1, GL_RGBA32F, glsl_.atlas.width(), glsl_.atlas.height());
     glTextureSubImage2D(atlas_, 0, 0, 0, glsl_.atlas.width(), glsl_.atlas.height(), GL_RGBA,
                         GL_FLOAT, glsl_.atlas.pixels().data());
-    program_.set("stochtex_texton_atlas", 0);
+    exact_.set("stochtex_texton_atlas", 0);
     check_gl("uploading the texton");
   }
-  ~TextonPass() { glDeleteTextures(1, &atlas_); }
+  ~TextonPass() {
+    glDeleteTextures(1, &atlas_);
+    glDeleteTextures(1, &texture_);
+  }
   TextonPass(const TextonPass&) = delete;
   TextonPass& operator=(const TextonPass&) = delete;
 
-  void prepare(const Grid& grid, std::uint32_t seed, bool filter) const override {
+  void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) override {
+    const bool filter = options.filter;
+    active_ = &exact_;
+    // Hardware bilinear reconstruction is the order-1 B-spline only: other orders stay exact.
+    if (options.texture_filter == GlFilter::hardware && model_.order() == 1) {
+      if (!hardware_) make_hardware();
+      active_ = hardware_.get();
+    }
+    const Program& program = *active_;
     const int top_level = static_cast<int>(model_.pyramid().size()) - 1;
     const texton::FilterSetup setup =
         filter ? texton::filter_setup(Footprint{{grid.scale, 0.0}, {0.0, grid.scale}}, top_level)
@@ -80,46 +159,82 @@ class TextonPass final : public Pass {
     const auto low_bits = [](double cell) {
       return static_cast<unsigned>(static_cast<std::uint64_t>(static_cast<std::int64_t>(cell)));
     };
-    program_.set2("origin_cell", low_bits(origin_cell_x), low_bits(origin_cell_y));
-    program_.set2("origin_offset", static_cast<float>(grid.origin.x - origin_cell_x * cell_size),
-                  static_cast<float>(grid.origin.y - origin_cell_y * cell_size));
-    program_.set("scale", static_cast<float>(grid.scale));
-    program_.set("seed", static_cast<unsigned>(seed));
-    program_.set("filter_level", setup.level);
-    program_.set("filter_level_blend", setup.level_blend);
-    program_.set("filter_probes", setup.probes);
-    program_.set2("filter_probe_step", setup.probe_x, setup.probe_y);
-    program_.set("filter_fade", setup.fade);
+    program.set2("origin_cell", low_bits(origin_cell_x), low_bits(origin_cell_y));
+    program.set2("origin_offset", static_cast<float>(grid.origin.x - origin_cell_x * cell_size),
+                 static_cast<float>(grid.origin.y - origin_cell_y * cell_size));
+    program.set("scale", static_cast<float>(grid.scale));
+    program.set("seed", static_cast<unsigned>(seed));
+    program.set("filter_level", setup.level);
+    program.set("filter_level_blend", setup.level_blend);
+    program.set("filter_probes", setup.probes);
+    program.set2("filter_probe_step", setup.probe_x, setup.probe_y);
+    program.set("filter_fade", setup.fade);
+    program.set("filter_scale", hardware_footprint(grid, filter));
     check_gl("setting the texton uniforms");
   }
 
   void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
                 const Buffer& result) const override {
     glBindTextureUnit(0, atlas_);
-    run_tile(program_, first_x, first_y, width, height, result);
+    glBindTextureUnit(1, texture_);
+    run_tile(*active_, first_x, first_y, width, height, result);
   }
 
  private:
+  void make_hardware() {
+    hardware_ = std::make_unique<Program>(
+        std::string("#version 450\n#define TEXTON_TEXTURE_FILTER\n") +
+        gl::texton_library_source(glsl_) + gl::kTextonHardwareGlsl + gl::kTextonRenderGlsl);
+    const texton::PyramidLevel& base = model_.pyramid().front();
+    const std::size_t texels = static_cast<std::size_t>(base.stride) * base.stride;
+    texture_ = mipmapped_texture(base.stride, base.stride,
+                                 {to_rgba(base.coefficients.data(), texels, model_.channels())},
+                                 GL_CLAMP_TO_BORDER);
+    glTextureParameterf(texture_, GL_TEXTURE_MAX_LOD,
+                        static_cast<float>(model_.pyramid().size() - 1));
+    hardware_->set("stochtex_texton_atlas", 0);
+    hardware_->set("stochtex_texton_texture", 1);
+    check_gl("uploading the texton texture");
+  }
+
   const texton::TextonModel& model_;
   gl::TextonGlsl glsl_;
-  Program program_;
+  Program exact_;
   GLuint atlas_ = 0;
+  std::unique_ptr<Program> hardware_;
+  GLuint texture_ = 0;
+  const Program* active_ = &exact_;
 };
 
 // The tiling evaluator's GPU state: the program (compiled with the model's constants) and the
-// storage buffer of its pyramid and tables.
+// storage buffer of its pyramid and tables; for --gl-filter hardware, a second program, the
+// Gaussianised exemplar as a mip-mapped texture and T^-1's 3-D tables as a 3-D texture, made on
+// first use.
 class TilingPass final : public Pass {
  public:
   explicit TilingPass(const tiling::TilingModel& model)
       : model_(model),
         glsl_(gl::tiling_glsl(model)),
-        program_(std::string("#version 450\n") + gl::tiling_library_source(glsl_) +
-                 gl::kTilingRenderGlsl),
+        exact_(std::string("#version 450\n") + gl::tiling_library_source(glsl_) +
+               gl::kTilingRenderGlsl),
         data_(glsl_.data.size() * sizeof(float), glsl_.data.data()) {
     check_gl("uploading the tiling model");
   }
+  ~TilingPass() {
+    glDeleteTextures(1, &exemplar_);
+    glDeleteTextures(1, &lut_);
+  }
+  TilingPass(const TilingPass&) = delete;
+  TilingPass& operator=(const TilingPass&) = delete;
 
-  void prepare(const Grid& grid, std::uint32_t seed, bool filter) const override {
+  void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) override {
+    const bool filter = options.filter;
+    active_ = &exact_;
+    if (options.texture_filter == GlFilter::hardware) {
+      if (!hardware_) make_hardware();
+      active_ = hardware_.get();
+    }
+    const Program& program = *active_;
     const Footprint footprint{{grid.scale, 0.0}, {0.0, grid.scale}};
     const tiling::LevelOfDetail lod = model_.level_of_detail(filter ? &footprint : nullptr);
     // The origin's skewed lattice cell (low 32 bits, as cell_key takes them) and its fraction, and
@@ -135,28 +250,72 @@ class TilingPass final : public Pass {
     };
     const tiling::Point2f wrapped =
         tiling::wrap_position(grid.origin, model_.data().width, model_.data().height);
-    program_.set2("origin_cell", low_bits(cell_x), low_bits(cell_y));
-    program_.set2("origin_skewed", static_cast<float>(skewed_x - cell_x),
-                  static_cast<float>(skewed_y - cell_y));
-    program_.set2("origin_wrapped", wrapped.x, wrapped.y);
-    program_.set("scale", static_cast<float>(grid.scale));
-    program_.set("seed", static_cast<unsigned>(seed));
-    program_.set("lod_level", lod.level);
-    program_.set("lod_blend", lod.blend);
+    program.set2("origin_cell", low_bits(cell_x), low_bits(cell_y));
+    program.set2("origin_skewed", static_cast<float>(skewed_x - cell_x),
+                 static_cast<float>(skewed_y - cell_y));
+    program.set2("origin_wrapped", wrapped.x, wrapped.y);
+    program.set("scale", static_cast<float>(grid.scale));
+    program.set("seed", static_cast<unsigned>(seed));
+    program.set("lod_level", lod.level);
+    program.set("lod_blend", lod.blend);
+    program.set("filter_scale", hardware_footprint(grid, filter));
     check_gl("setting the tiling uniforms");
   }
 
   void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
                 const Buffer& result) const override {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data_.id());
-    run_tile(program_, first_x, first_y, width, height, result);
+    glBindTextureUnit(0, exemplar_);
+    glBindTextureUnit(1, lut_);
+    run_tile(*active_, first_x, first_y, width, height, result);
   }
 
  private:
+  void make_hardware() {
+    hardware_ = std::make_unique<Program>(
+        std::string("#version 450\n#define TILING_TEXTURE_FILTER\n") +
+        gl::tiling_library_source(glsl_) + gl::kTilingHardwareGlsl + gl::kTilingRenderGlsl);
+    // The model's pyramid where its level sizes are GL's mip chain (power-of-two exemplars);
+    // glGenerateTextureMipmap (a 2 x 2 box, as the model's) for the levels beyond.
+    const int width = model_.data().width;
+    const int height = model_.data().height;
+    const int channels = model_.channels();
+    std::vector<std::vector<float>> levels;
+    for (int l = 0; l < model_.level_count(); ++l) {
+      const tiling::MipLevel mip = model_.level(l);
+      if (mip.width != std::max(1, width >> l) || mip.height != std::max(1, height >> l)) break;
+      levels.push_back(
+          to_rgba(mip.texels, static_cast<std::size_t>(mip.width) * mip.height, channels));
+    }
+    exemplar_ = mipmapped_texture(width, height, levels, GL_REPEAT);
+    hardware_->set("stochtex_tiling_exemplar", 0);
+    if (model_.layout().colour_lut && !model_.level_lut(0).empty()) {
+      // Each level's 3-D table (lut_size^3 RGB, x fastest) as lut_size slices of one 3-D texture.
+      const int n = model_.data().lut_size;
+      glCreateTextures(GL_TEXTURE_3D, 1, &lut_);
+      glTextureStorage3D(lut_, 1, GL_RGBA32F, n, n, n * model_.level_count());
+      for (int l = 0; l < model_.level_count(); ++l) {
+        const std::vector<float> rgba =
+            to_rgba(model_.level_lut(l).data(), static_cast<std::size_t>(n) * n * n, 3);
+        glTextureSubImage3D(lut_, 0, 0, 0, l * n, n, n, n, GL_RGBA, GL_FLOAT, rgba.data());
+      }
+      glTextureParameteri(lut_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      glTextureParameteri(lut_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      for (const GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTextureParameteri(lut_, axis, GL_CLAMP_TO_EDGE);
+      hardware_->set("stochtex_tiling_lut", 1);
+    }
+    check_gl("uploading the tiling exemplar texture");
+  }
+
   const tiling::TilingModel& model_;
   gl::TilingGlsl glsl_;
-  Program program_;
+  Program exact_;
   Buffer data_;
+  std::unique_ptr<Program> hardware_;
+  GLuint exemplar_ = 0;
+  GLuint lut_ = 0;
+  const Program* active_ = &exact_;
 };
 
 // The LRP evaluator's GPU state: the program (compiled with the model's constants) and the
@@ -173,7 +332,8 @@ class LrpPass final : public Pass {
     check_gl("uploading the lrp model");
   }
 
-  void prepare(const Grid& grid, std::uint32_t seed, bool filter) const override {
+  void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) override {
+    const bool filter = options.filter;
     // Per stratum, as the CPU evaluator: the nearest lattice node of the origin (in double) and
     // the stratum's stream cell_key(channel, stratum, seed, phases).
     const lrp::LrpData& d = model_.data();
@@ -220,49 +380,51 @@ class LrpPass final : public Pass {
   Buffer substrata_;
 };
 
-// How to use an exported shader (written as README.md beside it).
-constexpr const char* kExportReadme = R"md(# stochtex texton noise shader
+// The Gabor noise evaluator's GPU state: the program (compiled with the model's per-grid
+// constants) and the texture of its Gaussians, alias tables and Poisson tables.
+class GaborPass final : public Pass {
+ public:
+  explicit GaborPass(const gabor::GaborModel& model)
+      : glsl_(gl::gabor_glsl(model)),
+        program_(std::string("#version 450\n") + gl::gabor_library_source(glsl_) +
+                 gl::kGaborRenderGlsl) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &data_);
+    glTextureStorage2D(data_, 1, GL_RGBA32F, glsl_.data.width(), glsl_.data.height());
+    glTextureSubImage2D(data_, 0, 0, 0, glsl_.data.width(), glsl_.data.height(), GL_RGBA, GL_FLOAT,
+                        glsl_.data.pixels().data());
+    program_.set("stochtex_gabor_data", 0);
+    check_gl("uploading the gabor model");
+  }
+  ~GaborPass() { glDeleteTextures(1, &data_); }
+  GaborPass(const GaborPass&) = delete;
+  GaborPass& operator=(const GaborPass&) = delete;
 
-Files: `stochtex_texton.glsl` (the noise, self-contained) and `texton_atlas.exr` (the texton
-pyramid, RGBA float32). The GLSL declares `uniform sampler2D stochtex_texton_atlas;` and exposes
+  void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) override {
+    // Positions are formed in double on the GPU as on the CPU (see gabor evaluate.glsl).
+    glProgramUniform2d(program_.id(), program_.location("origin"), grid.origin.x, grid.origin.y);
+    glProgramUniform1d(program_.id(), program_.location("scale"), grid.scale);
+    program_.set("seed", static_cast<unsigned>(seed));
+    program_.set("filtered", options.filter ? 1 : 0);
+    check_gl("setting the gabor uniforms");
+  }
 
-    vec4 stochtex_texton(vec2 p, vec2 dpdx, vec2 dpdy, uint seed);
+  void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
+                const Buffer& result) const override {
+    glBindTextureUnit(0, data_);
+    run_tile(program_, first_x, first_y, width, height, result);
+  }
 
-`p` is in exemplar pixels (1 unit = 1 pixel of the analysed image), `dpdx`/`dpdy` its screen
-derivatives (`dFdx(p)`, `dFdy(p)` in a fragment shader; `vec2(0)` for no filtering) and `seed`
-picks the random pattern. The result's first `channels` components are the colour.
-
-Binding it in a plain OpenGL 4.5 program (load the EXR with any EXR reader into `texels`):
-
-```c
-GLuint atlas;
-glCreateTextures(GL_TEXTURE_2D, 1, &atlas);
-glTextureStorage2D(atlas, 1, GL_RGBA32F, width, height);
-glTextureSubImage2D(atlas, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels);
-glBindTextureUnit(0, atlas);
-glProgramUniform1i(program, glGetUniformLocation(program, "stochtex_texton_atlas"), 0);
-```
-
-```glsl
-#version 450
-// ... contents of stochtex_texton.glsl ...
-in vec2 uv;  // your surface coordinate
-out vec4 colour;
-void main() {
-  vec2 p = uv * 512.0;  // scaled to exemplar pixels
-  colour = vec4(stochtex_texton(p, dFdx(p), dFdy(p), 7u).rgb, 1.0);
-}
-```
-
-The atlas is read with `texelFetch` (exact texels, no sampler filtering needed): the shader does
-its own B-spline interpolation and footprint filtering, the same as the CPU reference.
-)md";
+ private:
+  gl::GaborGlsl glsl_;
+  Program program_;
+  GLuint data_ = 0;
+};
 
 }  // namespace
 
 bool gl_supports(std::string_view method) {
   return method == texton::TextonModel::kMethodName || method == tiling::TilingModel::kMethodName ||
-         method == lrp::LrpModel::kMethodName;
+         method == lrp::LrpModel::kMethodName || method == gabor::GaborModel::kMethodName;
 }
 
 struct GlRenderer::Impl {
@@ -282,6 +444,8 @@ struct GlRenderer::Impl {
             pass = std::make_unique<TilingPass>(method_model);
           else if constexpr (std::is_same_v<Method, lrp::LrpModel>)
             pass = std::make_unique<LrpPass>(method_model);
+          else if constexpr (std::is_same_v<Method, gabor::GaborModel>)
+            pass = std::make_unique<GaborPass>(method_model);
         },
         model.data().model);
     glCreateQueries(GL_TIME_ELAPSED, 1, &timer);
@@ -297,9 +461,8 @@ namespace {
 const Model& checked_model(const Model& model) {
   if (model.empty()) throw std::invalid_argument("GlRenderer: the model is empty");
   if (!gl_supports(model.method()))
-    throw Error(ErrorCode::invalid_input,
-                "the gl backend does not evaluate method '" + std::string(model.method()) +
-                    "' yet (texton, tiling and lrp only); use --backend cpu");
+    throw Error(ErrorCode::invalid_input, "the gl backend has no GLSL evaluator for method '" +
+                                              std::string(model.method()) + "'; use --backend cpu");
   return model;
 }
 
@@ -319,8 +482,8 @@ void GlRenderer::render(const Grid& grid, std::uint32_t seed, ImageView<float> o
       std::abs(grid.first_pixel_y) + grid.height > kMaxPixelIndex)
     throw std::invalid_argument(
         "render_gl: the region's pixel indices exceed 2^30; move the origin instead");
-  const Pass& pass = *impl_->pass;
-  pass.prepare(grid, seed, options.filter);
+  Pass& pass = *impl_->pass;
+  pass.prepare(grid, seed, options);
   const int tile_width = std::clamp(options.tile_size, 1, std::max(grid.width, 1));
   const int tile_height = std::clamp(options.tile_size, 1, std::max(grid.height, 1));
   const Buffer result(static_cast<std::size_t>(tile_width) * tile_height * channels *
@@ -364,28 +527,6 @@ void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageVi
 
 std::string gl_device_description() {
   return gl::Context().description();
-}
-
-ShaderExport export_shader(const Model& model) {
-  if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
-  if (model.method() != texton::TextonModel::kMethodName)
-    throw Error(ErrorCode::invalid_input, "export-shader does not support method '" +
-                                              std::string(model.method()) + "' yet (only texton)");
-  const auto& texton_model = std::get<texton::TextonModel>(model.data().model);
-  gl::TextonGlsl glsl = gl::texton_glsl(texton_model);
-  ShaderExport result;
-  result.glsl_file_name = "stochtex_texton.glsl";
-  std::ostringstream header;
-  header << "// Texton noise exported by `stochtex export-shader` (" << texton_model.channels()
-         << " channels, texton " << texton_model.support() << "x" << texton_model.support()
-         << ", MNI " << texton_model.mean_impacts() << ").\n"
-         << "// Paste or include after `#version 450` (GLSL 4.30+). Bind texton_atlas.exr as an "
-            "RGBA32F texture to\n// `stochtex_texton_atlas`, then call stochtex_texton(p, dpdx, "
-            "dpdy, seed). See README.md.\n\n";
-  result.glsl = header.str() + gl::texton_library_source(glsl);
-  result.images.push_back({"texton_atlas", std::move(glsl.atlas)});
-  result.readme = kExportReadme;
-  return result;
 }
 
 }  // namespace stochtex

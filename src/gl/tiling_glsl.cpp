@@ -2,7 +2,6 @@
 
 #include <span>
 
-#include "gl/glsl_text.hpp"
 #include "gl/shaders.hpp"
 
 namespace stochtex::gl {
@@ -60,8 +59,13 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model) {
   return glsl;
 }
 
-std::string tiling_library_source(const TilingGlsl& glsl) {
-  return std::string(kRandomGlsl) + glsl.constants + kTilingGlsl;
+std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
+  const std::string reader =
+      source == DataSource::storage_buffers
+          ? "layout(std430, binding = 0) readonly buffer TilingData { float tiling_data[]; };\n"
+            "float tiling_data_at(int index) { return tiling_data[index]; }\n"
+          : glsl_packed_read("stochtex_tiling_data", "tiling_data_at");
+  return std::string(kRandomGlsl) + glsl.constants + reader + kTilingGlsl;
 }
 
 }  // namespace stochtex::gl

@@ -219,6 +219,11 @@ expect_ok "render --backend gl" "$stochtex" render "$model" -o "$models/gl.png" 
 expect_ok "render tiling --backend gl" "$stochtex" synth "$exemplar" -m tiling -p transport=1 \
   -o "$models/tiling_gl.png" --size 40x32 --backend gl &&
   expect_file "synth tiling --backend gl writes the image" "$models/tiling_gl.png"
+expect_ok "render --gl-filter hardware" "$stochtex" render "$model" -o "$models/gl_hw.png" \
+  --size 32x32 --scale 4 --backend gl --gl-filter hardware &&
+  expect_file "render --gl-filter hardware writes the image" "$models/gl_hw.png"
+expect_parse_error "unknown --gl-filter" "$stochtex" render "$model" -o "$out/x.png" "${size[@]}" \
+  --backend gl --gl-filter bicubic
 expect_parse_error "unknown backend" "$stochtex" render "$model" -o "$out/x.png" "${size[@]}" \
   --backend vulkan
 expect_error "--supersample with --backend gl" 2 "--supersample" \
@@ -228,6 +233,16 @@ expect_ok "export-shader" "$stochtex" export-shader "$model" -o "$models/shader"
   expect_file "export-shader writes the GLSL" "$models/shader/stochtex_texton.glsl" &&
   expect_file "export-shader writes the atlas" "$models/shader/texton_atlas.exr" &&
   expect_file "export-shader writes the README" "$models/shader/README.md"
+if expect_ok "analyze gabor" "$stochtex" analyze "$exemplar" -m gabor -p impulses=64 \
+  -o "$models/gabor.stx"; then
+  expect_ok "render gabor --backend gl" "$stochtex" render "$models/gabor.stx" \
+    -o "$models/gabor_gl.png" --size 24x24 --backend gl &&
+    expect_file "render gabor --backend gl writes the image" "$models/gabor_gl.png"
+  expect_ok "export-shader gabor" "$stochtex" export-shader "$models/gabor.stx" \
+    -o "$models/gabor_shader" &&
+    expect_file "export-shader gabor writes the GLSL" "$models/gabor_shader/stochtex_gabor.glsl" &&
+    expect_file "export-shader gabor writes the data" "$models/gabor_shader/gabor_data.exr"
+fi
 
 # --- bad inputs ---------------------------------------------------------------------------------
 

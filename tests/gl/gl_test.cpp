@@ -11,6 +11,7 @@
 
 #include "core/hash.hpp"
 #include "gl/context.hpp"
+#include "gl/gl_support.hpp"
 #include "gl/program.hpp"
 #include "gl/shaders.hpp"
 #include "io/image_io.hpp"
@@ -20,7 +21,7 @@
 namespace stochtex {
 namespace {
 
-const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
+using namespace gl_test;
 
 const Model& model_of(const std::string& name, int order) {
   static std::map<std::string, Model> models;
@@ -30,28 +31,6 @@ const Model& model_of(const std::string& name, int order) {
     models[key] = analyze("texton", exemplar.view(), {{"support", 48}, {"order", order}}, 0);
   }
   return models[key];
-}
-
-ImageF render_cpu(const Model& model, const Grid& grid, std::uint32_t seed, bool filter = true) {
-  ImageF out(grid.width, grid.height, model.channels());
-  RenderOptions options;
-  options.filter = filter;
-  render(model, grid, seed, out.view(), options);
-  return out;
-}
-
-ImageF render_gpu(const Model& model, const Grid& grid, std::uint32_t seed, int tile = 512,
-                  bool filter = true) {
-  ImageF out(grid.width, grid.height, model.channels());
-  GpuRenderOptions options;
-  options.tile_size = tile;
-  options.filter = filter;
-  render_gl(model, grid, seed, out.view(), options);
-  return out;
-}
-
-bool same_bytes(const ImageF& a, const ImageF& b) {
-  return std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()) == 0;
 }
 
 TEST(Gl, ContextIsOpenGl45) {
@@ -195,21 +174,53 @@ TEST(Gl, BitIdenticalWhateverTheDispatchTilesAndRegions) {
   EXPECT_FALSE(same_bytes(reference, other_seed));
 }
 
-TEST(Gl, ExportedShaderCompilesAndMatchesTheCpu) {
-  // What an engine gets from `stochtex export-shader`: the GLSL file and the atlas image, read
-  // back from disk, driven by a minimal compute shader through the public entry point
-  // stochtex_texton(p, dpdx, dpdy, seed), with the footprint computed in GLSL (texton_filter).
-  const Model& model = model_of("red_fleece_128.png", 1);
-  const ShaderExport files = export_shader(model);
-  ASSERT_EQ(files.images.size(), 1u);
-  const auto folder = std::filesystem::temp_directory_path() / "stochtex_export_test";
-  std::filesystem::create_directories(folder);
-  write_image(folder / "texton_atlas.exr", files.images[0].image.view());
-  const ImageF atlas = read_image(folder / "texton_atlas.exr");
-  std::filesystem::remove_all(folder);
+struct ExportCase {
+  const char* method;
+  const char* exemplar;
+  ParamValues params;
+  int size;
+};
 
+TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
+  // What an engine gets from `stochtex export-shader`: the GLSL file and the data images, read
+  // back from disk, each bound to `stochtex_<name>`, driven by a minimal compute shader through
+  // the public entry point stochtex_<method>(p, dpdx, dpdy, seed), which computes the filter from
+  // the footprint in GLSL (texton_filter, the tiling level of detail, the lrp clamping axes, the
+  // Gabor kernel filter).
+  const std::vector<ExportCase> cases = {
+      {"texton", "red_fleece_128.png", {{"support", 48}}, 48},
+      {"tiling", "red_fleece_128.png", {}, 48},
+      {"tiling", "metal_grey_256.png", {{"transport", 1}}, 48},
+      {"lrp", "metal_grey_256.png", {{"cosines", 10}}, 32},
+      {"gabor", "red_fleece_128.png", {{"impulses", 256}}, 24},
+  };
   const gl::Context context;
-  const std::string source = "#version 450\n" + files.glsl + R"glsl(
+  for (const auto& c : cases) {
+    const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
+    const Model model = analyze(c.method, exemplar.view(), c.params, 0);
+    const ShaderExport files = export_shader(model);
+    ASSERT_EQ(files.glsl_file_name, "stochtex_" + std::string(c.method) + ".glsl");
+    EXPECT_NE(files.readme.find("stochtex_" + std::string(c.method) + "(vec2 p"),
+              std::string::npos);
+    const auto folder = std::filesystem::temp_directory_path() / "stochtex_export_test";
+    std::filesystem::create_directories(folder);
+    std::vector<GLuint> textures;
+    std::vector<std::string> samplers;
+    for (const auto& [name, image] : files.images) {
+      write_image(folder / (name + ".exr"), image.view());
+      const ImageF texels = read_image(folder / (name + ".exr"));
+      ASSERT_EQ(texels.channels(), 4);
+      GLuint texture = 0;
+      glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+      glTextureStorage2D(texture, 1, GL_RGBA32F, texels.width(), texels.height());
+      glTextureSubImage2D(texture, 0, 0, 0, texels.width(), texels.height(), GL_RGBA, GL_FLOAT,
+                          texels.pixels().data());
+      textures.push_back(texture);
+      samplers.push_back("stochtex_" + name);
+    }
+    std::filesystem::remove_all(folder);
+
+    const std::string source = "#version 450\n" + files.glsl + R"glsl(
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) writeonly buffer Out { vec4 values[]; };
 uniform int width;
@@ -218,43 +229,45 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   vec2 p = scale * (vec2(pixel) + 0.5);
   values[pixel.y * width + pixel.x] =
-      stochtex_texton(p, vec2(scale, 0.0), vec2(0.0, scale), 11u);
+      stochtex_)glsl" + std::string(c.method) +
+                               R"glsl((p, vec2(scale, 0.0), vec2(0.0, scale), 11u);
 }
 )glsl";
-  const gl::Program program(source);
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, GL_RGBA32F, atlas.width(), atlas.height());
-  glTextureSubImage2D(texture, 0, 0, 0, atlas.width(), atlas.height(), GL_RGBA, GL_FLOAT,
-                      atlas.pixels().data());
-  glBindTextureUnit(0, texture);
-  program.set("stochtex_texton_atlas", 0);
-  constexpr int kSize = 48;
-  for (const double scale : {1.0, 3.0}) {
-    program.set("width", kSize);
-    program.set("scale", static_cast<float>(scale));
-    const gl::Buffer buffer(kSize * kSize * 4 * sizeof(float));
-    glUseProgram(program.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
-    glDispatchCompute(kSize / 8, kSize / 8, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<float> values(kSize * kSize * 4);
-    glGetNamedBufferSubData(buffer.id(), 0, static_cast<GLsizeiptr>(values.size() * sizeof(float)),
-                            values.data());
-    ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-    const ImageF cpu = render_cpu(model, Grid{{0.0, 0.0}, scale, kSize, kSize}, 11);
-    float worst = 0.0f;
-    for (int y = 0; y < kSize; ++y)
-      for (int x = 0; x < kSize; ++x)
-        for (int c = 0; c < model.channels(); ++c)
-          worst = std::max(worst, std::abs(cpu.at(x, y, c) -
-                                           values[(static_cast<std::size_t>(y) * kSize + x) * 4 +
-                                                  static_cast<std::size_t>(c)]));
-    std::cout << "exported shader, scale " << scale << ": max |cpu - gl| = " << worst << "\n";
-    // Same tolerance as the renderer's parity (TextonMatchesTheCpuReference).
-    EXPECT_LT(worst, 1e-4f) << "scale " << scale;
+    const gl::Program program(source);
+    for (std::size_t i = 0; i < textures.size(); ++i) {
+      glBindTextureUnit(static_cast<GLuint>(i), textures[i]);
+      program.set(samplers[i].c_str(), static_cast<int>(i));
+    }
+    const int size = c.size;
+    for (const double scale : {1.0, 3.0}) {
+      program.set("width", size);
+      program.set("scale", static_cast<float>(scale));
+      const gl::Buffer buffer(static_cast<std::size_t>(size) * size * 4 * sizeof(float));
+      glUseProgram(program.id());
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
+      glDispatchCompute(static_cast<GLuint>(size / 8), static_cast<GLuint>(size / 8), 1);
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      std::vector<float> values(static_cast<std::size_t>(size) * size * 4);
+      glGetNamedBufferSubData(
+          buffer.id(), 0, static_cast<GLsizeiptr>(values.size() * sizeof(float)), values.data());
+      ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+      const ImageF cpu = render_cpu(model, Grid{{0.0, 0.0}, scale, size, size}, 11);
+      float worst = 0.0f;
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x)
+          for (int ch = 0; ch < model.channels(); ++ch)
+            worst = std::max(worst, std::abs(cpu.at(x, y, ch) -
+                                             values[(static_cast<std::size_t>(y) * size + x) * 4 +
+                                                    static_cast<std::size_t>(ch)]));
+      std::cout << "exported " << c.method << " shader (" << c.exemplar << "), scale " << scale
+                << ": max |cpu - gl| = " << worst << "\n";
+      // The renderers' parity tolerance (TextonMatchesTheCpuReference); the exported tiling and
+      // lrp shaders form the lattice coordinates from a float p instead of the CPU's double,
+      // which at |p| < 150 moves them by less than 1e-5 pixel.
+      EXPECT_LT(worst, 1e-4f) << c.method << " scale " << scale;
+    }
+    glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
   }
-  glDeleteTextures(1, &texture);
 }
 
 }  // namespace

@@ -97,6 +97,9 @@ class GaborModel {
     PoissonSampler cell_count;
   };
   const std::vector<Grid>& grids() const { return grids_; }
+  // The Gaussians' frequencies in grid order (grid.first + i), for the GLSL twin (src/gl).
+  std::span<const float> frequency_x() const { return frequency_x_; }
+  std::span<const float> frequency_y() const { return frequency_y_; }
   std::span<const float> alias_probability() const { return alias_probability_; }
   std::span<const std::uint32_t> alias_index() const { return alias_index_; }
 

@@ -1,10 +1,8 @@
 // Local random-phase noise in GLSL: the twin of LrpModel::evaluate_typed (model.cpp,
 // evaluate.hpp, window.hpp), same lattices, same draws, same polynomial cosine and window.
 // Requires random.glsl, then the model's constants (lrp_glsl() in src/gl writes them) and the
-// storage buffers `lrp_frequencies` (f_x, f_y, weight triples) and `lrp_substrata` (first, count pairs).
-
-layout(std430, binding = 0) readonly buffer LrpFrequencies { float lrp_frequencies[]; };
-layout(std430, binding = 2) readonly buffer LrpSubstrata { uint lrp_substrata[]; };
+// table readers `vec3 lrp_frequency(uint index)` (f_x, f_y, weight) and
+// `uvec2 lrp_substratum(int index)` (first, count): storage buffers in the renderer, a texture in an exported shader (src/gl/lrp_glsl.cpp).
 
 const uint STREAM_PHASES = 0x7f4a7c15u;
 
@@ -63,10 +61,11 @@ float lrp_stratum_noise(int s, vec2 u, uvec2 origin_node, uint stratum_seed, boo
         int k = LRP_STRATUM_FIRST[s] + j;
         uint high;
         uint low;
-        umulExtended(draw & 0xfffffu, lrp_substrata[2 * k + 1], high, low);
-        uint pick = lrp_substrata[2 * k] + ((high << 12u) | (low >> 20u));
-        float fx = lrp_frequencies[3 * pick];
-        float fy = lrp_frequencies[3 * pick + 1];
+        uvec2 substratum = lrp_substratum(k);
+        umulExtended(draw & 0xfffffu, substratum.y, high, low);
+        vec3 frequency = lrp_frequency(substratum.x + ((high << 12u) | (low >> 20u)));
+        float fx = frequency.x;
+        float fy = frequency.y;
         float phase = float(draw >> 20u) * (1.0 / 4096.0);
         float c = lrp_cos_turns(fx * px + fy * py + phase);
         if (filtered) {
@@ -74,7 +73,7 @@ float lrp_stratum_noise(int s, vec2 u, uvec2 origin_node, uint stratum_seed, boo
           float along_b = abs(fx * axis_b.x + fy * axis_b.y);
           c *= lrp_clamp_weight(along_a > along_b ? along_a : along_b);
         }
-        local += lrp_frequencies[3 * pick + 2] * c;
+        local += frequency.z * c;
       }
       sum += w * local;
       window_square += w * w;
@@ -93,4 +92,18 @@ vec4 lrp_colour(vec4 noise) {
     for (int k = 0; k < LRP_CHANNELS; ++k) value[c] += LRP_BASIS[c * LRP_CHANNELS + k] * noise[k];
   }
   return value;
+}
+
+// The engine-facing entry point (`stochtex export-shader`): p in exemplar pixels, its screen
+// derivatives (dFdx(p), dFdy(p) in a fragment shader; zero = no filtering) and a seed. The
+// strata's lattice nodes come from p in float: keep |p| below ~1e4 for full precision.
+vec4 stochtex_lrp(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {
+  vec4 noise = vec4(0.0);
+  for (int s = 0; s < LRP_STRATA_TOTAL; ++s) {
+    if (LRP_STRATUM_AMPLITUDE[s] == 0.0) continue;
+    uint stratum_seed = cell_key(uint(s / LRP_STRATA), uint(s % LRP_STRATA), seed, STREAM_PHASES);
+    noise[LRP_STRATUM_CHANNEL[s]] += lrp_stratum_noise(s, p / LRP_STRATUM_SPACING[s], uvec2(0u),
+                                                       stratum_seed, true, dpdx, dpdy);
+  }
+  return lrp_colour(noise);
 }

@@ -10,6 +10,10 @@ const int TEXTON_PADDING = 8;
 const int TEXTON_MAX_PROBES = 8;
 const float TEXTON_LOD_BIAS = 0.79248125036057809;  // log2(3) / 2, see filter_setup
 
+#ifdef TEXTON_TEXTURE_FILTER
+vec4 texton_texture_fetch(float dx, float dy);  // src/gl/texton_hardware.glsl
+#endif
+
 struct TextonFilter {
   int level;
   float level_blend;
@@ -131,6 +135,11 @@ vec4 texton_noise(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
         float v = rng_uniform(rng);
         float dx = offset_x - u * TEXTON_CELL_SIZE;
         float dy = offset_y - v * TEXTON_CELL_SIZE;
+#ifdef TEXTON_TEXTURE_FILTER
+        // `render --gl-filter hardware` (src/gl/texton_hardware.glsl): one mip-mapped,
+        // anisotropic texture fetch of the texton instead of the exact levels and probes.
+        acc += texton_texture_fetch(dx, dy);
+#else
         if (f.probes == 1 && f.level_blend == 0.0) {
           texton_accumulate(f.level, dx, dy, 1.0, acc);
           continue;
@@ -143,6 +152,7 @@ vec4 texton_noise(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
           if (f.level_blend > 0.0)
             texton_accumulate(coarse, px, py, probe_weight * f.level_blend, acc);
         }
+#endif
       }
     }
   }

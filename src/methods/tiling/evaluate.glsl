@@ -1,14 +1,20 @@
 // Histogram-preserving tiling and blending in GLSL: the twin of TilingModel::evaluate (model.cpp,
 // evaluate.hpp), same lattice, same hashed offsets, same tables. Requires random.glsl, then the
-// model's constants (tiling_glsl_constants() in src/gl writes them) and the storage buffer
-// `tiling_data`: each level's texels, 3-D table and 1-D tables at the TILING_LEVEL_* offsets.
-
-layout(std430, binding = 0) readonly buffer TilingData { float tiling_data[]; };
+// model's constants (tiling_glsl() in src/gl writes them) and `float tiling_data_at(int index)`,
+// the model's one float array: each level's texels, 3-D table and 1-D tables at the
+// TILING_LEVEL_* offsets (a storage buffer in the renderer, a texture in an exported shader).
 
 const float TILING_GAUSSIAN_MEAN = 0.5;
 const float TILING_GAUSSIAN_DEVIATION = 1.0 / 6.0;
 const float TILING_INVERSE_SQRT3 = 0.57735026918962576;
+const float TILING_LOD_BIAS = 0.79248125036057809;  // log2(3) / 2, see level_of_detail
 const uint STREAM_OFFSETS = 0x85ebca6bu;
+
+#ifdef TILING_TEXTURE_FILTER
+// src/gl/tiling_hardware.glsl
+vec4 tiling_texture_fetch(float x, float y);
+vec3 tiling_texture_lut(vec3 g, int level);
+#endif
 
 // erf to 1.5e-7 (Abramowitz & Stegun 7.1.26): GLSL has none; the C++ uses std::erf.
 float tiling_erf(float x) {
@@ -50,10 +56,10 @@ void tiling_fetch(int level, float x, float y, float weight, inout vec4 acc) {
   int r0 = base + y0 * width * TILING_CHANNELS;
   int r1 = base + y1 * width * TILING_CHANNELS;
   for (int c = 0; c < TILING_CHANNELS; ++c)
-    acc[c] += weight * (1.0 - tu) * (1.0 - tv) * tiling_data[r0 + x0 * TILING_CHANNELS + c] +
-              weight * tu * (1.0 - tv) * tiling_data[r0 + x1 * TILING_CHANNELS + c] +
-              weight * (1.0 - tu) * tv * tiling_data[r1 + x0 * TILING_CHANNELS + c] +
-              weight * tu * tv * tiling_data[r1 + x1 * TILING_CHANNELS + c];
+    acc[c] += weight * (1.0 - tu) * (1.0 - tv) * tiling_data_at(r0 + x0 * TILING_CHANNELS + c) +
+              weight * tu * (1.0 - tv) * tiling_data_at(r0 + x1 * TILING_CHANNELS + c) +
+              weight * (1.0 - tu) * tv * tiling_data_at(r1 + x0 * TILING_CHANNELS + c) +
+              weight * tu * tv * tiling_data_at(r1 + x1 * TILING_CHANNELS + c);
 }
 
 // Steps 1-2 of Algorithm 1 (blended_gaussian). `skewed` is the position in skewed lattice units
@@ -85,8 +91,14 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
     float offset_y = float(high);
     float x = wrapped.x + offset_x;
     float y = wrapped.y + offset_y;
+#ifdef TILING_TEXTURE_FILTER
+    // `render --gl-filter hardware` (src/gl/tiling_hardware.glsl): one mip-mapped, anisotropic
+    // texture fetch of the patch instead of the exact trilinear reads of the pyramid.
+    acc += w[v] * tiling_texture_fetch(x, y);
+#else
     tiling_fetch(level, x, y, w[v] * (1.0 - level_blend), acc);
     if (level_blend > 0.0) tiling_fetch(coarse, x, y, w[v] * level_blend, acc);
+#endif
   }
   float inverse_norm = TILING_BLEND == 2 ? 1.0 : 1.0 / sqrt(weight_squares);
   return (acc - TILING_BLEND_MEAN) * inverse_norm + TILING_BLEND_MEAN;
@@ -95,14 +107,17 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
 float tiling_table(int offset, float g) {
   int cell;
   float t = tiling_table_coordinate(g, TILING_TABLE_SIZE, cell);
-  float a = tiling_data[offset + cell];
-  return a + t * (tiling_data[offset + cell + 1] - a);
+  float a = tiling_data_at(offset + cell);
+  return a + t * (tiling_data_at(offset + cell + 1) - a);
 }
 
 // Step 3 at one pyramid level (inverse_at_level).
 vec4 tiling_inverse_at_level(vec4 g, int level) {
   vec4 result = vec4(0.0);
   if (TILING_COLOUR_LUT) {
+#ifdef TILING_TEXTURE_FILTER
+    result.rgb = tiling_texture_lut(g.rgb, level);
+#else
     int n = TILING_LUT_SIZE;
     ivec3 cell;
     vec3 t;
@@ -116,17 +131,18 @@ vec4 tiling_inverse_at_level(vec4 g, int level) {
     int base = TILING_LEVEL_LUT[level] + cell.z * step_z + cell.y * step_y + cell.x * 3;
     for (int c = 0; c < 3; ++c) {
       int p = base + c;
-      float x00 = tiling_data[p] + t.x * (tiling_data[p + 3] - tiling_data[p]);
-      float x10 = tiling_data[p + step_y] +
-                  t.x * (tiling_data[p + step_y + 3] - tiling_data[p + step_y]);
-      float x01 = tiling_data[p + step_z] +
-                  t.x * (tiling_data[p + step_z + 3] - tiling_data[p + step_z]);
-      float x11 = tiling_data[p + step_z + step_y] +
-                  t.x * (tiling_data[p + step_z + step_y + 3] - tiling_data[p + step_z + step_y]);
+      float x00 = tiling_data_at(p) + t.x * (tiling_data_at(p + 3) - tiling_data_at(p));
+      float x10 = tiling_data_at(p + step_y) +
+                  t.x * (tiling_data_at(p + step_y + 3) - tiling_data_at(p + step_y));
+      float x01 = tiling_data_at(p + step_z) +
+                  t.x * (tiling_data_at(p + step_z + 3) - tiling_data_at(p + step_z));
+      float x11 = tiling_data_at(p + step_z + step_y) +
+                  t.x * (tiling_data_at(p + step_z + step_y + 3) - tiling_data_at(p + step_z + step_y));
       float y0 = x00 + t.y * (x10 - x00);
       float y1 = x01 + t.y * (x11 - x01);
       result[c] = y0 + t.z * (y1 - y0);
     }
+#endif
   } else {
     vec3 decorrelated = vec3(0.0);
     for (int c = 0; c < TILING_COLOUR_CHANNELS; ++c)
@@ -151,4 +167,26 @@ vec4 tiling_inverse(vec4 g, int level, float level_blend) {
   vec4 result = tiling_inverse_at_level(g, level);
   if (level_blend > 0.0) result += level_blend * (tiling_inverse_at_level(g, level + 1) - result);
   return result;
+}
+
+// The engine-facing entry point (`stochtex export-shader`): p in exemplar pixels, its screen
+// derivatives (dFdx(p), dFdy(p) in a fragment shader; zero = no filtering) and a seed. The level
+// of detail is TilingModel::level_of_detail's; keep |p| below ~1e4 for full precision.
+vec4 stochtex_tiling(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {
+  int level = 0;
+  float level_blend = 0.0;
+  float width = max(length(dpdx), length(dpdy));
+  float lod = width > 1.0 ? log2(width) - TILING_LOD_BIAS : 0.0;
+  if (lod >= float(TILING_LEVELS - 1)) {
+    level = TILING_LEVELS - 1;
+  } else if (lod > 0.0) {
+    level = int(lod);
+    level_blend = lod - float(level);
+  }
+  vec2 skewed = vec2(p.x - p.y * TILING_INVERSE_SQRT3, 2.0 * TILING_INVERSE_SQRT3 * p.y) /
+                TILING_EDGE;
+  vec2 period = vec2(TILING_WIDTH, TILING_HEIGHT);
+  vec2 wrapped = p - period * floor(p / period);
+  vec4 g = tiling_blended_gaussian(skewed, uvec2(0u), wrapped, seed, level, level_blend);
+  return tiling_inverse(g, level, level_blend);
 }

@@ -1,0 +1,91 @@
+#include "gl/gabor_glsl.hpp"
+
+#include <algorithm>
+#include <span>
+#include <vector>
+
+#include "gl/shaders.hpp"
+
+namespace stochtex::gl {
+
+GaborGlsl gabor_glsl(const gabor::GaborModel& model) {
+  const auto& grids = model.grids();
+  const std::span<const float> probability = model.alias_probability();
+  const std::span<const std::uint32_t> alias = model.alias_index();
+  const std::size_t gaussians = probability.size();
+  const std::size_t texels = gaussians + grids.size() * GaborGlsl::kCdfTexels;
+  GaborGlsl glsl;
+  glsl.data = ImageF(
+      GaborGlsl::kDataWidth,
+      std::max(1, static_cast<int>((texels + GaborGlsl::kDataWidth - 1) / GaborGlsl::kDataWidth)),
+      4);
+  const auto texel = [&](std::size_t index, int c) -> float& {
+    return glsl.data.at(static_cast<int>(index % GaborGlsl::kDataWidth),
+                        static_cast<int>(index / GaborGlsl::kDataWidth), c);
+  };
+  for (std::size_t i = 0; i < gaussians; ++i) {
+    texel(i, 0) = model.frequency_x()[i];
+    texel(i, 1) = model.frequency_y()[i];
+    texel(i, 2) = probability[i];
+    texel(i, 3) = static_cast<float>(alias[i]);  // < kMaxGaussians = 2^22: exact in a float
+  }
+  std::vector<int> channel, first, cdf_texel;
+  std::vector<unsigned> count, chunks;
+  std::vector<float> bandwidth, amplitude, min_frequency_squared;
+  std::vector<double> radius, cell_size;
+  for (std::size_t g = 0; g < grids.size(); ++g) {
+    const gabor::GaborModel::Grid& grid = grids[g];
+    channel.push_back(grid.channel);
+    first.push_back(static_cast<int>(grid.first));
+    count.push_back(grid.count);
+    bandwidth.push_back(grid.bandwidth);
+    amplitude.push_back(grid.amplitude);
+    min_frequency_squared.push_back(grid.min_frequency_squared);
+    radius.push_back(grid.radius);
+    cell_size.push_back(grid.cell_size);
+    chunks.push_back(grid.cell_count.chunks());
+    const std::size_t cdf_first = gaussians + g * GaborGlsl::kCdfTexels;
+    cdf_texel.push_back(static_cast<int>(cdf_first));
+    const auto& cdf = grid.cell_count.cdf();
+    for (std::size_t k = 0; k < cdf.size(); ++k)
+      texel(cdf_first + k / 4, static_cast<int>(k % 4)) = cdf[k];
+  }
+  std::vector<float> mixing(16, 0.0f);
+  const int channels = model.channels();
+  for (std::size_t i = 0; i < model.mixing().size(); ++i) mixing[i] = model.mixing()[i];
+
+  std::string& text = glsl.constants;
+  const auto constant = [&](const char* type, const char* name, const std::string& value) {
+    text += "const " + std::string(type) + " " + name + " = " + value + ";\n";
+  };
+  const auto glsl_uint = [](unsigned value) { return std::to_string(value) + "u"; };
+  constant("int", "GABOR_CHANNELS", glsl_int(channels));
+  constant("int", "GABOR_GRIDS", glsl_int(static_cast<int>(grids.size())));
+  constant("int", "GABOR_GAUSSIANS", glsl_int(static_cast<int>(gaussians)));
+  constant("int", "GABOR_DATA_WIDTH", glsl_int(GaborGlsl::kDataWidth));
+  constant("vec4", "GABOR_MEAN", glsl_vec4(model.mean()));
+  text += glsl_array("float", "GABOR_MIXING", std::span<const float>(mixing), glsl_float);
+  text += glsl_array("int", "GABOR_GRID_CHANNEL", std::span<const int>(channel), glsl_int);
+  text += glsl_array("int", "GABOR_GRID_FIRST", std::span<const int>(first), glsl_int);
+  text += glsl_array("uint", "GABOR_GRID_COUNT", std::span<const unsigned>(count), glsl_uint);
+  text +=
+      glsl_array("float", "GABOR_GRID_BANDWIDTH", std::span<const float>(bandwidth), glsl_float);
+  text +=
+      glsl_array("float", "GABOR_GRID_AMPLITUDE", std::span<const float>(amplitude), glsl_float);
+  text += glsl_array("float", "GABOR_GRID_MIN_FREQUENCY_SQUARED",
+                     std::span<const float>(min_frequency_squared), glsl_float);
+  text += glsl_array("double", "GABOR_GRID_RADIUS", std::span<const double>(radius), glsl_double);
+  text +=
+      glsl_array("double", "GABOR_GRID_CELL_SIZE", std::span<const double>(cell_size), glsl_double);
+  text +=
+      glsl_array("uint", "GABOR_GRID_POISSON_CHUNKS", std::span<const unsigned>(chunks), glsl_uint);
+  text += glsl_array("int", "GABOR_GRID_CDF", std::span<const int>(cdf_texel), glsl_int);
+  return glsl;
+}
+
+std::string gabor_library_source(const GaborGlsl& glsl) {
+  return std::string(kRandomGlsl) + glsl.constants + "uniform sampler2D stochtex_gabor_data;\n" +
+         kGaborGlsl;
+}
+
+}  // namespace stochtex::gl

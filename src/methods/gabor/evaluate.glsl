@@ -1,0 +1,242 @@
+// Gabor noise by example in GLSL: the twin of GaborModel::evaluate (model.cpp), same hash, same
+// streams, same draws (Poisson counts, positions, alias column and coin, phase) in the same order,
+// same constants and the same arithmetic statement for statement, so the CPU and GPU agree to
+// the rounding of exp and cos. Requires random.glsl, then the model's constants (gabor_glsl() in
+// src/gl writes them: GABOR_CHANNELS, GABOR_GRIDS, GABOR_DATA_WIDTH, GABOR_MIXING, GABOR_MEAN and
+// the GABOR_GRID_* arrays, one entry per Poisson grid) and `uniform sampler2D stochtex_gabor_data`:
+// texel i < GABOR_GAUSSIANS is Gaussian i in grid order (frequency x, frequency y, alias
+// probability, alias index relative to its grid); grid g's Poisson CDF (96 floats) fills the 24
+// texels from GABOR_GRID_CDF[g]. Texels are read with texelFetch (exact floats).
+//
+// Positions, cell indices and the kernel-independent filter maths are doubles, as in the C++:
+// the offset of a sample from a cell corner is then the same float on both sides, so every
+// kernel's truncation test (envelope < pi, a jump of e^-pi of the kernel) decides the same way.
+// `precise` keeps the compiler from fusing a * b + c into an fma the C++ does not use.
+
+const double GABOR_PI = 3.1415926535897931lf;
+const float GABOR_PI_F = 3.14159274;      // float(pi), kPiF
+const float GABOR_TWO_PI_F = 6.28318548;  // float(2 pi), kTwoPi
+const double GABOR_PIXEL_VARIANCE = 1.0lf / 12.0lf;
+const double GABOR_NEGLIGIBLE_ATTENUATION = 12.0lf;
+const double GABOR_MAX_LEVEL_RATIO = 1099511627776.0lf;  // 2^kMaxLevels, kMaxLevels = 40
+const uint STREAM_KERNELS = 0x165667b1u;
+
+vec4 gabor_texel(int index) {
+  return texelFetch(stochtex_gabor_data, ivec2(index % GABOR_DATA_WIDTH, index / GABOR_DATA_WIDTH),
+                    0);
+}
+
+// How one grid is evaluated for one footprint: the kernel envelope exp(-x^T E x), the frequency
+// map omega' = F omega and attenuation exp(-omega^T D omega), the amplitude, the thinning level
+// and the reach of the kernels. The C++ computes these per sample inside the grid loop.
+struct GaborGridFilter {
+  bool skip;
+  bool filtered;
+  int level;
+  float ex, exy, ey;
+  float fxx, fxy, fyy;
+  float dxx, dxy, dyy;
+  float amplitude;
+  double reach;
+  double cell_size;
+};
+
+bool gabor_finite(double x) {
+  return !isnan(x) && !isinf(x);
+}
+
+GaborGridFilter gabor_grid_filter(int g, dvec2 dpdx, dvec2 dpdy) {
+  GaborGridFilter f;
+  f.skip = false;
+  f.filtered = false;
+  double a = double(GABOR_GRID_BANDWIDTH[g]);
+  precise double a2 = a * a;
+  precise double e00 = GABOR_PI * a2;
+  precise double e01 = 0.0lf;
+  precise double e11 = GABOR_PI * a2;
+  precise double f00 = 1.0lf, f01 = 0.0lf, f11 = 1.0lf;
+  precise double d00 = 0.0lf, d01 = 0.0lf, d11 = 0.0lf;
+  precise double gain = 1.0lf;
+  precise double reach = GABOR_GRID_RADIUS[g];
+  // The footprint's box covariance beyond one exemplar pixel's I / 12 (see model.cpp); a zero
+  // footprint gives q = 0, the point sample.
+  precise double q00 = (dpdx.x * dpdx.x + dpdy.x * dpdy.x) / 12.0lf;
+  precise double q01 = (dpdx.x * dpdx.y + dpdy.x * dpdy.y) / 12.0lf;
+  precise double q11 = (dpdx.y * dpdx.y + dpdy.y * dpdy.y) / 12.0lf;
+  precise double centre = 0.5lf * (q00 + q11);
+  precise double radius = sqrt(0.25lf * (q00 - q11) * (q00 - q11) + q01 * q01);
+  precise double major = centre + radius - GABOR_PIXEL_VARIANCE;
+  precise double minor = centre - radius - GABOR_PIXEL_VARIANCE;
+  if (major <= 0.0lf) {
+    q00 = 0.0lf;
+    q01 = 0.0lf;
+    q11 = 0.0lf;
+  } else if (minor < 0.0lf) {
+    precise double lambda_min = centre - radius;
+    precise double axis_scale = major / (2.0lf * radius);
+    q00 = axis_scale * (q00 - lambda_min);
+    q01 = axis_scale * q01;
+    q11 = axis_scale * (q11 - lambda_min);
+  } else {
+    q00 -= GABOR_PIXEL_VARIANCE;
+    q11 -= GABOR_PIXEL_VARIANCE;
+  }
+  q00 *= 2.0lf * GABOR_PI * GABOR_PI;
+  q01 *= 2.0lf * GABOR_PI * GABOR_PI;
+  q11 *= 2.0lf * GABOR_PI * GABOR_PI;
+  if (q00 + q11 > 0.0lf && gabor_finite(q00 + q11 + q01)) {
+    f.filtered = true;
+    precise double pp = GABOR_PI / a2;
+    precise double s00 = pp + q00, s01 = q01, s11 = pp + q11;
+    precise double det = s00 * s11 - s01 * s01;
+    precise double i00 = s11 / det, i01 = -s01 / det, i11 = s00 / det;
+    e00 = GABOR_PI * GABOR_PI * i00;
+    e01 = GABOR_PI * GABOR_PI * i01;
+    e11 = GABOR_PI * GABOR_PI * i11;
+    f00 = pp * i00;
+    f01 = pp * i01;
+    f11 = pp * i11;
+    d00 = pp - pp * pp * i00;
+    d01 = -pp * pp * i01;
+    d11 = pp - pp * pp * i11;
+    gain = pp / sqrt(det);
+    precise double half_trace = 0.5lf * (s00 + s11);
+    precise double spread = sqrt(0.25lf * (s00 - s11) * (s00 - s11) + s01 * s01);
+    reach = sqrt((half_trace + spread) / GABOR_PI);
+    precise double d_half_trace = 0.5lf * (d00 + d11);
+    precise double d_spread = sqrt(0.25lf * (d00 - d11) * (d00 - d11) + d01 * d01);
+    if ((d_half_trace - d_spread) * double(GABOR_GRID_MIN_FREQUENCY_SQUARED[g]) >
+        GABOR_NEGLIGIBLE_ATTENUATION)
+      f.skip = true;
+  }
+  // Thinning level: the C++ takes ceil(log2(reach / radius)); GLSL has no double log2, so the
+  // same integer comes from doubling (exact): the least L with reach / radius <= 2^L.
+  f.level = 0;
+  double level_scale = 1.0lf;
+  if (f.filtered && reach > GABOR_GRID_RADIUS[g]) {
+    precise double ratio = reach / GABOR_GRID_RADIUS[g];
+    if (!(ratio <= GABOR_MAX_LEVEL_RATIO)) f.skip = true;
+    while (!f.skip && ratio > level_scale) {
+      level_scale *= 2.0lf;
+      f.level += 1;
+    }
+  }
+  f.ex = float(e00);
+  f.exy = float(2.0lf * e01);
+  f.ey = float(e11);
+  f.fxx = float(f00);
+  f.fxy = float(f01);
+  f.fyy = float(f11);
+  f.dxx = float(d00);
+  f.dxy = float(2.0lf * d01);
+  f.dyy = float(d11);
+  precise double amplitude = double(GABOR_GRID_AMPLITUDE[g]) * gain;
+  f.amplitude = float(amplitude * level_scale);
+  f.reach = reach;
+  f.cell_size = GABOR_GRID_CELL_SIZE[g] * level_scale;
+  return f;
+}
+
+// A Poisson count by inversion of grid g's tabulated CDF (PoissonSampler in core/poisson.hpp).
+uint gabor_poisson_count(int g, inout CounterRng rng) {
+  uint total = 0u;
+  for (uint c = 0u; c < GABOR_GRID_POISSON_CHUNKS[g]; ++c) {
+    float u = rng_uniform(rng);
+    int k = 0;
+    while (u >= gabor_texel(GABOR_GRID_CDF[g] + k / 4)[k % 4]) ++k;
+    total += uint(k);
+  }
+  return total;
+}
+
+// draw_alias (alias.hpp): a uniform column from the high word of word * count, then a coin; the
+// drawn Gaussian's texel.
+vec4 gabor_draw_alias(int g, inout CounterRng rng) {
+  uint word = rng_next(rng);
+  uint column;
+  uint low;
+  umulExtended(word, GABOR_GRID_COUNT[g], column, low);
+  float coin = rng_uniform(rng);
+  vec4 entry = gabor_texel(GABOR_GRID_FIRST[g] + int(column));
+  return coin < entry.z ? entry : gabor_texel(GABOR_GRID_FIRST[g] + int(entry.w));
+}
+
+// The low 32 bits (two's complement) of an integral double, as cell_key takes int64 cells.
+uint gabor_low_bits(double cell) {
+  return uint(cell - 4294967296.0lf * floor(cell / 4294967296.0lf));
+}
+
+// The noise of grid g at p (exemplar pixels, double) for the grid's filter f, before the
+// amplitude: the sum over the cells meeting p + [-reach, reach]^2 of their truncated kernels.
+float gabor_grid_sum(int g, dvec2 p, GaborGridFilter f, uint level_seed) {
+  precise float sum = 0.0;
+  float cell_size_f = float(f.cell_size);
+  double first_x = floor((p.x - f.reach) / f.cell_size);
+  double last_x = floor((p.x + f.reach) / f.cell_size);
+  double first_y = floor((p.y - f.reach) / f.cell_size);
+  double last_y = floor((p.y + f.reach) / f.cell_size);
+  int columns = int(last_x - first_x);
+  int rows = int(last_y - first_y);
+  for (int j = 0; j <= rows; ++j) {
+    double cell_y = first_y + double(j);
+    precise double offset_y_exact = p.y - cell_y * f.cell_size;
+    float offset_y = float(offset_y_exact);
+    for (int i = 0; i <= columns; ++i) {
+      double cell_x = first_x + double(i);
+      precise double offset_x_exact = p.x - cell_x * f.cell_size;
+      float offset_x = float(offset_x_exact);
+      uint key_x = gabor_low_bits(cell_x);
+      uint key_y = gabor_low_bits(cell_y);
+      CounterRng point_rng = CounterRng(cell_key(key_x, key_y, level_seed, STREAM_POINTS), 0u);
+      CounterRng kernel_rng = CounterRng(cell_key(key_x, key_y, level_seed, STREAM_KERNELS), 0u);
+      uint impulses = gabor_poisson_count(g, point_rng);
+      for (uint n = 0u; n < impulses; ++n) {
+        float u = rng_uniform(point_rng);
+        float v = rng_uniform(point_rng);
+        vec4 gaussian = gabor_draw_alias(g, kernel_rng);
+        float phase = rng_uniform(kernel_rng);
+        precise float dx = offset_x - u * cell_size_f;
+        precise float dy = offset_y - v * cell_size_f;
+        precise float envelope = f.ex * dx * dx + f.exy * dx * dy + f.ey * dy * dy;
+        if (envelope >= GABOR_PI_F) continue;
+        precise float wx = gaussian.x;
+        precise float wy = gaussian.y;
+        precise float attenuation = 0.0;
+        if (f.filtered) {
+          attenuation = f.dxx * wx * wx + f.dxy * wx * wy + f.dyy * wy * wy;
+          precise float mapped_x = f.fxx * wx + f.fxy * wy;
+          wy = f.fxy * wx + f.fyy * wy;
+          wx = mapped_x;
+        }
+        precise float argument = GABOR_TWO_PI_F * (wx * dx + wy * dy + phase);
+        sum += exp(-envelope - attenuation) * cos(argument);
+      }
+    }
+  }
+  return sum;
+}
+
+// Bandwidth-quantised Gabor noise (eq. 5) at p with footprint (dpdx, dpdy) (zero = point sample),
+// mixed back to the exemplar's colours: the value of GaborModel::evaluate.
+vec4 gabor_noise(dvec2 p, dvec2 dpdx, dvec2 dpdy, uint seed) {
+  precise vec4 noise = vec4(0.0);
+  for (int g = 0; g < GABOR_GRIDS; ++g) {
+    GaborGridFilter f = gabor_grid_filter(g, dpdx, dpdy);
+    if (f.skip) continue;
+    uint level_seed = cell_key(uint(g), uint(f.level), seed, STREAM_KERNELS);
+    precise float grid_noise = f.amplitude * gabor_grid_sum(g, p, f, level_seed);
+    noise[GABOR_GRID_CHANNEL[g]] += grid_noise;
+  }
+  // colour = mean + mixing * noise (section 7).
+  precise vec4 colour = GABOR_MEAN;
+  for (int c = 0; c < GABOR_CHANNELS; ++c)
+    for (int k = 0; k < GABOR_CHANNELS; ++k)
+      colour[c] += GABOR_MIXING[c * GABOR_CHANNELS + k] * noise[k];
+  return colour;
+}
+
+// The engine-facing entry point (`stochtex export-shader`): p in exemplar pixels, its screen
+// derivatives (dFdx(p), dFdy(p) in a fragment shader; zero = no filtering) and a seed.
+vec4 stochtex_gabor(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {
+  return gabor_noise(dvec2(p), dvec2(dpdx), dvec2(dpdy), seed);
+}

@@ -1,0 +1,134 @@
+// `render --backend gl --gl-filter hardware`: texton and tiling read their pyramids through
+// mip-mapped GL textures (textureGrad, trilinear, anisotropic). The output is not the CPU's pixel
+// for pixel, so it is compared in distribution: per channel, the mean and the variance of renders
+// zoomed out by 4 and 8 against the CPU's filtered renders of the same seeds, with tolerances from
+// the seed-to-seed spread of those statistics.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "gl/gl_support.hpp"
+#include "io/image_io.hpp"
+
+namespace stochtex {
+namespace {
+
+using namespace gl_test;
+
+struct ChannelStatistics {
+  std::vector<double> mean;
+  std::vector<double> variance;
+};
+
+ChannelStatistics statistics(const ImageF& image) {
+  const int channels = image.channels();
+  ChannelStatistics s{std::vector<double>(channels, 0.0), std::vector<double>(channels, 0.0)};
+  const double count = static_cast<double>(image.width()) * image.height();
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      for (int c = 0; c < channels; ++c) s.mean[c] += image.at(x, y, c) / count;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      for (int c = 0; c < channels; ++c) {
+        const double d = image.at(x, y, c) - s.mean[c];
+        s.variance[c] += d * d / count;
+      }
+  return s;
+}
+
+double average(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
+}
+
+double deviation(const std::vector<double>& values) {
+  const double m = average(values);
+  double sum = 0.0;
+  for (const double v : values) sum += (v - m) * (v - m);
+  return std::sqrt(sum / static_cast<double>(values.size() - 1));
+}
+
+struct FilterCase {
+  const char* method;
+  const char* exemplar;
+  ParamValues params;
+};
+
+TEST(GlHardwareFilter, MatchesTheCpuFilterInDistribution) {
+  // Eight seeds per case: the CPU's per-seed means and variances give the estimator noise (their
+  // seed-to-seed deviation over sqrt(seeds) is the standard error of the averages). The GPU
+  // renders the same seeds, so the two averages share most of their noise; a tolerance of four
+  // standard errors of independent averages (4 sqrt(2) sigma / sqrt(8) = 2 sigma) is therefore
+  // conservative, and still far below what a filter one pyramid level off does (a level changes
+  // the variance of these textures by 1.5-3x at scales 4 and 8).
+  constexpr int kSeeds = 8;
+  const std::vector<FilterCase> cases = {
+      {"texton", "metal_grey_256.png", {{"support", 48}}},
+      {"texton", "red_fleece_128.png", {{"support", 48}}},
+      {"tiling", "metal_grey_256.png", {}},
+      {"tiling", "red_fleece_128.png", {}},
+  };
+  for (const auto& c : cases) {
+    const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
+    const Model model = analyze(c.method, exemplar.view(), c.params, 0);
+    for (const double scale : {4.0, 8.0}) {
+      const Grid grid{{17.0, -5.0}, scale, 32, 32};
+      const int channels = model.channels();
+      std::vector<std::vector<double>> cpu_mean(channels), cpu_variance(channels);
+      std::vector<std::vector<double>> gpu_mean(channels), gpu_variance(channels);
+      GpuRenderOptions options;
+      options.texture_filter = GlFilter::hardware;
+      for (std::uint32_t seed = 0; seed < kSeeds; ++seed) {
+        const ChannelStatistics cpu = statistics(render_cpu(model, grid, seed));
+        ImageF gpu_image(grid.width, grid.height, channels);
+        render_gl(model, grid, seed, gpu_image.view(), options);
+        const ChannelStatistics gpu = statistics(gpu_image);
+        for (int ch = 0; ch < channels; ++ch) {
+          cpu_mean[ch].push_back(cpu.mean[ch]);
+          cpu_variance[ch].push_back(cpu.variance[ch]);
+          gpu_mean[ch].push_back(gpu.mean[ch]);
+          gpu_variance[ch].push_back(gpu.variance[ch]);
+        }
+      }
+      for (int ch = 0; ch < channels; ++ch) {
+        const double mean_tolerance = 2.0 * deviation(cpu_mean[ch]);
+        const double variance_ratio = average(gpu_variance[ch]) / average(cpu_variance[ch]);
+        const double ratio_tolerance =
+            2.0 * deviation(cpu_variance[ch]) / average(cpu_variance[ch]);
+        std::cout << c.method << " " << c.exemplar << " scale " << scale << " channel " << ch
+                  << ": mean gl - cpu = " << average(gpu_mean[ch]) - average(cpu_mean[ch])
+                  << " (tolerance " << mean_tolerance << "), variance gl / cpu = " << variance_ratio
+                  << " (tolerance 1 +- " << ratio_tolerance << ")\n";
+        EXPECT_NEAR(average(gpu_mean[ch]), average(cpu_mean[ch]), mean_tolerance)
+            << c.method << " " << c.exemplar << " scale " << scale << " channel " << ch;
+        EXPECT_NEAR(variance_ratio, 1.0, ratio_tolerance)
+            << c.method << " " << c.exemplar << " scale " << scale << " channel " << ch;
+      }
+    }
+  }
+}
+
+TEST(GlHardwareFilter, PointSamplesAreTheExactRender) {
+  // Without a footprint (scale 1) the texture is read at level 0, bilinearly: the hardware path
+  // then equals the exact one up to the texture unit's interpolation weights (8 fractional bits
+  // on NVIDIA; llvmpipe's are finer), well below one 8-bit step of these [0, 1] textures.
+  for (const char* method : {"texton", "tiling"}) {
+    const ImageF exemplar = read_image(kTextureDir + "/red_fleece_128.png");
+    const Model model = analyze(method, exemplar.view(), {}, 0);
+    const Grid grid{{3.0, 4.0}, 1.0, 40, 32};
+    GpuRenderOptions options;
+    options.texture_filter = GlFilter::hardware;
+    ImageF hardware(grid.width, grid.height, model.channels());
+    render_gl(model, grid, 2, hardware.view(), options);
+    const float worst = max_difference(hardware, render_gpu(model, grid, 2));
+    std::cout << method << " scale 1: max |hardware - exact| = " << worst << "\n";
+    EXPECT_LT(worst, 1.0f / 255.0f) << method;
+  }
+}
+
+}  // namespace
+}  // namespace stochtex
