@@ -5,11 +5,17 @@
 #include "gl/glsl_text.hpp"
 #include "gl/shaders.hpp"
 #include "methods/lrp/window.hpp"
+#include "stochtex/error.hpp"
 
 namespace stochtex::gl {
 
 LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   const lrp::LrpData& d = model.data();
+  // evaluate.glsl has no twin of structure_model.cpp yet (section 5 of the paper).
+  if (!d.structure.empty())
+    throw Error(ErrorCode::invalid_input,
+                "the gl backend does not evaluate lrp structure preservation (ratio > 0) yet; use "
+                "--backend cpu");
   LrpGlsl glsl;
   glsl.frequencies = d.frequencies;
   for (std::size_t k = 0; k < d.substratum_first.size(); ++k) {

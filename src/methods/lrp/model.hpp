@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "methods/lrp/structure.hpp"
 #include "methods/lrp/window.hpp"
 #include "model/model_record.hpp"
 #include "stochtex/image.hpp"
@@ -39,6 +40,7 @@ struct LrpData {
   std::vector<std::uint32_t> substratum_first;
   std::vector<std::uint32_t> substratum_count;
   std::vector<float> frequencies;  // (count x 2) cycles per pixel, |f_x|, |f_y| <= 1/2
+  StructureData structure;         // section 5; empty when r = 0
 };
 
 class LrpModel {
