@@ -123,7 +123,8 @@ StructureData reduce_structure(std::span<const FixedPhaseRegion> regions, int co
   const std::array<float, kWindowTerms> window = window_coefficients();
 
   StructureData best;
-  for (int blocks = 1; size / blocks >= 2; blocks *= 2) {
+  // B = 2 is skipped: its blocks' regions (2 x T / 2) are the whole period, the cosines of B = 1.
+  for (int blocks = 1; size / blocks >= 2; blocks = blocks == 1 ? 4 : 2 * blocks) {
     if (4.0 * channels * blocks * double(blocks) * cosines_per_block > kMaxTableValues) break;
     const int side = size / blocks;
     // Each block's cosines reproduce the block and half a block around it (n = 2 x side), the
