@@ -175,6 +175,21 @@ TEST(Gl, TilingAndLrpMatchTheCpuReference) {
   }
 }
 
+// evaluate.glsl has no twin of lrp's structure preservation (section 5) yet: a model with r > 0
+// is refused with one sentence, never rendered without its structure.
+TEST(Gl, LrpStructureIsRefused) {
+  const ImageF exemplar = read_image(kTextureDir + "/red_fleece_128.png");
+  const Model model =
+      analyze("lrp", exemplar.view(), {{"cosines", 10}, {"ratio", 0.2}, {"placement", 0}}, 0);
+  try {
+    render_gpu(model, {{0.0, 0.0}, 1.0, 8, 8}, 1);
+    ADD_FAILURE() << "the gl backend rendered an lrp model with r > 0";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.code(), ErrorCode::invalid_input);
+    EXPECT_NE(std::string(error.what()).find("ratio > 0"), std::string::npos) << error.what();
+  }
+}
+
 TEST(Gl, BitIdenticalWhateverTheDispatchTilesAndRegions) {
   const Model& model = model_of("red_fleece_128.png", 1);
   const Grid grid{{-40.0, 9.5}, 2.0, 75, 61};
