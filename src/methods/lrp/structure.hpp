@@ -7,7 +7,6 @@
 
 #include <array>
 #include <cstdint>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -56,7 +55,6 @@ struct StructureData {
   std::vector<float> turbulence_frequencies;
 
   bool empty() const { return period == 0; }
-  float block_side() const { return static_cast<float>(period) / static_cast<float>(blocks); }
 };
 
 // Throws std::invalid_argument naming the problem (sizes, ranges, finiteness).
