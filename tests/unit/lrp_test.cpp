@@ -468,6 +468,26 @@ TEST(LrpStructure, DeterministicWhateverTheThreadsAndSplits) {
   for (int c = 0; c < 3; ++c) EXPECT_EQ(single.at(0, 0, c), reference.at(61, 40, c));
 }
 
+TEST(LrpStructure, FarFromTheOriginIsAsPreciseAsAtTheOrigin) {
+  // As LrpEvaluation's test, with structure blocks, turbulence and placement: positions rounded to
+  // float near 1e7 would make the second differences as large as the texture.
+  const Model& model = structure_model();
+  const auto roughness = [&](double origin) {
+    std::vector<Vec2d> line;
+    for (int i = 0; i < 200; ++i) line.push_back({origin + 0.001 * i, -origin + 0.0007 * i});
+    ImageF out(1, 200, 3);
+    evaluate(model, line, {}, 3, out.view());
+    double largest = 0.0;
+    for (int i = 1; i + 1 < 200; ++i)
+      largest = std::max(largest,
+                         static_cast<double>(std::abs(out.at(0, i + 1, 0) - 2.0f * out.at(0, i, 0) +
+                                                      out.at(0, i - 1, 0))));
+    return largest;
+  };
+  EXPECT_LT(roughness(0.25), 1e-3);
+  EXPECT_LT(roughness(1e7 + 0.25), 1e-3);
+}
+
 TEST(LrpStructure, ContinuousTargetsHaveNoPhasesToKeep) {
   EXPECT_THROW(spectrum_model(ring_spectrum(16, 0.1, 0.01, 1.0), {{"ratio", 0.2}}),
                std::invalid_argument);
