@@ -235,8 +235,10 @@ expect_ok "analyze lrp with structure" "$stochtex" analyze "$exemplar" -m lrp -p
   expect_ok "render lrp with structure" "$stochtex" render "$models/lrp_structure.stx" \
     -o "$models/lrp_structure.png" "${size[@]}" &&
   expect_file "render lrp with structure writes the image" "$models/lrp_structure.png"
-expect_error "lrp structure on --backend gl" 1 "ratio > 0" \
-  "$stochtex" render "$models/lrp_structure.stx" -o "$out/x.png" "${size[@]}" --backend gl
+expect_ok "render lrp with structure --backend gl" "$stochtex" render \
+  "$models/lrp_structure.stx" -o "$models/lrp_structure_gl.png" "${size[@]}" --backend gl &&
+  expect_file "render lrp with structure --backend gl writes the image" \
+    "$models/lrp_structure_gl.png"
 expect_ok "analyze --target ring" "$stochtex" analyze --method lrp \
   --target ring:radius=0.2,width=0.02 -p cosines=5 -p strata=1 -o "$models/ring.stx" &&
   expect_ok "render a ring target" "$stochtex" render "$models/ring.stx" -o "$models/ring.png" \
