@@ -484,7 +484,9 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
   const int strata = static_cast<int>(params.at("strata"));
   const int cosines = static_cast<int>(params.at("cosines"));
   // Section 5.3: J_R = rJ cosines for the fixed-phase region R, (1 - r)J for the random strata.
-  const double ratio = params.at("ratio");
+  // (Read with a default so that callers built before section 5 keep working.)
+  const auto ratio_entry = params.find("ratio");
+  const double ratio = ratio_entry == params.end() ? 0.0 : ratio_entry->second;
   const int fixed_cosines = structure_cosines(ratio, cosines);
   std::vector<FixedPhaseRegion> regions;
   std::vector<double> turbulence_power;
@@ -563,7 +565,7 @@ LrpModel analyze_spectrum(const SpectrumTarget& target, const ParamValues& param
   check_spectrum_size(target.size);
   if (!std::isfinite(target.mean))
     throw std::invalid_argument("lrp: the target's mean must be finite");
-  if (params.at("ratio") > 0.0)
+  if (const auto ratio = params.find("ratio"); ratio != params.end() && ratio->second > 0.0)
     throw std::invalid_argument(
         "lrp: a continuous target has no phases to keep; the energy ratio r needs an exemplar");
   LrpData data;
