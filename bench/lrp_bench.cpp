@@ -2,7 +2,9 @@
 // exemplars, and evaluation cost per sample for J = 10, 50, 100 cosines. The paper (section 6.2)
 // puts the cost at 9 (J + L) special-function calls (cosines and windows) per channel; the
 // `ns_per_call` counter divides the time per sample by that count, so a constant value across J
-// shows the cost follows it.
+// shows the cost follows it. BM_LrpStructureRender adds section 5: r = 0.1 and 0.3 with J = 50,
+// fixed phases alone and with turbulence and random placement (the paper's table 1: fixed phases
+// cost nothing more, random placement 10-20%).
 
 #include <benchmark/benchmark.h>
 
@@ -58,6 +60,42 @@ BENCHMARK(BM_LrpRender)
     ->Arg(10)
     ->Arg(50)
     ->Arg(100)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// Section 5 at J = 50, one thread, point samples, grey exemplar: `ratio` in percent; `full` = 0
+// for fixed phases alone (R with its block subdivision), 1 with turbulence (sigma = 4) and random
+// placement.
+void BM_LrpStructureRender(benchmark::State& state) {
+  const double ratio = static_cast<double>(state.range(0)) / 100.0;
+  const bool full = state.range(1) != 0;
+  Model model;
+  try {
+    model = analyze("lrp", crop_top_left(grey_exemplar(), 256).view(),
+                    {{"cosines", 50.0},
+                     {"ratio", ratio},
+                     {"turbulence", full ? 4.0 : 0.0},
+                     {"placement", full ? 1.0 : 0.0}},
+                    0);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  RenderOptions options;
+  options.threads = 1;
+  options.filter = false;
+  const Grid grid{{0.0, 0.0}, 1.0, kRenderSide, kRenderSide};
+  ImageF out(kRenderSide, kRenderSide, 1);
+  time_samples(state, std::int64_t{kRenderSide} * kRenderSide,
+               [&] { render(model, grid, kSeed, out.view(), options); });
+}
+BENCHMARK(BM_LrpStructureRender)
+    ->ArgNames({"ratio_percent", "full"})
+    ->Args({0, 0})
+    ->Args({10, 0})
+    ->Args({30, 0})
+    ->Args({10, 1})
+    ->Args({30, 1})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -17,6 +17,7 @@
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
 #include "stochtex/stochtex.hpp"
+#include "target_option.hpp"
 #ifdef STOCHTEX_WITH_GL
 #include "stochtex/gpu.hpp"
 #endif
@@ -121,6 +122,7 @@ class Progress {
 
 struct AnalyzeOptions {
   std::string input;
+  std::string target;
   std::string method;
   std::vector<std::string> params;
   std::uint32_t seed = 0;
@@ -183,7 +185,8 @@ void add_render_options(CLI::App* command, RenderSettings& settings, bool size_r
 }
 
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
-  command->add_option("INPUT", options.input, "exemplar image (PNG, EXR or PFM)")->required();
+  auto* input = command->add_option("INPUT", options.input, "exemplar image (PNG, EXR or PFM)");
+  command->add_option("--target", options.target, std::string(cli::kTargetHelp))->excludes(input);
   command->add_option("--method,-m", options.method, "texture method (see `stochtex methods`)")
       ->required();
   command->add_option("-p,--param", options.params, "method parameter key=value (repeatable)");
@@ -201,6 +204,10 @@ ImageF load_exemplar(const std::string& path) {
 Model run_analyze(const AnalyzeOptions& options) {
   // Check the method and parameters before reading anything: usage errors come first.
   const ParamValues params = resolve_params(options.method, parse_params(options.params));
+  if (!options.target.empty())
+    return cli::target_model(options.target, options.method, params, options.seed);
+  if (options.input.empty())
+    throw UsageError("give an exemplar INPUT or, for lrp, a --target spectrum");
   const ImageF exemplar = load_exemplar(options.input);
   Progress progress("analyse");
   progress.message(fmt::format("analysing {} with {}...", options.input, options.method));

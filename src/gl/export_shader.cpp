@@ -108,6 +108,11 @@ ShaderExport export_tiling(const tiling::TilingModel& model) {
 }
 
 ShaderExport export_lrp(const lrp::LrpModel& model) {
+  if (!model.data().structure.empty())
+    throw Error(ErrorCode::invalid_input,
+                "export-shader: this lrp model keeps the exemplar's structure (ratio > 0), which "
+                "the exported shader does not cover yet; export a model analysed with ratio=0 or "
+                "render it with `stochtex render --backend gl`");
   const gl::LrpGlsl glsl = gl::lrp_glsl(model);
   constexpr std::uint32_t kExactFloatIntegers = 1u << 24;
   for (const std::uint32_t value : glsl.substrata)

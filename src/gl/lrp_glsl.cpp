@@ -54,6 +54,48 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   text += glsl_array("int", "LRP_STRATUM_FIRST", std::span<const int>(first), glsl_int);
   text += glsl_array("int", "LRP_STRATUM_COSINES", std::span<const int>(cosines), glsl_int);
   text += glsl_array("int", "LRP_STRATUM_CHANNEL", std::span<const int>(channel), glsl_int);
+
+  // Section 5 (structure_model.cpp); glsl_array writes one zero for an empty table.
+  const lrp::StructureData& st = d.structure;
+  glsl.structure = st.cosine_table;
+  glsl.turbulence_frequencies = st.turbulence_frequencies;
+  for (std::size_t k = 0; k < st.turbulence_first.size(); ++k) {
+    glsl.turbulence_substrata.push_back(st.turbulence_first[k]);
+    glsl.turbulence_substrata.push_back(st.turbulence_count[k]);
+  }
+  std::vector<float> turbulence_spacing;
+  std::vector<float> turbulence_amplitude;
+  std::vector<int> turbulence_first;
+  std::vector<int> turbulence_cosines;
+  int next_turbulence = 0;
+  for (const lrp::TurbulenceStratum& stratum : st.turbulence_strata) {
+    turbulence_spacing.push_back(stratum.spacing);
+    turbulence_amplitude.push_back(stratum.amplitude);
+    turbulence_first.push_back(next_turbulence);
+    turbulence_cosines.push_back(stratum.cosines);
+    next_turbulence += stratum.cosines;
+  }
+  constant("bool", "LRP_HAS_STRUCTURE", st.empty() ? "false" : "true");
+  constant("int", "LRP_STRUCTURE_BLOCKS", glsl_int(std::max(st.blocks, 1)));
+  constant("int", "LRP_STRUCTURE_COSINES", glsl_int(st.cosines));
+  constant("float", "LRP_STRUCTURE_PERIOD", glsl_float(static_cast<float>(st.period)));
+  constant("float", "LRP_STRUCTURE_SIDE",
+           glsl_float(st.empty() ? 1.0f
+                                 : static_cast<float>(static_cast<double>(st.period) / st.blocks)));
+  constant("bool", "LRP_PLACEMENT", st.placement ? "true" : "false");
+  constant("float", "LRP_TURBULENCE", glsl_float(st.turbulence));
+  constant("int", "LRP_TURBULENCE_STRATA", glsl_int(static_cast<int>(st.turbulence_strata.size())));
+  // The size of the per-turbulence-stratum uniforms of lrp_render.glsl (never 0).
+  constant("int", "LRP_TURBULENCE_ARRAY",
+           glsl_int(std::max(1, static_cast<int>(turbulence_spacing.size()))));
+  text += glsl_array("float", "LRP_TURBULENCE_SPACING", std::span<const float>(turbulence_spacing),
+                     glsl_float);
+  text += glsl_array("float", "LRP_TURBULENCE_AMPLITUDE",
+                     std::span<const float>(turbulence_amplitude), glsl_float);
+  text +=
+      glsl_array("int", "LRP_TURBULENCE_FIRST", std::span<const int>(turbulence_first), glsl_int);
+  text += glsl_array("int", "LRP_TURBULENCE_COSINES", std::span<const int>(turbulence_cosines),
+                     glsl_int);
   return glsl;
 }
 

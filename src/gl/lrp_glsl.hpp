@@ -15,6 +15,11 @@ struct LrpGlsl {
   std::string constants;                 // GLSL const declarations, LRP_* (exact float literals)
   std::vector<float> frequencies;        // `lrp_frequencies`: (f_x, f_y, weight) triples
   std::vector<std::uint32_t> substrata;  // `lrp_substrata`: (first, count) pairs
+  // Section 5 (empty without structure): `lrp_structure` (f_x, f_y, amplitude, phase) per
+  // cosine, `lrp_turbulence_frequencies` and `lrp_turbulence_substrata` as above.
+  std::vector<float> structure;
+  std::vector<float> turbulence_frequencies;
+  std::vector<std::uint32_t> turbulence_substrata;
 };
 
 LrpGlsl lrp_glsl(const lrp::LrpModel& model);

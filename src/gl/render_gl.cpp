@@ -328,7 +328,12 @@ class LrpPass final : public Pass {
         program_(std::string("#version 450\n") + gl::lrp_library_source(glsl_) +
                  gl::kLrpRenderGlsl),
         frequencies_(glsl_.frequencies.size() * sizeof(float), glsl_.frequencies.data()),
-        substrata_(glsl_.substrata.size() * sizeof(std::uint32_t), glsl_.substrata.data()) {
+        substrata_(glsl_.substrata.size() * sizeof(std::uint32_t), glsl_.substrata.data()),
+        structure_(glsl_.structure.size() * sizeof(float), glsl_.structure.data()),
+        turbulence_frequencies_(glsl_.turbulence_frequencies.size() * sizeof(float),
+                                glsl_.turbulence_frequencies.data()),
+        turbulence_substrata_(glsl_.turbulence_substrata.size() * sizeof(std::uint32_t),
+                              glsl_.turbulence_substrata.data()) {
     check_gl("uploading the lrp model");
   }
 
@@ -362,6 +367,7 @@ class LrpPass final : public Pass {
     glProgramUniform1uiv(program_.id(), program_.location("stratum_seed"), count, seeds.data());
     program_.set("scale", static_cast<float>(grid.scale));
     program_.set("filtered", filter ? 1 : 0);
+    if (!d.structure.empty()) prepare_structure(grid, seed);
     check_gl("setting the lrp uniforms");
   }
 
@@ -369,6 +375,9 @@ class LrpPass final : public Pass {
                 const Buffer& result) const override {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, frequencies_.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, substrata_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, structure_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, turbulence_frequencies_.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, turbulence_substrata_.id());
     run_tile(program_, first_x, first_y, width, height, result);
   }
 
@@ -378,6 +387,57 @@ class LrpPass final : public Pass {
   Program program_;
   Buffer frequencies_;
   Buffer substrata_;
+  Buffer structure_;
+  Buffer turbulence_frequencies_;
+  Buffer turbulence_substrata_;
+
+  // Section 5: the grid origin's far part, formed in double as add_structure does (the structure
+  // is T-periodic, placement blocks and turbulence nodes are 64-bit indices).
+  void prepare_structure(const Grid& grid, std::uint32_t seed) const {
+    const lrp::StructureData& st = model_.data().structure;
+    const double period = st.period;
+    program_.set2("structure_origin",
+                  static_cast<float>(grid.origin.x - period * std::floor(grid.origin.x / period)),
+                  static_cast<float>(grid.origin.y - period * std::floor(grid.origin.y / period)));
+    const double gx = grid.origin.x / (0.5 * period) - 0.5;
+    const double gy = grid.origin.y / (0.5 * period) - 0.5;
+    const double base_x = std::floor(gx);
+    const double base_y = std::floor(gy);
+    program_.set2(
+        "placement_block",
+        static_cast<GLuint>(static_cast<std::uint64_t>(static_cast<std::int64_t>(base_x))),
+        static_cast<GLuint>(static_cast<std::uint64_t>(static_cast<std::int64_t>(base_y))));
+    program_.set2("placement_offset", static_cast<float>(gx - base_x),
+                  static_cast<float>(gy - base_y));
+    program_.set("seed", static_cast<unsigned>(seed));
+    const std::size_t strata = st.turbulence_strata.size();
+    if (strata == 0) return;
+    std::vector<GLuint> nodes(2 * strata);
+    std::vector<float> offsets(2 * strata);
+    std::vector<GLuint> seeds(2 * strata);
+    for (std::size_t t = 0; t < strata; ++t) {
+      const double u = grid.origin.x / static_cast<double>(st.turbulence_strata[t].spacing);
+      const double v = grid.origin.y / static_cast<double>(st.turbulence_strata[t].spacing);
+      const double node_x = std::floor(u + 0.5);
+      const double node_y = std::floor(v + 0.5);
+      nodes[2 * t] =
+          static_cast<GLuint>(static_cast<std::uint64_t>(static_cast<std::int64_t>(node_x)));
+      nodes[2 * t + 1] =
+          static_cast<GLuint>(static_cast<std::uint64_t>(static_cast<std::int64_t>(node_y)));
+      offsets[2 * t] = static_cast<float>(u - node_x);
+      offsets[2 * t + 1] = static_cast<float>(v - node_y);
+      for (std::size_t axis = 0; axis < 2; ++axis)
+        seeds[axis * strata + t] =
+            cell_key(lrp::kTurbulenceStreamBase + static_cast<std::int64_t>(axis),
+                     static_cast<std::int64_t>(t), seed, Stream::phases);
+    }
+    const auto count = static_cast<GLsizei>(strata);
+    glProgramUniform2uiv(program_.id(), program_.location("turbulence_node"), count, nodes.data());
+    glProgramUniform2fv(program_.id(), program_.location("turbulence_offset"), count,
+                        offsets.data());
+    glProgramUniform1uiv(program_.id(), program_.location("turbulence_seed"), 2 * count,
+                         seeds.data());
+  }
 };
 
 // The Gabor noise evaluator's GPU state: the program (compiled with the model's per-grid

@@ -244,6 +244,48 @@ if expect_ok "analyze gabor" "$stochtex" analyze "$exemplar" -m gabor -p impulse
     expect_file "export-shader gabor writes the data" "$models/gabor_shader/gabor_data.exr"
 fi
 
+# lrp structure preservation (section 5) and continuous targets (section 6.1, figure 10).
+expect_ok "analyze lrp with structure" "$stochtex" analyze "$exemplar" -m lrp -p cosines=10 \
+  -p ratio=0.3 -p turbulence=2 -o "$models/lrp_structure.stx" &&
+  expect_ok "render lrp with structure" "$stochtex" render "$models/lrp_structure.stx" \
+    -o "$models/lrp_structure.png" "${size[@]}" &&
+  expect_file "render lrp with structure writes the image" "$models/lrp_structure.png"
+expect_ok "render lrp with structure --backend gl" "$stochtex" render \
+  "$models/lrp_structure.stx" -o "$models/lrp_structure_gl.png" "${size[@]}" --backend gl &&
+  expect_file "render lrp with structure --backend gl writes the image" \
+    "$models/lrp_structure_gl.png"
+expect_ok "analyze --target ring" "$stochtex" analyze --method lrp \
+  --target ring:radius=0.2,width=0.02 -p cosines=5 -p strata=1 -o "$models/ring.stx" &&
+  expect_ok "render a ring target" "$stochtex" render "$models/ring.stx" -o "$models/ring.png" \
+    "${size[@]}" && expect_file "render a ring target writes the image" "$models/ring.png"
+expect_ok "analyze --target gaussian" "$stochtex" analyze --method lrp \
+  --target gaussian:cx=0.1,cy=0.05,along=0.03,across=0.01,variance=0.02,mean=0.4,size=64 \
+  -o "$models/gaussian_target.stx"
+target_to=(-o "$out/target.stx")
+expect_error "--target of an unknown kind" 2 "blob" \
+  "$stochtex" analyze --method lrp --target blob:radius=0.2 "${target_to[@]}"
+expect_error "--target missing a key" 2 "width" \
+  "$stochtex" analyze --method lrp --target ring:radius=0.2 "${target_to[@]}"
+expect_error "--target with a bad number" 2 "0.2x" \
+  "$stochtex" analyze --method lrp --target ring:radius=0.2x,width=0.02 "${target_to[@]}"
+expect_error "--target with an unknown key" 2 "foo" \
+  "$stochtex" analyze --method lrp --target ring:radius=0.2,width=0.02,foo=1 "${target_to[@]}"
+expect_error "--target out of range" 2 "radius" \
+  "$stochtex" analyze --method lrp --target ring:radius=0.9,width=0.02 "${target_to[@]}"
+expect_error "--target with an odd size" 2 "size" \
+  "$stochtex" analyze --method lrp --target ring:radius=0.2,width=0.02,size=33 "${target_to[@]}"
+expect_error "--target for another method" 2 "texton" \
+  "$stochtex" analyze --method texton --target ring:radius=0.2,width=0.02 "${target_to[@]}"
+expect_error "--target with ratio > 0" 2 "phases" \
+  "$stochtex" analyze --method lrp --target ring:radius=0.2,width=0.02 -p ratio=0.2 \
+  "${target_to[@]}"
+expect_error "analyze without INPUT or --target" 2 "INPUT" \
+  "$stochtex" analyze --method lrp "${target_to[@]}"
+expect_parse_error "analyze with INPUT and --target" "$stochtex" analyze "$exemplar" \
+  --method lrp --target ring:radius=0.2,width=0.02 "${target_to[@]}"
+expect_error "lrp ratio out of range" 2 "ratio" \
+  "$stochtex" analyze "$exemplar" -m lrp -p ratio=1.5 "${target_to[@]}"
+
 # --- bad inputs ---------------------------------------------------------------------------------
 
 analyze_to=(-o "$out/model.stx")

@@ -54,14 +54,14 @@ void edit_number(std::vector<std::uint8_t>& bytes, std::mt19937& engine) {
     bytes[12 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(length >> (8 * i));
 }
 
-TEST(ModelFuzz, MutantsLoadOrFailCleanly) {
-  const std::vector<std::vector<std::uint8_t>> seeds = {valid_model(1, 6), valid_model(3, 8),
-                                                        valid_model(4, 5)};
-  std::mt19937 engine(20261122);
+// Mutates the seeds `mutants` times (bit flips, bytes, truncations, insertions, header numbers);
+// every mutant must load and evaluate to finite values, or be refused with Error(format).
+void fuzz_models(const std::vector<std::vector<std::uint8_t>>& seeds, int mutants,
+                 std::uint32_t engine_seed) {
+  std::mt19937 engine(engine_seed);
   int accepted = 0;
   int rejected = 0;
-  constexpr int kMutants = 6000;
-  for (int n = 0; n < kMutants; ++n) {
+  for (int n = 0; n < mutants; ++n) {
     std::vector<std::uint8_t> bytes = seeds[static_cast<std::size_t>(n) % seeds.size()];
     const int edits = 1 + static_cast<int>(engine() % 4);
     for (int e = 0; e < edits && !bytes.empty(); ++e) {
@@ -99,9 +99,28 @@ TEST(ModelFuzz, MutantsLoadOrFailCleanly) {
       ++rejected;
     }
   }
-  EXPECT_EQ(accepted + rejected, kMutants);
-  EXPECT_GT(rejected, kMutants / 2);
-  EXPECT_GT(accepted, 0);  // some mutants (e.g. changed texton values) are valid models
+  EXPECT_EQ(accepted + rejected, mutants);
+  EXPECT_GT(rejected, mutants / 2);
+  EXPECT_GT(accepted, 0);  // some mutants (e.g. changed array values) are valid models
+}
+
+TEST(ModelFuzz, MutantsLoadOrFailCleanly) {
+  fuzz_models({valid_model(1, 6), valid_model(3, 8), valid_model(4, 5)}, 6000, 20261122);
+}
+
+// lrp models with every part of section 5 (structure blocks, turbulence strata, placement).
+std::vector<std::uint8_t> valid_lrp_structure_model(int channels) {
+  std::mt19937 engine(static_cast<unsigned>(channels * 17 + 3));
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  ImageF exemplar(20, 20, channels);
+  for (float& value : exemplar.pixels()) value = uniform(engine);
+  return serialize_model(analyze(
+      "lrp", exemplar.view(),
+      {{"cosines", 6}, {"strata", 2}, {"ratio", 0.5}, {"turbulence", 2}, {"placement", 1}}, 0));
+}
+
+TEST(ModelFuzz, LrpStructureMutantsLoadOrFailCleanly) {
+  fuzz_models({valid_lrp_structure_model(1), valid_lrp_structure_model(3)}, 3000, 20261123);
 }
 
 }  // namespace

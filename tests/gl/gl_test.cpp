@@ -137,6 +137,21 @@ TEST(Gl, TilingAndLrpMatchTheCpuReference) {
       {"lrp", "red_fleece_128.png", {{"cosines", 20}}, {{0.0, 0.0}, 1.0, 48, 40}},
       {"lrp", "metal_grey_256.png", {{"cosines", 10}}, {{1e7, -3e6}, 4.0, 40, 40}},
       {"lrp", "metal_grey_256.png", {{"cosines", 10}}, {{-9.5, 2.0}, 2.0, 40, 40}, false},
+      // Section 5: fixed phases with turbulence and placement, far from the origin too, and
+      // r = 1 (subdivided blocks) without them.
+      {"lrp",
+       "red_fleece_128.png",
+       {{"cosines", 20}, {"ratio", 0.3}, {"turbulence", 2}},
+       {{-30.0, 17.0}, 1.0, 72, 64}},
+      {"lrp",
+       "metal_grey_256.png",
+       {{"cosines", 10}, {"ratio", 0.2}, {"turbulence", 1}},
+       {{1e7, -3e6}, 4.0, 40, 40}},
+      {"lrp",
+       "metal_grey_256.png",
+       {{"cosines", 20}, {"ratio", 1}, {"placement", 0}},
+       {{5.0, -3.0}, 1.0, 48, 48},
+       false},
   };
   for (const auto& c : cases) {
     const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);

@@ -12,6 +12,7 @@
 #include "methods/lrp/analysis.hpp"
 #include "methods/lrp/evaluate.hpp"
 #include "methods/lrp/model.hpp"
+#include "methods/lrp/structure_analysis.hpp"
 #include "methods/lrp/window.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/stochtex.hpp"
@@ -355,6 +356,180 @@ TEST(LrpAnalysis, RejectsTooSmallExemplarsAndKeepsTheMean) {
   EXPECT_NEAR(sum / 4096.0, exemplar_sum / 576.0, 0.02);
   EXPECT_THROW(ring_spectrum(6, 0.1, 0.01, 1.0), std::invalid_argument);
   EXPECT_THROW(spectrum_model(ring_spectrum(16, 0.1, 0.01, 1.0), {{"strata", 0}}),
+               std::invalid_argument);
+}
+
+// Section 5: a colour model with every part of the structure (R, blocks, turbulence, placement).
+const Model& structure_model() {
+  static const Model model = analyze(
+      "lrp", random_exemplar(40, 3, 2).view(),
+      {{"cosines", 20}, {"ratio", 0.3}, {"turbulence", 3.0}, {"placement", 1}}, 5, "random");
+  return model;
+}
+
+TEST(LrpStructure, RatioSplitsTheCosineBudget) {
+  // Section 5.3: J_R = rJ, at least one cosine when r > 0, none at r = 0.
+  EXPECT_EQ(structure_cosines(0.0, 50), 0);
+  EXPECT_EQ(structure_cosines(0.1, 50), 5);
+  EXPECT_EQ(structure_cosines(0.001, 50), 1);
+  EXPECT_EQ(structure_cosines(1.0, 50), 50);
+  const LrpData& none = std::get<LrpModel>(colour_model().data().model).data();
+  EXPECT_TRUE(none.structure.empty());
+  const LrpData& data = std::get<LrpModel>(structure_model().data().model).data();
+  ASSERT_FALSE(data.structure.empty());
+  EXPECT_EQ(data.structure.cosines, 6);  // round(0.3 x 20)
+  int random_cosines = 0;
+  for (const Stratum& stratum : data.strata_table) random_cosines += stratum.cosines;
+  EXPECT_EQ(random_cosines, 3 * 14);  // (1 - r) J per channel
+  EXPECT_EQ(data.structure.turbulence, 3.0f);
+  EXPECT_TRUE(data.structure.placement);
+  EXPECT_EQ(data.structure.turbulence_strata.size(), static_cast<std::size_t>(kTurbulenceStrata));
+}
+
+TEST(LrpStructure, RegionHoldsTheRatioOfTheEnergy) {
+  const ImageF exemplar = random_exemplar(40, 1, 4);
+  ImageF component(40, 40, 1);
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x) component.at(x, y, 0) = exemplar.at(x, y, 0) - 0.5f;
+  double previous = 0.0;
+  for (const double ratio : {0.05, 0.2, 0.5, 1.0}) {
+    const FixedPhaseRegion region = fixed_phase_region(component.view(), 32, ratio);
+    // R is built by whole frequencies: it reaches r and overshoots by at most one frequency.
+    EXPECT_GE(region.energy_fraction, ratio - 1e-12);
+    EXPECT_LT(region.energy_fraction, ratio + 0.05);
+    EXPECT_GT(region.bins.size(), previous);
+    previous = static_cast<double>(region.bins.size());
+    // R is symmetric (k and -k), so removing it from a spectrum keeps it real.
+    std::vector<double> power(32 * 32, 1.0);
+    remove_region(power, region);
+    for (int ky = 0; ky < 32; ++ky)
+      for (int kx = 0; kx < 32; ++kx)
+        EXPECT_EQ(power[static_cast<std::size_t>(ky) * 32 + kx],
+                  power[static_cast<std::size_t>((32 - ky) % 32) * 32 + (32 - kx) % 32]);
+  }
+  EXPECT_NEAR(fixed_phase_region(component.view(), 32, 1.0).energy_fraction, 1.0, 1e-12);
+}
+
+TEST(LrpStructure, SubdivisionIsAPartitionOfUnity) {
+  // Every cosine of every block kept (a 4 x 4 region has 10 distinct real cosines): the blocks'
+  // windows sum to one, so n_R is the structure image to float precision. Kept short of that,
+  // the deviation falls as blocks shrink, and the subdivision stops below 1/256 (section 5.3).
+  const ImageF exemplar = random_exemplar(40, 1, 6);
+  ImageF component(40, 40, 1);
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x) component.at(x, y, 0) = exemplar.at(x, y, 0) - 0.5f;
+  const std::vector<FixedPhaseRegion> regions = {fixed_phase_region(component.view(), 16, 1.0)};
+  const std::vector<float> identity = {1.0f};
+  std::vector<SubdivisionLevel> levels;
+  const StructureData exact = reduce_structure(regions, 10, identity, &levels);
+  ASSERT_FALSE(levels.empty());
+  EXPECT_LT(levels.back().deviation, 1e-6);
+  EXPECT_GT(levels.front().deviation, kStructureTolerance);  // 10 cosines cannot draw 16 x 16
+  EXPECT_EQ(exact.blocks, levels.back().blocks);
+  levels.clear();
+  reduce_structure(regions, 4, identity, &levels);
+  for (std::size_t i = 1; i < levels.size(); ++i)
+    EXPECT_LT(levels[i].deviation, levels[i - 1].deviation) << "level " << i;
+}
+
+TEST(LrpStructure, ModelFileRoundTripAndHostileRecords) {
+  const Model& model = structure_model();
+  const Model loaded = deserialize_model(serialize_model(model), "memory");
+  const StructureData& a = std::get<LrpModel>(model.data().model).data().structure;
+  const StructureData& b = std::get<LrpModel>(loaded.data().model).data().structure;
+  EXPECT_EQ(a.cosine_table, b.cosine_table);
+  EXPECT_EQ(a.turbulence_frequencies, b.turbulence_frequencies);
+  const Grid grid{{-3.0, 7.5}, 0.7, 40, 30};
+  EXPECT_TRUE(same_bytes(render_model(model, grid, 9), render_model(loaded, grid, 9)));
+
+  const ModelRecord good =
+      std::get<LrpModel>(model.data().model).to_record(structure_model().params());
+  EXPECT_NO_THROW(LrpModel::from_record(good, "good"));
+  const auto rejects = [](const ModelRecord& record, const std::string& what) {
+    try {
+      LrpModel::from_record(record, "bad.stx");
+      ADD_FAILURE() << what << " was accepted";
+    } catch (const Error& error) {
+      EXPECT_EQ(error.code(), ErrorCode::format) << what;
+      EXPECT_NE(std::string(error.what()).find("bad.stx"), std::string::npos) << what;
+    }
+  };
+  for (const auto& [name, value] :
+       std::vector<std::pair<std::string, double>>{{"structure_period", 12},
+                                                   {"structure_period", 1e9},
+                                                   {"structure_blocks", 3},
+                                                   {"structure_blocks", 4096},
+                                                   {"structure_cosines", 0},
+                                                   {"structure_cosines", 1e9},
+                                                   {"placement", 2},
+                                                   {"turbulence", -1},
+                                                   {"turbulence", NAN},
+                                                   {"turbulence_strata", 99},
+                                                   {"turbulence_substrata", 1e12},
+                                                   {"turbulence_frequencies", 0}}) {
+    ModelRecord record = good;
+    record.scalars[name] = value;
+    rejects(record, name + " = " + std::to_string(value));
+  }
+  const auto array = [](ModelRecord& record, const std::string& name) -> std::vector<float>& {
+    for (auto& candidate : record.arrays)
+      if (candidate.name == name) return candidate.values;
+    throw std::logic_error("no array " + name);
+  };
+  const std::vector<std::pair<std::string, std::pair<std::size_t, float>>> edits = {
+      {"structure_cosines", {0, 0.75f}},          // frequency above Nyquist
+      {"structure_cosines", {2, NAN}},            // amplitude
+      {"structure_cosines", {2, -1.0f}},          // negative amplitude
+      {"structure_cosines", {3, 7.0f}},           // phase outside [0, 1]
+      {"turbulence_strata", {0, 0.0f}},           // zero cosines
+      {"turbulence_strata", {1, 0.0f}},           // zero spacing
+      {"turbulence_substrata", {0, 1e7f}},        // outside the frequency table
+      {"turbulence_frequencies", {1, INFINITY}},  // non-finite frequency
+  };
+  for (const auto& [name, edit] : edits) {
+    ModelRecord record = good;
+    array(record, name)[edit.first] = edit.second;
+    rejects(record, name + "[" + std::to_string(edit.first) + "] = " + std::to_string(edit.second));
+  }
+}
+
+TEST(LrpStructure, DeterministicWhateverTheThreadsAndSplits) {
+  // Placement blocks, turbulence and structure blocks are all pure functions of (p, seed).
+  const Model& model = structure_model();
+  const Grid grid{{-70.0, 3.0}, 1.3, 90, 75};
+  const ImageF reference = render_model(model, grid, 11, 1);
+  EXPECT_TRUE(same_bytes(reference, render_model(model, grid, 11, 2)));
+  EXPECT_TRUE(same_bytes(reference, render_model(model, grid, 11, 3)));
+  EXPECT_FALSE(same_bytes(reference, render_model(model, grid, 12, 1)));
+  const std::vector<Vec2d> one = {{grid.origin.x + grid.scale * 61.5, grid.origin.y + 40.5 * 1.3}};
+  const std::vector<Footprint> footprint = {{{1.3, 0.0}, {0.0, 1.3}}};
+  ImageF single(1, 1, 3);
+  evaluate(model, one, footprint, 11, single.view());
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(single.at(0, 0, c), reference.at(61, 40, c));
+}
+
+TEST(LrpStructure, FarFromTheOriginIsAsPreciseAsAtTheOrigin) {
+  // As LrpEvaluation's test, with structure blocks, turbulence and placement: positions rounded to
+  // float near 1e7 would make the second differences as large as the texture.
+  const Model& model = structure_model();
+  const auto roughness = [&](double origin) {
+    std::vector<Vec2d> line;
+    for (int i = 0; i < 200; ++i) line.push_back({origin + 0.001 * i, -origin + 0.0007 * i});
+    ImageF out(1, 200, 3);
+    evaluate(model, line, {}, 3, out.view());
+    double largest = 0.0;
+    for (int i = 1; i + 1 < 200; ++i)
+      largest = std::max(largest,
+                         static_cast<double>(std::abs(out.at(0, i + 1, 0) - 2.0f * out.at(0, i, 0) +
+                                                      out.at(0, i - 1, 0))));
+    return largest;
+  };
+  EXPECT_LT(roughness(0.25), 1e-3);
+  EXPECT_LT(roughness(1e7 + 0.25), 1e-3);
+}
+
+TEST(LrpStructure, ContinuousTargetsHaveNoPhasesToKeep) {
+  EXPECT_THROW(spectrum_model(ring_spectrum(16, 0.1, 0.01, 1.0), {{"ratio", 0.2}}),
                std::invalid_argument);
 }
 

@@ -12,6 +12,7 @@
 
 #include "core/hash.hpp"
 #include "methods/lrp/params.hpp"
+#include "methods/lrp/structure_analysis.hpp"
 #include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/error.hpp"
@@ -571,6 +572,13 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
   const int strata = static_cast<int>(params.at("strata"));
   const int cosines = static_cast<int>(params.at("cosines"));
   const bool shaped = params.at("amplitudes") != 0.0;
+  // Section 5.3: J_R = rJ cosines for the fixed-phase region R, (1 - r)J for the random strata.
+  // (Read with a default so that callers built before section 5 keep working.)
+  const auto ratio_entry = params.find("ratio");
+  const double ratio = ratio_entry == params.end() ? 0.0 : ratio_entry->second;
+  const int fixed_cosines = structure_cosines(ratio, cosines);
+  std::vector<FixedPhaseRegion> regions;
+  std::vector<double> turbulence_power;
 
   // Colour (section 6 defers it to a decorrelated space): PCA of the colour channels, so the
   // per-channel noises, independent, keep the exemplar's colour covariance. Alpha (channel 2 of
@@ -621,8 +629,20 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
     const double scale =
         sum > 0.0 && variances[k] > 1e-12 * variances.sum() ? variances[k] / sum : 0.0;
     for (double& value : power) value *= scale;
-    append_channel(data, plan_strata(power, size, strata, cosines, shaped,
-                                     cell_key(k, 0, seed, Stream::analysis)));
+    if (fixed_cosines > 0) {
+      // Turbulence follows the whole spectrum of the strongest channel (section 5.2).
+      if (variances[k] == variances.maxCoeff()) turbulence_power = power;
+      regions.push_back(fixed_phase_region(component.view(), size, ratio));
+      remove_region(power, regions.back());
+    }
+    append_channel(data, plan_strata(power, size, strata, std::max(1, cosines - fixed_cosines),
+                                     shaped, cell_key(k, 0, seed, Stream::analysis)));
+  }
+  if (fixed_cosines > 0) {
+    data.structure = reduce_structure(regions, fixed_cosines, data.colour_basis);
+    data.structure.placement = params.at("placement") != 0.0;
+    plan_turbulence(turbulence_power, size, params.at("turbulence"),
+                    cell_key(kTurbulenceStreamBase, 0, seed, Stream::analysis), data.structure);
   }
   // Frequencies were stored in bins; the model holds cycles per pixel.
   for (float& f : data.frequencies) f /= static_cast<float>(size);
@@ -634,6 +654,9 @@ LrpModel analyze_spectrum(const SpectrumTarget& target, const ParamValues& param
   check_spectrum_size(target.size);
   if (!std::isfinite(target.mean))
     throw std::invalid_argument("lrp: the target's mean must be finite");
+  if (const auto ratio = params.find("ratio"); ratio != params.end() && ratio->second > 0.0)
+    throw std::invalid_argument(
+        "lrp: a continuous target has no phases to keep; the energy ratio r needs an exemplar");
   LrpData data;
   data.channels = 1;
   data.strata = static_cast<int>(params.at("strata"));

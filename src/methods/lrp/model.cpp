@@ -77,6 +77,7 @@ LrpModel::LrpModel(LrpData data) : data_(std::move(data)) {
   for (const float f : data_.frequencies)
     if (std::abs(f) > 0.5f)
       throw std::invalid_argument("lrp: a frequency lies above the Nyquist limit 1/2");
+  validate_structure(data_.structure, channels);
 
   window_coefficients_ = window_coefficients();
   mean_envelope_ = 2.0 * std::numbers::pi * window_radial_energy();
@@ -126,6 +127,7 @@ LrpModel LrpModel::from_record(const ModelRecord& record, const std::string& sou
   data.colour_basis = basis.values;
   data.frequencies = frequency.values;
   data.weights = weights.values;
+  data.structure = read_structure(record, static_cast<int>(channels), source);
   for (std::size_t s = 0; s < table.values.size(); s += 3) {
     const float cosines = table.values[s];
     if (cosines != std::floor(cosines) || cosines < 1 || cosines > param("cosines").max_value)
@@ -181,6 +183,7 @@ ModelRecord LrpModel::to_record(const ParamValues& params) const {
   record.arrays.push_back({"substrata", {substrata, 2}, std::move(ranges)});
   record.arrays.push_back({"frequencies", {frequencies, 2}, data_.frequencies});
   record.arrays.push_back({"weights", {frequencies}, data_.weights});
+  write_structure(data_.structure, record);
   return record;
 }
 
@@ -297,6 +300,9 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
       if (normalise) scale *= std::sqrt(mean_envelope / window_square);
       noise[stratum.channel] += scale * sum;
     }
+    if (!data_.structure.empty())
+      add_structure(data_.structure, window_coefficients_, mean_envelope, p,
+                    Filtered ? &footprints[index] : nullptr, seed, Channels, noise);
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
     for (int c = 0; c < Channels; ++c) {
