@@ -573,9 +573,7 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
   const int cosines = static_cast<int>(params.at("cosines"));
   const bool shaped = params.at("amplitudes") != 0.0;
   // Section 5.3: J_R = rJ cosines for the fixed-phase region R, (1 - r)J for the random strata.
-  // (Read with a default so that callers built before section 5 keep working.)
-  const auto ratio_entry = params.find("ratio");
-  const double ratio = ratio_entry == params.end() ? 0.0 : ratio_entry->second;
+  const double ratio = params.at("ratio");
   const int fixed_cosines = structure_cosines(ratio, cosines);
   std::vector<FixedPhaseRegion> regions;
   std::vector<double> turbulence_power;
