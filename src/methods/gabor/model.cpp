@@ -567,17 +567,40 @@ void mark_periodic(std::span<const GaussianComponent* const> channel,
     while (parent[k] != k) k = parent[k] = parent[parent[k]];
     return k;
   };
-  for (std::size_t a = 0; a < narrow.size(); ++a)
-    for (std::size_t b = a + 1; b < narrow.size(); ++b) {
-      const double width =
-          std::max(full_width(channel[narrow[a]]->band), full_width(channel[narrow[b]]->band));
-      if (distance(narrow[a], narrow[b]) <= 2.0 * width) parent[root(a)] = root(b);
+  // Neighbours are found through a grid of cells of side 2 kPeriodicMaxFwhm (the largest link
+  // distance), each Gaussian entered at omega and -omega: a 3 x 3 block of cells holds all the
+  // candidates within reach, so the clustering costs O(n) for spread-out spectra.
+  constexpr int kCells = static_cast<int>(0.5 / kPeriodicMaxFwhm);
+  const auto cell = [](double f) {
+    return std::clamp(static_cast<int>(std::floor((f + 0.5) * kCells)), 0, kCells - 1);
+  };
+  std::vector<std::vector<std::size_t>> cells(static_cast<std::size_t>(kCells) * kCells);
+  for (std::size_t k = 0; k < narrow.size(); ++k)
+    for (const double sign : {1.0, -1.0}) {
+      const GaussianComponent& g = *channel[narrow[k]];
+      std::vector<std::size_t>& bucket =
+          cells[static_cast<std::size_t>(cell(sign * g.frequency_y)) * kCells +
+                static_cast<std::size_t>(cell(sign * g.frequency_x))];
+      if (bucket.empty() || bucket.back() != k) bucket.push_back(k);
     }
-  for (std::size_t k = 0; k < narrow.size(); ++k) {
-    if (root(k) != k) continue;
-    std::vector<std::size_t> members;
-    for (std::size_t m = 0; m < narrow.size(); ++m)
-      if (root(m) == k) members.push_back(narrow[m]);
+  for (std::size_t a = 0; a < narrow.size(); ++a) {
+    const GaussianComponent& g = *channel[narrow[a]];
+    const int cx = cell(g.frequency_x);
+    const int cy = cell(g.frequency_y);
+    for (int y = std::max(0, cy - 1); y <= std::min(kCells - 1, cy + 1); ++y)
+      for (int x = std::max(0, cx - 1); x <= std::min(kCells - 1, cx + 1); ++x)
+        for (const std::size_t b : cells[static_cast<std::size_t>(y) * kCells + x]) {
+          if (b <= a) continue;
+          const double width =
+              std::max(full_width(channel[narrow[a]]->band), full_width(channel[narrow[b]]->band));
+          if (distance(narrow[a], narrow[b]) <= 2.0 * width) parent[root(a)] = root(b);
+        }
+  }
+  // Members of each cluster, listed once.
+  std::vector<std::vector<std::size_t>> clusters(narrow.size());
+  for (std::size_t m = 0; m < narrow.size(); ++m) clusters[root(m)].push_back(narrow[m]);
+  for (const std::vector<std::size_t>& members : clusters) {
+    if (members.empty()) continue;
     // Centre: variance-weighted, each member taken on the side of the pair nearest the first.
     const GaussianComponent& first = *channel[members.front()];
     double cx = 0.0, cy = 0.0, variance = 0.0, width = 1.0;
