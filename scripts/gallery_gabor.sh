@@ -37,12 +37,10 @@ plaid=plaid_fabric_256
 "$stochtex" analyze "$textures/$plaid.png" --method gabor -o "$work/$plaid.stx"
 cp "$textures/$plaid.png" "$out/${plaid}_exemplar.png"
 "$stochtex" render "$work/$plaid.stx" -o "$out/${plaid}_noise.png" --size 256x256 --seed 1
-"$stochtex" edit "$work/$plaid.stx" --list-groups --json >"$out/${plaid}_groups.json"
 edit_row $plaid no_periodic --group periodic --magnitude 0
 edit_row $plaid periodic_rotated --group periodic --rotate 30
 edit_row $plaid periodic_only --group stochastic --magnitude 0
 aluminium=brushed_aluminium_grey_256
-"$stochtex" edit "$work/$aluminium.stx" --list-groups --json >"$out/${aluminium}_groups.json"
 edit_row $aluminium anisotropic_rotated --group anisotropic --rotate 90
 edit_row $aluminium anisotropic_sharper --group anisotropic --bandwidth 0.5
 echo "gallery written to $out"
