@@ -355,6 +355,8 @@ expect_error "edit --translate abc" 2 "abc" \
   "$stochtex" edit "$gabor_model" "${edit_to[@]}" --translate abc
 expect_error "edit --magnitude -1" 2 "--magnitude" \
   "$stochtex" edit "$gabor_model" "${edit_to[@]}" --magnitude -1
+expect_error "edit removing every Gaussian" 2 "no Gaussian" \
+  "$stochtex" edit "$gabor_model" "${edit_to[@]}" --magnitude 0
 expect_error "edit into a missing folder" 1 "missing" \
   "$stochtex" edit "$gabor_model" -o "$out/missing/edited.stx"
 expect_parse_error "edit --group nosuch" "$stochtex" edit "$gabor_model" "${edit_to[@]}" \

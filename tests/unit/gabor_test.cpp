@@ -475,6 +475,7 @@ TEST(GaborEdit, TransformsTheSelectedGaussiansOnly) {
   ASSERT_EQ(silenced.gaussians().size(), 2u);
   EXPECT_FLOAT_EQ(silenced.gaussians()[1].frequency_x, 0.4f);
   EXPECT_THROW(edit_gaussians(model, std::vector<bool>{true}, silence), std::invalid_argument);
+  EXPECT_THROW(edit_gaussians(model, GaussianGroup{}, silence), std::invalid_argument);
 
   SpectrumEdit bad;
   bad.magnitude = -1.0;

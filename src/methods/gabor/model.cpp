@@ -482,6 +482,10 @@ GaborModel edit_gaussians(const GaborModel& model, const std::vector<bool>& sele
     }
     edited.push_back(g);
   }
+  // A model file cannot hold an empty Gaussian table, and a noise without Gaussians is constant.
+  if (edited.empty() && !model.gaussians().empty())
+    throw std::invalid_argument(
+        "gabor edit: the edit leaves no Gaussian (all moved beyond Nyquist or to zero magnitude)");
   return GaborModel(model.channels(), model.impulses(), model.colour_space(), std::move(edited),
                     std::vector<float>(model.mixing().begin(), model.mixing().end()),
                     std::vector<float>(model.mean().begin(), model.mean().end()), model.report());

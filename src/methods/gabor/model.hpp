@@ -145,8 +145,8 @@ struct SpectrumEdit {
 // The model with the group's Gaussians edited; Gaussians moved beyond Nyquist (|omega_x| or
 // |omega_y| > 1/2) or scaled to zero are dropped, as the pixel grid cannot show them. The alias
 // tables and budget split are rebuilt in linear time (section 6.2) by the model's constructor,
-// which validates the result. Throws std::invalid_argument for a non-finite edit or a negative
-// magnitude.
+// which validates the result. Throws std::invalid_argument for a non-finite edit, a negative
+// magnitude, or an edit that leaves no Gaussian.
 GaborModel edit_gaussians(const GaborModel& model, const GaussianGroup& group,
                           const SpectrumEdit& edit);
 // The same for the Gaussians i with selected[i] (one flag per model.gaussians()).
