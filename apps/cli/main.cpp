@@ -14,6 +14,7 @@
 #include <optional>
 #include <regex>
 
+#include "edit_command.hpp"
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
 #include "stochtex/stochtex.hpp"
@@ -352,6 +353,9 @@ int run(int argc, char** argv) {
   export_cmd->add_option("MODEL", model_path, "model file (.stx)")->required();
   export_cmd->add_option("-o,--output", output, "folder to write (created if missing)")->required();
 
+  cli::EditOptions edit_options;
+  cli::add_edit_command(app, edit_options);
+
   auto* methods_cmd = app.add_subcommand("methods", "list the methods and their parameters");
   methods_cmd->add_flag("--json", json, "print one JSON document");
 
@@ -458,6 +462,8 @@ int run(int argc, char** argv) {
                   "this stochtex was built without the OpenGL backend "
                   "(STOCHTEX_BUILD_GL=OFF), which export-shader needs");
 #endif
+    } else if (*edit_options.command) {
+      cli::run_edit_command(edit_options);
     } else if (*methods_cmd) {
       if (json) {
         fmt::print("{}\n", methods_json().dump(2));

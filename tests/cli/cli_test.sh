@@ -178,7 +178,7 @@ expect_ok "methods" "$stochtex" methods && if ! grep -q texton "$work/stdout"; t
 fi
 expect_json "methods --json" "$stochtex" methods --json
 expect_ok "--help" "$stochtex" --help
-for command in analyze render synth gaussian compare info methods; do
+for command in analyze render synth gaussian compare info edit methods; do
   expect_ok "$command --help" "$stochtex" "$command" --help
 done
 
@@ -286,6 +286,29 @@ expect_parse_error "analyze with INPUT and --target" "$stochtex" analyze "$exemp
 expect_error "lrp ratio out of range" 2 "ratio" \
   "$stochtex" analyze "$exemplar" -m lrp -p ratio=1.5 "${target_to[@]}"
 
+# Editing a gabor model (section 8 of the Gabor noise paper): groups, then an edit of one group.
+gabor_model=$models/gabor.stx
+if expect_ok "analyze gabor" "$stochtex" analyze "$exemplar" -m gabor -p iterations=30 \
+  -o "$gabor_model"; then
+  expect_ok "edit --list-groups" "$stochtex" edit "$gabor_model" --list-groups &&
+    if ! grep -q anisotropic "$work/stdout"; then
+      fail "edit --list-groups lists the groups" "stdout does not mention anisotropic"
+    fi
+  expect_json "edit --list-groups --json" "$stochtex" edit "$gabor_model" --list-groups --json
+  expect_ok "edit a group" "$stochtex" edit "$gabor_model" -o "$models/edited.stx" \
+    --group stochastic --rotate 30 --scale 1.2 --translate 0.01,-0.02 --magnitude 0.5 \
+    --bandwidth 2 && expect_file "edit writes the model" "$models/edited.stx"
+  expect_ok "render the edited model" "$stochtex" render "$models/edited.stx" \
+    -o "$models/edited.png" --size 32x32
+  expect_ok "render the unedited model" "$stochtex" render "$gabor_model" \
+    -o "$models/unedited.png" --size 32x32
+  if [[ -s $models/edited.png ]] && ! cmp -s "$models/edited.png" "$models/unedited.png"; then
+    pass
+  else
+    fail "edit changes the render" "the edited and unedited renders are identical"
+  fi
+fi
+
 # --- bad inputs ---------------------------------------------------------------------------------
 
 analyze_to=(-o "$out/model.stx")
@@ -377,6 +400,24 @@ expect_error "gaussian into a missing folder" 1 "missing" \
   "$stochtex" gaussian "$exemplar" -o "$out/missing/gaussian.png" "${size[@]}"
 expect_error "render to an unknown extension" 2 "render.bmpx" \
   "$stochtex" render "$model" -o "$out/render.bmpx" "${size[@]}"
+
+edit_to=(-o "$out/edited.stx")
+expect_error "edit of a texton model" 2 "texton" "$stochtex" edit "$model" "${edit_to[@]}"
+expect_error "edit of a missing model" 1 "missing.stx" \
+  "$stochtex" edit "$inputs/missing.stx" "${edit_to[@]}"
+expect_error "edit without -o" 2 "-o" "$stochtex" edit "$gabor_model" --rotate 10
+expect_error "edit --bandwidth 3" 2 "--bandwidth" \
+  "$stochtex" edit "$gabor_model" "${edit_to[@]}" --bandwidth 3
+expect_error "edit --translate abc" 2 "abc" \
+  "$stochtex" edit "$gabor_model" "${edit_to[@]}" --translate abc
+expect_error "edit --magnitude -1" 2 "--magnitude" \
+  "$stochtex" edit "$gabor_model" "${edit_to[@]}" --magnitude -1
+expect_error "edit removing every Gaussian" 2 "no Gaussian" \
+  "$stochtex" edit "$gabor_model" "${edit_to[@]}" --magnitude 0
+expect_error "edit into a missing folder" 1 "missing" \
+  "$stochtex" edit "$gabor_model" -o "$out/missing/edited.stx"
+expect_parse_error "edit --group nosuch" "$stochtex" edit "$gabor_model" "${edit_to[@]}" \
+  --group nosuch
 
 # --- summary ------------------------------------------------------------------------------------
 

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/parallel.hpp"
 #include "methods/gabor/params.hpp"
 #include "spectral/periodic.hpp"
 #include "stochtex/error.hpp"
@@ -22,6 +23,10 @@ constexpr double kLipschitzMargin = 1.1;
 // FISTA checks the duality gap every this many iterations (a check costs one more S_n S_n^T).
 constexpr int kGapCheckInterval = 10;
 constexpr double kIntermediateGapFactor = 5.0;
+// The operators skip the bins where a band's kernel spectrum is below this fraction of its peak:
+// the level of the single-precision FFT's own rounding error (~1e-7 log2 n of the peak), not a
+// Gaussian's tail worth keeping. The fits change within the solver's tolerance (docs).
+constexpr float kSupportThreshold = 1e-6f;
 // Lags |xi|_inf <= 4 of the lagged correlation matrices (section 7): 81 matrices. Longer lags of a
 // 128^2 exemplar carry mostly estimation noise.
 constexpr int kMaxLag = 4;
@@ -116,6 +121,31 @@ GaussianDictionary::GaussianDictionary(int width, int height)
     band.kernel_spectrum.resize(work_spectrum_.size());
     for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
       band.kernel_spectrum[i] = work_spectrum_[i].real();
+    // Support of the kernel's spectrum: a Gaussian of sd ~2^b / (2 pi 0.42) bins for band b.
+    const int half = fft_->spectrum_width();
+    float peak = 0.0f;
+    for (const float v : band.kernel_spectrum) peak = std::max(peak, std::abs(v));
+    int reach_x = 0;
+    int reach_y = 0;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < half; ++x)
+        if (std::abs(band.kernel_spectrum[static_cast<std::size_t>(y) * half + x]) >
+            kSupportThreshold * peak) {
+          reach_x = std::max(reach_x, x);
+          reach_y = std::max(reach_y, std::min(y, height - y));
+        }
+    const int coarse_width = width / step_x;
+    const int coarse_height = height / step_y;
+    for (int y = 0; y < height; ++y)
+      if (std::min(y, height - y) <= reach_y) {
+        band.support_rows.push_back(y);
+        band.support_coarse_rows.push_back(y % coarse_height);
+      }
+    for (int x = 0; x < width; ++x)
+      if (std::min(x, width - x) <= reach_x) {
+        band.support_columns.push_back(x);
+        band.support_coarse_columns.push_back(x % coarse_width);
+      }
     bands_.push_back(std::move(band));
   }
 }
@@ -156,11 +186,17 @@ void GaussianDictionary::apply(const std::vector<std::vector<float>>& alpha,
                 ? band.coarse_spectrum[cy * coarse_half + cx]
                 : std::conj(band.coarse_spectrum[mirror_y * coarse_half + (coarse_width - cx)]);
     }
-    for (int ky = 0, cy = 0; ky < height_; ++ky, cy = cy + 1 == coarse_height ? 0 : cy + 1) {
-      const Complex* coarse = &row[static_cast<std::size_t>(cy) * coarse_width];
-      const std::size_t offset = static_cast<std::size_t>(ky) * half;
-      for (int kx = 0, cx = 0; kx < half; ++kx, cx = cx + 1 == coarse_width ? 0 : cx + 1)
-        sum_spectrum_[offset + kx] += coarse[cx] * kernel[offset + kx];
+    // Only where the kernel's spectrum is not negligible.
+    for (std::size_t r = 0; r < band.support_rows.size(); ++r) {
+      const Complex* coarse =
+          &row[static_cast<std::size_t>(band.support_coarse_rows[r]) * coarse_width];
+      const std::size_t offset = static_cast<std::size_t>(band.support_rows[r]) * half;
+      for (std::size_t c = 0; c < band.support_columns.size(); ++c) {
+        const auto kx = static_cast<std::size_t>(band.support_columns[c]);
+        if (kx < static_cast<std::size_t>(half))
+          sum_spectrum_[offset + kx] +=
+              coarse[band.support_coarse_columns[c]] * kernel[offset + kx];
+      }
     }
   }
   spectrum.resize(plane_size());
@@ -176,27 +212,34 @@ void GaussianDictionary::adjoint(std::span<const float> spectrum,
   for (std::size_t b = 0; b < bands_.size(); ++b) {
     const Band& band = bands_[b];
     const std::vector<float>& kernel = band.kernel_spectrum;
-    for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
-      work_spectrum_[i] = sum_spectrum_[i] * kernel[i];
     out[b].resize(plane_size());
     if (!band.coarse_fft) {
+      for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
+        work_spectrum_[i] = sum_spectrum_[i] * kernel[i];
       fft_->inverse(work_spectrum_, out[b]);
       continue;
     }
     const int coarse_width = width_ / band.step_x;
     const int coarse_height = height_ / band.step_y;
     const int coarse_half = coarse_width / 2 + 1;
-    // Fold the full spectrum onto the coarse one: every full bin k adds to coarse bin
-    // k mod (coarse size). The full spectrum's missing half is the conjugate at -k.
+    // Fold the product onto the coarse spectrum: every full bin k adds to coarse bin
+    // k mod (coarse size); bins where the kernel's spectrum is negligible are skipped. The full
+    // spectrum's missing half is the conjugate at -k (the kernel is even and real).
     std::vector<Complex>& row = band.coarse_row;
     std::fill(row.begin(), row.end(), Complex(0.0f, 0.0f));
-    for (int ky = 0, cy = 0; ky < height_; ++ky, cy = cy + 1 == coarse_height ? 0 : cy + 1) {
-      Complex* coarse = &row[static_cast<std::size_t>(cy) * coarse_width];
+    for (std::size_t r = 0; r < band.support_rows.size(); ++r) {
+      const int ky = band.support_rows[r];
+      Complex* coarse = &row[static_cast<std::size_t>(band.support_coarse_rows[r]) * coarse_width];
       const std::size_t offset = static_cast<std::size_t>(ky) * half;
       const std::size_t mirror = static_cast<std::size_t>((height_ - ky) % height_) * half;
-      for (int kx = 0, cx = 0; kx < width_; ++kx, cx = cx + 1 == coarse_width ? 0 : cx + 1)
-        coarse[cx] += kx < half ? work_spectrum_[offset + kx]
-                                : std::conj(work_spectrum_[mirror + (width_ - kx)]);
+      for (std::size_t c = 0; c < band.support_columns.size(); ++c) {
+        const auto kx = static_cast<std::size_t>(band.support_columns[c]);
+        const std::size_t mirrored = mirror + static_cast<std::size_t>(width_) - kx;
+        coarse[band.support_coarse_columns[c]] +=
+            kx < static_cast<std::size_t>(half)
+                ? sum_spectrum_[offset + kx] * kernel[offset + kx]
+                : std::conj(sum_spectrum_[mirrored]) * kernel[mirrored];
+      }
     }
     for (int cy = 0; cy < coarse_height; ++cy)
       for (int cx = 0; cx < coarse_half; ++cx)
@@ -552,21 +595,35 @@ GaborModel analyze(ImageView<const float> exemplar, const ParamValues& params,
   if (!std::all_of(mixing.begin(), mixing.end(), [](float v) { return std::isfinite(v); }))
     throw Error(ErrorCode::numerical, "gabor: the colour transform is singular");
 
-  // Each synthesis channel's spectrum is fitted on its own (independent channel synthesis).
-  const GaussianDictionary dictionary(width, height);
-  std::vector<GaussianComponent> gaussians;
-  double residual_squared = 0.0;
-  double target_squared = 0.0;
-  std::vector<float> plane(pixels);
+  // Each synthesis channel's spectrum is fitted on its own (independent channel synthesis), the
+  // channels in parallel, each with its own dictionary (the operators keep work buffers). Each fit
+  // is the same whatever the thread count.
+  std::vector<std::vector<float>> targets(static_cast<std::size_t>(channels));
   for (int k = 0; k < channels; ++k) {
+    std::vector<float> plane(pixels);
     for (std::size_t i = 0; i < pixels; ++i) {
       double value = 0.0;
       for (int c = 0; c < channels; ++c)
         value += forward(k, c) * static_cast<double>(centred[c][i]);
       plane[i] = static_cast<float>(value);
     }
-    const std::vector<float> target = periodogram(plane, width, height);
-    const SpectrumFit fit = fit_spectrum(dictionary, target, options);
+    targets[static_cast<std::size_t>(k)] = periodogram(plane, width, height);
+  }
+  const GaussianDictionary dictionary(width, height);
+  std::vector<SpectrumFit> fits(static_cast<std::size_t>(channels));
+  parallel_for(fits.size(), 0, [&](std::size_t k) {
+    if (k == 0) {
+      fits[k] = fit_spectrum(dictionary, targets[k], options);
+    } else {
+      const GaussianDictionary own(width, height);
+      fits[k] = fit_spectrum(own, targets[k], options);
+    }
+  });
+  std::vector<GaussianComponent> gaussians;
+  double residual_squared = 0.0;
+  double target_squared = 0.0;
+  for (int k = 0; k < channels; ++k) {
+    const SpectrumFit& fit = fits[static_cast<std::size_t>(k)];
     residual_squared += fit.residual_norm * fit.residual_norm;
     target_squared += fit.target_norm * fit.target_norm;
     // Every non-zero coefficient is a Gaussian (section 5.1). The fit runs on the full plane with

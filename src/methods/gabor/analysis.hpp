@@ -69,6 +69,14 @@ class GaussianDictionary {
     double mass = 0;
     std::vector<float> kernel;
     std::vector<float> kernel_spectrum;  // real: the kernel is even
+    // Where kernel_spectrum is not negligible (above kSupportThreshold of its peak): a wide
+    // Gaussian's spectrum is narrow, so a coarse band's products and folds run over these rows
+    // (0 .. height - 1) and columns (0 .. width - 1, both half-planes) only, with the coarse bins
+    // they map to.
+    std::vector<int> support_rows;
+    std::vector<int> support_coarse_rows;
+    std::vector<int> support_columns;
+    std::vector<int> support_coarse_columns;
   };
   int width_;
   int height_;
