@@ -278,6 +278,50 @@ double covariance_error(const ColourStatistics& a, const ColourStatistics& refer
   return relative(std::sqrt(difference), std::sqrt(norm));
 }
 
+double variance_nonstationarity(std::span<const ImageView<const float>> renders, int block) {
+  if (renders.size() < 2)
+    throw std::invalid_argument("variance_nonstationarity: at least 2 renders are needed");
+  const ImageView<const float>& first = renders.front();
+  for (const auto& render : renders) {
+    require_pixels(render, "variance_nonstationarity");
+    require_same_channels(render, first, "variance_nonstationarity");
+    if (render.width != first.width || render.height != first.height)
+      throw std::invalid_argument("variance_nonstationarity: the renders have different sizes");
+  }
+  if (block < 1 || block > first.width || block > first.height)
+    throw std::invalid_argument("variance_nonstationarity: the block side " +
+                                std::to_string(block) + " must be at least 1 and fit in the " +
+                                std::to_string(first.width) + "x" + std::to_string(first.height) +
+                                " renders");
+  const int blocks_x = first.width / block;
+  const int blocks_y = first.height / block;
+  const double count = static_cast<double>(renders.size());
+  std::vector<double> block_variance(static_cast<std::size_t>(blocks_x) * blocks_y, 0.0);
+  for (int y = 0; y < blocks_y * block; ++y) {
+    for (int x = 0; x < blocks_x * block; ++x) {
+      double variance = 0.0;
+      for (int c = 0; c < first.channels; ++c) {
+        double sum = 0.0;
+        for (const auto& render : renders) sum += render.at(x, y, c);
+        const double mean = sum / count;
+        double squares = 0.0;
+        for (const auto& render : renders) {
+          const double deviation = render.at(x, y, c) - mean;
+          squares += deviation * deviation;
+        }
+        variance += squares / (count - 1.0);
+      }
+      block_variance[static_cast<std::size_t>(y / block) * blocks_x + x / block] += variance;
+    }
+  }
+  double sum = 0.0;
+  for (const double variance : block_variance) sum += variance;
+  const double mean = sum / static_cast<double>(block_variance.size());
+  double squares = 0.0;
+  for (const double variance : block_variance) squares += (variance - mean) * (variance - mean);
+  return relative(std::sqrt(squares / static_cast<double>(block_variance.size())), mean);
+}
+
 ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,
                                 std::uint32_t seed) {
   require_pixels(exemplar, "compare_images");

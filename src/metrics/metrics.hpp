@@ -54,6 +54,15 @@ ColourStatistics colour_statistics(ImageView<const float> image);
 double mean_error(const ColourStatistics& a, const ColourStatistics& b);
 double covariance_error(const ColourStatistics& a, const ColourStatistics& reference);
 
+// Stationarity (DESIGN.md section 9): `renders` are the same grid rendered with different seeds.
+// The per-pixel variance across the renders, summed over channels, is averaged over block x block
+// pixel blocks; the result is the coefficient of variation (standard deviation / mean) of those
+// block variances. A stationary field gives only the estimator's noise (compare with the same
+// measure of an exactly stationary field such as ADSN); a method whose variance follows its
+// lattice gives more. Needs at least 2 renders of the same size and channel count, each at least
+// block x block pixels; pixels beyond the last whole block are ignored.
+double variance_nonstationarity(std::span<const ImageView<const float>> renders, int block);
+
 struct ComparisonReport {
   int crop = 0;
   double spectral_error = 0;         // image vs exemplar
