@@ -9,12 +9,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
 
 #include "io/image_io.hpp"
+#include "io/text_file.hpp"
 #include "metrics/metrics.hpp"
 #include "stochtex/stochtex.hpp"
 #ifdef STOCHTEX_WITH_GL
@@ -225,27 +225,6 @@ void run_render(const Model& model, const RenderSettings& settings, const std::s
     render(model, grid, settings.seed, image.view(), options);
   }
   write_image(output, image.view(), settings.bit_depth);
-}
-
-// Writes next to the destination, then renames: a failure never leaves a partial file.
-void write_text_file(const std::filesystem::path& path, const std::string& text) {
-  std::filesystem::path temporary = path;
-  temporary += ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file << text;
-    file.close();
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw Error(ErrorCode::io, fmt::format("cannot write '{}'", path.string()));
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error)
-    throw Error(ErrorCode::io,
-                fmt::format("cannot write '{}': {}", path.string(), error.message()));
 }
 
 void export_model_images(const Model& model, const std::filesystem::path& folder) {
