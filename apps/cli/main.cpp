@@ -16,6 +16,7 @@
 #include "io/image_io.hpp"
 #include "io/text_file.hpp"
 #include "metrics/metrics.hpp"
+#include "report_command.hpp"
 #include "stochtex/stochtex.hpp"
 #ifdef STOCHTEX_WITH_GL
 #include "stochtex/gpu.hpp"
@@ -313,6 +314,9 @@ int run(int argc, char** argv) {
   export_cmd->add_option("MODEL", model_path, "model file (.stx)")->required();
   export_cmd->add_option("-o,--output", output, "folder to write (created if missing)")->required();
 
+  cli::ReportOptions report_options;
+  auto* report_cmd = cli::add_report_command(app, report_options);
+
   auto* methods_cmd = app.add_subcommand("methods", "list the methods and their parameters");
   methods_cmd->add_flag("--json", json, "print one JSON document");
 
@@ -419,6 +423,8 @@ int run(int argc, char** argv) {
                   "this stochtex was built without the OpenGL backend "
                   "(STOCHTEX_BUILD_GL=OFF), which export-shader needs");
 #endif
+    } else if (*report_cmd) {
+      return cli::run_report(report_options);
     } else if (*methods_cmd) {
       if (json) {
         fmt::print("{}\n", methods_json().dump(2));
