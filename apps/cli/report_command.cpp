@@ -475,6 +475,8 @@ int run_report(const ReportOptions& options) {
   std::stable_sort(tasks.begin(), tasks.end(),
                    [](const Task& a, const Task& b) { return a.cost > b.cost; });
   std::atomic<int> failures{0};
+  std::vector<std::atomic<std::size_t>> remaining(entries.size());
+  for (auto& count : remaining) count = method_names.size();
   parallel_for(tasks.size(), threads, [&](std::size_t t) {
     ExemplarEntry& entry = entries[tasks[t].exemplar];
     const std::string& method = method_names[tasks[t].method];
@@ -492,6 +494,7 @@ int run_report(const ReportOptions& options) {
       outcome.error = e.what();
       ++failures;
     }
+    if (--remaining[tasks[t].exemplar] == 0) references[tasks[t].exemplar].colours.reset();
     report_progress(entry, outcome);
   });
 

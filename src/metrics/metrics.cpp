@@ -228,6 +228,55 @@ double sliced_wasserstein(ImageView<const float> a, ImageView<const float> b, in
   return std::sqrt(sum / static_cast<double>(projections.size()));
 }
 
+SlicedWassersteinReference::SlicedWassersteinReference(ImageView<const float> reference,
+                                                       std::size_t levels, int directions) {
+  require_pixels(reference, "SlicedWassersteinReference");
+  if (directions < 1)
+    throw std::invalid_argument(
+        "SlicedWassersteinReference: the number of directions must be positive");
+  channels_ = reference.channels;
+  pixels_ = static_cast<std::size_t>(reference.width) * reference.height;
+  if (levels < 1 || levels > pixels_)
+    throw std::invalid_argument("SlicedWassersteinReference: the level count " +
+                                std::to_string(levels) + " must be 1 to the reference's " +
+                                std::to_string(pixels_) + " pixels");
+  levels_ = levels;
+  directions_ = projection_directions(reference.channels, directions);
+  quantiles_.resize(directions_.size());
+  parallel_for(directions_.size(), 0, [&](std::size_t d) {
+    const std::vector<double> sorted = sorted_projection(reference, directions_[d]);
+    quantiles_[d].resize(levels_);
+    for (std::size_t i = 0; i < levels_; ++i) quantiles_[d][i] = quantile(sorted, i, levels_);
+  });
+}
+
+double SlicedWassersteinReference::distance(ImageView<const float> image) const {
+  require_pixels(image, "SlicedWassersteinReference::distance");
+  if (image.channels != channels_)
+    throw std::invalid_argument("SlicedWassersteinReference::distance: the image has " +
+                                std::to_string(image.channels) + " channels, the reference " +
+                                std::to_string(channels_));
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+  if (std::min(pixels, pixels_) != levels_)
+    throw std::invalid_argument(
+        "SlicedWassersteinReference::distance: the image's pixel count does not match the "
+        "reference's quantile levels");
+  // The same sums in the same order as sliced_wasserstein.
+  std::vector<double> mean_squares(directions_.size());
+  parallel_for(directions_.size(), 0, [&](std::size_t d) {
+    const std::vector<double> sorted = sorted_projection(image, directions_[d]);
+    double squares = 0.0;
+    for (std::size_t i = 0; i < levels_; ++i) {
+      const double difference = quantile(sorted, i, levels_) - quantiles_[d][i];
+      squares += difference * difference;
+    }
+    mean_squares[d] = squares / static_cast<double>(levels_);
+  });
+  double sum = 0.0;
+  for (const double mean_square : mean_squares) sum += mean_square;
+  return std::sqrt(sum / static_cast<double>(directions_.size()));
+}
+
 ColourStatistics colour_statistics(ImageView<const float> image) {
   require_pixels(image, "colour_statistics");
   const auto channels = static_cast<std::size_t>(image.channels);

@@ -5,6 +5,7 @@
 // std::invalid_argument. A relative error against a reference that is zero is 0 when the other
 // term is zero too, +infinity otherwise.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -44,6 +45,25 @@ inline constexpr int default_sliced_directions = 64;
 // quantile levels of the empirical distributions (exact when the counts are equal).
 double sliced_wasserstein(ImageView<const float> a, ImageView<const float> b,
                           int directions = default_sliced_directions);
+
+// The reference side of sliced_wasserstein computed once, for many distances to one reference
+// (the exemplar against each synthesis): its sorted projections kept at `levels` quantile levels.
+// distance(image) equals sliced_wasserstein(image, reference, directions) bit for bit when
+// min(image pixels, reference pixels) == levels, and throws std::invalid_argument otherwise.
+// Holds levels x directions doubles.
+class SlicedWassersteinReference {
+ public:
+  SlicedWassersteinReference(ImageView<const float> reference, std::size_t levels,
+                             int directions = default_sliced_directions);
+  double distance(ImageView<const float> image) const;
+
+ private:
+  int channels_ = 0;
+  std::size_t pixels_ = 0;
+  std::size_t levels_ = 0;
+  std::vector<std::vector<double>> directions_;
+  std::vector<std::vector<double>> quantiles_;  // per direction, at the levels
+};
 
 struct ColourStatistics {
   std::vector<double> mean;        // per channel

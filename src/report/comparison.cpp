@@ -2,6 +2,8 @@
 
 #include <time.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -30,12 +32,11 @@ void check_settings(const ReportSettings& settings) {
 }
 
 // The quality of `image` against the exemplar, except stationarity (which needs several renders).
-Quality measure_quality(ImageView<const float> exemplar, ImageView<const float> image,
-                        const ExemplarReference& reference) {
+Quality measure_quality(ImageView<const float> image, const ExemplarReference& reference) {
   Quality quality;
   quality.spectral_error =
       relative_l1_distance(welch_power_spectrum(image, reference.crop), reference.spectrum);
-  quality.histogram_error = sliced_wasserstein(image, exemplar);
+  quality.histogram_error = reference.colours->distance(image);
   const ColourStatistics statistics = colour_statistics(image);
   quality.mean_error = mean_error(statistics, reference.statistics);
   quality.covariance_error = covariance_error(statistics, reference.statistics);
@@ -81,6 +82,9 @@ ExemplarReference make_reference(ImageView<const float> exemplar, const ReportSe
   reference.histogram_error_floor =
       sliced_wasserstein(exemplar.sub(0, 0, exemplar.width, top_height),
                          exemplar.sub(0, top_height, exemplar.width, exemplar.height - top_height));
+  reference.colours.emplace(exemplar,
+                            std::min(static_cast<std::size_t>(exemplar.width) * exemplar.height,
+                                     static_cast<std::size_t>(settings.width) * settings.height));
   reference.spectrum_picture =
       spectrum_picture(reference.spectrum, reference.crop, reference.spectrum_range);
   reference.histogram_picture =
@@ -95,7 +99,7 @@ Synthesis measure_gaussian(ImageView<const float> exemplar, const ExemplarRefere
   Synthesis synthesis;
   synthesis.name = "gaussian";
   synthesis.image = adsn(exemplar, settings.width, settings.height, settings.seed);
-  synthesis.quality = measure_quality(exemplar, synthesis.image.view(), reference);
+  synthesis.quality = measure_quality(synthesis.image.view(), reference);
   // ADSN on the stationarity grid: samples of a larger ADSN image, step pixels apart.
   const int step = settings.stationarity_step;
   const int side = settings.stationarity_side;
@@ -132,7 +136,7 @@ Synthesis measure_method(std::string_view method, ImageView<const float> exempla
          synthesis.image.view(), one_thread);
   synthesis.ns_per_sample = (thread_cpu_seconds() - render_start) * 1e9 /
                             (static_cast<double>(settings.width) * settings.height);
-  synthesis.quality = measure_quality(exemplar, synthesis.image.view(), reference);
+  synthesis.quality = measure_quality(synthesis.image.view(), reference);
 
   // Point samples, so that the variance measured is the method's own and not its filtering's.
   one_thread.filter = false;

@@ -6,6 +6,7 @@
 // sliced Wasserstein distance, and deterministic.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,7 +42,10 @@ struct ExemplarReference {
   ColourHistogram histogram;           // drawn under every histogram plot
   double histogram_top = 0.0;          // vertical range of every histogram plot
   double histogram_error_floor = 0.0;  // sliced W2 of the exemplar's top half vs bottom half
-  ImageF spectrum_picture;             // the exemplar's own pictures
+  // The exemplar's side of the sliced W2 distance to every synthesis (levels x 64 doubles, 32 MB
+  // for a 512^2 exemplar and 256^2 renders: release it once the exemplar's syntheses are done).
+  std::optional<SlicedWassersteinReference> colours;
+  ImageF spectrum_picture;  // the exemplar's own pictures
   ImageF histogram_picture;
 };
 ExemplarReference make_reference(ImageView<const float> exemplar, const ReportSettings& settings);

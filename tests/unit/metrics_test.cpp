@@ -247,6 +247,23 @@ TEST(SlicedWasserstein, ColourShiftAveragesOverTheSphere) {
   EXPECT_NEAR(squared, expected, 4.0 * 0.11 * expected);
 }
 
+TEST(SlicedWassersteinReference, EqualsTheDirectDistanceBitForBit) {
+  const ImageF reference = uniform_noise(48, 40, 3, 0.5, 11u);
+  const ImageF smaller = blurred(uniform_noise(32, 30, 3, 0.7, 12u));
+  const ImageF larger = uniform_noise(64, 64, 3, 0.3, 13u);
+  const SlicedWassersteinReference for_smaller(reference.view(), 32 * 30);
+  EXPECT_EQ(for_smaller.distance(smaller.view()),
+            sliced_wasserstein(smaller.view(), reference.view()));
+  const SlicedWassersteinReference for_larger(reference.view(), 48 * 40);
+  EXPECT_EQ(for_larger.distance(larger.view()),
+            sliced_wasserstein(larger.view(), reference.view()));
+  // An image whose pixel count does not give the reference's levels is refused.
+  EXPECT_THROW(for_smaller.distance(larger.view()), std::invalid_argument);
+  EXPECT_THROW(for_smaller.distance(uniform_noise(32, 30, 1, 0.5, 1u).view()),
+               std::invalid_argument);
+  EXPECT_THROW(SlicedWassersteinReference(reference.view(), 48 * 40 + 1), std::invalid_argument);
+}
+
 TEST(ColourStatistics, MeanAndCovarianceOfAKnownImage) {
   // Channel 0 = {1, 2, 3, 4}, channel 1 = {2, 4, 6, 9}, inside a larger image (strided view).
   ImageF image(3, 3, 2, 100.0f);
