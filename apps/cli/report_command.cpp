@@ -271,7 +271,7 @@ std::string index_page(const std::vector<ExemplarEntry>& entries,
       kStyle, entries.size(), fmt::join(method_names, ", "), settings.width, settings.height,
       settings.seed, threads, wall_seconds, cpu_seconds);
   page +=
-      "<h2>Gallery</h2>\n<table>\n<tr><th class=\"name\">exemplar</th><th></th>"
+      "<h2>Gallery</h2>\n<table>\n<tr><th class=\"name\">name</th><th>exemplar</th>"
       "<th>Gaussian (ADSN)</th>";
   for (const auto& method : method_names) page += fmt::format("<th>{}</th>", method);
   page += "</tr>\n";
