@@ -53,7 +53,7 @@ struct ExemplarEntry {
   std::vector<Outcome> outcomes;  // the Gaussian version first, then the methods in order
 };
 
-struct Measures {
+struct Measure {
   std::string_view title;
   std::string_view help;
   double (*value)(const Outcome&);
@@ -62,32 +62,32 @@ struct Measures {
 };
 
 const std::array kMeasures = {
-    Measures{"spectral error",
-             "relative L1 distance of the Welch power spectra (Hann-windowed crops) of the "
-             "synthesis and the exemplar; the Gaussian version's value is the level of the ideal "
-             "Gaussian texture, which texton, lrp and gabor noise approximate",
-             [](const Outcome& o) { return o.quality.spectral_error; }, false, "{:.3f}"},
-    Measures{"colour error (SW2)",
-             "sliced Wasserstein-2 distance between the pixel colours of the synthesis and of the "
-             "exemplar (64 fixed directions); the floor is the exemplar's top half against its "
-             "bottom half",
-             [](const Outcome& o) { return o.quality.histogram_error; }, false, "{:.4f}"},
-    Measures{"mean error", "Euclidean distance of the mean colours",
-             [](const Outcome& o) { return o.quality.mean_error; }, false, "{:.4f}"},
-    Measures{"covariance error", "relative Frobenius distance of the colour covariance matrices",
-             [](const Outcome& o) { return o.quality.covariance_error; }, false, "{:.3f}"},
-    Measures{"non-stationarity",
-             "coefficient of variation, over 4x4-sample blocks, of the per-sample variance across "
-             "8 seeds of a 64x64 grid of point samples 2 exemplar pixels apart; the Gaussian "
-             "version is exactly stationary, so its value is the estimator's noise",
-             [](const Outcome& o) { return o.quality.nonstationarity; }, false, "{:.3f}"},
-    Measures{"analysis (s)",
-             "CPU seconds of one thread analysing the exemplar with the default parameters",
-             [](const Outcome& o) { return o.analysis_seconds; }, true, "{:.2f}"},
-    Measures{"ns/sample",
-             "CPU nanoseconds per sample of one thread rendering the report's image (scale 1, "
-             "filtered)",
-             [](const Outcome& o) { return o.ns_per_sample; }, true, "{:.0f}"},
+    Measure{"spectral error",
+            "relative L1 distance of the Welch power spectra (Hann-windowed crops) of the "
+            "synthesis and the exemplar; the Gaussian version's value is the level of the ideal "
+            "Gaussian texture, which texton, lrp and gabor noise approximate",
+            [](const Outcome& o) { return o.quality.spectral_error; }, false, "{:.3f}"},
+    Measure{"colour error (SW2)",
+            "sliced Wasserstein-2 distance between the pixel colours of the synthesis and of the "
+            "exemplar (64 fixed directions); the floor is the exemplar's top half against its "
+            "bottom half",
+            [](const Outcome& o) { return o.quality.histogram_error; }, false, "{:.4f}"},
+    Measure{"mean error", "Euclidean distance of the mean colours",
+            [](const Outcome& o) { return o.quality.mean_error; }, false, "{:.4f}"},
+    Measure{"covariance error", "relative Frobenius distance of the colour covariance matrices",
+            [](const Outcome& o) { return o.quality.covariance_error; }, false, "{:.3f}"},
+    Measure{"non-stationarity",
+            "coefficient of variation, over 4x4-sample blocks, of the per-sample variance across "
+            "8 seeds of a 64x64 grid of point samples 2 exemplar pixels apart; the Gaussian "
+            "version is exactly stationary, so its value is the estimator's noise",
+            [](const Outcome& o) { return o.quality.nonstationarity; }, false, "{:.3f}"},
+    Measure{"analysis (s)",
+            "CPU seconds of one thread analysing the exemplar with the default parameters",
+            [](const Outcome& o) { return o.analysis_seconds; }, true, "{:.2f}"},
+    Measure{"ns/sample",
+            "CPU nanoseconds per sample of one thread rendering the report's image (scale 1, "
+            "filtered)",
+            [](const Outcome& o) { return o.ns_per_sample; }, true, "{:.0f}"},
 };
 
 std::pair<int, int> parse_report_size(const std::string& text) {
@@ -185,7 +185,7 @@ void write_pictures(const fs::path& folder, const std::string& name, const std::
                 downscale(image, thumbnail).view());
 }
 
-std::string format_value(const Measures& measure, const Outcome& outcome) {
+std::string format_value(const Measure& measure, const Outcome& outcome) {
   if (outcome.error) return "failed";
   if (measure.method_only && outcome.name == "gaussian") return "&mdash;";
   return fmt::format(fmt::runtime(measure.format), measure.value(outcome));
@@ -239,12 +239,12 @@ std::string exemplar_page(const ExemplarEntry& entry, const ReportSettings& sett
           "maximum (white), the same for every picture. Histograms: the exemplar's per-channel "
           "histogram as pale areas, the synthesis's as lines, on the same axes.</p>\n"
           "<table>\n<tr><th class=\"name\"></th>";
-  for (const Measures& measure : kMeasures) page += fmt::format("<th>{}</th>", measure.title);
+  for (const Measure& measure : kMeasures) page += fmt::format("<th>{}</th>", measure.title);
   page += "</tr>\n";
   for (const Outcome& outcome : entry.outcomes) {
     page += fmt::format("<tr><td class=\"name\">{}</td>",
                         outcome.name == "gaussian" ? "Gaussian (ADSN)" : outcome.name);
-    for (const Measures& measure : kMeasures)
+    for (const Measure& measure : kMeasures)
       page += fmt::format("<td>{}</td>", format_value(measure, outcome));
     page += "</tr>\n";
   }
@@ -252,7 +252,7 @@ std::string exemplar_page(const ExemplarEntry& entry, const ReportSettings& sett
                       entry.histogram_error_floor);
   for (std::size_t m = 2; m < kMeasures.size(); ++m) page += "<td></td>";
   page += "</tr>\n</table>\n<dl>\n";
-  for (const Measures& measure : kMeasures)
+  for (const Measure& measure : kMeasures)
     page += fmt::format("<dt>{}</dt><dd>{}</dd>\n", measure.title, measure.help);
   page += "</dl>\n</body></html>\n";
   return page;
@@ -290,7 +290,7 @@ std::string index_page(const std::vector<ExemplarEntry>& entries,
     page += "</tr>\n";
   }
   page += "</table>\n";
-  for (const Measures& measure : kMeasures) {
+  for (const Measure& measure : kMeasures) {
     page += fmt::format(
         "<h2>{}</h2>\n<p class=\"help\">{}.</p>\n<table>\n<tr>"
         "<th class=\"name\">exemplar</th>",
