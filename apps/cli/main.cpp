@@ -9,14 +9,15 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <regex>
 
 #include "edit_command.hpp"
 #include "io/image_io.hpp"
+#include "io/text_file.hpp"
 #include "metrics/metrics.hpp"
+#include "report_command.hpp"
 #include "stochtex/stochtex.hpp"
 #include "target_option.hpp"
 #ifdef STOCHTEX_WITH_GL
@@ -246,27 +247,6 @@ void run_render(const Model& model, const RenderSettings& settings, const std::s
   write_image(output, image.view(), settings.bit_depth);
 }
 
-// Writes next to the destination, then renames: a failure never leaves a partial file.
-void write_text_file(const std::filesystem::path& path, const std::string& text) {
-  std::filesystem::path temporary = path;
-  temporary += ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file << text;
-    file.close();
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw Error(ErrorCode::io, fmt::format("cannot write '{}'", path.string()));
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error)
-    throw Error(ErrorCode::io,
-                fmt::format("cannot write '{}': {}", path.string(), error.message()));
-}
-
 void export_model_images(const Model& model, const std::filesystem::path& folder) {
   if (!std::filesystem::is_directory(folder))
     throw Error(ErrorCode::io, fmt::format("cannot export into '{}': the folder does not exist; "
@@ -355,6 +335,8 @@ int run(int argc, char** argv) {
 
   cli::EditOptions edit_options;
   cli::add_edit_command(app, edit_options);
+  cli::ReportOptions report_options;
+  auto* report_cmd = cli::add_report_command(app, report_options);
 
   auto* methods_cmd = app.add_subcommand("methods", "list the methods and their parameters");
   methods_cmd->add_flag("--json", json, "print one JSON document");
@@ -464,6 +446,8 @@ int run(int argc, char** argv) {
 #endif
     } else if (*edit_options.command) {
       cli::run_edit_command(edit_options);
+    } else if (*report_cmd) {
+      return cli::run_report(report_options);
     } else if (*methods_cmd) {
       if (json) {
         fmt::print("{}\n", methods_json().dump(2));

@@ -1,6 +1,7 @@
 // The four methods side by side (DESIGN.md section 10): analysis time and evaluation cost per
 // sample of every registered method on the same exemplar, in one process, at 1 thread and at all
-// hardware threads, with the ratio of each to the fastest.
+// hardware threads, with the ratio of each to the fastest and the ratios the papers claim on GPUs
+// beside the measured ones (docs/performance.md explains the differences).
 // Usage: stochtex_methods_compare [EXEMPLAR.png] (default: the corpus's moss_ground_512.png).
 
 #include <fmt/core.h>
@@ -9,6 +10,7 @@
 #include <chrono>
 #include <exception>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -50,6 +52,26 @@ struct Row {
   double all = 0.0;
 };
 
+// The papers' per-sample cost ratios on GPUs: slower method, faster method, claimed factor.
+struct Claim {
+  const char* slower;
+  const char* faster;
+  const char* factor;
+  const char* source;
+};
+constexpr Claim kClaims[] = {
+    {"texton", "tiling-b1", "~20", "Heitz & Neyret 2018 sec. 6.1 (Gaussian fast path)"},
+    {"texton", "tiling", "~20", "the same claim against the full histogram-preserving path"},
+    {"lrp", "texton", "~10", "Galerne et al. 2017 sec. 5 (Quadro K5000)"},
+    {"gabor", "lrp", "> 1", "Gilet et al. 2014 sec. 6 (fewer special functions)"},
+};
+
+const Row* find_row(const std::vector<Row>& rows, std::string_view method) {
+  const auto found =
+      std::find_if(rows.begin(), rows.end(), [&](const Row& row) { return row.method == method; });
+  return found == rows.end() ? nullptr : &*found;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -69,6 +91,17 @@ int main(int argc, char** argv) {
       rows.push_back(row);
       fmt::print(stderr, "measured {}\n", row.method);
     }
+    // Tiling's Gaussian-input fast path (-p blend=1: no T, no T^-1), the case behind the tiling
+    // paper's "20x faster than texton noise".
+    {
+      Row row{"tiling-b1"};
+      const auto start = Clock::now();
+      const Model model = analyze("tiling", exemplar.view(), {{"blend", 1.0}}, 0, path);
+      row.analysis_ms = seconds_since(start) * 1e3;
+      row.single = ns_per_sample(model, 1);
+      row.all = ns_per_sample(model, threads);
+      rows.push_back(row);
+    }
     const double fastest =
         std::min_element(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
           return a.single < b.single;
@@ -76,11 +109,21 @@ int main(int argc, char** argv) {
     fmt::print("{} ({}x{} {}-channel), {}x{} renders, default parameters, {} hardware threads\n",
                path, exemplar.width(), exemplar.height(), exemplar.channels(), kSide, kSide,
                threads);
-    fmt::print("{:<8} {:>12} {:>16} {:>16} {:>12}\n", "method", "analysis ms", "ns/sample 1 thr",
+    fmt::print("{:<10} {:>12} {:>16} {:>16} {:>12}\n", "method", "analysis ms", "ns/sample 1 thr",
                fmt::format("ns/sample {} thr", threads), "x fastest");
     for (const Row& row : rows)
-      fmt::print("{:<8} {:>12.1f} {:>16.1f} {:>16.1f} {:>12.1f}\n", row.method, row.analysis_ms,
+      fmt::print("{:<10} {:>12.1f} {:>16.1f} {:>16.1f} {:>12.1f}\n", row.method, row.analysis_ms,
                  row.single, row.all, row.single / fastest);
+    fmt::print("\n{:<20} {:>12} {:>18}  {}\n", "ns/sample ratio", "paper (GPU)", "measured (1 thr)",
+               "claim");
+    for (const Claim& claim : kClaims) {
+      const Row* slower = find_row(rows, claim.slower);
+      const Row* faster = find_row(rows, claim.faster);
+      if (slower == nullptr || faster == nullptr) continue;
+      fmt::print("{:<20} {:>12} {:>18.1f}  {}\n",
+                 fmt::format("{} / {}", claim.slower, claim.faster), claim.factor,
+                 slower->single / faster->single, claim.source);
+    }
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "stochtex_methods_compare: error: {}\n", e.what());

@@ -228,6 +228,55 @@ double sliced_wasserstein(ImageView<const float> a, ImageView<const float> b, in
   return std::sqrt(sum / static_cast<double>(projections.size()));
 }
 
+SlicedWassersteinReference::SlicedWassersteinReference(ImageView<const float> reference,
+                                                       std::size_t levels, int directions) {
+  require_pixels(reference, "SlicedWassersteinReference");
+  if (directions < 1)
+    throw std::invalid_argument(
+        "SlicedWassersteinReference: the number of directions must be positive");
+  channels_ = reference.channels;
+  pixels_ = static_cast<std::size_t>(reference.width) * reference.height;
+  if (levels < 1 || levels > pixels_)
+    throw std::invalid_argument("SlicedWassersteinReference: the level count " +
+                                std::to_string(levels) + " must be 1 to the reference's " +
+                                std::to_string(pixels_) + " pixels");
+  levels_ = levels;
+  directions_ = projection_directions(reference.channels, directions);
+  quantiles_.resize(directions_.size());
+  parallel_for(directions_.size(), 0, [&](std::size_t d) {
+    const std::vector<double> sorted = sorted_projection(reference, directions_[d]);
+    quantiles_[d].resize(levels_);
+    for (std::size_t i = 0; i < levels_; ++i) quantiles_[d][i] = quantile(sorted, i, levels_);
+  });
+}
+
+double SlicedWassersteinReference::distance(ImageView<const float> image) const {
+  require_pixels(image, "SlicedWassersteinReference::distance");
+  if (image.channels != channels_)
+    throw std::invalid_argument("SlicedWassersteinReference::distance: the image has " +
+                                std::to_string(image.channels) + " channels, the reference " +
+                                std::to_string(channels_));
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+  if (std::min(pixels, pixels_) != levels_)
+    throw std::invalid_argument(
+        "SlicedWassersteinReference::distance: the image's pixel count does not match the "
+        "reference's quantile levels");
+  // The same sums in the same order as sliced_wasserstein.
+  std::vector<double> mean_squares(directions_.size());
+  parallel_for(directions_.size(), 0, [&](std::size_t d) {
+    const std::vector<double> sorted = sorted_projection(image, directions_[d]);
+    double squares = 0.0;
+    for (std::size_t i = 0; i < levels_; ++i) {
+      const double difference = quantile(sorted, i, levels_) - quantiles_[d][i];
+      squares += difference * difference;
+    }
+    mean_squares[d] = squares / static_cast<double>(levels_);
+  });
+  double sum = 0.0;
+  for (const double mean_square : mean_squares) sum += mean_square;
+  return std::sqrt(sum / static_cast<double>(directions_.size()));
+}
+
 ColourStatistics colour_statistics(ImageView<const float> image) {
   require_pixels(image, "colour_statistics");
   const auto channels = static_cast<std::size_t>(image.channels);
@@ -276,6 +325,50 @@ double covariance_error(const ColourStatistics& a, const ColourStatistics& refer
     norm += reference.covariance[i] * reference.covariance[i];
   }
   return relative(std::sqrt(difference), std::sqrt(norm));
+}
+
+double variance_nonstationarity(std::span<const ImageView<const float>> renders, int block) {
+  if (renders.size() < 2)
+    throw std::invalid_argument("variance_nonstationarity: at least 2 renders are needed");
+  const ImageView<const float>& first = renders.front();
+  for (const auto& render : renders) {
+    require_pixels(render, "variance_nonstationarity");
+    require_same_channels(render, first, "variance_nonstationarity");
+    if (render.width != first.width || render.height != first.height)
+      throw std::invalid_argument("variance_nonstationarity: the renders have different sizes");
+  }
+  if (block < 1 || block > first.width || block > first.height)
+    throw std::invalid_argument("variance_nonstationarity: the block side " +
+                                std::to_string(block) + " must be at least 1 and fit in the " +
+                                std::to_string(first.width) + "x" + std::to_string(first.height) +
+                                " renders");
+  const int blocks_x = first.width / block;
+  const int blocks_y = first.height / block;
+  const double count = static_cast<double>(renders.size());
+  std::vector<double> block_variance(static_cast<std::size_t>(blocks_x) * blocks_y, 0.0);
+  for (int y = 0; y < blocks_y * block; ++y) {
+    for (int x = 0; x < blocks_x * block; ++x) {
+      double variance = 0.0;
+      for (int c = 0; c < first.channels; ++c) {
+        double sum = 0.0;
+        for (const auto& render : renders) sum += render.at(x, y, c);
+        const double mean = sum / count;
+        double squares = 0.0;
+        for (const auto& render : renders) {
+          const double deviation = render.at(x, y, c) - mean;
+          squares += deviation * deviation;
+        }
+        variance += squares / (count - 1.0);
+      }
+      block_variance[static_cast<std::size_t>(y / block) * blocks_x + x / block] += variance;
+    }
+  }
+  double sum = 0.0;
+  for (const double variance : block_variance) sum += variance;
+  const double mean = sum / static_cast<double>(block_variance.size());
+  double squares = 0.0;
+  for (const double variance : block_variance) squares += (variance - mean) * (variance - mean);
+  return relative(std::sqrt(squares / static_cast<double>(block_variance.size())), mean);
 }
 
 ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,

@@ -5,6 +5,7 @@
 // std::invalid_argument. A relative error against a reference that is zero is 0 when the other
 // term is zero too, +infinity otherwise.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -45,6 +46,25 @@ inline constexpr int default_sliced_directions = 64;
 double sliced_wasserstein(ImageView<const float> a, ImageView<const float> b,
                           int directions = default_sliced_directions);
 
+// The reference side of sliced_wasserstein computed once, for many distances to one reference
+// (the exemplar against each synthesis): its sorted projections kept at `levels` quantile levels.
+// distance(image) equals sliced_wasserstein(image, reference, directions) bit for bit when
+// min(image pixels, reference pixels) == levels, and throws std::invalid_argument otherwise.
+// Holds levels x directions doubles.
+class SlicedWassersteinReference {
+ public:
+  SlicedWassersteinReference(ImageView<const float> reference, std::size_t levels,
+                             int directions = default_sliced_directions);
+  double distance(ImageView<const float> image) const;
+
+ private:
+  int channels_ = 0;
+  std::size_t pixels_ = 0;
+  std::size_t levels_ = 0;
+  std::vector<std::vector<double>> directions_;
+  std::vector<std::vector<double>> quantiles_;  // per direction, at the levels
+};
+
 struct ColourStatistics {
   std::vector<double> mean;        // per channel
   std::vector<double> covariance;  // channels x channels, row-major, divided by the pixel count
@@ -53,6 +73,15 @@ ColourStatistics colour_statistics(ImageView<const float> image);
 // |mean_a - mean_b| (Euclidean) and ||cov_a - cov_b||_F / ||cov_b||_F.
 double mean_error(const ColourStatistics& a, const ColourStatistics& b);
 double covariance_error(const ColourStatistics& a, const ColourStatistics& reference);
+
+// Stationarity (DESIGN.md section 9): `renders` are the same grid rendered with different seeds.
+// The per-pixel variance across the renders, summed over channels, is averaged over block x block
+// pixel blocks; the result is the coefficient of variation (standard deviation / mean) of those
+// block variances. A stationary field gives only the estimator's noise (compare with the same
+// measure of an exactly stationary field such as ADSN); a method whose variance follows its
+// lattice gives more. Needs at least 2 renders of the same size and channel count, each at least
+// block x block pixels; pixels beyond the last whole block are ignored.
+double variance_nonstationarity(std::span<const ImageView<const float>> renders, int block);
 
 struct ComparisonReport {
   int crop = 0;

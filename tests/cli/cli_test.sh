@@ -178,7 +178,7 @@ expect_ok "methods" "$stochtex" methods && if ! grep -q texton "$work/stdout"; t
 fi
 expect_json "methods --json" "$stochtex" methods --json
 expect_ok "--help" "$stochtex" --help
-for command in analyze render synth gaussian compare info edit methods; do
+for command in analyze render synth gaussian compare info edit methods report; do
   expect_ok "$command --help" "$stochtex" "$command" --help
 done
 
@@ -309,6 +309,53 @@ if expect_ok "analyze gabor" "$stochtex" analyze "$exemplar" -m gabor -p iterati
   fi
 fi
 
+# The comparison report: two small exemplars, every method, small renders. The pages and pictures
+# must exist and the JSON summary must hold finite, plausible numbers for every synthesis.
+report=$models/report
+second=$textures/wavy_stripes_carpet_128.png
+if expect_json "report --json" "$stochtex" report "$exemplar" "$second" -o "$report" \
+  --size 32x32 --json; then
+  for file in index.html report.json red_fleece_128.html wavy_stripes_carpet_128.html \
+    red_fleece_128/exemplar.png red_fleece_128/gaussian_spectrum.png \
+    wavy_stripes_carpet_128/gabor.png wavy_stripes_carpet_128/tiling_histogram.png; do
+    expect_file "report writes $file" "$report/$file"
+  done
+  if python3 - "$work/stdout" <<'PY'; then
+import json, math, sys
+doc = json.load(open(sys.argv[1]))
+assert [e["name"] for e in doc["exemplars"]] == ["red_fleece_128", "wavy_stripes_carpet_128"]
+assert doc["failures"] == 0 and doc["wall_seconds"] > 0 and doc["cpu_seconds"] > 0
+for exemplar in doc["exemplars"]:
+    names = [s["name"] for s in exemplar["syntheses"]]
+    assert names == ["gaussian", "texton", "tiling", "lrp", "gabor"], names
+    assert 0 < exemplar["histogram_error_floor"] < 0.5
+    for synthesis in exemplar["syntheses"]:
+        for key in ("spectral_error", "histogram_error", "mean_error", "covariance_error",
+                    "nonstationarity"):
+            assert math.isfinite(synthesis[key]) and 0 <= synthesis[key] < 5, (key, synthesis)
+        if synthesis["name"] != "gaussian":
+            assert synthesis["analysis_seconds"] > 0 and synthesis["ns_per_sample"] > 0, synthesis
+PY
+    pass
+  else
+    fail "report JSON numbers" "the summary's numbers are not sane"
+  fi
+fi
+# Same inputs and seed, other threads and the exemplar twice: the same pictures, byte for byte.
+if expect_ok "report --threads 1, an exemplar twice" "$stochtex" report "$exemplar" "$exemplar" \
+  -o "$models/report1" --size 32x32 --methods tiling,texton --threads 1 --thumbnail 16; then
+  expect_file "report --thumbnail writes thumbnails" \
+    "$models/report1/thumbnails/red_fleece_128_2_tiling.png"
+  for picture in tiling.png texton.png texton_spectrum.png gaussian.png; do
+    if cmp -s "$report/red_fleece_128/$picture" "$models/report1/red_fleece_128/$picture" &&
+      cmp -s "$report/red_fleece_128/$picture" "$models/report1/red_fleece_128_2/$picture"; then
+      pass
+    else
+      fail "report is deterministic ($picture)" "the pictures differ between runs"
+    fi
+  done
+fi
+
 # --- bad inputs ---------------------------------------------------------------------------------
 
 analyze_to=(-o "$out/model.stx")
@@ -418,6 +465,19 @@ expect_error "edit into a missing folder" 1 "missing" \
   "$stochtex" edit "$gabor_model" -o "$out/missing/edited.stx"
 expect_parse_error "edit --group nosuch" "$stochtex" edit "$gabor_model" "${edit_to[@]}" \
   --group nosuch
+expect_error "report of a missing exemplar" 1 "missing.png" \
+  "$stochtex" report "$exemplar" "$inputs/missing.png" -o "$out/report"
+expect_error "report of a truncated PNG" 1 "truncated.png" \
+  "$stochtex" report "$inputs/truncated.png" -o "$out/report"
+expect_error "report of a constant PNG" 1 "constant.png" \
+  "$stochtex" report "$inputs/constant.png" -o "$out/report"
+expect_error "report into a folder under a file" 1 "x.png" \
+  "$stochtex" report "$exemplar" -o "$inputs/x.png/report"
+expect_error "report with an unknown method" 2 "nosuch" \
+  "$stochtex" report "$exemplar" -o "$out/report" --methods texton,nosuch
+expect_error "report --size 8x8" 2 "8x8" "$stochtex" report "$exemplar" -o "$out/report" --size 8x8
+expect_parse_error "report without exemplars" "$stochtex" report -o "$out/report"
+expect_parse_error "report without -o" "$stochtex" report "$exemplar"
 
 # --- summary ------------------------------------------------------------------------------------
 

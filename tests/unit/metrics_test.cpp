@@ -247,6 +247,23 @@ TEST(SlicedWasserstein, ColourShiftAveragesOverTheSphere) {
   EXPECT_NEAR(squared, expected, 4.0 * 0.11 * expected);
 }
 
+TEST(SlicedWassersteinReference, EqualsTheDirectDistanceBitForBit) {
+  const ImageF reference = uniform_noise(48, 40, 3, 0.5, 11u);
+  const ImageF smaller = blurred(uniform_noise(32, 30, 3, 0.7, 12u));
+  const ImageF larger = uniform_noise(64, 64, 3, 0.3, 13u);
+  const SlicedWassersteinReference for_smaller(reference.view(), 32 * 30);
+  EXPECT_EQ(for_smaller.distance(smaller.view()),
+            sliced_wasserstein(smaller.view(), reference.view()));
+  const SlicedWassersteinReference for_larger(reference.view(), 48 * 40);
+  EXPECT_EQ(for_larger.distance(larger.view()),
+            sliced_wasserstein(larger.view(), reference.view()));
+  // An image whose pixel count does not give the reference's levels is refused.
+  EXPECT_THROW(for_smaller.distance(larger.view()), std::invalid_argument);
+  EXPECT_THROW(for_smaller.distance(uniform_noise(32, 30, 1, 0.5, 1u).view()),
+               std::invalid_argument);
+  EXPECT_THROW(SlicedWassersteinReference(reference.view(), 48 * 40 + 1), std::invalid_argument);
+}
+
 TEST(ColourStatistics, MeanAndCovarianceOfAKnownImage) {
   // Channel 0 = {1, 2, 3, 4}, channel 1 = {2, 4, 6, 9}, inside a larger image (strided view).
   ImageF image(3, 3, 2, 100.0f);
@@ -289,6 +306,53 @@ TEST(ColourStatistics, DoublingTheContrastQuadruplesTheCovariance) {
   EXPECT_NEAR(covariance_error(original, doubled), 0.75, 1e-5);
   EXPECT_NEAR(mean_error(doubled, original), 0.0, 1e-6);
   EXPECT_EQ(covariance_error(original, original), 0.0);
+}
+
+// Renders of uniform noise with amplitude 1 in the left half and `right_amplitude` in the right.
+std::vector<ImageF> noise_renders(int count, double right_amplitude) {
+  std::vector<ImageF> renders;
+  for (int k = 0; k < count; ++k) {
+    ImageF render = uniform_noise(64, 64, 2, 1.0, 7000u + static_cast<std::uint32_t>(k));
+    for (int y = 0; y < 64; ++y)
+      for (int x = 32; x < 64; ++x)
+        for (int c = 0; c < 2; ++c)
+          render.at(x, y, c) = static_cast<float>(render.at(x, y, c) * right_amplitude);
+    renders.push_back(std::move(render));
+  }
+  return renders;
+}
+
+double nonstationarity_of(const std::vector<ImageF>& renders, int block) {
+  std::vector<ImageView<const float>> views;
+  for (const ImageF& render : renders) views.push_back(render.view());
+  return variance_nonstationarity(views, block);
+}
+
+TEST(VarianceNonstationarity, StationaryNoiseGivesOnlyTheEstimatorNoise) {
+  // Per pixel and channel, the variance of 8 draws of uniform noise has relative variance
+  // 2/7 + (excess kurtosis -1.2)/8 = 0.136; summing 2 channels halves it and a block averages 64
+  // independent pixels: the block variances vary by sqrt(0.136 / 128) = 0.033 relative. The
+  // coefficient of variation over 64 blocks is within 1.5x of that with high probability.
+  const double stationary = nonstationarity_of(noise_renders(8, 1.0), 8);
+  EXPECT_GT(stationary, 0.5 * 0.033);
+  EXPECT_LT(stationary, 1.5 * 0.033);
+}
+
+TEST(VarianceNonstationarity, AVarianceStepIsItsCoefficientOfVariation) {
+  // Block variances 1 and 4 (times 2 channels / 3) in equal numbers: mean 2.5, deviation 1.5, so
+  // 0.6, plus the estimator noise above (0.033 relative per block), which changes it by < 0.03.
+  EXPECT_NEAR(nonstationarity_of(noise_renders(8, 2.0), 8), 0.6, 0.03);
+}
+
+TEST(VarianceNonstationarity, RejectsInconsistentRenders) {
+  const std::vector<ImageF> renders = noise_renders(2, 1.0);
+  EXPECT_THROW(nonstationarity_of({renders[0]}, 8), std::invalid_argument);
+  EXPECT_THROW(nonstationarity_of(renders, 0), std::invalid_argument);
+  EXPECT_THROW(nonstationarity_of(renders, 65), std::invalid_argument);
+  const ImageF smaller = uniform_noise(32, 64, 2, 1.0, 1u);
+  EXPECT_THROW(nonstationarity_of({renders[0], smaller}, 8), std::invalid_argument);
+  const ImageF grey = uniform_noise(64, 64, 1, 1.0, 1u);
+  EXPECT_THROW(nonstationarity_of({renders[0], grey}, 8), std::invalid_argument);
 }
 
 TEST(CompareImages, AnImageAgainstItselfHasOnlyTheReferenceErrors) {

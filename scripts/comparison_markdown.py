@@ -1,0 +1,172 @@
+"""Writes docs/comparison.md from the JSON summary of `stochtex report` (see scripts/report.sh).
+
+usage: comparison_markdown.py SUMMARY.json SOURCES.md THUMBNAILS_DIR IMAGES_DIR IMAGES_LINK
+Prints the Markdown on stdout and copies the thumbnails of the exemplars whose licence tier in
+SOURCES.md is "clear" into IMAGES_DIR (linked as IMAGES_LINK/NAME_KIND.png): outputs derived from
+the research-data exemplars are measured but not committed.
+"""
+
+import json
+import re
+import shutil
+import statistics
+import sys
+from pathlib import Path
+
+MEASURES = [  # key, column title, format
+    ("spectral_error", "spectral", "{:.3f}"),
+    ("histogram_error", "colour SW2", "{:.4f}"),
+    ("covariance_error", "covariance", "{:.3f}"),
+    ("nonstationarity", "non-stat.", "{:.3f}"),
+    ("analysis_seconds", "analysis s", "{:.2f}"),
+    ("ns_per_sample", "ns/sample", "{:,.0f}"),
+]
+CATEGORIES = ["gaussian", "stochastic", "structured"]
+
+
+def corpus_table(sources):
+    """file stem -> (category, licence tier, content) from the SOURCES.md table."""
+    rows = {}
+    for line in Path(sources).read_text().splitlines():
+        cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
+        match = re.fullmatch(r"`(.+)\.png`", cells[0]) if cells else None
+        if match and len(cells) >= 8:
+            rows[match.group(1)] = (cells[2], cells[-1], cells[3])
+    return rows
+
+
+def label(name):
+    return "Gaussian (ADSN)" if name == "gaussian" else name
+
+
+def value(synthesis, key, form):
+    if "error" in synthesis:
+        return "failed"
+    if key not in synthesis:
+        return "—"
+    return form.format(synthesis[key])
+
+
+def main():
+    summary_path, sources, thumbnails, images, link = sys.argv[1:6]
+    summary = json.loads(Path(summary_path).read_text())
+    corpus = corpus_table(sources)
+    settings = summary["settings"]
+    methods = settings["methods"]
+    kinds = ["exemplar", "gaussian"] + methods
+    Path(images).mkdir(parents=True, exist_ok=True)
+
+    out = []
+    out.append("# The four methods compared\n")
+    out.append(
+        "Every method with its default parameters on every exemplar of the corpus "
+        "(`../shared/textures`, 23 images), rendered at {}×{} with seed {} beside the exemplar's "
+        "Gaussian version (ADSN), measured by `stochtex report` in one run on one machine. "
+        "Regenerate with `bash scripts/report.sh`; the full HTML report (every render at full "
+        "size, log power spectra, colour histograms) is written to `build/report/index.html`."
+        "\n".format(settings["width"], settings["height"], settings["seed"]))
+    threads = settings["threads"]
+    share = summary["cpu_seconds"] / (summary["wall_seconds"] * threads)
+    machine = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
+                    if line.startswith("model name")), "unknown CPU")
+    out.append("This run: {}, {} threads, **{:.0f} s wall, {:.0f} s CPU** for the whole corpus."
+               .format(machine, threads, summary["wall_seconds"], summary["cpu_seconds"]))
+    if share < 0.8:
+        out.append(
+            "Other work shared the cores during the run, which got {:.0f}% of its {} threads' "
+            "time: on idle cores the same work needs about {:.0f} s (CPU time / threads, if the "
+            "pairs balance).".format(100 * share, threads, summary["cpu_seconds"] / threads))
+    out.append("")
+    out.append("""## The measures
+
+All errors compare the synthesis with the exemplar (DESIGN.md section 9); lower is better.
+
+| column | measure |
+|---|---|
+| spectral | relative L1 distance of Welch power spectra (Hann-windowed crops). The Gaussian version's value is what an ideal Gaussian texture scores: texton, lrp and gabor aim at that level, not at 0 |
+| colour SW2 | sliced Wasserstein-2 distance of the pixel colours (64 fixed directions). "floor" is the exemplar's top half against its bottom half |
+| covariance | relative Frobenius distance of the colour covariance matrices |
+| non-stat. | non-stationarity: coefficient of variation, over 4×4-sample blocks, of the per-sample variance across 8 seeds on a 64×64 grid of point samples 2 exemplar pixels apart. The Gaussian version is exactly stationary, so its value is the estimator's own noise; a method well above it shows its lattice |
+| analysis s | CPU seconds of one thread running the analysis with the default parameters |
+| ns/sample | CPU nanoseconds per sample of one thread rendering the {w}×{h} image |
+
+Reading it: a spectral error at the Gaussian version's level means the method reproduces the
+spectrum as well as a Gaussian texture can; tiling, which blends patches of the exemplar itself,
+can go below it. A colour error near the floor means the colour histogram is kept: tiling is the
+only method built to keep it, so on non-Gaussian exemplars it should beat the Gaussian version,
+while texton, lrp and gabor produce Gaussian-like histograms. A non-stationarity near the Gaussian
+version's value means no lattice shows at this measure's resolution.
+
+Times are thread CPU times, which other work sharing the cores changes little (the run used all
+cores for independent (exemplar, method) pairs). How the per-sample costs compare with the papers'
+GPU claims, and why, is in [docs/performance.md](performance.md#cpu-the-four-methods-side-by-side).
+""".format(w=settings["width"], h=settings["height"]))
+
+    # Summary per category: mean of each measure over the category's exemplars.
+    out.append("## Summary per category\n")
+    out.append(
+        "Means over the exemplars of each category of `SOURCES.md` (gaussian: micro-textures a "
+        "Gaussian field models well; stochastic: random but non-Gaussian; structured: "
+        "macro-structure, the failure cases of Gaussian models). \"best\" counts the exemplars on "
+        "which the method has the lowest spectral / colour error among the four.\n")
+    for category in CATEGORIES:
+        members = [e for e in summary["exemplars"] if corpus.get(e["name"], ("?",))[0] == category]
+        if not members:
+            continue
+        out.append("### {} ({} exemplars)\n".format(category, len(members)))
+        out.append("| | " + " | ".join(title for _, title, _ in MEASURES) + " | best spectral | "
+                   "best colour |")
+        out.append("|---" * (len(MEASURES) + 3) + "|")
+        for name in ["gaussian"] + methods:
+            cells = []
+            for key, _, form in MEASURES:
+                values = [s[key] for e in members for s in e["syntheses"]
+                          if s["name"] == name and key in s]
+                cells.append(form.format(statistics.mean(values)) if values else "—")
+            wins = []
+            for key in ("spectral_error", "histogram_error"):
+                if name == "gaussian":
+                    wins.append("")
+                    continue
+                count = 0
+                for e in members:
+                    scored = [s for s in e["syntheses"] if s["name"] != "gaussian"
+                              and "error" not in s]
+                    if scored and min(scored, key=lambda s: s[key])["name"] == name:
+                        count += 1
+                wins.append(str(count))
+            out.append("| {} | {} | {} |".format(label(name), " | ".join(cells), " | ".join(wins)))
+        out.append("")
+
+    out.append("## Per exemplar\n")
+    out.append(
+        "Thumbnails are {}-pixel reductions of the {}×{} renders; exemplars from the corpus's "
+        "research-data tier (no licence file) are measured but their pictures are not committed."
+        "\n".format(96, settings["width"], settings["height"]))
+    for exemplar in summary["exemplars"]:
+        name = exemplar["name"]
+        category, tier, content = corpus.get(name, ("?", "?", ""))
+        out.append("### {}\n".format(name))
+        out.append("{}×{}, {} channel(s), {}: {}.\n".format(
+            exemplar["width"], exemplar["height"], exemplar["channels"], category, content))
+        if tier == "clear":
+            cells = []
+            for kind in kinds:
+                source = Path(thumbnails) / "{}_{}.png".format(name, kind)
+                shutil.copyfile(source, Path(images) / source.name)
+                cells.append("![{}]({}/{})".format(kind, link, source.name))
+            out.append("| exemplar | " + " | ".join(label(k) for k in kinds[1:]) + " |")
+            out.append("|---" * len(kinds) + "|")
+            out.append("| " + " | ".join(cells) + " |\n")
+        out.append("| | " + " | ".join(title for _, title, _ in MEASURES) + " |")
+        out.append("|---" * (len(MEASURES) + 1) + "|")
+        for synthesis in exemplar["syntheses"]:
+            out.append("| {} | {} |".format(label(synthesis["name"]), " | ".join(
+                value(synthesis, key, form) for key, _, form in MEASURES)))
+        out.append("| floor | | {:.4f} |{}\n".format(exemplar["histogram_error_floor"],
+                                                   " |" * (len(MEASURES) - 2)))
+    print("\n".join(out))
+
+
+if __name__ == "__main__":
+    main()
