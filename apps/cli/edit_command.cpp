@@ -8,7 +8,6 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <regex>
 #include <stdexcept>
 #include <variant>
 #include <vector>
@@ -16,6 +15,7 @@
 #include "io/image_io.hpp"
 #include "methods/gabor/model.hpp"
 #include "model/model_data.hpp"
+#include "number_pair.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex::cli {
@@ -33,19 +33,9 @@ struct Translation {
 };
 
 Translation parse_translation(const std::string& text) {
-  static const std::regex pattern(R"(\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)\s*)");
-  std::smatch match;
-  try {
-    if (std::regex_match(text, match, pattern)) {
-      std::size_t used_x = 0;
-      std::size_t used_y = 0;
-      const Translation t{std::stod(match[1], &used_x), std::stod(match[2], &used_y)};
-      if (used_x == match[1].str().size() && used_y == match[2].str().size() &&
-          std::abs(t.x) <= 1.0 && std::abs(t.y) <= 1.0)
-        return t;
-    }
-  } catch (const std::exception&) {
-  }
+  if (const std::optional<Vec2d> t = parse_number_pair(text);
+      t && std::abs(t->x) <= 1.0 && std::abs(t->y) <= 1.0)
+    return {t->x, t->y};
   throw std::invalid_argument(
       "--translate must be FX,FY in cycles per pixel, each within [-1, 1], "
       "e.g. 0.05,-0.1, not '" +

@@ -17,6 +17,7 @@
 #include "io/image_io.hpp"
 #include "io/text_file.hpp"
 #include "metrics/metrics.hpp"
+#include "number_pair.hpp"
 #include "report_command.hpp"
 #include "stochtex/stochtex.hpp"
 #include "target_option.hpp"
@@ -60,19 +61,7 @@ Size parse_size(const std::string& text) {
 }
 
 Vec2d parse_origin(const std::string& text) {
-  static const std::regex pattern(R"(\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)\s*)");
-  std::smatch match;
-  try {
-    if (std::regex_match(text, match, pattern)) {
-      std::size_t used_x = 0;
-      std::size_t used_y = 0;
-      const Vec2d origin{std::stod(match[1], &used_x), std::stod(match[2], &used_y)};
-      if (used_x == match[1].str().size() && used_y == match[2].str().size() &&
-          std::isfinite(origin.x) && std::isfinite(origin.y))
-        return origin;
-    }
-  } catch (const std::exception&) {
-  }
+  if (const std::optional<Vec2d> origin = cli::parse_number_pair(text)) return *origin;
   throw UsageError("--origin must be X,Y in exemplar pixels, e.g. 1000,-250.5, not '" + text + "'");
 }
 

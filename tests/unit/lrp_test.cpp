@@ -307,42 +307,44 @@ TEST(LrpModelFile, CorruptRecordsAreRejected) {
   }
 }
 
-TEST(LrpEvaluation, DeterministicWhateverTheThreadsAndSplits) {
-  const Model& model = colour_model();
-  const Grid grid{{-20.0, 3.0}, 1.3, 50, 45};
+// Same bytes whatever the thread count, a different seed differs, and the sample at pixel (x, y)
+// evaluated alone equals the batch's.
+void expect_deterministic(const Model& model, const Grid& grid, int x, int y) {
   const ImageF reference = render_model(model, grid, 11, 1);
   EXPECT_TRUE(same_bytes(reference, render_model(model, grid, 11, 2)));
   EXPECT_TRUE(same_bytes(reference, render_model(model, grid, 11, 3)));
   EXPECT_FALSE(same_bytes(reference, render_model(model, grid, 12, 1)));
-  // One position evaluated alone gives the same value as inside a batch.
-  const std::vector<Vec2d> one = {{grid.origin.x + grid.scale * 7.5, grid.origin.y + 4.5 * 1.3}};
-  const std::vector<Footprint> footprint = {{{1.3, 0.0}, {0.0, 1.3}}};
+  const std::vector<Vec2d> one = {
+      {grid.origin.x + grid.scale * (x + 0.5), grid.origin.y + grid.scale * (y + 0.5)}};
+  const std::vector<Footprint> footprint = {{{grid.scale, 0.0}, {0.0, grid.scale}}};
   ImageF single(1, 1, 3);
   evaluate(model, one, footprint, 11, single.view());
-  for (int c = 0; c < 3; ++c) EXPECT_EQ(single.at(0, 0, c), reference.at(7, 4, c));
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(single.at(0, 0, c), reference.at(x, y, c));
+}
+
+// The largest second difference along a line of samples 0.001 pixel apart starting at
+// (origin, -origin): the noise is smooth at that scale, so it is tiny unless positions were
+// rounded to float (near 1e7, spacing 1, the samples would repeat then jump).
+double roughness(const Model& model, double origin) {
+  std::vector<Vec2d> line;
+  for (int i = 0; i < 200; ++i) line.push_back({origin + 0.001 * i, -origin + 0.0007 * i});
+  ImageF out(1, 200, 3);
+  evaluate(model, line, {}, 3, out.view());
+  double largest = 0.0;
+  for (int i = 1; i + 1 < 200; ++i)
+    largest = std::max(
+        largest, static_cast<double>(
+                     std::abs(out.at(0, i + 1, 0) - 2.0f * out.at(0, i, 0) + out.at(0, i - 1, 0))));
+  return largest;
+}
+
+TEST(LrpEvaluation, DeterministicWhateverTheThreadsAndSplits) {
+  expect_deterministic(colour_model(), Grid{{-20.0, 3.0}, 1.3, 50, 45}, 7, 4);
 }
 
 TEST(LrpEvaluation, FarFromTheOriginIsAsPreciseAsAtTheOrigin) {
-  // A line of samples 0.001 pixel apart: the noise is smooth at that scale, so its second
-  // differences are tiny at the origin. If positions were rounded to float near 1e7 (spacing 1)
-  // the samples would repeat then jump, and the second differences would be as large as the noise.
-  const Model& model = colour_model();
-  const auto roughness = [&](double origin) {
-    std::vector<Vec2d> line;
-    for (int i = 0; i < 200; ++i) line.push_back({origin + 0.001 * i, -origin + 0.0007 * i});
-    ImageF out(1, 200, 3);
-    evaluate(model, line, {}, 3, out.view());
-    double largest = 0.0;
-    for (int i = 1; i + 1 < 200; ++i)
-      largest = std::max(largest,
-                         static_cast<double>(std::abs(out.at(0, i + 1, 0) - 2.0f * out.at(0, i, 0) +
-                                                      out.at(0, i - 1, 0))));
-    return largest;
-  };
-  const double near = roughness(0.25);
-  const double far = roughness(1e7 + 0.25);
-  EXPECT_LT(far, 1e-3);
-  EXPECT_LT(near, 1e-3);
+  EXPECT_LT(roughness(colour_model(), 0.25), 1e-3);
+  EXPECT_LT(roughness(colour_model(), 1e7 + 0.25), 1e-3);
 }
 
 TEST(LrpAnalysis, RejectsTooSmallExemplarsAndKeepsTheMean) {
@@ -495,37 +497,13 @@ TEST(LrpStructure, ModelFileRoundTripAndHostileRecords) {
 
 TEST(LrpStructure, DeterministicWhateverTheThreadsAndSplits) {
   // Placement blocks, turbulence and structure blocks are all pure functions of (p, seed).
-  const Model& model = structure_model();
-  const Grid grid{{-70.0, 3.0}, 1.3, 90, 75};
-  const ImageF reference = render_model(model, grid, 11, 1);
-  EXPECT_TRUE(same_bytes(reference, render_model(model, grid, 11, 2)));
-  EXPECT_TRUE(same_bytes(reference, render_model(model, grid, 11, 3)));
-  EXPECT_FALSE(same_bytes(reference, render_model(model, grid, 12, 1)));
-  const std::vector<Vec2d> one = {{grid.origin.x + grid.scale * 61.5, grid.origin.y + 40.5 * 1.3}};
-  const std::vector<Footprint> footprint = {{{1.3, 0.0}, {0.0, 1.3}}};
-  ImageF single(1, 1, 3);
-  evaluate(model, one, footprint, 11, single.view());
-  for (int c = 0; c < 3; ++c) EXPECT_EQ(single.at(0, 0, c), reference.at(61, 40, c));
+  expect_deterministic(structure_model(), Grid{{-70.0, 3.0}, 1.3, 90, 75}, 61, 40);
 }
 
 TEST(LrpStructure, FarFromTheOriginIsAsPreciseAsAtTheOrigin) {
-  // As LrpEvaluation's test, with structure blocks, turbulence and placement: positions rounded to
-  // float near 1e7 would make the second differences as large as the texture.
-  const Model& model = structure_model();
-  const auto roughness = [&](double origin) {
-    std::vector<Vec2d> line;
-    for (int i = 0; i < 200; ++i) line.push_back({origin + 0.001 * i, -origin + 0.0007 * i});
-    ImageF out(1, 200, 3);
-    evaluate(model, line, {}, 3, out.view());
-    double largest = 0.0;
-    for (int i = 1; i + 1 < 200; ++i)
-      largest = std::max(largest,
-                         static_cast<double>(std::abs(out.at(0, i + 1, 0) - 2.0f * out.at(0, i, 0) +
-                                                      out.at(0, i - 1, 0))));
-    return largest;
-  };
-  EXPECT_LT(roughness(0.25), 1e-3);
-  EXPECT_LT(roughness(1e7 + 0.25), 1e-3);
+  // As LrpEvaluation's test, with structure blocks, turbulence and placement.
+  EXPECT_LT(roughness(structure_model(), 0.25), 1e-3);
+  EXPECT_LT(roughness(structure_model(), 1e7 + 0.25), 1e-3);
 }
 
 TEST(LrpStructure, ContinuousTargetsHaveNoPhasesToKeep) {

@@ -2,8 +2,13 @@
 // Building blocks of the LRP noise evaluator, in the restricted subset of DESIGN.md section 4
 // (uint32/float, flat arrays, no allocation) so that they can be mirrored in GLSL.
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+
+#include "core/hash.hpp"
+#include "methods/lrp/window.hpp"
+#include "stochtex/model.hpp"
 
 namespace stochtex::lrp {
 
@@ -41,6 +46,88 @@ inline constexpr float kClampEnd = 1.0f;
 inline float clamp_weight(float cycles) noexcept {
   const float weight = (kClampEnd - cycles) * (1.0f / (kClampEnd - kClampStart));
   return weight <= 0.0f ? 0.0f : (weight >= 1.0f ? 1.0f : weight);
+}
+
+// The tables of a set of random strata (model.hpp's LrpData, or the turbulence's).
+struct StratumTables {
+  const std::uint32_t* substratum_first;
+  const std::uint32_t* substratum_count;
+  const float* frequencies;  // (f_x, f_y) pairs, cycles per pixel
+  const float* weights;      // one amplitude factor per frequency, or nullptr for 1
+};
+
+// Lattice spacing, cosine count and sub-strata of one random stratum, and its random stream.
+struct StratumDraw {
+  double inverse_spacing;
+  float spacing;
+  std::uint32_t first_substratum;
+  std::uint32_t cosines;
+  std::uint32_t stream;  // cell_key(..., Stream::phases) of the stratum
+};
+
+struct StratumSum {
+  float sum;            // sum_i w_i sum_j a_j cos(2 pi f_ij.(x - x_i) + phi_ij), equation (1)
+  float window_square;  // sum_i w_i^2, for the envelope normalisation
+};
+
+// One random stratum of equation (1) at p, before its amplitude A_S. Lattice nodes on the integer
+// multiples of Delta_S (section 3.4): the nearest node is a 64-bit integer and the offset from it
+// is taken in double before going to float, so p = 1e7 is as precise as p = 0 (DESIGN.md section
+// 4). With |offset| <= 1/2 per axis the window (radius 1.5) reaches the 3 x 3 nodes around it only:
+// I = 9. `axes` (Filtered only): the footprint's axes dpdx, dpdy for frequency clamping (section
+// 6.4).
+template <bool Filtered>
+inline StratumSum stratum_sum(const StratumTables& tables, const StratumDraw& stratum,
+                              const std::array<float, kWindowTerms>& window, Vec2d p,
+                              const std::array<float, 4>& axes) noexcept {
+  const double u = p.x * stratum.inverse_spacing;
+  const double v = p.y * stratum.inverse_spacing;
+  const double node_x = std::floor(u + 0.5);
+  const double node_y = std::floor(v + 0.5);
+  const auto cell_x = static_cast<std::int64_t>(node_x);
+  const auto cell_y = static_cast<std::int64_t>(node_y);
+  const auto offset_x = static_cast<float>(u - node_x);
+  const auto offset_y = static_cast<float>(v - node_y);
+  StratumSum result{0.0f, 0.0f};
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const float rx = offset_x - static_cast<float>(dx);
+      const float ry = offset_y - static_cast<float>(dy);
+      const float w = window_from_square(window, rx * rx + ry * ry);
+      if (w <= 0.0f) continue;
+      // Phases are taken relative to the node, cos(2 pi f.(x - x_i) + phi): with phi uniform this
+      // is the same random field as cos(2 pi f.x + phi) (section 3.2's Gabor convention), and
+      // x - x_i stays small wherever x is.
+      const float px = rx * stratum.spacing;
+      const float py = ry * stratum.spacing;
+      CounterRng rng(cell_key(cell_x + dx, cell_y + dy, stratum.stream, Stream::phases));
+      float local = 0.0f;
+      for (std::uint32_t j = 0; j < stratum.cosines; ++j) {
+        // One draw per cosine, in its own statement (hash.hpp): its top 12 bits are the phase (a
+        // 1/4096 turn grid), its low 20 bits pick one frequency of sub-stratum j uniformly by
+        // multiply-shift (section 4.3; bias <= count / 2^20).
+        const std::uint32_t draw = rng.next();
+        const std::uint32_t k = stratum.first_substratum + j;
+        const std::uint32_t pick =
+            tables.substratum_first[k] +
+            static_cast<std::uint32_t>(
+                (static_cast<std::uint64_t>(draw & 0xfffffu) * tables.substratum_count[k]) >> 20u);
+        const float fx = tables.frequencies[2 * pick];
+        const float fy = tables.frequencies[2 * pick + 1];
+        const float phase = static_cast<float>(draw >> 20u) * (1.0f / 4096.0f);
+        float c = cos_turns(fx * px + fy * py + phase);
+        if constexpr (Filtered) {
+          const float along_a = std::abs(fx * axes[0] + fy * axes[1]);
+          const float along_b = std::abs(fx * axes[2] + fy * axes[3]);
+          c *= clamp_weight(along_a > along_b ? along_a : along_b);
+        }
+        local += tables.weights != nullptr ? tables.weights[pick] * c : c;
+      }
+      result.sum += w * local;
+      result.window_square += w * w;
+    }
+  }
+  return result;
 }
 
 }  // namespace stochtex::lrp

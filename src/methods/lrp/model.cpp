@@ -221,77 +221,26 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
                                 static_cast<std::int64_t>(s) % data_.strata, seed, Stream::phases);
   const float mean_envelope = static_cast<float>(mean_envelope_);
   const bool normalise = data_.normalise_envelope;
-  const std::uint32_t* substratum_first = data_.substratum_first.data();
-  const std::uint32_t* substratum_count = data_.substratum_count.data();
-  const float* frequencies = data_.frequencies.data();
-  const float* weights = data_.weights.data();
+  const StratumTables tables{data_.substratum_first.data(), data_.substratum_count.data(),
+                             data_.frequencies.data(), data_.weights.data()};
 
   for (std::size_t index = 0; index < positions.size(); ++index) {
     const Vec2d p = positions[index];
-    float axis_a_x = 0.0f, axis_a_y = 0.0f, axis_b_x = 0.0f, axis_b_y = 0.0f;
-    if constexpr (Filtered) {
-      axis_a_x = static_cast<float>(footprints[index].dpdx.x);
-      axis_a_y = static_cast<float>(footprints[index].dpdx.y);
-      axis_b_x = static_cast<float>(footprints[index].dpdy.x);
-      axis_b_y = static_cast<float>(footprints[index].dpdy.y);
-    }
+    std::array<float, 4> axes{};
+    if constexpr (Filtered)
+      axes = {static_cast<float>(footprints[index].dpdx.x),
+              static_cast<float>(footprints[index].dpdx.y),
+              static_cast<float>(footprints[index].dpdy.x),
+              static_cast<float>(footprints[index].dpdy.y)};
     float noise[Channels] = {};
     for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
       const RuntimeStratum& stratum = runtime_strata_[s];
       if (stratum.amplitude == 0.0f) continue;
-      // Lattice nodes on the integer multiples of Delta_S (section 3.4). The nearest node is a
-      // 64-bit integer and the offset from it is taken in double before going to float, so
-      // p = 1e7 is as precise as p = 0 (DESIGN.md section 4). With |offset| <= 1/2 per axis, the
-      // window (radius 1.5) reaches the 3 x 3 nodes around it only: I = 9 in equation (1).
-      const double u = p.x * stratum.inverse_spacing;
-      const double v = p.y * stratum.inverse_spacing;
-      const double node_x = std::floor(u + 0.5);
-      const double node_y = std::floor(v + 0.5);
-      const auto cell_x = static_cast<std::int64_t>(node_x);
-      const auto cell_y = static_cast<std::int64_t>(node_y);
-      const auto offset_x = static_cast<float>(u - node_x);
-      const auto offset_y = static_cast<float>(v - node_y);
-      float sum = 0.0f;
-      float window_square = 0.0f;
-      for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const float rx = offset_x - static_cast<float>(dx);
-          const float ry = offset_y - static_cast<float>(dy);
-          const float r2 = rx * rx + ry * ry;
-          const float w = window_from_square(window_coefficients_, r2);
-          if (w <= 0.0f) continue;
-          // Phases are taken relative to the node, cos(2 pi f.(x - x_i) + phi): with phi
-          // uniform this is the same random field as cos(2 pi f.x + phi) (section 3.2's Gabor
-          // convention), and x - x_i stays small wherever x is.
-          const float px = rx * stratum.spacing_float;
-          const float py = ry * stratum.spacing_float;
-          CounterRng rng(cell_key(cell_x + dx, cell_y + dy, stratum_seeds[s], Stream::phases));
-          float local = 0.0f;
-          for (std::uint32_t j = 0; j < stratum.cosines; ++j) {
-            // One draw per cosine, in its own statement (hash.hpp): its top 12 bits are the
-            // phase (a 1/4096 turn grid), its low 20 bits pick one frequency of sub-stratum j
-            // uniformly by multiply-shift (section 4.3; bias <= count / 2^20).
-            const std::uint32_t draw = rng.next();
-            const std::uint32_t k = stratum.first_substratum + j;
-            const std::uint32_t pick =
-                substratum_first[k] +
-                static_cast<std::uint32_t>(
-                    (static_cast<std::uint64_t>(draw & 0xfffffu) * substratum_count[k]) >> 20u);
-            const float fx = frequencies[2 * pick];
-            const float fy = frequencies[2 * pick + 1];
-            const float phase = static_cast<float>(draw >> 20u) * (1.0f / 4096.0f);
-            float c = cos_turns(fx * px + fy * py + phase);
-            if constexpr (Filtered) {
-              const float along_a = std::abs(fx * axis_a_x + fy * axis_a_y);
-              const float along_b = std::abs(fx * axis_b_x + fy * axis_b_y);
-              c *= clamp_weight(along_a > along_b ? along_a : along_b);
-            }
-            local += weights[pick] * c;
-          }
-          sum += w * local;
-          window_square += w * w;
-        }
-      }
+      const auto [sum, window_square] =
+          stratum_sum<Filtered>(tables,
+                                {stratum.inverse_spacing, stratum.spacing_float,
+                                 stratum.first_substratum, stratum.cosines, stratum_seeds[s]},
+                                window_coefficients_, p, axes);
       float scale = stratum.amplitude;
       // The variance of equation (1) at x is A_S^2 J_S / 2 sum_i w_i(x)^2, which varies over a
       // lattice cell (measured in docs/methods/lrp.md); dividing by sqrt(sum_i w_i^2) over its

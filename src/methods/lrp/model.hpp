@@ -42,7 +42,7 @@ struct LrpData {
   std::vector<float> frequencies;  // (count x 2) cycles per pixel, |f_x|, |f_y| <= 1/2
   // (count) amplitude of each frequency relative to its stratum's A_S (1 as published).
   std::vector<float> weights;
-  StructureData structure;         // section 5; empty when r = 0
+  StructureData structure;  // section 5; empty when r = 0
 };
 
 class LrpModel {

@@ -255,48 +255,19 @@ float turbulence_noise(const StructureData& s,
                        float mean_envelope, Vec2d p, std::uint32_t seed, int axis) noexcept {
   // The local random-phase noise of each turbulence stratum, drawn as LrpModel::evaluate_typed
   // draws a random stratum (eq. 1, section 4.3, envelope normalised), on its own streams.
+  const StratumTables tables{s.turbulence_first.data(), s.turbulence_count.data(),
+                             s.turbulence_frequencies.data(), nullptr};
   float total = 0.0f;
   std::uint32_t first_substratum = 0;
   for (std::size_t t = 0; t < s.turbulence_strata.size(); ++t) {
     const TurbulenceStratum& stratum = s.turbulence_strata[t];
     const std::uint32_t stratum_seed =
         cell_key(kTurbulenceStreamBase + axis, static_cast<std::int64_t>(t), seed, Stream::phases);
-    const double u = p.x / stratum.spacing;
-    const double v = p.y / stratum.spacing;
-    const double node_x = std::floor(u + 0.5);
-    const double node_y = std::floor(v + 0.5);
-    const auto cell_x = static_cast<std::int64_t>(node_x);
-    const auto cell_y = static_cast<std::int64_t>(node_y);
-    const auto offset_x = static_cast<float>(u - node_x);
-    const auto offset_y = static_cast<float>(v - node_y);
-    float sum = 0.0f;
-    float window_square = 0.0f;
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const float rx = offset_x - static_cast<float>(dx);
-        const float ry = offset_y - static_cast<float>(dy);
-        const float w = window_from_square(window_coefficients, rx * rx + ry * ry);
-        if (w <= 0.0f) continue;
-        const float px = rx * stratum.spacing;
-        const float py = ry * stratum.spacing;
-        CounterRng rng(cell_key(cell_x + dx, cell_y + dy, stratum_seed, Stream::phases));
-        float local = 0.0f;
-        for (int j = 0; j < stratum.cosines; ++j) {
-          // One draw per cosine in its own statement: 12 bits of phase, 20 bits of frequency.
-          const std::uint32_t draw = rng.next();
-          const std::uint32_t k = first_substratum + static_cast<std::uint32_t>(j);
-          const std::uint32_t pick =
-              s.turbulence_first[k] +
-              static_cast<std::uint32_t>(
-                  (static_cast<std::uint64_t>(draw & 0xfffffu) * s.turbulence_count[k]) >> 20u);
-          const float phase = static_cast<float>(draw >> 20u) * (1.0f / 4096.0f);
-          local += cos_turns(s.turbulence_frequencies[2 * pick] * px +
-                             s.turbulence_frequencies[2 * pick + 1] * py + phase);
-        }
-        sum += w * local;
-        window_square += w * w;
-      }
-    }
+    const auto [sum, window_square] =
+        stratum_sum<false>(tables,
+                           {1.0 / stratum.spacing, stratum.spacing, first_substratum,
+                            static_cast<std::uint32_t>(stratum.cosines), stratum_seed},
+                           window_coefficients, p, {});
     total += std::abs(stratum.amplitude * std::sqrt(mean_envelope / window_square) * sum);
     first_substratum += static_cast<std::uint32_t>(stratum.cosines);
   }
