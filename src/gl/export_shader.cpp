@@ -1,6 +1,7 @@
 // `stochtex export-shader`: each method's GLSL library (the renderer's own code, with its data
 // read from textures instead of storage buffers), the data as RGBA float images and a README.
 
+#include <algorithm>
 #include <sstream>
 #include <string>
 #include <variant>
@@ -108,18 +109,14 @@ ShaderExport export_tiling(const tiling::TilingModel& model) {
 }
 
 ShaderExport export_lrp(const lrp::LrpModel& model) {
-  if (!model.data().structure.empty())
-    throw Error(ErrorCode::invalid_input,
-                "export-shader: this lrp model keeps the exemplar's structure (ratio > 0), which "
-                "the exported shader does not cover yet; export a model analysed with ratio=0 or "
-                "render it with `stochtex render --backend gl`");
   const gl::LrpGlsl glsl = gl::lrp_glsl(model);
   constexpr std::uint32_t kExactFloatIntegers = 1u << 24;
-  for (const std::uint32_t value : glsl.substrata)
-    if (value >= kExactFloatIntegers)
-      throw Error(ErrorCode::invalid_input,
-                  "export-shader: this lrp model has more than 2^24 frequencies, which a float "
-                  "texture cannot index exactly");
+  const auto too_large = [](std::uint32_t value) { return value >= kExactFloatIntegers; };
+  if (std::any_of(glsl.substrata.begin(), glsl.substrata.end(), too_large) ||
+      std::any_of(glsl.turbulence_substrata.begin(), glsl.turbulence_substrata.end(), too_large))
+    throw Error(ErrorCode::invalid_input,
+                "export-shader: this lrp model has more than 2^24 frequencies, which a float "
+                "texture cannot index exactly");
   const std::vector<Texture> textures = {{"lrp_tables", "stochtex_lrp_tables"}};
   ShaderExport result;
   result.glsl_file_name = "stochtex_lrp.glsl";
@@ -130,9 +127,11 @@ ShaderExport export_lrp(const lrp::LrpModel& model) {
   result.images.push_back({"lrp_tables", gl::lrp_tables_image(glsl)});
   result.readme = export_readme(
       "lrp", "local random-phase noise", result.glsl_file_name, textures,
-      "Texel i < F of `lrp_tables.exr` holds frequency i (R, G: cycles per pixel; B: its\n"
-      "weight); texel F + k holds sub-stratum k (R, G: first frequency and count), F being\n"
-      "LRP_SUBSTRATA_TEXEL. Keep |p| below ~1e4 for full float precision.");
+      "`lrp_tables.exr` holds one table entry per texel, the tables one after the other from\n"
+      "the texels LRP_SUBSTRATA_TEXEL, LRP_STRUCTURE_TEXEL, ... of the shader: frequencies\n"
+      "(R, G: cycles per pixel; B: weight), sub-strata (R, G: first frequency and count), and\n"
+      "for a model that keeps structure (ratio > 0) its cosines and turbulence tables. Keep |p|\n"
+      "below ~1e4 for full float precision.");
   return result;
 }
 

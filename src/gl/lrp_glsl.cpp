@@ -8,6 +8,28 @@
 
 namespace stochtex::gl {
 
+namespace {
+
+// The first texel of each table in the exported tables texture, one entry per texel: frequencies
+// (f_x, f_y, weight), sub-strata (first, count), structure cosines (f_x, f_y, amplitude, phase),
+// turbulence frequencies (f_x, f_y), turbulence sub-strata (first, count).
+struct TableLayout {
+  std::size_t substrata, structure, turbulence_frequencies, turbulence_substrata, end;
+};
+
+TableLayout table_layout(const LrpGlsl& glsl) {
+  TableLayout layout{};
+  layout.substrata = glsl.frequencies.size() / 3;
+  layout.structure = layout.substrata + glsl.substrata.size() / 2;
+  layout.turbulence_frequencies = layout.structure + glsl.structure.size() / 4;
+  layout.turbulence_substrata =
+      layout.turbulence_frequencies + glsl.turbulence_frequencies.size() / 2;
+  layout.end = layout.turbulence_substrata + glsl.turbulence_substrata.size() / 2;
+  return layout;
+}
+
+}  // namespace
+
 LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   const lrp::LrpData& d = model.data();
   LrpGlsl glsl;
@@ -85,7 +107,9 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   constant("bool", "LRP_PLACEMENT", st.placement ? "true" : "false");
   constant("float", "LRP_TURBULENCE", glsl_float(st.turbulence));
   constant("int", "LRP_TURBULENCE_STRATA", glsl_int(static_cast<int>(st.turbulence_strata.size())));
-  // The size of the per-turbulence-stratum uniforms of lrp_render.glsl (never 0).
+  constant("int", "LRP_TURBULENCE_STREAM_BASE",
+           glsl_int(static_cast<int>(lrp::kTurbulenceStreamBase)));
+  // The size of the per-turbulence-stratum arrays of lrp_add_structure (never 0).
   constant("int", "LRP_TURBULENCE_ARRAY",
            glsl_int(std::max(1, static_cast<int>(turbulence_spacing.size()))));
   text += glsl_array("float", "LRP_TURBULENCE_SPACING", std::span<const float>(turbulence_spacing),
@@ -112,41 +136,69 @@ vec3 lrp_frequency(uint index) {
 uvec2 lrp_substratum(int index) {
   return uvec2(lrp_substrata[2 * index], lrp_substrata[2 * index + 1]);
 }
+layout(std430, binding = 3) readonly buffer LrpStructure { vec4 lrp_structure[]; };
+layout(std430, binding = 4) readonly buffer LrpTurbulenceFrequencies {
+  vec2 lrp_turbulence_frequencies[];
+};
+layout(std430, binding = 5) readonly buffer LrpTurbulenceSubstrata {
+  uvec2 lrp_turbulence_substrata[];
+};
+vec4 lrp_structure_cosine(int index) { return lrp_structure[index]; }
+vec2 lrp_turbulence_frequency(uint index) { return lrp_turbulence_frequencies[index]; }
+uvec2 lrp_turbulence_substratum(int index) { return lrp_turbulence_substrata[index]; }
 )glsl";
   } else {
+    const TableLayout layout = table_layout(glsl);
     readers = "uniform sampler2D stochtex_lrp_tables;\nconst int LRP_TABLES_WIDTH = " +
               std::to_string(kDataTextureWidth) +
-              ";\nconst int LRP_SUBSTRATA_TEXEL = " + std::to_string(glsl.frequencies.size() / 3) +
-              ";\n" + R"glsl(
+              ";\nconst int LRP_SUBSTRATA_TEXEL = " + std::to_string(layout.substrata) +
+              ";\nconst int LRP_STRUCTURE_TEXEL = " + std::to_string(layout.structure) +
+              ";\nconst int LRP_TURBULENCE_FREQUENCY_TEXEL = " +
+              std::to_string(layout.turbulence_frequencies) +
+              ";\nconst int LRP_TURBULENCE_SUBSTRATUM_TEXEL = " +
+              std::to_string(layout.turbulence_substrata) + ";\n" + R"glsl(
 vec4 lrp_table_texel(int index) {
   return texelFetch(stochtex_lrp_tables,
                     ivec2(index % LRP_TABLES_WIDTH, index / LRP_TABLES_WIDTH), 0);
 }
 vec3 lrp_frequency(uint index) { return lrp_table_texel(int(index)).xyz; }
 uvec2 lrp_substratum(int index) { return uvec2(lrp_table_texel(LRP_SUBSTRATA_TEXEL + index).xy); }
+vec4 lrp_structure_cosine(int index) { return lrp_table_texel(LRP_STRUCTURE_TEXEL + index); }
+vec2 lrp_turbulence_frequency(uint index) {
+  return lrp_table_texel(LRP_TURBULENCE_FREQUENCY_TEXEL + int(index)).xy;
+}
+uvec2 lrp_turbulence_substratum(int index) {
+  return uvec2(lrp_table_texel(LRP_TURBULENCE_SUBSTRATUM_TEXEL + index).xy);
+}
 )glsl";
   }
   return std::string(kRandomGlsl) + glsl.constants + readers + kLrpGlsl;
 }
 
 ImageF lrp_tables_image(const LrpGlsl& glsl) {
-  // Texels [0, F): (f_x, f_y, weight, 0); texels [F, F + S): (first, count, 0, 0) as floats,
-  // exact below 2^24 (LrpModel::from_record).
-  const std::size_t frequencies = glsl.frequencies.size() / 3;
-  const std::size_t substrata = glsl.substrata.size() / 2;
-  const std::size_t texels = std::max<std::size_t>(frequencies + substrata, 1);
+  const TableLayout layout = table_layout(glsl);
   ImageF image(kDataTextureWidth,
-               static_cast<int>((texels + kDataTextureWidth - 1) / kDataTextureWidth), 4);
+               static_cast<int>((std::max<std::size_t>(layout.end, 1) + kDataTextureWidth - 1) /
+                                kDataTextureWidth),
+               4);
   const auto texel = [&](std::size_t index, int c) -> float& {
     return image.at(static_cast<int>(index % kDataTextureWidth),
                     static_cast<int>(index / kDataTextureWidth), c);
   };
-  for (std::size_t i = 0; i < frequencies; ++i)
+  // Integers as floats are exact below 2^24 (export_shader checks).
+  for (std::size_t i = 0; i < layout.substrata; ++i)
     for (int c = 0; c < 3; ++c) texel(i, c) = glsl.frequencies[3 * i + static_cast<std::size_t>(c)];
-  for (std::size_t i = 0; i < substrata; ++i) {
-    texel(frequencies + i, 0) = static_cast<float>(glsl.substrata[2 * i]);
-    texel(frequencies + i, 1) = static_cast<float>(glsl.substrata[2 * i + 1]);
-  }
+  for (std::size_t i = 0; i < glsl.substrata.size(); ++i)
+    texel(layout.substrata + i / 2, static_cast<int>(i % 2)) =
+        static_cast<float>(glsl.substrata[i]);
+  for (std::size_t i = 0; i < glsl.structure.size(); ++i)
+    texel(layout.structure + i / 4, static_cast<int>(i % 4)) = glsl.structure[i];
+  for (std::size_t i = 0; i < glsl.turbulence_frequencies.size(); ++i)
+    texel(layout.turbulence_frequencies + i / 2, static_cast<int>(i % 2)) =
+        glsl.turbulence_frequencies[i];
+  for (std::size_t i = 0; i < glsl.turbulence_substrata.size(); ++i)
+    texel(layout.turbulence_substrata + i / 2, static_cast<int>(i % 2)) =
+        static_cast<float>(glsl.turbulence_substrata[i]);
   return image;
 }
 

@@ -30,9 +30,11 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model);
 std::string lrp_library_source(const LrpGlsl& glsl,
                                DataSource source = DataSource::storage_buffers);
 
-// The tables as one RGBA image for an exported shader: texel i < F holds frequency i (f_x, f_y,
-// weight), texel F + k sub-stratum k (first, count, as floats: exact below 2^24, which
-// export_shader checks), F = LRP_SUBSTRATA_TEXEL.
+// The tables as one RGBA image for an exported shader, one entry per texel, one table after the
+// other: frequencies (f_x, f_y, weight), sub-strata (first, count), and for section 5 the
+// structure cosines (f_x, f_y, amplitude, phase), turbulence frequencies (f_x, f_y) and turbulence
+// sub-strata (first, count); the shader's LRP_*_TEXEL constants give where each starts. Counts
+// are floats, exact below 2^24 (export_shader checks).
 ImageF lrp_tables_image(const LrpGlsl& glsl);
 
 }  // namespace stochtex::gl

@@ -25,44 +25,6 @@ uniform uvec2 turbulence_node[LRP_TURBULENCE_ARRAY];
 uniform vec2 turbulence_offset[LRP_TURBULENCE_ARRAY];
 uniform uint turbulence_seed[2 * LRP_TURBULENCE_ARRAY];
 
-// p: position relative to the grid origin.
-void lrp_add_structure(vec2 p, bool filtered, vec2 axis_a, vec2 axis_b, inout vec4 noise) {
-  vec2 q = structure_origin + p;
-  if (LRP_TURBULENCE > 0.0) {
-    float n[2] = float[2](0.0, 0.0);
-    for (int axis = 0; axis < 2; ++axis)
-      for (int t = 0; t < LRP_TURBULENCE_STRATA; ++t)
-        n[axis] += lrp_turbulence_stratum(t, turbulence_offset[t] + p / LRP_TURBULENCE_SPACING[t],
-                                          turbulence_node[t],
-                                          turbulence_seed[axis * LRP_TURBULENCE_ARRAY + t]);
-    q += vec2(LRP_TURBULENCE * n[0], LRP_TURBULENCE * n[1]);
-  }
-  if (!LRP_PLACEMENT) {
-    lrp_add_fixed_phase(q, filtered, axis_a, axis_b, 1.0, noise);
-    return;
-  }
-  vec2 g = placement_offset + p / (0.5 * LRP_STRUCTURE_PERIOD);
-  vec2 base = floor(g);
-  float weight_x = lrp_blend_weight(g.x - base.x);
-  float weight_y = lrp_blend_weight(g.y - base.y);
-  uvec2 block = placement_block + uvec2(ivec2(base));
-  float weights[4] = float[4]((1.0 - weight_x) * (1.0 - weight_y), weight_x * (1.0 - weight_y),
-                              (1.0 - weight_x) * weight_y, weight_x * weight_y);
-  float square_sum = 0.0;
-  for (int i = 0; i < 4; ++i) square_sum += weights[i] * weights[i];
-  float normalisation = 1.0 / sqrt(square_sum);
-  for (int i = 0; i < 4; ++i) {
-    float w = weights[i];
-    if (w <= 0.0) continue;
-    CounterRng rng = CounterRng(
-        cell_key(block.x + uint(i & 1), block.y + uint(i >> 1), seed, STREAM_OFFSETS), 0u);
-    float shift_x = rng_uniform(rng);
-    float shift_y = rng_uniform(rng);
-    lrp_add_fixed_phase(q + vec2(shift_x, shift_y) * LRP_STRUCTURE_PERIOD, filtered, axis_a,
-                        axis_b, w * normalisation, noise);
-  }
-}
-
 void main() {
   ivec2 local_pixel = ivec2(gl_GlobalInvocationID.xy);
   if (local_pixel.x >= dispatch_size.x || local_pixel.y >= dispatch_size.y) return;
@@ -76,7 +38,9 @@ void main() {
     noise[LRP_STRATUM_CHANNEL[s]] += lrp_stratum_noise(s, u, origin_node[s], stratum_seed[s],
                                                        filtered, axis_a, axis_b);
   }
-  if (LRP_HAS_STRUCTURE) lrp_add_structure(p, filtered, axis_a, axis_b, noise);
+  if (LRP_HAS_STRUCTURE)
+    lrp_add_structure(p, structure_origin, placement_block, placement_offset, turbulence_node,
+                      turbulence_offset, turbulence_seed, seed, filtered, axis_a, axis_b, noise);
   vec4 value = lrp_colour(noise);
   int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * LRP_CHANNELS;
   for (int c = 0; c < LRP_CHANNELS; ++c) result[index + c] = value[c];

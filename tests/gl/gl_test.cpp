@@ -207,6 +207,11 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
       {"tiling", "red_fleece_128.png", {}, 48},
       {"tiling", "metal_grey_256.png", {{"transport", 1}}, 48},
       {"lrp", "metal_grey_256.png", {{"cosines", 10}}, 32},
+      // Section 5: fixed phases, turbulence and random placement.
+      {"lrp",
+       "wool_knit_blue_256.png",
+       {{"cosines", 10}, {"ratio", 0.3}, {"turbulence", 2.0}, {"placement", 1}},
+       32},
       {"gabor", "red_fleece_128.png", {{"impulses", 256}}, 24},
   };
   const gl::Context context;

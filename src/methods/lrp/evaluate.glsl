@@ -94,17 +94,9 @@ vec4 lrp_colour(vec4 noise) {
   return value;
 }
 
-// Section 5, the twin of structure_model.cpp: storage buffers `lrp_structure` (f_x, f_y,
-// amplitude, phase per cosine; channel-major, then block, then cosine),
-// `lrp_turbulence_frequencies` and `lrp_turbulence_substrata`.
-layout(std430, binding = 3) readonly buffer LrpStructure { float lrp_structure[]; };
-layout(std430, binding = 4) readonly buffer LrpTurbulenceFrequencies {
-  float lrp_turbulence_frequencies[];
-};
-layout(std430, binding = 5) readonly buffer LrpTurbulenceSubstrata {
-  uint lrp_turbulence_substrata[];
-};
-
+// Section 5, the twin of structure_model.cpp: table readers `vec4 lrp_structure_cosine(int)`
+// (f_x, f_y, amplitude, phase; channel-major, then block, then cosine),
+// `vec2 lrp_turbulence_frequency(uint)` and `uvec2 lrp_turbulence_substratum(int)` (first, count).
 const uint STREAM_OFFSETS = 0x85ebca6bu;
 
 // add_fixed_phase: n_R at q (exemplar pixels; the caller reduces q modulo the period, so the node
@@ -130,15 +122,14 @@ void lrp_add_fixed_phase(vec2 q, bool filtered, vec2 axis_a, vec2 axis_b, float 
       int block = ((cell.y + dy) & (LRP_STRUCTURE_BLOCKS - 1)) * LRP_STRUCTURE_BLOCKS +
                   ((cell.x + dx) & (LRP_STRUCTURE_BLOCKS - 1));
       for (int c = 0; c < LRP_CHANNELS; ++c) {
-        int base = 4 * ((c * LRP_STRUCTURE_BLOCKS * LRP_STRUCTURE_BLOCKS + block) *
-                        LRP_STRUCTURE_COSINES);
+        int base =
+            (c * LRP_STRUCTURE_BLOCKS * LRP_STRUCTURE_BLOCKS + block) * LRP_STRUCTURE_COSINES;
         float local = 0.0;
         for (int j = 0; j < LRP_STRUCTURE_COSINES; ++j) {
-          int k = base + 4 * j;
-          float fx = lrp_structure[k];
-          float fy = lrp_structure[k + 1];
-          float value =
-              lrp_structure[k + 2] * lrp_cos_turns(fx * px + fy * py + lrp_structure[k + 3]);
+          vec4 cosine = lrp_structure_cosine(base + j);
+          float fx = cosine.x;
+          float fy = cosine.y;
+          float value = cosine.z * lrp_cos_turns(fx * px + fy * py + cosine.w);
           if (filtered) {
             float along_a = abs(fx * axis_a.x + fy * axis_a.y);
             float along_b = abs(fx * axis_b.x + fy * axis_b.y);
@@ -179,11 +170,11 @@ float lrp_turbulence_stratum(int t, vec2 u, uvec2 origin_node, uint stratum_seed
         int k = LRP_TURBULENCE_FIRST[t] + j;
         uint high;
         uint low;
-        umulExtended(draw & 0xfffffu, lrp_turbulence_substrata[2 * k + 1], high, low);
-        uint pick = lrp_turbulence_substrata[2 * k] + ((high << 12u) | (low >> 20u));
+        uvec2 substratum = lrp_turbulence_substratum(k);
+        umulExtended(draw & 0xfffffu, substratum.y, high, low);
+        vec2 frequency = lrp_turbulence_frequency(substratum.x + ((high << 12u) | (low >> 20u)));
         float phase = float(draw >> 20u) * (1.0 / 4096.0);
-        local += lrp_cos_turns(lrp_turbulence_frequencies[2 * pick] * px +
-                               lrp_turbulence_frequencies[2 * pick + 1] * py + phase);
+        local += lrp_cos_turns(frequency.x * px + frequency.y * py + phase);
       }
       sum += w * local;
       window_square += w * w;
@@ -198,6 +189,54 @@ float lrp_blend_weight(float t) {
   return a * a * (3.0 - 2.0 * a);
 }
 
+// add_structure (structure_model.cpp) at p, a position relative to an origin whose values the
+// caller forms: `structure_origin`, the origin modulo the structure period; `placement_block`
+// (low 32 bits) and `placement_offset`, the placement block holding the origin and the origin's
+// position from it in half periods; per turbulence stratum the node nearest the origin (low 32
+// bits) and the origin's offset from it in lattice units; per axis and turbulence stratum the
+// stream. Section 5.2: turbulence x + sigma n_T(x) with n_T at the undisplaced, unshifted x, then
+// random placement of half-period blocks blended at their borders.
+void lrp_add_structure(vec2 p, vec2 structure_origin, uvec2 placement_block, vec2 placement_offset,
+                       uvec2 turbulence_node[LRP_TURBULENCE_ARRAY],
+                       vec2 turbulence_offset[LRP_TURBULENCE_ARRAY],
+                       uint turbulence_seed[2 * LRP_TURBULENCE_ARRAY], uint seed, bool filtered,
+                       vec2 axis_a, vec2 axis_b, inout vec4 noise) {
+  vec2 q = structure_origin + p;
+  if (LRP_TURBULENCE > 0.0) {
+    float n[2] = float[2](0.0, 0.0);
+    for (int axis = 0; axis < 2; ++axis)
+      for (int t = 0; t < LRP_TURBULENCE_STRATA; ++t)
+        n[axis] += lrp_turbulence_stratum(t, turbulence_offset[t] + p / LRP_TURBULENCE_SPACING[t],
+                                          turbulence_node[t],
+                                          turbulence_seed[axis * LRP_TURBULENCE_ARRAY + t]);
+    q += vec2(LRP_TURBULENCE * n[0], LRP_TURBULENCE * n[1]);
+  }
+  if (!LRP_PLACEMENT) {
+    lrp_add_fixed_phase(q, filtered, axis_a, axis_b, 1.0, noise);
+    return;
+  }
+  vec2 g = placement_offset + p / (0.5 * LRP_STRUCTURE_PERIOD);
+  vec2 base = floor(g);
+  float weight_x = lrp_blend_weight(g.x - base.x);
+  float weight_y = lrp_blend_weight(g.y - base.y);
+  uvec2 block = placement_block + uvec2(ivec2(base));
+  float weights[4] = float[4]((1.0 - weight_x) * (1.0 - weight_y), weight_x * (1.0 - weight_y),
+                              (1.0 - weight_x) * weight_y, weight_x * weight_y);
+  float square_sum = 0.0;
+  for (int i = 0; i < 4; ++i) square_sum += weights[i] * weights[i];
+  float normalisation = 1.0 / sqrt(square_sum);
+  for (int i = 0; i < 4; ++i) {
+    float w = weights[i];
+    if (w <= 0.0) continue;
+    CounterRng rng = CounterRng(
+        cell_key(block.x + uint(i & 1), block.y + uint(i >> 1), seed, STREAM_OFFSETS), 0u);
+    float shift_x = rng_uniform(rng);
+    float shift_y = rng_uniform(rng);
+    lrp_add_fixed_phase(q + vec2(shift_x, shift_y) * LRP_STRUCTURE_PERIOD, filtered, axis_a,
+                        axis_b, w * normalisation, noise);
+  }
+}
+
 // The engine-facing entry point (`stochtex export-shader`): p in exemplar pixels, its screen
 // derivatives (dFdx(p), dFdy(p) in a fragment shader; zero = no filtering) and a seed. The
 // strata's lattice nodes come from p in float: keep |p| below ~1e4 for full precision.
@@ -208,6 +247,22 @@ vec4 stochtex_lrp(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {
     uint stratum_seed = cell_key(uint(s / LRP_STRATA), uint(s % LRP_STRATA), seed, STREAM_PHASES);
     noise[LRP_STRATUM_CHANNEL[s]] += lrp_stratum_noise(s, p / LRP_STRATUM_SPACING[s], uvec2(0u),
                                                        stratum_seed, true, dpdx, dpdy);
+  }
+  if (LRP_HAS_STRUCTURE) {
+    // The origin is 0: the structure origin and placement block are 0, the placement grid is
+    // offset by half a block (add_structure), turbulence nodes come from p itself.
+    uvec2 nodes[LRP_TURBULENCE_ARRAY];
+    vec2 offsets[LRP_TURBULENCE_ARRAY];
+    uint seeds[2 * LRP_TURBULENCE_ARRAY];
+    for (int t = 0; t < LRP_TURBULENCE_ARRAY; ++t) {
+      nodes[t] = uvec2(0u);
+      offsets[t] = vec2(0.0);
+      for (int axis = 0; axis < 2; ++axis)
+        seeds[axis * LRP_TURBULENCE_ARRAY + t] =
+            cell_key(uint(LRP_TURBULENCE_STREAM_BASE + axis), uint(t), seed, STREAM_PHASES);
+    }
+    lrp_add_structure(p, vec2(0.0), uvec2(0u), vec2(-0.5), nodes, offsets, seeds, seed, true, dpdx,
+                      dpdy, noise);
   }
   return lrp_colour(noise);
 }
