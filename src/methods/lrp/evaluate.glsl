@@ -35,14 +35,17 @@ float lrp_window(float r2) {
   return sum * t * sqrt(t);
 }
 
-// One stratum's noise at `u`, the position in lattice units relative to the lattice node
-// `origin_node` (low 32 bits; formed on the CPU in double for the far part). `axis_a`, `axis_b`:
-// the footprint's axes in exemplar pixels, zero for point samples.
-float lrp_stratum_noise(int s, vec2 u, uvec2 origin_node, uint stratum_seed, bool filtered,
-                        vec2 axis_a, vec2 axis_b) {
+// stratum_sum (evaluate.hpp): (sum_i w_i sum_j a_j cos(...), sum_i w_i^2) of random stratum s, or
+// of turbulence stratum s when `turbulence`, at `u`, the position in lattice units relative to the
+// lattice node `origin_node` (low 32 bits; formed on the CPU in double for the far part).
+// `axis_a`, `axis_b`: the footprint's axes in exemplar pixels, used when `filtered`.
+vec2 lrp_stratum_sum(bool turbulence, int s, vec2 u, uvec2 origin_node, uint stratum_seed,
+                     bool filtered, vec2 axis_a, vec2 axis_b) {
   vec2 node = floor(u + 0.5);
   vec2 offset = u - node;
-  float spacing = LRP_STRATUM_SPACING[s];
+  float spacing = turbulence ? LRP_TURBULENCE_SPACING[s] : LRP_STRATUM_SPACING[s];
+  int cosines = turbulence ? LRP_TURBULENCE_COSINES[s] : LRP_STRATUM_COSINES[s];
+  int first = turbulence ? LRP_TURBULENCE_FIRST[s] : LRP_STRATUM_FIRST[s];
   float sum = 0.0;
   float window_square = 0.0;
   for (int dy = -1; dy <= 1; ++dy) {
@@ -56,14 +59,16 @@ float lrp_stratum_noise(int s, vec2 u, uvec2 origin_node, uint stratum_seed, boo
       uvec2 cell = origin_node + uvec2(ivec2(node) + ivec2(dx, dy));
       CounterRng rng = CounterRng(cell_key(cell.x, cell.y, stratum_seed, STREAM_PHASES), 0u);
       float local = 0.0;
-      for (int j = 0; j < LRP_STRATUM_COSINES[s]; ++j) {
+      for (int j = 0; j < cosines; ++j) {
         uint draw = rng_next(rng);
-        int k = LRP_STRATUM_FIRST[s] + j;
+        int k = first + j;
         uint high;
         uint low;
-        uvec2 substratum = lrp_substratum(k);
+        uvec2 substratum = turbulence ? lrp_turbulence_substratum(k) : lrp_substratum(k);
         umulExtended(draw & 0xfffffu, substratum.y, high, low);
-        vec3 frequency = lrp_frequency(substratum.x + ((high << 12u) | (low >> 20u)));
+        uint pick = substratum.x + ((high << 12u) | (low >> 20u));
+        vec3 frequency =
+            turbulence ? vec3(lrp_turbulence_frequency(pick), 1.0) : lrp_frequency(pick);
         float fx = frequency.x;
         float fy = frequency.y;
         float phase = float(draw >> 20u) * (1.0 / 4096.0);
@@ -79,9 +84,16 @@ float lrp_stratum_noise(int s, vec2 u, uvec2 origin_node, uint stratum_seed, boo
       window_square += w * w;
     }
   }
+  return vec2(sum, window_square);
+}
+
+// One random stratum's noise (equation 1 times A_S, envelope normalised when asked).
+float lrp_stratum_noise(int s, vec2 u, uvec2 origin_node, uint stratum_seed, bool filtered,
+                        vec2 axis_a, vec2 axis_b) {
+  vec2 result = lrp_stratum_sum(false, s, u, origin_node, stratum_seed, filtered, axis_a, axis_b);
   float scale = LRP_STRATUM_AMPLITUDE[s];
-  if (LRP_NORMALISE_ENVELOPE) scale *= sqrt(LRP_MEAN_ENVELOPE / window_square);
-  return scale * sum;
+  if (LRP_NORMALISE_ENVELOPE) scale *= sqrt(LRP_MEAN_ENVELOPE / result.y);
+  return scale * result.x;
 }
 
 // mean + basis * noise (equation 2 in the decorrelated colour space).
@@ -149,38 +161,8 @@ void lrp_add_fixed_phase(vec2 q, bool filtered, vec2 axis_a, vec2 axis_b, float 
 // turbulence_noise: sum_S |n_S| of turbulence stratum t's noise at `u` (lattice units relative to
 // `origin_node`), on the stream `stratum_seed`.
 float lrp_turbulence_stratum(int t, vec2 u, uvec2 origin_node, uint stratum_seed) {
-  vec2 node = floor(u + 0.5);
-  vec2 offset = u - node;
-  float spacing = LRP_TURBULENCE_SPACING[t];
-  float sum = 0.0;
-  float window_square = 0.0;
-  for (int dy = -1; dy <= 1; ++dy) {
-    for (int dx = -1; dx <= 1; ++dx) {
-      float rx = offset.x - float(dx);
-      float ry = offset.y - float(dy);
-      float w = lrp_window(rx * rx + ry * ry);
-      if (w <= 0.0) continue;
-      float px = rx * spacing;
-      float py = ry * spacing;
-      uvec2 cell = origin_node + uvec2(ivec2(node) + ivec2(dx, dy));
-      CounterRng rng = CounterRng(cell_key(cell.x, cell.y, stratum_seed, STREAM_PHASES), 0u);
-      float local = 0.0;
-      for (int j = 0; j < LRP_TURBULENCE_COSINES[t]; ++j) {
-        uint draw = rng_next(rng);
-        int k = LRP_TURBULENCE_FIRST[t] + j;
-        uint high;
-        uint low;
-        uvec2 substratum = lrp_turbulence_substratum(k);
-        umulExtended(draw & 0xfffffu, substratum.y, high, low);
-        vec2 frequency = lrp_turbulence_frequency(substratum.x + ((high << 12u) | (low >> 20u)));
-        float phase = float(draw >> 20u) * (1.0 / 4096.0);
-        local += lrp_cos_turns(frequency.x * px + frequency.y * py + phase);
-      }
-      sum += w * local;
-      window_square += w * w;
-    }
-  }
-  return abs(LRP_TURBULENCE_AMPLITUDE[t] * sqrt(LRP_MEAN_ENVELOPE / window_square) * sum);
+  vec2 result = lrp_stratum_sum(true, t, u, origin_node, stratum_seed, false, vec2(0.0), vec2(0.0));
+  return abs(LRP_TURBULENCE_AMPLITUDE[t] * sqrt(LRP_MEAN_ENVELOPE / result.y) * result.x);
 }
 
 // blend_weight: weight of block i + 1 against block i, a smoothstep over 1/8 of a block each side.
