@@ -34,16 +34,15 @@ BENCHMARK(BM_LrpAnalysis)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// One thread, point samples of a 128x128 grid, grey exemplar (one channel), L = 4.
-void BM_LrpRender(benchmark::State& state) {
-  const int cosines = static_cast<int>(state.range(0));
+// Times one-thread point samples of a 128x128 grid of the lrp model of the grey 256x256 exemplar
+// with `params`; false (and the benchmark skipped) when the analysis fails.
+bool time_lrp_render(benchmark::State& state, const ParamValues& params) {
   Model model;
   try {
-    model = analyze("lrp", crop_top_left(grey_exemplar(), 256).view(),
-                    {{"cosines", static_cast<double>(cosines)}}, 0);
+    model = analyze("lrp", crop_top_left(grey_exemplar(), 256).view(), params, 0);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
-    return;
+    return false;
   }
   RenderOptions options;
   options.threads = 1;
@@ -52,8 +51,14 @@ void BM_LrpRender(benchmark::State& state) {
   ImageF out(kRenderSide, kRenderSide, 1);
   time_samples(state, std::int64_t{kRenderSide} * kRenderSide,
                [&] { render(model, grid, kSeed, out.view(), options); });
-  const double per_sample = state.counters["ns_per_sample"];
-  state.counters["ns_per_call"] = per_sample / (9.0 * (cosines + 4));
+  return true;
+}
+
+// L = 4 strata, J cosines: a sample costs 9 (J + L) cosines and windows.
+void BM_LrpRender(benchmark::State& state) {
+  const int cosines = static_cast<int>(state.range(0));
+  if (!time_lrp_render(state, {{"cosines", static_cast<double>(cosines)}})) return;
+  state.counters["ns_per_call"] = state.counters["ns_per_sample"] / (9.0 * (cosines + 4));
 }
 BENCHMARK(BM_LrpRender)
     ->ArgName("cosines")
@@ -69,25 +74,10 @@ BENCHMARK(BM_LrpRender)
 void BM_LrpStructureRender(benchmark::State& state) {
   const double ratio = static_cast<double>(state.range(0)) / 100.0;
   const bool full = state.range(1) != 0;
-  Model model;
-  try {
-    model = analyze("lrp", crop_top_left(grey_exemplar(), 256).view(),
-                    {{"cosines", 50.0},
-                     {"ratio", ratio},
-                     {"turbulence", full ? 4.0 : 0.0},
-                     {"placement", full ? 1.0 : 0.0}},
-                    0);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
-  RenderOptions options;
-  options.threads = 1;
-  options.filter = false;
-  const Grid grid{{0.0, 0.0}, 1.0, kRenderSide, kRenderSide};
-  ImageF out(kRenderSide, kRenderSide, 1);
-  time_samples(state, std::int64_t{kRenderSide} * kRenderSide,
-               [&] { render(model, grid, kSeed, out.view(), options); });
+  time_lrp_render(state, {{"cosines", 50.0},
+                          {"ratio", ratio},
+                          {"turbulence", full ? 4.0 : 0.0},
+                          {"placement", full ? 1.0 : 0.0}});
 }
 BENCHMARK(BM_LrpStructureRender)
     ->ArgNames({"ratio_percent", "full"})
