@@ -15,6 +15,7 @@
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
 #include "spectral/adsn.hpp"
+#include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex {
@@ -22,22 +23,9 @@ namespace {
 
 const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
 
-struct Sample {
-  double mean = 0;
-  double deviation = 0;  // sample standard deviation of one measurement
-};
-
-Sample summarise(const std::vector<double>& values) {
-  const double n = static_cast<double>(values.size());
-  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / n;
-  double square = 0.0;
-  for (const double v : values) square += (v - mean) * (v - mean);
-  return {mean, std::sqrt(square / (n - 1.0))};
-}
-
-double pooled(const Sample& a, const Sample& b) {
-  return std::sqrt(0.5 * (a.deviation * a.deviation + b.deviation * b.deviation));
-}
+using test_support::pooled;
+using test_support::Sample;
+using test_support::summarise;
 
 ImageF render_noise(const Model& model, int width, int height, std::uint32_t seed,
                     double scale = 1.0, int supersample = 1, bool filter = true) {

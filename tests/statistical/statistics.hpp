@@ -25,6 +25,11 @@ inline Sample summarise(const std::vector<double>& values) {
   return {mean, std::sqrt(square / (n - 1.0))};
 }
 
+// The pooled standard deviation of two measurements' samples (equal counts).
+inline double pooled(const Sample& a, const Sample& b) {
+  return std::sqrt(0.5 * (a.deviation * a.deviation + b.deviation * b.deviation));
+}
+
 // Welch spectrum averaged over the images make(1) ... make(seeds): an estimate of the expected
 // spectrum of what `make` renders.
 template <typename Make>

@@ -22,6 +22,7 @@ namespace stochtex {
 namespace {
 
 using test_support::mean_spectrum;
+using test_support::pooled;
 using test_support::Sample;
 using test_support::summarise;
 
@@ -32,10 +33,6 @@ const std::vector<std::string> kGaussianExemplars = {
     "granite_color_256.png",   "roughcast_wall_256.png", "denim_256.png",
     "red_fleece_128.png"};
 constexpr int kSeeds = 6;
-
-double pooled(const Sample& a, const Sample& b) {
-  return std::sqrt(0.5 * (a.deviation * a.deviation + b.deviation * b.deviation));
-}
 
 ImageF render_texton(const Model& model, int width, int height, std::uint32_t seed,
                      double scale = 1.0, int supersample = 1) {
