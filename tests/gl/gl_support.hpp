@@ -3,11 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <string>
 
 #include "stochtex/gpu.hpp"
 #include "stochtex/stochtex.hpp"
+#include "test_support.hpp"
 
 namespace stochtex::gl_test {
 
@@ -32,9 +32,7 @@ inline ImageF render_gpu(const Model& model, const Grid& grid, std::uint32_t see
   return out;
 }
 
-inline bool same_bytes(const ImageF& a, const ImageF& b) {
-  return std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()) == 0;
-}
+using test_support::same_bytes;
 
 inline float max_difference(const ImageF& a, const ImageF& b) {
   float worst = 0.0f;

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <numbers>
 #include <numeric>
 #include <random>
@@ -16,9 +15,15 @@
 #include "methods/lrp/window.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/stochtex.hpp"
+#include "test_support.hpp"
 
 namespace stochtex::lrp {
 namespace {
+
+using test_support::expect_corruptions_rejected;
+using test_support::expect_record_rejected;
+using test_support::record_array;
+using test_support::same_bytes;
 
 TEST(LrpWindow, BesselMatchesTheStandardLibraryEverywhere) {
   // The tails are where a truncated series fails: at 3 pi (the window's centre) 5 terms of I_3
@@ -221,11 +226,6 @@ ImageF render_model(const Model& model, const Grid& grid, std::uint32_t seed, in
   return out;
 }
 
-bool same_bytes(const ImageF& a, const ImageF& b) {
-  return a.pixels().size() == b.pixels().size() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()) == 0;
-}
-
 TEST(LrpModelFile, RoundTripRendersTheSameBytes) {
   const Model& model = colour_model();
   const Model loaded = deserialize_model(serialize_model(model), "memory");
@@ -249,61 +249,44 @@ TEST(LrpModelFile, CorruptRecordsAreRejected) {
   const LrpModel& lrp = std::get<LrpModel>(colour_model().data().model);
   const ModelRecord good = lrp.to_record(colour_model().params());
   EXPECT_NO_THROW(LrpModel::from_record(good, "good"));
-  const auto rejects = [](ModelRecord record, const std::string& what) {
-    try {
-      LrpModel::from_record(record, "bad.stx");
-      ADD_FAILURE() << what << " was accepted";
-    } catch (const Error& error) {
-      EXPECT_EQ(error.code(), ErrorCode::format) << what;
-      EXPECT_NE(std::string(error.what()).find("bad.stx"), std::string::npos) << what;
-    }
-  };
-  const auto array = [](ModelRecord& record, const std::string& name) -> std::vector<float>& {
-    for (auto& a : record.arrays)
-      if (a.name == name) return a.values;
-    throw std::logic_error("no array " + name);
-  };
-  for (const auto& [name, value] :
-       std::vector<std::pair<std::string, double>>{{"channels", 5},
-                                                   {"channels", 2},
-                                                   {"strata", 0},
-                                                   {"strata", 17},
-                                                   {"strata", 2.5},
-                                                   {"envelope", 2},
-                                                   {"substrata", 1e12},
-                                                   {"frequencies", 0},
-                                                   {"frequencies", 1e12}}) {
-    ModelRecord record = good;
-    record.scalars[name] = value;
-    rejects(record, name + " = " + std::to_string(value));
-  }
+  expect_corruptions_rejected<LrpModel>(
+      good,
+      {{"channels", 5},
+       {"channels", 2},
+       {"strata", 0},
+       {"strata", 17},
+       {"strata", 2.5},
+       {"envelope", 2},
+       {"substrata", 1e12},
+       {"frequencies", 0},
+       {"frequencies", 1e12}},
+      {
+          {"mean", {0, NAN}},
+          {"colour_basis", {1, INFINITY}},
+          {"frequencies", {0, 0.75f}},
+          {"frequencies", {3, NAN}},
+          {"strata", {0, 0.0f}},     // zero cosines
+          {"strata", {0, 2.5f}},     // fractional cosines
+          {"strata", {1, -1.0f}},    // negative spacing
+          {"strata", {1, 0.0f}},     // zero spacing
+          {"strata", {2, -1.0f}},    // negative amplitude
+          {"strata", {2, 1e30f}},    // absurd amplitude
+          {"substrata", {0, 1e7f}},  // first frequency out of the table
+          {"substrata", {1, 0.0f}},  // empty sub-stratum
+          {"substrata", {1, 1e6f}},  // runs past the table
+          {"substrata", {0, -1.0f}},
+          {"weights", {0, -1.0f}},  // negative frequency weight
+          {"weights", {1, NAN}},
+      });
   {
     ModelRecord record = good;
     record.scalars.erase("strata");
-    rejects(record, "missing strata");
-  }
-  const std::vector<std::pair<std::string, std::pair<std::size_t, float>>> edits = {
-      {"mean", {0, NAN}},        {"colour_basis", {1, INFINITY}}, {"frequencies", {0, 0.75f}},
-      {"frequencies", {3, NAN}}, {"strata", {0, 0.0f}},  // zero cosines
-      {"strata", {0, 2.5f}},                             // fractional cosines
-      {"strata", {1, -1.0f}},                            // negative spacing
-      {"strata", {1, 0.0f}},                             // zero spacing
-      {"strata", {2, -1.0f}},                            // negative amplitude
-      {"strata", {2, 1e30f}},                            // absurd amplitude
-      {"substrata", {0, 1e7f}},                          // first frequency out of the table
-      {"substrata", {1, 0.0f}},                          // empty sub-stratum
-      {"substrata", {1, 1e6f}},                          // runs past the table
-      {"substrata", {0, -1.0f}},
-  };
-  for (const auto& [name, edit] : edits) {
-    ModelRecord record = good;
-    array(record, name)[edit.first] = edit.second;
-    rejects(record, name + "[" + std::to_string(edit.first) + "] = " + std::to_string(edit.second));
+    expect_record_rejected<LrpModel>(record, "missing strata");
   }
   {
     ModelRecord record = good;
-    array(record, "frequencies").pop_back();
-    rejects(record, "short frequency table");
+    record_array(record, "frequencies").pop_back();
+    expect_record_rejected<LrpModel>(record, "short frequency table");
   }
 }
 
@@ -447,52 +430,30 @@ TEST(LrpStructure, ModelFileRoundTripAndHostileRecords) {
   const ModelRecord good =
       std::get<LrpModel>(model.data().model).to_record(structure_model().params());
   EXPECT_NO_THROW(LrpModel::from_record(good, "good"));
-  const auto rejects = [](const ModelRecord& record, const std::string& what) {
-    try {
-      LrpModel::from_record(record, "bad.stx");
-      ADD_FAILURE() << what << " was accepted";
-    } catch (const Error& error) {
-      EXPECT_EQ(error.code(), ErrorCode::format) << what;
-      EXPECT_NE(std::string(error.what()).find("bad.stx"), std::string::npos) << what;
-    }
-  };
-  for (const auto& [name, value] :
-       std::vector<std::pair<std::string, double>>{{"structure_period", 12},
-                                                   {"structure_period", 1e9},
-                                                   {"structure_blocks", 3},
-                                                   {"structure_blocks", 4096},
-                                                   {"structure_cosines", 0},
-                                                   {"structure_cosines", 1e9},
-                                                   {"placement", 2},
-                                                   {"turbulence", -1},
-                                                   {"turbulence", NAN},
-                                                   {"turbulence_strata", 99},
-                                                   {"turbulence_substrata", 1e12},
-                                                   {"turbulence_frequencies", 0}}) {
-    ModelRecord record = good;
-    record.scalars[name] = value;
-    rejects(record, name + " = " + std::to_string(value));
-  }
-  const auto array = [](ModelRecord& record, const std::string& name) -> std::vector<float>& {
-    for (auto& candidate : record.arrays)
-      if (candidate.name == name) return candidate.values;
-    throw std::logic_error("no array " + name);
-  };
-  const std::vector<std::pair<std::string, std::pair<std::size_t, float>>> edits = {
-      {"structure_cosines", {0, 0.75f}},          // frequency above Nyquist
-      {"structure_cosines", {2, NAN}},            // amplitude
-      {"structure_cosines", {2, -1.0f}},          // negative amplitude
-      {"structure_cosines", {3, 7.0f}},           // phase outside [0, 1]
-      {"turbulence_strata", {0, 0.0f}},           // zero cosines
-      {"turbulence_strata", {1, 0.0f}},           // zero spacing
-      {"turbulence_substrata", {0, 1e7f}},        // outside the frequency table
-      {"turbulence_frequencies", {1, INFINITY}},  // non-finite frequency
-  };
-  for (const auto& [name, edit] : edits) {
-    ModelRecord record = good;
-    array(record, name)[edit.first] = edit.second;
-    rejects(record, name + "[" + std::to_string(edit.first) + "] = " + std::to_string(edit.second));
-  }
+  expect_corruptions_rejected<LrpModel>(
+      good,
+      {{"structure_period", 12},
+       {"structure_period", 1e9},
+       {"structure_blocks", 3},
+       {"structure_blocks", 4096},
+       {"structure_cosines", 0},
+       {"structure_cosines", 1e9},
+       {"placement", 2},
+       {"turbulence", -1},
+       {"turbulence", NAN},
+       {"turbulence_strata", 99},
+       {"turbulence_substrata", 1e12},
+       {"turbulence_frequencies", 0}},
+      {
+          {"structure_cosines", {0, 0.75f}},          // frequency above Nyquist
+          {"structure_cosines", {2, NAN}},            // amplitude
+          {"structure_cosines", {2, -1.0f}},          // negative amplitude
+          {"structure_cosines", {3, 7.0f}},           // phase outside [0, 1]
+          {"turbulence_strata", {0, 0.0f}},           // zero cosines
+          {"turbulence_strata", {1, 0.0f}},           // zero spacing
+          {"turbulence_substrata", {0, 1e7f}},        // outside the frequency table
+          {"turbulence_frequencies", {1, INFINITY}},  // non-finite frequency
+      });
 }
 
 TEST(LrpStructure, DeterministicWhateverTheThreadsAndSplits) {

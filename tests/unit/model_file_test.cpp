@@ -5,13 +5,13 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
 
 #include "stochtex/stochtex.hpp"
+#include "test_support.hpp"
 
 namespace stochtex {
 namespace {
@@ -72,7 +72,7 @@ TEST(ModelFile, RoundTripIsExact) {
     ImageF b(3, 1, channels);
     evaluate(model, points, {}, 5, a.view());
     evaluate(loaded, points, {}, 5, b.view());
-    EXPECT_EQ(0, std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()));
+    EXPECT_TRUE(test_support::same_bytes(a, b));
   }
 }
 

@@ -5,10 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 
 #include "stochtex/stochtex.hpp"
+#include "test_support.hpp"
 
 namespace stochtex {
 namespace {
@@ -35,10 +35,7 @@ ImageF render_with(const Grid& grid, std::uint32_t seed, int threads, int tile,
   return out;
 }
 
-bool same_bytes(const ImageF& a, const ImageF& b) {
-  return a.pixels().size() == b.pixels().size() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()) == 0;
-}
+using test_support::same_bytes;
 
 TEST(Render, BitIdenticalWhateverTheThreadsAndTiles) {
   for (const double scale : {1.0, 6.0}) {

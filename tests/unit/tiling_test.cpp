@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <iostream>
 #include <limits>
 #include <random>
@@ -22,9 +21,12 @@
 #include "methods/tiling/params.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/stochtex.hpp"
+#include "test_support.hpp"
 
 namespace stochtex::tiling {
 namespace {
+
+using test_support::same_bytes;
 
 constexpr double kSqrt3 = 1.7320508075688772;
 
@@ -377,11 +379,6 @@ ImageF render_model(const Model& model, const Grid& grid, std::uint32_t seed, in
   return out;
 }
 
-bool same_bytes(const ImageF& a, const ImageF& b) {
-  return a.pixels().size() == b.pixels().size() &&
-         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size_bytes()) == 0;
-}
-
 TEST(TilingModelFile, RoundTripIsExactForEveryLayout) {
   const Grid grid{{3.0, -7.0}, 1.5, 24, 20};
   for (const int channels : {1, 2, 3, 4})
@@ -398,15 +395,7 @@ TEST(TilingModelFile, RoundTripIsExactForEveryLayout) {
       }
 }
 
-void expect_rejected(const ModelRecord& record, const std::string& what) {
-  try {
-    TilingModel::from_record(record, "bad.stx");
-    ADD_FAILURE() << what << ": accepted";
-  } catch (const Error& error) {
-    EXPECT_EQ(error.code(), ErrorCode::format) << what;
-    EXPECT_NE(std::string(error.what()).find("'bad.stx'"), std::string::npos) << what;
-  }
-}
+constexpr auto expect_rejected = &test_support::expect_record_rejected<TilingModel>;
 
 TEST(TilingModelFile, CorruptRecordsAreRejectedWithAFormatError) {
   const Model model = analyse(structured_exemplar(16, 4, 8), {{"lut_size", 4}});
