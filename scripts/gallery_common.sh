@@ -23,3 +23,18 @@ gallery_filtering_row() {
   "$stochtex" render "$model" -o "$out/scale8_supersampled.png" --size "$size" --scale 8 \
     --seed 1 --supersample 16
 }
+
+# gallery_preview_row NAME METHOD PREVIEW: for the corpus exemplar NAME, the exemplar, its Gaussian
+# version, the model's `info --export` picture PREVIEW.png and a render, as NAME_exemplar.png,
+# NAME_gaussian.png, NAME_PREVIEW.png and NAME_noise.png (256x256, seed 1); the model stays in
+# $work/NAME.stx.
+gallery_preview_row() {
+  local name=$1 method=$2 preview=$3
+  local exemplar="$textures/$name.png"
+  cp "$exemplar" "$out/${name}_exemplar.png"
+  "$stochtex" gaussian "$exemplar" -o "$out/${name}_gaussian.png" --size 256x256 --seed 1
+  "$stochtex" analyze "$exemplar" --method "$method" -o "$work/$name.stx"
+  "$stochtex" info "$work/$name.stx" --export "$work" >/dev/null
+  cp "$work/$preview.png" "$out/${name}_$preview.png"
+  "$stochtex" render "$work/$name.stx" -o "$out/${name}_noise.png" --size 256x256 --seed 1
+}

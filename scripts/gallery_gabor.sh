@@ -11,13 +11,7 @@ source "$(dirname "$0")/gallery_common.sh"
 
 for name in grass_lawn_256 brushed_aluminium_grey_256 concrete_cement_512 sand_height_grey_512 \
   bricks_stone_wall_512; do
-  exemplar="$textures/$name.png"
-  cp "$exemplar" "$out/${name}_exemplar.png"
-  "$stochtex" gaussian "$exemplar" -o "$out/${name}_gaussian.png" --size 256x256 --seed 1
-  "$stochtex" analyze "$exemplar" --method gabor -o "$work/$name.stx"
-  "$stochtex" info "$work/$name.stx" --export "$work" >/dev/null
-  cp "$work/spectrum.png" "$out/${name}_spectrum.png"
-  "$stochtex" render "$work/$name.stx" -o "$out/${name}_noise.png" --size 256x256 --seed 1
+  gallery_preview_row "$name" gabor spectrum
 done
 
 model="$work/grass_lawn_256.stx"
