@@ -48,6 +48,22 @@ inline float clamp_weight(float cycles) noexcept {
   return weight <= 0.0f ? 0.0f : (weight >= 1.0f ? 1.0f : weight);
 }
 
+// The lattice node nearest (u, v), in lattice units, as 64-bit indices, and the offset from it,
+// formed in double before going to float: p = 1e7 is as precise as p = 0 (DESIGN.md section 4).
+struct NearestNode {
+  std::int64_t x;
+  std::int64_t y;
+  float offset_x;
+  float offset_y;
+};
+
+inline NearestNode nearest_node(double u, double v) noexcept {
+  const double node_x = std::floor(u + 0.5);
+  const double node_y = std::floor(v + 0.5);
+  return {static_cast<std::int64_t>(node_x), static_cast<std::int64_t>(node_y),
+          static_cast<float>(u - node_x), static_cast<float>(v - node_y)};
+}
+
 // The tables of a set of random strata (model.hpp's LrpData, or the turbulence's).
 struct StratumTables {
   const std::uint32_t* substratum_first;
@@ -71,23 +87,16 @@ struct StratumSum {
 };
 
 // One random stratum of equation (1) at p, before its amplitude A_S. Lattice nodes on the integer
-// multiples of Delta_S (section 3.4): the nearest node is a 64-bit integer and the offset from it
-// is taken in double before going to float, so p = 1e7 is as precise as p = 0 (DESIGN.md section
-// 4). With |offset| <= 1/2 per axis the window (radius 1.5) reaches the 3 x 3 nodes around it only:
+// multiples of Delta_S (section 3.4), the nearest one found by nearest_node. With |offset| <= 1/2
+// per axis the window (radius 1.5) reaches the 3 x 3 nodes around it only:
 // I = 9. `axes` (Filtered only): the footprint's axes dpdx, dpdy for frequency clamping (section
 // 6.4).
 template <bool Filtered>
 inline StratumSum stratum_sum(const StratumTables& tables, const StratumDraw& stratum,
                               const std::array<float, kWindowTerms>& window, Vec2d p,
                               const std::array<float, 4>& axes) noexcept {
-  const double u = p.x * stratum.inverse_spacing;
-  const double v = p.y * stratum.inverse_spacing;
-  const double node_x = std::floor(u + 0.5);
-  const double node_y = std::floor(v + 0.5);
-  const auto cell_x = static_cast<std::int64_t>(node_x);
-  const auto cell_y = static_cast<std::int64_t>(node_y);
-  const auto offset_x = static_cast<float>(u - node_x);
-  const auto offset_y = static_cast<float>(v - node_y);
+  const auto [cell_x, cell_y, offset_x, offset_y] =
+      nearest_node(p.x * stratum.inverse_spacing, p.y * stratum.inverse_spacing);
   StratumSum result{0.0f, 0.0f};
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {

@@ -7,6 +7,7 @@
 #include "core/hash.hpp"
 #include "methods/lrp/evaluate.hpp"
 #include "methods/lrp/params.hpp"
+#include "methods/lrp/tables.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::lrp {
@@ -19,9 +20,6 @@ constexpr double kMaxSpacing = 1e6;
 constexpr double kMaxAmplitude = 1e6;
 // w_f^2 = n_k J_S P'(f) / E_S <= 2^20 * 2000 (analysis.cpp, frequency_weights).
 constexpr double kMaxWeight = 1e5;
-// A frequency is picked by multiply-shift on 20 random bits (model.cpp, evaluate_typed), so a
-// sub-stratum holds at most 2^20 frequencies; analysis builds at most T^2 / 2 (T <= 1024).
-constexpr std::uint32_t kMaxSubstratumSize = 1u << 20;
 
 const ParamInfo& param(std::string_view name) {
   return *std::find_if(kParams.begin(), kParams.end(),
@@ -67,16 +65,7 @@ LrpModel::LrpModel(LrpData data) : data_(std::move(data)) {
       !std::all_of(data_.weights.begin(), data_.weights.end(),
                    [](float w) { return w >= 0.0f && w <= kMaxWeight; }))
     throw std::invalid_argument("lrp: the frequency weights are missing or out of range");
-  for (std::size_t k = 0; k < substrata; ++k) {
-    const std::uint32_t first = data_.substratum_first[k];
-    const std::uint32_t count = data_.substratum_count[k];
-    if (count < 1 || count > kMaxSubstratumSize || first >= frequency_count ||
-        count > frequency_count - first)
-      throw std::invalid_argument("lrp: a sub-stratum lies outside the frequency table");
-  }
-  for (const float f : data_.frequencies)
-    if (std::abs(f) > 0.5f)
-      throw std::invalid_argument("lrp: a frequency lies above the Nyquist limit 1/2");
+  check_substrata(data_.substratum_first, data_.substratum_count, data_.frequencies, "noise");
   validate_structure(data_.structure, channels);
 
   window_coefficients_ = window_coefficients();
@@ -135,16 +124,8 @@ LrpModel LrpModel::from_record(const ModelRecord& record, const std::string& sou
     data.strata_table.push_back(
         {static_cast<int>(cosines), table.values[s + 1], table.values[s + 2]});
   }
-  for (std::size_t k = 0; k < ranges.values.size(); k += 2) {
-    const float first = ranges.values[k];
-    const float count = ranges.values[k + 1];
-    // Integers below 2^24 are exact in float32.
-    if (first != std::floor(first) || count != std::floor(count) || first < 0 || count < 0 ||
-        first >= 16777216.0f || count >= 16777216.0f)
-      throw invalid("sub-stratum range");
-    data.substratum_first.push_back(static_cast<std::uint32_t>(first));
-    data.substratum_count.push_back(static_cast<std::uint32_t>(count));
-  }
+  if (!read_substratum_ranges(ranges.values, data.substratum_first, data.substratum_count))
+    throw invalid("sub-stratum range");
   try {
     return LrpModel(std::move(data));
   } catch (const std::invalid_argument& e) {

@@ -5,6 +5,7 @@
 #include "core/hash.hpp"
 #include "methods/lrp/evaluate.hpp"
 #include "methods/lrp/structure.hpp"
+#include "methods/lrp/tables.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::lrp {
@@ -19,7 +20,6 @@ constexpr int kMaxTurbulenceStrata = 16;
 constexpr double kMinSpacing = 0.25;
 constexpr double kMaxSpacing = 1e6;
 constexpr double kMaxAmplitude = 1e6;
-constexpr std::uint32_t kMaxSubstratumSize = 1u << 20;
 
 bool power_of_two(std::int64_t n) {
   return n > 0 && (n & (n - 1)) == 0;
@@ -87,17 +87,7 @@ void validate_structure(const StructureData& s, int channels) {
   if (s.turbulence_first.size() != substrata || s.turbulence_count.size() != substrata ||
       s.turbulence_frequencies.size() % 2 != 0 || !finite(s.turbulence_frequencies))
     throw std::invalid_argument("lrp: the turbulence sub-strata do not match its strata");
-  const std::size_t frequency_count = s.turbulence_frequencies.size() / 2;
-  for (std::size_t k = 0; k < substrata; ++k) {
-    const std::uint32_t first = s.turbulence_first[k];
-    const std::uint32_t count = s.turbulence_count[k];
-    if (count < 1 || count > kMaxSubstratumSize || first >= frequency_count ||
-        count > frequency_count - first)
-      throw std::invalid_argument("lrp: a turbulence sub-stratum lies outside its frequencies");
-  }
-  for (const float f : s.turbulence_frequencies)
-    if (std::abs(f) > 0.5f)
-      throw std::invalid_argument("lrp: a turbulence frequency lies above the Nyquist limit");
+  check_substrata(s.turbulence_first, s.turbulence_count, s.turbulence_frequencies, "turbulence");
 }
 
 void write_structure(const StructureData& s, ModelRecord& record) {
@@ -174,16 +164,8 @@ StructureData read_structure(const ModelRecord& record, int channels, const std:
       s.turbulence_strata.push_back(
           {static_cast<int>(count), table.values[k + 1], table.values[k + 2]});
     }
-    for (std::size_t k = 0; k < ranges.values.size(); k += 2) {
-      const float first = ranges.values[k];
-      const float count = ranges.values[k + 1];
-      // Integers below 2^24 are exact in float32.
-      if (!(first >= 0.0f && first < 16777216.0f && count >= 0.0f && count < 16777216.0f) ||
-          first != std::floor(first) || count != std::floor(count))
-        throw invalid();
-      s.turbulence_first.push_back(static_cast<std::uint32_t>(first));
-      s.turbulence_count.push_back(static_cast<std::uint32_t>(count));
-    }
+    if (!read_substratum_ranges(ranges.values, s.turbulence_first, s.turbulence_count))
+      throw invalid();
   }
   return s;
 }
@@ -192,18 +174,11 @@ void add_fixed_phase(const StructureData& s,
                      const std::array<float, kWindowTerms>& window_coefficients, Vec2d q,
                      const Footprint* footprint, float weight, int channels,
                      float* noise) noexcept {
-  // Block nodes sit at the block centres (I + 1/2) b. As for the random strata, the nearest node
-  // is a 64-bit integer and the offset from it is formed in double, so q = 1e7 is as precise as
-  // q = 0; blocks repeat every B nodes (the structure image is T-periodic).
+  // Block nodes sit at the block centres (I + 1/2) b. As for the random strata, nearest_node keeps
+  // q = 1e7 as precise as q = 0; blocks repeat every B nodes (the structure image is T-periodic).
   const double side = static_cast<double>(s.period) / s.blocks;
-  const double u = q.x / side - 0.5;
-  const double v = q.y / side - 0.5;
-  const double node_x = std::floor(u + 0.5);
-  const double node_y = std::floor(v + 0.5);
-  const auto cell_x = static_cast<std::int64_t>(node_x);
-  const auto cell_y = static_cast<std::int64_t>(node_y);
-  const auto offset_x = static_cast<float>(u - node_x);
-  const auto offset_y = static_cast<float>(v - node_y);
+  const auto [cell_x, cell_y, offset_x, offset_y] =
+      nearest_node(q.x / side - 0.5, q.y / side - 0.5);
   const auto side_float = static_cast<float>(side);
   const auto per_channel = static_cast<std::size_t>(s.blocks) * s.blocks * s.cosines;
   float axis_a_x = 0.0f, axis_a_y = 0.0f, axis_b_x = 0.0f, axis_b_y = 0.0f;
