@@ -293,6 +293,24 @@ void check_spectrum_size(int size) {
                                 std::to_string(size));
 }
 
+// The size x size target whose power at the signed frequency (f_x, f_y) (cycles per pixel) is
+// shape(f_x, f_y), zero at DC, scaled to sum to `variance`.
+template <typename Shape>
+SpectrumTarget sampled_target(int size, double variance, Shape shape) {
+  SpectrumTarget target{size, std::vector<double>(static_cast<std::size_t>(size) * size), 0.0};
+  double sum = 0.0;
+  for (int ky = 0; ky < size; ++ky)
+    for (int kx = 0; kx < size; ++kx) {
+      const double fx = double(kx > size / 2 ? kx - size : kx) / size;
+      const double fy = double(ky > size / 2 ? ky - size : ky) / size;
+      const double value = (kx == 0 && ky == 0) ? 0.0 : shape(fx, fy);
+      target.power[static_cast<std::size_t>(ky) * size + kx] = value;
+      sum += value;
+    }
+  for (double& value : target.power) value *= sum > 0.0 ? variance / sum : 0.0;
+  return target;
+}
+
 }  // namespace
 
 int welch_size(int width, int height) {
@@ -514,19 +532,10 @@ SpectrumTarget ring_spectrum(int size, double radius, double width, double varia
   check_spectrum_size(size);
   if (!(radius >= 0.0 && radius <= 0.5) || !(width > 0.0) || !(variance >= 0.0))
     throw std::invalid_argument("lrp: a ring needs 0 <= radius <= 1/2, width > 0, variance >= 0");
-  SpectrumTarget target{size, std::vector<double>(static_cast<std::size_t>(size) * size), 0.0};
-  double sum = 0.0;
-  for (int ky = 0; ky < size; ++ky)
-    for (int kx = 0; kx < size; ++kx) {
-      const double fx = double(kx > size / 2 ? kx - size : kx) / size;
-      const double fy = double(ky > size / 2 ? ky - size : ky) / size;
-      const double offset = (std::hypot(fx, fy) - radius) / width;
-      const double value = (kx == 0 && ky == 0) ? 0.0 : std::exp(-0.5 * offset * offset);
-      target.power[static_cast<std::size_t>(ky) * size + kx] = value;
-      sum += value;
-    }
-  for (double& value : target.power) value *= sum > 0.0 ? variance / sum : 0.0;
-  return target;
+  return sampled_target(size, variance, [&](double fx, double fy) {
+    const double offset = (std::hypot(fx, fy) - radius) / width;
+    return std::exp(-0.5 * offset * offset);
+  });
 }
 
 SpectrumTarget gaussian_spectrum(int size, double centre_x, double centre_y, double along,
@@ -537,26 +546,17 @@ SpectrumTarget gaussian_spectrum(int size, double centre_x, double centre_y, dou
   const double length = std::hypot(centre_x, centre_y);
   const double ux = length > 0.0 ? centre_x / length : 1.0;
   const double uy = length > 0.0 ? centre_y / length : 0.0;
-  SpectrumTarget target{size, std::vector<double>(static_cast<std::size_t>(size) * size), 0.0};
-  double sum = 0.0;
-  for (int ky = 0; ky < size; ++ky)
-    for (int kx = 0; kx < size; ++kx) {
-      const double fx = double(kx > size / 2 ? kx - size : kx) / size;
-      const double fy = double(ky > size / 2 ? ky - size : ky) / size;
-      double value = 0.0;
-      for (const double sign : {1.0, -1.0}) {
-        const double dx = fx - sign * centre_x;
-        const double dy = fy - sign * centre_y;
-        const double a = (dx * ux + dy * uy) / along;
-        const double b = (-dx * uy + dy * ux) / across;
-        value += std::exp(-0.5 * (a * a + b * b));
-      }
-      if (kx == 0 && ky == 0) value = 0.0;
-      target.power[static_cast<std::size_t>(ky) * size + kx] = value;
-      sum += value;
+  return sampled_target(size, variance, [&](double fx, double fy) {
+    double value = 0.0;
+    for (const double sign : {1.0, -1.0}) {
+      const double dx = fx - sign * centre_x;
+      const double dy = fy - sign * centre_y;
+      const double a = (dx * ux + dy * uy) / along;
+      const double b = (-dx * uy + dy * ux) / across;
+      value += std::exp(-0.5 * (a * a + b * b));
     }
-  for (double& value : target.power) value *= sum > 0.0 ? variance / sum : 0.0;
-  return target;
+    return value;
+  });
 }
 
 LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
