@@ -339,6 +339,17 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
   std::vector<std::vector<float>> gradient;
   std::vector<float> model;
   std::vector<float> residual(plane);
+  // Only the bins of each band's sub-grid carry coefficients: the other entries stay zero.
+  // visit(band, index) runs over those, band by band, row by row.
+  const auto for_each_coefficient = [&](auto&& visit) {
+    for (std::size_t b = 0; b < bands; ++b) {
+      const int step_x = dictionary.step_x(static_cast<int>(b));
+      const int step_y = dictionary.step_y(static_cast<int>(b));
+      for (int y = 0; y < dictionary.height(); y += step_y)
+        for (int x = 0; x < dictionary.width(); x += step_x)
+          visit(b, static_cast<std::size_t>(y) * dictionary.width() + x);
+    }
+  };
   // Homotopy (section 5.2): kappa = 1/2, 1/4, ..., then options.kappa, each step warm-started.
   std::vector<double> kappas;
   for (double kappa = 0.5; kappa > options.kappa; kappa *= 0.5) kappas.push_back(kappa);
@@ -359,21 +370,12 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
       const auto threshold = static_cast<float>(nu * step);
       const auto scale = static_cast<float>(2.0 * step);
       double restart_test = 0.0;
-      // Only the bins of each band's sub-grid carry coefficients: the other entries stay zero.
-      for (std::size_t b = 0; b < bands; ++b) {
-        const int step_x = dictionary.step_x(static_cast<int>(b));
-        const int step_y = dictionary.step_y(static_cast<int>(b));
-        for (int y = 0; y < dictionary.height(); y += step_y)
-          for (int x = 0; x < dictionary.width(); x += step_x) {
-            const std::size_t i = static_cast<std::size_t>(y) * dictionary.width() + x;
-            previous[b][i] = fit.alpha[b][i];
-            const float value =
-                std::max(0.0f, extrapolated[b][i] - scale * gradient[b][i] - threshold);
-            fit.alpha[b][i] = value;
-            restart_test +=
-                static_cast<double>(extrapolated[b][i] - value) * (value - previous[b][i]);
-          }
-      }
+      for_each_coefficient([&](std::size_t b, std::size_t i) {
+        previous[b][i] = fit.alpha[b][i];
+        const float value = std::max(0.0f, extrapolated[b][i] - scale * gradient[b][i] - threshold);
+        fit.alpha[b][i] = value;
+        restart_test += static_cast<double>(extrapolated[b][i] - value) * (value - previous[b][i]);
+      });
       // Adaptive restart (O'Donoghue & Candes 2015): when the step goes against the momentum,
       // the momentum is reset. FISTA keeps its O(1/k^2) rate and gains linear convergence once
       // the support of the sparse solution has settled.
@@ -381,15 +383,9 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
       const double next_momentum = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum * momentum));
       const auto blend = static_cast<float>((momentum - 1.0) / next_momentum);
       momentum = next_momentum;
-      for (std::size_t b = 0; b < bands; ++b) {
-        const int step_x = dictionary.step_x(static_cast<int>(b));
-        const int step_y = dictionary.step_y(static_cast<int>(b));
-        for (int y = 0; y < dictionary.height(); y += step_y)
-          for (int x = 0; x < dictionary.width(); x += step_x) {
-            const std::size_t i = static_cast<std::size_t>(y) * dictionary.width() + x;
-            extrapolated[b][i] = fit.alpha[b][i] + blend * (fit.alpha[b][i] - previous[b][i]);
-          }
-      }
+      for_each_coefficient([&](std::size_t b, std::size_t i) {
+        extrapolated[b][i] = fit.alpha[b][i] + blend * (fit.alpha[b][i] - previous[b][i]);
+      });
       if (iteration % kGapCheckInterval == 0 || iteration == options.max_iterations) {
         const DualityGap gap = duality_gap(dictionary, target, fit.alpha, nu);
         fit.primal = gap.primal;
