@@ -1,9 +1,8 @@
 """Writes docs/comparison.md from the JSON summary of `stochtex report` (see scripts/report.sh).
 
-usage: comparison_markdown.py SUMMARY.json SOURCES.md THUMBNAILS_DIR IMAGES_DIR IMAGES_LINK
-Prints the Markdown on stdout and copies the thumbnails of the exemplars whose licence tier in
-SOURCES.md is "clear" into IMAGES_DIR (linked as IMAGES_LINK/NAME_KIND.png): outputs derived from
-the research-data exemplars are measured but not committed.
+usage: comparison_markdown.py SUMMARY.json ATTRIBUTION.md THUMBNAILS_DIR IMAGES_DIR IMAGES_LINK
+Prints the Markdown on stdout and copies the thumbnails into IMAGES_DIR (linked as
+IMAGES_LINK/NAME_KIND.png). ATTRIBUTION.md (data/exemplars) gives each exemplar's category.
 """
 
 import json
@@ -24,14 +23,14 @@ MEASURES = [  # key, column title, format
 CATEGORIES = ["gaussian", "stochastic", "structured"]
 
 
-def corpus_table(sources):
-    """file stem -> (category, licence tier, content) from the SOURCES.md table."""
+def corpus_table(attribution):
+    """file stem -> (category, content) from the table of data/exemplars/ATTRIBUTION.md."""
     rows = {}
-    for line in Path(sources).read_text().splitlines():
+    for line in Path(attribution).read_text().splitlines():
         cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
         match = re.fullmatch(r"`(.+)\.png`", cells[0]) if cells else None
         if match and len(cells) >= 8:
-            rows[match.group(1)] = (cells[2], cells[-1], cells[3])
+            rows[match.group(1)] = (cells[2], cells[3])
     return rows
 
 
@@ -48,23 +47,24 @@ def value(synthesis, key, form):
 
 
 def main():
-    summary_path, sources, thumbnails, images, link = sys.argv[1:6]
+    summary_path, attribution, thumbnails, images, link = sys.argv[1:6]
     summary = json.loads(Path(summary_path).read_text())
-    corpus = corpus_table(sources)
+    corpus = corpus_table(attribution)
     settings = summary["settings"]
     methods = settings["methods"]
     kinds = ["exemplar", "gaussian"] + methods
     Path(images).mkdir(parents=True, exist_ok=True)
 
     out = []
-    out.append("# The four methods compared\n")
+    out.append("# The methods compared\n")
     out.append(
-        "Every method with its default parameters on every exemplar of the corpus "
-        "(`../shared/textures`, 23 images), rendered at {}×{} with seed {} beside the exemplar's "
+        "Every method with its default parameters on every shipped exemplar "
+        "(`data/exemplars`, {} images), rendered at {}×{} with seed {} beside the exemplar's "
         "Gaussian version (ADSN), measured by `stochtex report` in one run on one machine. "
         "Regenerate with `bash scripts/report.sh`; the full HTML report (every render at full "
         "size, log power spectra, colour histograms) is written to `build/report/index.html`."
-        "\n".format(settings["width"], settings["height"], settings["seed"]))
+        "\n".format(len(summary["exemplars"]), settings["width"], settings["height"],
+                     settings["seed"]))
     threads = settings["threads"]
     share = summary["cpu_seconds"] / (summary["wall_seconds"] * threads)
     machine = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")
@@ -105,10 +105,11 @@ GPU claims, and why, is in [docs/performance.md](performance.md#cpu-the-four-met
     # Summary per category: mean of each measure over the category's exemplars.
     out.append("## Summary per category\n")
     out.append(
-        "Means over the exemplars of each category of `SOURCES.md` (gaussian: micro-textures a "
-        "Gaussian field models well; stochastic: random but non-Gaussian; structured: "
-        "macro-structure, the failure cases of Gaussian models). \"best\" counts the exemplars on "
-        "which the method has the lowest spectral / colour error among the four.\n")
+        "Means over the exemplars of each category of `data/exemplars/ATTRIBUTION.md` "
+        "(gaussian: micro-textures a Gaussian field models well; stochastic: random but "
+        "non-Gaussian; structured: macro-structure, the failure cases of Gaussian models). "
+        "\"best\" counts the exemplars on which the method has the lowest spectral / colour "
+        "error among the methods.\n")
     for category in CATEGORIES:
         members = [e for e in summary["exemplars"] if corpus.get(e["name"], ("?",))[0] == category]
         if not members:
@@ -140,24 +141,22 @@ GPU claims, and why, is in [docs/performance.md](performance.md#cpu-the-four-met
 
     out.append("## Per exemplar\n")
     out.append(
-        "Thumbnails are {}-pixel reductions of the {}×{} renders; exemplars from the corpus's "
-        "research-data tier (no licence file) are measured but their pictures are not committed."
-        "\n".format(96, settings["width"], settings["height"]))
+        "Thumbnails are {}-pixel reductions of the {}×{} renders.\n".format(
+            96, settings["width"], settings["height"]))
     for exemplar in summary["exemplars"]:
         name = exemplar["name"]
-        category, tier, content = corpus.get(name, ("?", "?", ""))
+        category, content = corpus.get(name, ("?", ""))
         out.append("### {}\n".format(name))
         out.append("{}×{}, {} channel(s), {}: {}.\n".format(
             exemplar["width"], exemplar["height"], exemplar["channels"], category, content))
-        if tier == "clear":
-            cells = []
-            for kind in kinds:
-                source = Path(thumbnails) / "{}_{}.png".format(name, kind)
-                shutil.copyfile(source, Path(images) / source.name)
-                cells.append("![{}]({}/{})".format(kind, link, source.name))
-            out.append("| exemplar | " + " | ".join(label(k) for k in kinds[1:]) + " |")
-            out.append("|---" * len(kinds) + "|")
-            out.append("| " + " | ".join(cells) + " |\n")
+        cells = []
+        for kind in kinds:
+            source = Path(thumbnails) / "{}_{}.png".format(name, kind)
+            shutil.copyfile(source, Path(images) / source.name)
+            cells.append("![{}]({}/{})".format(kind, link, source.name))
+        out.append("| exemplar | " + " | ".join(label(k) for k in kinds[1:]) + " |")
+        out.append("|---" * len(kinds) + "|")
+        out.append("| " + " | ".join(cells) + " |\n")
         out.append("| | " + " | ".join(title for _, title, _ in MEASURES) + " |")
         out.append("|---" * (len(MEASURES) + 1) + "|")
         for synthesis in exemplar["syntheses"]:

@@ -4,7 +4,7 @@
 # beside the exemplar's Gaussian version. Usage: bash scripts/demo.sh [exemplar] [output-dir]
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-exemplar="${1:-$root/examples/grass_lawn_256.png}"
+exemplar="${1:-$root/data/exemplars/grass_lawn_256.png}"
 out="${2:-$root/demo-output}"
 build="$root/build"
 bash "$root/scripts/install-deps.sh"

@@ -4,7 +4,7 @@
 # exit).
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$root/build}"
-textures="$root/../shared/textures"
+textures="$root/data/exemplars"
 out="$root/docs/images/$gallery"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" --parallel --target stochtex

@@ -3,15 +3,15 @@
 # Gaussian version (ADSN), the structure-preserving result (r = 0.3 with
 # turbulence and random placement, section 5) and the r sweep r = 0, 0.1, 0.2, 0.3, 1 with fixed
 # phases alone (no turbulence or placement, so the kept structure sits where it is in the
-# exemplar); then continuous targets (a ring and an anisotropic Gaussian, figure 10). Only
-# MIT/CC0 corpus images are used, because the outputs are committed; all images are 256x256.
+# exemplar); then continuous targets (a ring and an anisotropic Gaussian, figure 10), from the
+# shipped exemplars; all images are 256x256.
 # Usage: bash scripts/gallery_lrp.sh [build-dir]
 set -euo pipefail
 gallery=lrp
 source "$(dirname "$0")/gallery_common.sh"
 
 size=(--size 256x256 --seed 1)
-for name in wool_knit_blue_256 reptile_skin_grey_256 wood_planks_256; do
+for name in wool_knit_blue_256 nuts_grey_256 wood_planks_256; do
   exemplar="$textures/$name.png"
   cp "$exemplar" "$out/${name}_exemplar.png"
   "$stochtex" gaussian "$exemplar" -o "$out/${name}_gaussian.png" "${size[@]}"

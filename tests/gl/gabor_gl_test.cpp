@@ -47,7 +47,7 @@ std::uint32_t bits(T value) {
 TEST(GlGabor, PackedDataHoldsTheModelInGridOrder) {
   // The texels against the model's public description: grids sorted by (channel, band), stably,
   // each Gaussian's frequency and its alias entry, then each grid's Poisson CDF.
-  const gabor::GaborModel& model = gabor_of(gabor_model("red_fleece_128.png", 256));
+  const gabor::GaborModel& model = gabor_of(gabor_model("grass_lawn_128.png", 256));
   const gl::GaborGlsl glsl = gl::gabor_glsl(model);
   std::vector<gabor::GaussianComponent> sorted = model.gaussians();
   std::stable_sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
@@ -80,7 +80,7 @@ TEST(GlGabor, PackedDataHoldsTheModelInGridOrder) {
 TEST(GlGabor, GlslReadsTheGridTableTheCppWrites) {
   // A compute shader reads every grid's constants and tables through the GLSL accessors of
   // evaluate.glsl; each value must come back bit for bit as the C++ grid holds it.
-  const gabor::GaborModel& model = gabor_of(gabor_model("red_fleece_128.png", 256));
+  const gabor::GaborModel& model = gabor_of(gabor_model("grass_lawn_128.png", 256));
   const gl::GaborGlsl glsl = gl::gabor_glsl(model);
   const gl::Context context;
   constexpr int kWords = 12 + PoissonSampler::kTableSize;
@@ -165,9 +165,9 @@ TEST(GlGabor, MatchesTheCpuReference) {
   // the ~10^3 kernels of a sample. The tolerance is the texton's (1e-4, 40x below one 8-bit
   // step); the measured maximum is printed below and recorded in docs/methods/gabor.md.
   const std::vector<GaborCase> cases = {
-      {"red_fleece_128.png", {{0.0, 0.0}, 1.0, 40, 32}},
-      {"red_fleece_128.png", {{-300.25, 17.5}, 0.5, 32, 32}},
-      {"red_fleece_128.png", {{1e7, -3e6}, 4.0, 24, 24}},
+      {"grass_lawn_128.png", {{0.0, 0.0}, 1.0, 40, 32}},
+      {"grass_lawn_128.png", {{-300.25, 17.5}, 0.5, 32, 32}},
+      {"grass_lawn_128.png", {{1e7, -3e6}, 4.0, 24, 24}},
       {"metal_grey_256.png", {{5.0, 5.0}, 8.0, 24, 24}},
       {"metal_grey_256.png", {{12.0, -4.0}, 3.0, 24, 24}, false},
   };
@@ -183,7 +183,7 @@ TEST(GlGabor, MatchesTheCpuReference) {
 }
 
 TEST(GlGabor, BitIdenticalWhateverTheDispatchTilesAndRegions) {
-  const Model& model = gabor_model("red_fleece_128.png", 256);
+  const Model& model = gabor_model("grass_lawn_128.png", 256);
   const Grid grid{{-40.0, 9.5}, 2.0, 27, 21};
   const ImageF reference = render_gpu(model, grid, 4, 512);
   EXPECT_TRUE(same_bytes(reference, render_gpu(model, grid, 4, 8)));

@@ -97,11 +97,11 @@ TEST(Gl, TextonMatchesTheCpuReference) {
   // every case below). 1e-4 keeps a 25x margin and is 40x below one 8-bit step: 8-bit PNGs from
   // the two backends differ at most by one level, in the rare pixels that sit on a rounding tie.
   const std::vector<ParityCase> cases = {
-      {"red_fleece_128.png", 1, {{0.0, 0.0}, 1.0, 96, 80}, true},
-      {"red_fleece_128.png", 3, {{-300.25, 17.5}, 0.5, 64, 64}, true},
+      {"grass_lawn_128.png", 1, {{0.0, 0.0}, 1.0, 96, 80}, true},
+      {"grass_lawn_128.png", 3, {{-300.25, 17.5}, 0.5, 64, 64}, true},
       {"metal_grey_256.png", 1, {{1e7, -3e6}, 4.0, 70, 50}, true},
       {"metal_grey_256.png", 5, {{5.0, 5.0}, 8.0, 40, 40}, true},
-      {"red_fleece_128.png", 0, {{12.0, -4.0}, 3.0, 50, 50}, false},
+      {"grass_lawn_128.png", 0, {{12.0, -4.0}, 3.0, 50, 50}, false},
   };
   for (const auto& c : cases) {
     const Model& model = model_of(c.exemplar, c.order);
@@ -129,18 +129,18 @@ struct MethodCase {
 // cosine and window in both. Measured maxima 1e-5 and 2e-6 over these cases.
 TEST(Gl, TilingAndLrpMatchTheCpuReference) {
   const std::vector<MethodCase> cases = {
-      {"tiling", "red_fleece_128.png", {}, {{0.0, 0.0}, 1.0, 80, 70}},
-      {"tiling", "red_fleece_128.png", {{"transport", 1}}, {{1e7, -3e6}, 3.0, 60, 50}},
+      {"tiling", "grass_lawn_128.png", {}, {{0.0, 0.0}, 1.0, 80, 70}},
+      {"tiling", "grass_lawn_128.png", {{"transport", 1}}, {{1e7, -3e6}, 3.0, 60, 50}},
       {"tiling", "metal_grey_256.png", {}, {{-77.5, 12.0}, 0.5, 64, 64}},
       {"tiling", "metal_grey_256.png", {}, {{5.0, 5.0}, 8.0, 40, 40}},
-      {"tiling", "red_fleece_128.png", {{"blend", 1}}, {{3.0, 4.0}, 2.0, 50, 50}},
-      {"lrp", "red_fleece_128.png", {{"cosines", 20}}, {{0.0, 0.0}, 1.0, 48, 40}},
+      {"tiling", "grass_lawn_128.png", {{"blend", 1}}, {{3.0, 4.0}, 2.0, 50, 50}},
+      {"lrp", "grass_lawn_128.png", {{"cosines", 20}}, {{0.0, 0.0}, 1.0, 48, 40}},
       {"lrp", "metal_grey_256.png", {{"cosines", 10}}, {{1e7, -3e6}, 4.0, 40, 40}},
       {"lrp", "metal_grey_256.png", {{"cosines", 10}}, {{-9.5, 2.0}, 2.0, 40, 40}, false},
       // Section 5: fixed phases with turbulence and placement, far from the origin too, and
       // r = 1 (subdivided blocks) without them.
       {"lrp",
-       "red_fleece_128.png",
+       "grass_lawn_128.png",
        {{"cosines", 20}, {"ratio", 0.3}, {"turbulence", 2}},
        {{-30.0, 17.0}, 1.0, 72, 64}},
       {"lrp",
@@ -170,7 +170,7 @@ TEST(Gl, TilingAndLrpMatchTheCpuReference) {
 }
 
 TEST(Gl, BitIdenticalWhateverTheDispatchTilesAndRegions) {
-  const Model& model = model_of("red_fleece_128.png", 1);
+  const Model& model = model_of("grass_lawn_128.png", 1);
   const Grid grid{{-40.0, 9.5}, 2.0, 75, 61};
   const ImageF reference = render_gpu(model, grid, 4, 512);
   EXPECT_TRUE(same_bytes(reference, render_gpu(model, grid, 4, 512)));
@@ -203,8 +203,8 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
   // the footprint in GLSL (texton_filter, the tiling level of detail, the lrp clamping axes, the
   // Gabor kernel filter).
   const std::vector<ExportCase> cases = {
-      {"texton", "red_fleece_128.png", {{"support", 48}}, 48},
-      {"tiling", "red_fleece_128.png", {}, 48},
+      {"texton", "grass_lawn_128.png", {{"support", 48}}, 48},
+      {"tiling", "grass_lawn_128.png", {}, 48},
       {"tiling", "metal_grey_256.png", {{"transport", 1}}, 48},
       {"lrp", "metal_grey_256.png", {{"cosines", 10}}, 32},
       // Section 5: fixed phases, turbulence and random placement.
@@ -212,7 +212,7 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
        "wool_knit_blue_256.png",
        {{"cosines", 10}, {"ratio", 0.3}, {"turbulence", 2.0}, {"placement", 1}},
        32},
-      {"gabor", "red_fleece_128.png", {{"impulses", 256}}, 24},
+      {"gabor", "grass_lawn_128.png", {{"impulses", 256}}, 24},
   };
   const gl::Context context;
   for (const auto& c : cases) {

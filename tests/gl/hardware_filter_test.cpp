@@ -68,9 +68,9 @@ TEST(GlHardwareFilter, MatchesTheCpuFilterInDistribution) {
   constexpr int kSeeds = 8;
   const std::vector<FilterCase> cases = {
       {"texton", "metal_grey_256.png", {{"support", 48}}},
-      {"texton", "red_fleece_128.png", {{"support", 48}}},
+      {"texton", "grass_lawn_128.png", {{"support", 48}}},
       {"tiling", "metal_grey_256.png", {}},
-      {"tiling", "red_fleece_128.png", {}},
+      {"tiling", "grass_lawn_128.png", {}},
   };
   for (const auto& c : cases) {
     const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
@@ -117,7 +117,7 @@ TEST(GlHardwareFilter, PointSamplesAreTheExactRender) {
   // then equals the exact one up to the texture unit's interpolation weights (8 fractional bits
   // on NVIDIA; llvmpipe's are finer), well below one 8-bit step of these [0, 1] textures.
   for (const char* method : {"texton", "tiling"}) {
-    const ImageF exemplar = read_image(kTextureDir + "/red_fleece_128.png");
+    const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
     const Model model = analyze(method, exemplar.view(), {}, 0);
     const Grid grid{{3.0, 4.0}, 1.0, 40, 32};
     GpuRenderOptions options;
