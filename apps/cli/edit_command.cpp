@@ -1,4 +1,7 @@
-#include "edit_command.hpp"
+// `stochtex edit`: group editing of a Gabor noise model (Gabor noise by example, section 8). The
+// Gaussians of the model's spectrum are grouped automatically after the Wold decomposition
+// (periodic peaks, strongly anisotropic lines, the stochastic rest); an edit rotates, scales and
+// translates a group in frequency and changes its magnitude and bandwidth.
 
 #include <fmt/core.h>
 
@@ -12,14 +15,28 @@
 #include <variant>
 #include <vector>
 
+#include "arguments.hpp"
+#include "commands.hpp"
 #include "io/image_io.hpp"
 #include "methods/gabor/model.hpp"
 #include "model/model_data.hpp"
-#include "number_pair.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex::cli {
 namespace {
+
+struct EditOptions {
+  std::string model;
+  std::string output;
+  std::string group = "all";
+  double rotate_degrees = 0.0;
+  double scale = 1.0;
+  std::string translate = "0,0";
+  double magnitude = 1.0;
+  double bandwidth = 1.0;
+  bool list_groups = false;
+  bool json = false;
+};
 
 constexpr std::array<gabor::WoldComponent, 3> kComponents = {gabor::WoldComponent::periodic,
                                                              gabor::WoldComponent::anisotropic,
@@ -94,14 +111,7 @@ void list_groups(const gabor::GaborModel& model, const std::vector<gabor::WoldCo
   }
 }
 
-}  // namespace
-
-void add_edit_command(CLI::App& app, EditOptions& options) {
-  CLI::App* command = app.add_subcommand(
-      "edit",
-      "edit a gabor model's spectrum by groups of Gaussians: periodic peaks, anisotropic lines, "
-      "the stochastic rest (section 8 of the Gabor noise paper)");
-  options.command = command;
+void add_edit_options(CLI::App* command, EditOptions& options) {
   command->add_option("MODEL", options.model, "gabor model file (.stx)")->required();
   command->add_option("-o,--output", options.output, "edited model file to write (.stx)");
   command->add_option("--group", options.group, "which Gaussians the edit changes")
@@ -133,7 +143,9 @@ void add_edit_command(CLI::App& app, EditOptions& options) {
   command->add_flag("--json", options.json, "with --list-groups: print one JSON document");
 }
 
-void run_edit_command(const EditOptions& options) {
+// Lists the groups and/or writes the edited model (save_model writes atomically: a failure never
+// leaves a partial file).
+void run_edit(const EditOptions& options) {
   // Usage errors first, before any file is read.
   if (options.output.empty() && !options.list_groups)
     throw std::invalid_argument("edit needs -o OUT.stx for the edited model (or --list-groups)");
@@ -175,6 +187,21 @@ void run_edit_command(const EditOptions& options) {
       stderr, "wrote {} ({} group: {} Gaussians edited{})\n", options.output, options.group,
       static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true)),
       dropped > 0 ? fmt::format(", {} moved beyond Nyquist or to zero and dropped", dropped) : "");
+}
+
+}  // namespace
+
+Command add_edit_command(CLI::App& app) {
+  auto options = std::make_shared<EditOptions>();
+  CLI::App* command = app.add_subcommand(
+      "edit",
+      "edit a gabor model's spectrum by groups of Gaussians: periodic peaks, anisotropic lines, "
+      "the stochastic rest (section 8 of the Gabor noise paper)");
+  add_edit_options(command, *options);
+  return {command, [options] {
+            run_edit(*options);
+            return 0;
+          }};
 }
 
 }  // namespace stochtex::cli

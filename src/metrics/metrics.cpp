@@ -371,6 +371,14 @@ double variance_nonstationarity(std::span<const ImageView<const float>> renders,
   return relative(std::sqrt(squares / static_cast<double>(block_variance.size())), mean);
 }
 
+double histogram_error_floor(ImageView<const float> exemplar) {
+  require_pixels(exemplar, "histogram_error_floor");
+  const int top_height = exemplar.height / 2;
+  return sliced_wasserstein(
+      exemplar.sub(0, 0, exemplar.width, top_height),
+      exemplar.sub(0, top_height, exemplar.width, exemplar.height - top_height));
+}
+
 ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,
                                 std::uint32_t seed) {
   require_pixels(exemplar, "compare_images");
@@ -379,19 +387,15 @@ ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const
   ComparisonReport report;
   report.crop = welch_crop_size(exemplar, image);
   const ImageF gaussian = adsn(exemplar, image.width, image.height, seed);
-  report.spectral_error = spectral_error(image, exemplar, report.crop);
-  report.spectral_error_adsn = spectral_error(gaussian.view(), exemplar, report.crop);
-  report.histogram_error = sliced_wasserstein(image, exemplar);
-  report.histogram_error_adsn = sliced_wasserstein(gaussian.view(), exemplar);
-  // Two disjoint halves of the same texture: the distance a perfect synthesis could not beat.
-  const int top_height = exemplar.height / 2;
-  report.histogram_error_floor =
-      sliced_wasserstein(exemplar.sub(0, 0, exemplar.width, top_height),
-                         exemplar.sub(0, top_height, exemplar.width, exemplar.height - top_height));
+  report.image.spectral_error = spectral_error(image, exemplar, report.crop);
+  report.adsn.spectral_error = spectral_error(gaussian.view(), exemplar, report.crop);
+  report.image.histogram_error = sliced_wasserstein(image, exemplar);
+  report.adsn.histogram_error = sliced_wasserstein(gaussian.view(), exemplar);
+  report.histogram_error_floor = histogram_error_floor(exemplar);
   const ColourStatistics exemplar_statistics = colour_statistics(exemplar);
   const ColourStatistics image_statistics = colour_statistics(image);
-  report.mean_error = mean_error(image_statistics, exemplar_statistics);
-  report.covariance_error = covariance_error(image_statistics, exemplar_statistics);
+  report.image.mean_error = mean_error(image_statistics, exemplar_statistics);
+  report.image.covariance_error = covariance_error(image_statistics, exemplar_statistics);
   return report;
 }
 

@@ -83,15 +83,28 @@ double covariance_error(const ColourStatistics& a, const ColourStatistics& refer
 // block x block pixels; pixels beyond the last whole block are ignored.
 double variance_nonstationarity(std::span<const ImageView<const float>> renders, int block);
 
+// The measured numbers of one synthesis against its exemplar, as the rows of the measure table
+// (report/measures.hpp) read them. Each caller fills the measures it takes: compare_images the
+// first four, `stochtex report` all of them (the times for methods only, not for ADSN).
+struct Quality {
+  double spectral_error = 0.0;    // relative L1 distance of Welch spectra
+  double histogram_error = 0.0;   // sliced Wasserstein-2 distance of pixel colours
+  double mean_error = 0.0;        // |mean - exemplar mean|
+  double covariance_error = 0.0;  // relative Frobenius distance of colour covariances
+  double nonstationarity = 0.0;   // variance_nonstationarity over renders with several seeds
+  double analysis_seconds = 0.0;  // CPU seconds of analyze() with default parameters
+  double ns_per_sample = 0.0;     // CPU nanoseconds per sample of a one-thread render
+};
+
+// The sliced W2 distance between the exemplar's top half and its bottom half: two disjoint
+// samples of the same texture, so the distance a perfect synthesis could not beat.
+double histogram_error_floor(ImageView<const float> exemplar);
+
 struct ComparisonReport {
   int crop = 0;
-  double spectral_error = 0;         // image vs exemplar
-  double spectral_error_adsn = 0;    // an ADSN sample of the exemplar (same size) vs exemplar
-  double histogram_error = 0;        // sliced W2, image vs exemplar
-  double histogram_error_adsn = 0;   // ADSN sample vs exemplar
+  Quality image;  // image vs exemplar: spectral, histogram, mean and covariance errors
+  Quality adsn;   // an ADSN sample of the exemplar (same size) vs exemplar: spectral, histogram
   double histogram_error_floor = 0;  // exemplar top half vs bottom half
-  double mean_error = 0;
-  double covariance_error = 0;
 };
 // The full `stochtex compare` report; the ADSN sample (adsn(exemplar, image size, seed)) uses
 // `seed`. The images must have the same channel count and sides of at least 2 pixels.

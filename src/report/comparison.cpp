@@ -77,11 +77,7 @@ ExemplarReference make_reference(ImageView<const float> exemplar, const ReportSe
   const auto [low, high] = histogram_range(exemplar);
   reference.histogram = colour_histogram(exemplar, settings.histogram_bins, low, high);
   reference.histogram_top = 1.25 * reference.histogram.largest();
-  // Two disjoint halves of the same texture: the distance a perfect synthesis could not beat.
-  const int top_height = exemplar.height / 2;
-  reference.histogram_error_floor =
-      sliced_wasserstein(exemplar.sub(0, 0, exemplar.width, top_height),
-                         exemplar.sub(0, top_height, exemplar.width, exemplar.height - top_height));
+  reference.histogram_error_floor = histogram_error_floor(exemplar);
   reference.colours.emplace(exemplar,
                             std::min(static_cast<std::size_t>(exemplar.width) * exemplar.height,
                                      static_cast<std::size_t>(settings.width) * settings.height));
@@ -126,7 +122,7 @@ Synthesis measure_method(std::string_view method, ImageView<const float> exempla
   synthesis.name = std::string(method);
   const double analysis_start = thread_cpu_seconds();
   const Model model = analyze(method, exemplar);
-  synthesis.analysis_seconds = thread_cpu_seconds() - analysis_start;
+  const double analysis_seconds = thread_cpu_seconds() - analysis_start;
 
   RenderOptions one_thread;
   one_thread.threads = 1;
@@ -134,9 +130,11 @@ Synthesis measure_method(std::string_view method, ImageView<const float> exempla
   const double render_start = thread_cpu_seconds();
   render(model, Grid{{0.0, 0.0}, 1.0, settings.width, settings.height}, settings.seed,
          synthesis.image.view(), one_thread);
-  synthesis.ns_per_sample = (thread_cpu_seconds() - render_start) * 1e9 /
-                            (static_cast<double>(settings.width) * settings.height);
+  const double ns_per_sample = (thread_cpu_seconds() - render_start) * 1e9 /
+                               (static_cast<double>(settings.width) * settings.height);
   synthesis.quality = measure_quality(synthesis.image.view(), reference);
+  synthesis.quality.analysis_seconds = analysis_seconds;
+  synthesis.quality.ns_per_sample = ns_per_sample;
 
   // Point samples, so that the variance measured is the method's own and not its filtering's.
   one_thread.filter = false;

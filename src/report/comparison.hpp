@@ -50,24 +50,14 @@ struct ExemplarReference {
 };
 ExemplarReference make_reference(ImageView<const float> exemplar, const ReportSettings& settings);
 
-struct Quality {
-  double spectral_error = 0.0;    // relative L1 distance of Welch spectra
-  double histogram_error = 0.0;   // sliced Wasserstein-2 distance of pixel colours
-  double mean_error = 0.0;        // |mean - exemplar mean|
-  double covariance_error = 0.0;  // relative Frobenius distance of colour covariances
-  double nonstationarity = 0.0;   // variance_nonstationarity over the stationarity renders
-};
-
 // One synthesis (a method's render or the ADSN sample) with its measures and pictures. Times are
 // CPU seconds of the calling thread, so other work running beside it changes them little.
 struct Synthesis {
   std::string name;  // the method, or "gaussian" for ADSN
   ImageF image;      // settings.width x settings.height
-  Quality quality;
+  Quality quality;   // all measures; the analysis and render times are 0 for ADSN
   ImageF spectrum_picture;
   ImageF histogram_picture;
-  double analysis_seconds = 0.0;  // analyze() with default parameters; 0 for ADSN
-  double ns_per_sample = 0.0;     // the render of `image` on one thread; 0 for ADSN
 };
 
 // ADSN samples of the exemplar at the report's size and seed (and, for stationarity, at the

@@ -359,16 +359,16 @@ TEST(CompareImages, AnImageAgainstItselfHasOnlyTheReferenceErrors) {
   const ImageF exemplar = blurred(uniform_noise(64, 48, 3, 0.5, 9u));
   const ComparisonReport report = compare_images(exemplar.view(), exemplar.view(), 3u);
   EXPECT_EQ(report.crop, 16);
-  EXPECT_EQ(report.spectral_error, 0.0);
-  EXPECT_EQ(report.histogram_error, 0.0);
-  EXPECT_EQ(report.mean_error, 0.0);
-  EXPECT_EQ(report.covariance_error, 0.0);
+  EXPECT_EQ(report.image.spectral_error, 0.0);
+  EXPECT_EQ(report.image.histogram_error, 0.0);
+  EXPECT_EQ(report.image.mean_error, 0.0);
+  EXPECT_EQ(report.image.covariance_error, 0.0);
   // An ADSN sample is a different image with the same expected spectrum: with 7 x 5 crops of 16
   // the estimator's noise alone gives an error near sqrt(2) * sqrt(1.2 / (3 * 35)) * sqrt(2 / pi)
   // = 0.12 (see SpectralError). Two halves of one texture differ.
-  EXPECT_GT(report.spectral_error_adsn, 0.0);
-  EXPECT_LT(report.spectral_error_adsn, 0.3);
-  EXPECT_GT(report.histogram_error_adsn, 0.0);
+  EXPECT_GT(report.adsn.spectral_error, 0.0);
+  EXPECT_LT(report.adsn.spectral_error, 0.3);
+  EXPECT_GT(report.adsn.histogram_error, 0.0);
   EXPECT_GT(report.histogram_error_floor, 0.0);
 
   const ImageF grey(64, 48, 1);

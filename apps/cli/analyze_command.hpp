@@ -1,0 +1,28 @@
+#pragma once
+// The options and work of `stochtex analyze`, which `stochtex synth` shares.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex::cli {
+
+struct AnalyzeOptions {
+  std::string input;
+  std::string target;
+  std::string method;
+  std::vector<std::string> params;
+  std::uint32_t seed = 0;
+};
+
+// INPUT, --target, --method, -p and --analysis-seed.
+void add_analyze_options(CLI::App* command, AnalyzeOptions& options);
+
+// The model of the options' exemplar or target. The method and parameters are checked before
+// anything is read, so usage errors come first.
+Model run_analyze(const AnalyzeOptions& options);
+
+}  // namespace stochtex::cli

@@ -1,0 +1,44 @@
+// `stochtex gaussian INPUT -o IMAGE --size WxH`: the exemplar's Gaussian version (asymptotic
+// discrete spot noise, ADSN), the texture that texton, lrp and gabor noise approximate.
+
+#include <fmt/core.h>
+
+#include <cstdint>
+#include <memory>
+
+#include "arguments.hpp"
+#include "commands.hpp"
+#include "io/image_io.hpp"
+
+namespace stochtex::cli {
+
+Command add_gaussian_command(CLI::App& app) {
+  struct Options {
+    std::string input;
+    std::string output;
+    std::string size;
+    std::uint32_t seed = 0;
+    int bit_depth = 8;
+  };
+  auto options = std::make_shared<Options>();
+  auto* command = app.add_subcommand("gaussian", "the exemplar's Gaussian version (ADSN)");
+  command->add_option("INPUT", options->input, "exemplar image")->required();
+  command->add_option("-o,--output", options->output, "image to write")->required();
+  command->add_option("--size", options->size, "output size WIDTHxHEIGHT")->required();
+  command->add_option("--seed", options->seed, "32-bit seed")->capture_default_str();
+  command->add_option("--bit-depth", options->bit_depth, "PNG output bits per channel")
+      ->capture_default_str()
+      ->check(CLI::IsMember({8, 16}));
+  return {command, [options] {
+            const Size size = output_size(options->size);
+            check_output_path(options->output, true);
+            const ImageF exemplar = load_exemplar(options->input);
+            const ImageF result =
+                gaussian_version(exemplar.view(), size.width, size.height, options->seed);
+            write_image(options->output, result.view(), options->bit_depth);
+            fmt::print(stderr, "wrote {}\n", options->output);
+            return 0;
+          }};
+}
+
+}  // namespace stochtex::cli

@@ -1,0 +1,36 @@
+#pragma once
+// The options and work of `stochtex render`, which `stochtex synth` shares.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex::cli {
+
+struct RenderSettings {
+  std::string size = "512x512";
+  std::string origin = "0,0";
+  double scale = 1.0;
+  std::uint32_t seed = 0;
+  int threads = 0;
+  int supersample = 1;
+  int tile = 64;
+  bool no_filter = false;
+  int bit_depth = 8;
+  std::string backend = "cpu";
+  std::string gl_filter = "exact";
+};
+
+// -o (an image), --size (required), --origin, --scale, --seed and the render options.
+void add_render_options(CLI::App* command, RenderSettings& settings, std::string& output);
+
+// Checks --size, --origin and the output path, then renders the model that `make_model` returns
+// (called after those checks, so that usage errors come first) with the settings' backend and
+// writes the image to `output`.
+void render_to_file(const std::function<Model()>& make_model, const RenderSettings& settings,
+                    const std::string& output);
+
+}  // namespace stochtex::cli
