@@ -42,7 +42,7 @@ TEST(Gl, ContextIsOpenGl45) {
 TEST(Gl, RandomGlslMatchesTheCppSpec) {
   // random.glsl run by a one-off compute shader, bit for bit against core/hash.hpp.
   const gl::Context context;
-  const std::string source = std::string("#version 450\n") + gl::kRandomGlsl + R"glsl(
+  const std::string source = "#version 450\n" + gl::random_source() + R"glsl(
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) writeonly buffer Out { uint values[]; };
 void main() {
