@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -214,6 +215,11 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
        32},
       {"gabor", "red_fleece_128.png", {{"impulses", 256}}, 24},
   };
+  // Every method of the registry is exported by at least one case.
+  for (const MethodInfo& method : methods())
+    EXPECT_TRUE(std::any_of(cases.begin(), cases.end(),
+                            [&](const ExportCase& c) { return c.method == method.name; }))
+        << "no export case for " << method.name;
   const gl::Context context;
   for (const auto& c : cases) {
     const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
