@@ -1,20 +1,21 @@
 // `stochtex export-shader`: each method's GLSL library (the renderer's own code, with its data
-// read from textures instead of storage buffers), the data as RGBA float images and a README.
+// read from textures instead of storage buffers; Twin::shader in src/methods/<m>/gl_data.cpp), the
+// data as RGBA float images and a README written here the same for every method.
 
-#include <algorithm>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <variant>
+#include <vector>
 
-#include "gl/gabor_glsl.hpp"
-#include "gl/lrp_glsl.hpp"
-#include "gl/texton_glsl.hpp"
-#include "gl/tiling_glsl.hpp"
+#include "gl/twin.hpp"
 #include "model/model_data.hpp"
-#include "stochtex/error.hpp"
 #include "stochtex/gpu.hpp"
+#include "stochtex_gl_twins.hpp"
 
 namespace stochtex {
+namespace gl {
 namespace {
 
 // One exported texture: the image's file stem and the sampler uniform it binds to.
@@ -74,103 +75,28 @@ std::string export_header(const std::string& what, const std::string& glsl_file,
   return text.str();
 }
 
-ShaderExport export_texton(const texton::TextonModel& model) {
-  gl::TextonGlsl glsl = gl::texton_glsl(model);
-  const std::vector<Texture> textures = {{"texton_atlas", "stochtex_texton_atlas"}};
-  ShaderExport result;
-  result.glsl_file_name = "stochtex_texton.glsl";
-  std::ostringstream what;
-  what << "Texton noise (" << model.channels() << " channels, texton " << model.support() << "x"
-       << model.support() << ", MNI " << model.mean_impacts() << ")";
-  result.glsl =
-      export_header(what.str(), result.glsl_file_name, textures) + gl::texton_library_source(glsl);
-  result.images.push_back({"texton_atlas", std::move(glsl.atlas)});
-  result.readme = export_readme("texton", "texton noise", result.glsl_file_name, textures,
-                                "Keep |p| below ~1e4 for full float precision.");
-  return result;
-}
-
-ShaderExport export_tiling(const tiling::TilingModel& model) {
-  const gl::TilingGlsl glsl = gl::tiling_glsl(model);
-  const std::vector<Texture> textures = {{"tiling_data", "stochtex_tiling_data"}};
-  ShaderExport result;
-  result.glsl_file_name = "stochtex_tiling.glsl";
-  result.glsl = export_header("Histogram-preserving tiling and blending (" +
-                                  std::to_string(model.channels()) + " channels)",
-                              result.glsl_file_name, textures) +
-                gl::tiling_library_source(glsl, gl::DataSource::textures);
-  result.images.push_back({"tiling_data", gl::pack_rgba(glsl.data)});
-  result.readme = export_readme(
-      "tiling", "histogram-preserving tiling", result.glsl_file_name, textures,
-      "`tiling_data.exr` is one float array (the exemplar's pyramid and look-up tables) packed "
-      "four floats\nper texel, 1024 texels per row. Keep |p| below ~1e4 for full float "
-      "precision.");
-  return result;
-}
-
-ShaderExport export_lrp(const lrp::LrpModel& model) {
-  const gl::LrpGlsl glsl = gl::lrp_glsl(model);
-  constexpr std::uint32_t kExactFloatIntegers = 1u << 24;
-  const auto too_large = [](std::uint32_t value) { return value >= kExactFloatIntegers; };
-  if (std::any_of(glsl.substrata.begin(), glsl.substrata.end(), too_large) ||
-      std::any_of(glsl.turbulence_substrata.begin(), glsl.turbulence_substrata.end(), too_large))
-    throw Error(ErrorCode::invalid_input,
-                "export-shader: this lrp model has more than 2^24 frequencies, which a float "
-                "texture cannot index exactly");
-  const std::vector<Texture> textures = {{"lrp_tables", "stochtex_lrp_tables"}};
-  ShaderExport result;
-  result.glsl_file_name = "stochtex_lrp.glsl";
-  result.glsl =
-      export_header("Local random-phase noise (" + std::to_string(model.channels()) + " channels)",
-                    result.glsl_file_name, textures) +
-      gl::lrp_library_source(glsl, gl::DataSource::textures);
-  result.images.push_back({"lrp_tables", gl::lrp_tables_image(glsl)});
-  result.readme = export_readme(
-      "lrp", "local random-phase noise", result.glsl_file_name, textures,
-      "`lrp_tables.exr` holds one table entry per texel, the tables one after the other from\n"
-      "the texels LRP_SUBSTRATA_TEXEL, LRP_STRUCTURE_TEXEL, ... of the shader: frequencies\n"
-      "(R, G: cycles per pixel; B: weight), sub-strata (R, G: first frequency and count), and\n"
-      "for a model that keeps structure (ratio > 0) its cosines and turbulence tables. Keep |p|\n"
-      "below ~1e4 for full float precision.");
-  return result;
-}
-
-ShaderExport export_gabor(const gabor::GaborModel& model) {
-  gl::GaborGlsl glsl = gl::gabor_glsl(model);
-  const std::vector<Texture> textures = {{"gabor_data", "stochtex_gabor_data"}};
-  ShaderExport result;
-  result.glsl_file_name = "stochtex_gabor.glsl";
-  result.glsl =
-      export_header("Gabor noise by example (" + std::to_string(model.channels()) + " channels, " +
-                        std::to_string(model.grids().size()) + " grids, " +
-                        std::to_string(static_cast<int>(model.impulses())) + " impulses)",
-                    result.glsl_file_name, textures) +
-      gl::gabor_library_source(glsl);
-  result.images.push_back({"gabor_data", std::move(glsl.data)});
-  result.readme = export_readme(
-      "gabor", "Gabor noise", result.glsl_file_name, textures,
-      "Texel i < GABOR_GAUSSIANS of `gabor_data.exr` is Gaussian i (frequency x, y, alias "
-      "probability,\nalias index); then 24 texels per grid hold its Poisson table. The shader "
-      "uses double precision\n(core since OpenGL 4.0) for positions and cell corners, as the CPU "
-      "reference does.");
-  return result;
-}
-
 }  // namespace
+
+ShaderExport assemble_export(ExportParts parts) {
+  const std::string method(parts.method);
+  std::vector<Texture> textures;
+  for (const NamedImage& image : parts.images)
+    textures.push_back({image.name, "stochtex_" + image.name});
+  ShaderExport result;
+  result.glsl_file_name = "stochtex_" + method + ".glsl";
+  result.glsl = export_header(parts.what, result.glsl_file_name, textures) + parts.library;
+  result.images = std::move(parts.images);
+  result.readme = export_readme(method, parts.title, result.glsl_file_name, textures, parts.notes);
+  return result;
+}
+
+}  // namespace gl
 
 ShaderExport export_shader(const Model& model) {
   if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
   return std::visit(
-      [](const auto& method_model) -> ShaderExport {
-        using Method = std::decay_t<decltype(method_model)>;
-        if constexpr (std::is_same_v<Method, texton::TextonModel>)
-          return export_texton(method_model);
-        else if constexpr (std::is_same_v<Method, tiling::TilingModel>)
-          return export_tiling(method_model);
-        else if constexpr (std::is_same_v<Method, lrp::LrpModel>)
-          return export_lrp(method_model);
-        else
-          return export_gabor(method_model);
+      [](const auto& method_model) {
+        return gl::Twin<std::decay_t<decltype(method_model)>>::shader(method_model);
       },
       model.data().model);
 }

@@ -3,9 +3,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <span>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "stochtex/image.hpp"
@@ -34,6 +38,38 @@ inline std::string glsl_double(double value) {
 
 inline std::string glsl_int(int value) {
   return std::to_string(value);
+}
+
+// A uint as a hexadecimal GLSL literal (hash stream ids read as in core/hash.hpp).
+inline std::string glsl_uint_hex(std::uint32_t value) {
+  std::array<char, 16> text{};
+  std::snprintf(text.data(), text.size(), "0x%08xu", value);
+  return text.data();
+}
+
+// A constant that C++ and a GLSL twin share: written once, in C++, and declared in GLSL from the
+// C++ value by glsl_constants (GLSL type from the value's: int, uint, float or double).
+struct GlslConstant {
+  const char* name;
+  std::variant<int, std::uint32_t, float, double> value;
+};
+
+// "const <type> <name> = <value>;" per constant, every value reading back exactly.
+inline std::string glsl_constants(std::span<const GlslConstant> constants) {
+  std::string text;
+  for (const GlslConstant& constant : constants) {
+    const auto [type, value] = std::visit(
+        [](auto v) -> std::pair<const char*, std::string> {
+          using T = decltype(v);
+          if constexpr (std::is_same_v<T, int>) return {"int", glsl_int(v)};
+          if constexpr (std::is_same_v<T, std::uint32_t>) return {"uint", glsl_uint_hex(v)};
+          if constexpr (std::is_same_v<T, float>) return {"float", glsl_float(v)};
+          if constexpr (std::is_same_v<T, double>) return {"double", glsl_double(v)};
+        },
+        constant.value);
+    text += "const " + std::string(type) + " " + constant.name + " = " + value + ";\n";
+  }
+  return text;
 }
 
 // "const <type> <name>[n] = <type>[](...);"; GLSL has no empty arrays, so an empty span gives one

@@ -1,5 +1,7 @@
 // The randomness spec of DESIGN.md section 5 in GLSL, statement for statement the same as
-// src/core/hash.hpp (uint arithmetic wraps in both languages). Tests compare the two.
+// src/core/hash.hpp (uint arithmetic wraps in both languages). Tests compare the two. The stream
+// constants STREAM_POINTS, STREAM_PHASES, ... of the C++ enum Stream are declared before this
+// file from the enum (random_source() in random.cpp).
 
 uint pcg_hash(uint v) {
   uint state = v * 747796405u + 2891336453u;
@@ -20,8 +22,6 @@ uvec4 pcg4d(uvec4 v) {
   v.w += v.y * v.z;
   return v;
 }
-
-const uint STREAM_POINTS = 0x9e3779b9u;
 
 // Cell coordinates enter as their low 32 bits, as in the C++ cell_key.
 uint cell_key(uint cell_x, uint cell_y, uint seed, uint stream) {

@@ -1,19 +1,24 @@
 #pragma once
-// GLSL sources compiled into the library (generated from the .glsl files by CMake, so the files
-// stay the single source and editors see them as GLSL).
+// The GLSL files compiled into the library: src/gl/*.glsl and src/methods/*/*.glsl, embedded as
+// strings by CMake (cmake/embed_glsl.cmake), so the files stay the single source and editors see
+// them as GLSL.
+
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "gl/glsl_text.hpp"
 
 namespace stochtex::gl {
 
-extern const char* const kRandomGlsl;        // src/gl/random.glsl
-extern const char* const kTextonGlsl;        // src/methods/texton/evaluate.glsl
-extern const char* const kTextonRenderGlsl;  // src/gl/texton_render.glsl
-extern const char* const kTilingGlsl;        // src/methods/tiling/evaluate.glsl
-extern const char* const kTilingRenderGlsl;  // src/gl/tiling_render.glsl
-extern const char* const kTilingHardwareGlsl;  // src/gl/tiling_hardware.glsl
-extern const char* const kTextonHardwareGlsl;  // src/gl/texton_hardware.glsl
-extern const char* const kLrpGlsl;           // src/methods/lrp/evaluate.glsl
-extern const char* const kLrpRenderGlsl;     // src/gl/lrp_render.glsl
-extern const char* const kGaborGlsl;         // src/methods/gabor/evaluate.glsl
-extern const char* const kGaborRenderGlsl;   // src/gl/gabor_render.glsl
+// The text of the GLSL file at `name`, its path under src/ ("gl/random.glsl",
+// "methods/texton/evaluate.glsl"). Throws std::logic_error for a file that is not embedded.
+std::string shader_source(std::string_view name);
+
+// random.glsl preceded by the stream constants of core/hash.hpp (STREAM_POINTS, ...), declared
+// from the C++ enum: what every method's GLSL library starts with.
+std::string random_source();
+// The stream constants random_source() declares.
+std::span<const GlslConstant> random_constants();
 
 }  // namespace stochtex::gl

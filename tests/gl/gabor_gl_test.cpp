@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "gl/context.hpp"
-#include "gl/gabor_glsl.hpp"
 #include "gl/gl_support.hpp"
 #include "gl/program.hpp"
 #include "io/image_io.hpp"
+#include "methods/gabor/gl_twin.hpp"
 #include "model/model_data.hpp"
 
 namespace stochtex {

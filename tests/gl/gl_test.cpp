@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -42,7 +43,7 @@ TEST(Gl, ContextIsOpenGl45) {
 TEST(Gl, RandomGlslMatchesTheCppSpec) {
   // random.glsl run by a one-off compute shader, bit for bit against core/hash.hpp.
   const gl::Context context;
-  const std::string source = std::string("#version 450\n") + gl::kRandomGlsl + R"glsl(
+  const std::string source = "#version 450\n" + gl::random_source() + R"glsl(
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) writeonly buffer Out { uint values[]; };
 void main() {
@@ -214,6 +215,11 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
        32},
       {"gabor", "grass_lawn_128.png", {{"impulses", 256}}, 24},
   };
+  // Every method of the registry is exported by at least one case.
+  for (const MethodInfo& method : methods())
+    EXPECT_TRUE(std::any_of(cases.begin(), cases.end(),
+                            [&](const ExportCase& c) { return c.method == method.name; }))
+        << "no export case for " << method.name;
   const gl::Context context;
   for (const auto& c : cases) {
     const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);

@@ -2,7 +2,7 @@
 // streams, same draws (Poisson counts, positions, alias column and coin, phase) in the same order,
 // same constants and the same arithmetic statement for statement, so the CPU and GPU agree to
 // the rounding of exp and cos. Requires random.glsl, then the model's constants (gabor_glsl() in
-// src/gl writes them: GABOR_CHANNELS, GABOR_GRIDS, GABOR_DATA_WIDTH, GABOR_MIXING, GABOR_MEAN and
+// gl_data.cpp writes them: GABOR_CHANNELS, GABOR_GRIDS, GABOR_DATA_WIDTH, GABOR_MIXING, GABOR_MEAN and
 // the GABOR_GRID_* arrays, one entry per Poisson grid) and `uniform sampler2D stochtex_gabor_data`:
 // texel i < GABOR_GAUSSIANS is Gaussian i in grid order (frequency x, frequency y, alias
 // probability, alias index relative to its grid); grid g's Poisson CDF (96 floats) fills the 24
@@ -13,13 +13,9 @@
 // kernel's truncation test (envelope < pi, a jump of e^-pi of the kernel) decides the same way.
 // `precise` keeps the compiler from fusing a * b + c into an fma the C++ does not use.
 
-const double GABOR_PI = 3.1415926535897931lf;
-const float GABOR_PI_F = 3.14159274;      // float(pi), kPiF
-const float GABOR_TWO_PI_F = 6.28318548;  // float(2 pi), kTwoPi
-const double GABOR_PIXEL_VARIANCE = 1.0lf / 12.0lf;
-const double GABOR_NEGLIGIBLE_ATTENUATION = 12.0lf;
-const double GABOR_MAX_LEVEL_RATIO = 1099511627776.0lf;  // 2^kMaxLevels, kMaxLevels = 40
-const uint STREAM_KERNELS = 0x165667b1u;
+// GABOR_PI, GABOR_PI_F, GABOR_TWO_PI_F, GABOR_PIXEL_VARIANCE, GABOR_NEGLIGIBLE_ATTENUATION and
+// GABOR_MAX_LEVEL_RATIO (2^kMaxLevels) are the C++ constants of model.hpp, declared before this
+// file from Twin::kConstants (gl_twin.hpp).
 
 vec4 gabor_texel(int index) {
   return texelFetch(stochtex_gabor_data, ivec2(index % GABOR_DATA_WIDTH, index / GABOR_DATA_WIDTH),

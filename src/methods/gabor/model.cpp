@@ -24,16 +24,6 @@ const double kTruncationGain = 1.0 / std::sqrt(1.0 - std::exp(-2.0 * kPi));
 // Cells hold about this many impulses on average: denser grids visit fewer empty margins, sparser
 // ones fewer cells. The cell side stays within [r/4, 2r].
 constexpr double kPointsPerCell = 64.0;
-// A grid whose least attenuated Gaussian is scaled by less than e^-12 (6e-6) by the footprint's
-// filter contributes nothing visible and is skipped.
-constexpr double kNegligibleAttenuation = 12.0;
-// Footprints wider than the kernel make it cover more cells; the process is then thinned by 4 per
-// level (cells twice as wide, a quarter of the intensity, amplitudes doubled so the variance is
-// unchanged) so that the cost per sample stays bounded. At most this many levels; wider
-// footprints make the grid vanish.
-constexpr int kMaxLevels = 40;
-// Variance per axis of a box of one pixel.
-constexpr double kPixelVariance = 1.0 / 12.0;
 static_assert(kParams[1].name == "impulses", "the evaluator reads the impulse budget's range");
 constexpr std::array<const char*, 5> kReportNames = {"sparseness", "fit_error",
                                                      "offdiagonality_independent",
@@ -387,8 +377,6 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
                  fyy = static_cast<float>(f11);
       const auto dxx = static_cast<float>(d00), dxy = static_cast<float>(2.0 * d01),
                  dyy = static_cast<float>(d11);
-      constexpr auto kTwoPi = static_cast<float>(2.0 * kPi);
-      constexpr auto kPiF = static_cast<float>(kPi);
       float sum = 0.0f;
       // Cells meeting p + [-reach, reach]^2; 64-bit indices, offsets from the cell corner taken in
       // double before going to float, so p = 1e7 is as precise as p = 0 (DESIGN.md section 4).
@@ -420,7 +408,7 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
               wx = mapped_x;
             }
             sum +=
-                std::exp(-envelope - attenuation) * std::cos(kTwoPi * (wx * dx + wy * dy + phase));
+                std::exp(-envelope - attenuation) * std::cos(kTwoPiF * (wx * dx + wy * dy + phase));
           });
         }
       }

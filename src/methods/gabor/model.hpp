@@ -6,6 +6,7 @@
 // (channel, bandwidth) and draws kernel parameters with the alias method.
 
 #include <cstdint>
+#include <numbers>
 #include <span>
 #include <string>
 #include <string_view>
@@ -27,6 +28,21 @@ double bandwidth(int band);
 // A model holds at most this many Gaussians (a 1024^2 RGBA exemplar fitted at full density):
 // loading refuses more, so a file cannot ask for more memory or set-up work than analysis makes.
 inline constexpr std::size_t kMaxGaussians = std::size_t{1} << 22;
+
+// Constants of the evaluator (GaborModel::evaluate), shared with its GLSL twin (gl_twin.hpp).
+// pi and 2 pi as floats, for the kernel's envelope and cosine.
+inline constexpr auto kPiF = static_cast<float>(std::numbers::pi);
+inline constexpr auto kTwoPiF = static_cast<float>(2.0 * std::numbers::pi);
+// A grid whose least attenuated Gaussian is scaled by less than e^-12 (6e-6) by the footprint's
+// filter contributes nothing visible and is skipped.
+inline constexpr double kNegligibleAttenuation = 12.0;
+// Footprints wider than the kernel make it cover more cells; the process is then thinned by 4 per
+// level (cells twice as wide, a quarter of the intensity, amplitudes doubled so the variance is
+// unchanged) so that the cost per sample stays bounded. At most this many levels; wider
+// footprints make the grid vanish.
+inline constexpr int kMaxLevels = 40;
+// Variance per axis of a box of one pixel.
+inline constexpr double kPixelVariance = 1.0 / 12.0;
 
 // One symmetric pair of Gaussians of eq. (6): frequency +-omega in cycles per pixel, bandwidth
 // a_band, variance sigma^2 = K^2 / (4 a^2) of its Gabor noise.
@@ -97,7 +113,7 @@ class GaborModel {
     PoissonSampler cell_count;
   };
   const std::vector<Grid>& grids() const { return grids_; }
-  // The Gaussians' frequencies in grid order (grid.first + i), for the GLSL twin (src/gl).
+  // The Gaussians' frequencies in grid order (grid.first + i), for the GLSL twin (gl_data.cpp).
   std::span<const float> frequency_x() const { return frequency_x_; }
   std::span<const float> frequency_y() const { return frequency_y_; }
   std::span<const float> alias_probability() const { return alias_probability_; }

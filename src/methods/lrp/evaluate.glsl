@@ -1,10 +1,10 @@
 // Local random-phase noise in GLSL: the twin of LrpModel::evaluate_typed (model.cpp,
 // evaluate.hpp, window.hpp), same lattices, same draws, same polynomial cosine and window.
-// Requires random.glsl, then the model's constants (lrp_glsl() in src/gl writes them) and the
-// table readers `vec3 lrp_frequency(uint index)` (f_x, f_y, weight) and
-// `uvec2 lrp_substratum(int index)` (first, count): storage buffers in the renderer, a texture in an exported shader (src/gl/lrp_glsl.cpp).
-
-const uint STREAM_PHASES = 0x7f4a7c15u;
+// Requires random.glsl, then the constants shared with the C++ (LRP_TWO_PI, LRP_WINDOW_*,
+// LRP_TURBULENCE_STREAM_BASE: Twin::kConstants in gl_twin.hpp), the model's constants (lrp_glsl()
+// in gl_data.cpp writes them) and the table readers `vec3 lrp_frequency(uint index)` (f_x, f_y,
+// weight) and `uvec2 lrp_substratum(int index)` (first, count): storage buffers in the renderer,
+// a texture in an exported shader (lrp_library_source in gl_data.cpp).
 
 // cos(2 pi t), t in turns (cos_turns).
 float lrp_cos_turns(float t) {
@@ -13,7 +13,7 @@ float lrp_cos_turns(float t) {
   t = t > 0.5 ? 1.0 - t : t;
   float sign = t > 0.25 ? -1.0 : 1.0;
   t = t > 0.25 ? 0.5 - t : t;
-  float x = 6.283185307179586 * t;
+  float x = LRP_TWO_PI * t;
   float x2 = x * x;
   float p = 1.0 + x2 * (-1.0 / 2.0 +
                         x2 * (1.0 / 24.0 +
@@ -28,10 +28,10 @@ float lrp_clamp_weight(float cycles) { return clamp((1.0 - cycles) * 2.0, 0.0, 1
 
 // The Kaiser-Bessel window at squared distance r2 in lattice units (window_from_square).
 float lrp_window(float r2) {
-  float t = 1.0 - r2 * (1.0 / 2.25);
+  float t = 1.0 - r2 * (1.0 / LRP_WINDOW_RADIUS_SQUARED);
   if (t <= 0.0) return 0.0;
-  float sum = LRP_WINDOW[19];
-  for (int m = 18; m >= 0; --m) sum = sum * t + LRP_WINDOW[m];
+  float sum = LRP_WINDOW[LRP_WINDOW_TERMS - 1];
+  for (int m = LRP_WINDOW_TERMS - 2; m >= 0; --m) sum = sum * t + LRP_WINDOW[m];
   return sum * t * sqrt(t);
 }
 
@@ -109,7 +109,6 @@ vec4 lrp_colour(vec4 noise) {
 // Section 5, the twin of structure_model.cpp: table readers `vec4 lrp_structure_cosine(int)`
 // (f_x, f_y, amplitude, phase; channel-major, then block, then cosine),
 // `vec2 lrp_turbulence_frequency(uint)` and `uvec2 lrp_turbulence_substratum(int)` (first, count).
-const uint STREAM_OFFSETS = 0x85ebca6bu;
 
 // add_fixed_phase: n_R at q (exemplar pixels; the caller reduces q modulo the period, so the node
 // index differs from the CPU's by a multiple of B, the same block), times `weight`, into noise.
@@ -126,7 +125,7 @@ void lrp_add_fixed_phase(vec2 q, bool filtered, vec2 axis_a, vec2 axis_b, float 
     for (int dx = -1; dx <= 1; ++dx) {
       float rx = offset.x - float(dx);
       float ry = offset.y - float(dy);
-      float w = lrp_window((rx * rx + ry * ry) * 2.25);
+      float w = lrp_window((rx * rx + ry * ry) * LRP_WINDOW_RADIUS_SQUARED);
       if (w <= 0.0) continue;
       float px = rx * side;
       float py = ry * side;

@@ -12,6 +12,8 @@
 
 namespace stochtex::lrp {
 
+inline constexpr float kTwoPi = 6.283185307179586f;
+
 // cos(2 pi t) for t in turns. The argument is reduced to [0, 1/2] by dropping its integer part
 // (a truncating conversion: std::floor and std::nearbyint are library calls on baseline x86-64)
 // and by the symmetries of the cosine, folded to [0, 1/4], and the even Taylor polynomial of
@@ -24,8 +26,7 @@ inline float cos_turns(float t) noexcept {
   t = t > 0.5f ? 1.0f - t : t;
   const float sign = t > 0.25f ? -1.0f : 1.0f;
   t = t > 0.25f ? 0.5f - t : t;
-  constexpr float two_pi = 6.283185307179586f;
-  const float x = two_pi * t;
+  const float x = kTwoPi * t;
   const float x2 = x * x;
   const float p =
       1.0f +

@@ -197,7 +197,8 @@ void add_fixed_phase(const StructureData& s,
       // Delta_R = 2/3 of a block: the window (radius 1.5 Delta_R) reaches one block from its node,
       // exactly the region whose spectrum the block's cosines reproduce. The nearest node is
       // within 0.71 block, where the window is positive, so window_sum > 0.
-      const float w = window_from_square(window_coefficients, (rx * rx + ry * ry) * 2.25f);
+      const float w =
+          window_from_square(window_coefficients, (rx * rx + ry * ry) * kWindowRadiusSquared);
       if (w <= 0.0f) continue;
       const float px = rx * side_float;
       const float py = ry * side_float;

@@ -21,6 +21,7 @@ namespace stochtex::lrp {
 // The window vanishes outside [-1.5, 1.5] (section 3.4): with lattice nodes on the integers, a
 // sample sees the 3 x 3 nodes around its nearest node only (I = 9 in equation 1).
 inline constexpr double kWindowRadius = 1.5;
+inline constexpr auto kWindowRadiusSquared = static_cast<float>(kWindowRadius * kWindowRadius);
 // The Kaiser-Bessel shape parameter: the argument at the window's centre is pi * alpha = 3 pi.
 inline constexpr double kKaiserArgument = 3.0 * std::numbers::pi;
 inline constexpr int kWindowOrder = 3;
@@ -85,7 +86,7 @@ inline std::array<float, kWindowTerms> window_coefficients() {
 // w at squared distance `r2` (in units of the lattice spacing) from the polynomial form.
 inline float window_from_square(const std::array<float, kWindowTerms>& coefficients,
                                 float r2) noexcept {
-  const float t = 1.0f - r2 * (1.0f / static_cast<float>(kWindowRadius * kWindowRadius));
+  const float t = 1.0f - r2 * (1.0f / kWindowRadiusSquared);
   if (t <= 0.0f) return 0.0f;
   float sum = coefficients[kWindowTerms - 1];
   for (int m = kWindowTerms - 2; m >= 0; --m) sum = sum * t + coefficients[m];

@@ -1,17 +1,14 @@
 // Texton noise in GLSL: the twin of TextonModel::evaluate_typed and filter_setup (evaluate.hpp,
 // model.cpp), same hash, same draws, same constants, so the CPU and GPU agree to float rounding.
-// Requires random.glsl, then the model's constants (texton_glsl_constants() in src/gl writes
-// them: TEXTON_CHANNELS, TEXTON_ORDER, TEXTON_CELL_SIZE, TEXTON_POISSON_CDF, TEXTON_POISSON_CHUNKS,
+// Requires random.glsl, then the constants shared with the C++ (TEXTON_PADDING, TEXTON_MAX_PROBES,
+// TEXTON_LOD_BIAS: Twin::kConstants in gl_twin.hpp), the model's constants (texton_glsl() in
+// gl_data.cpp writes them: TEXTON_CHANNELS, TEXTON_ORDER, TEXTON_CELL_SIZE, TEXTON_POISSON_CDF, TEXTON_POISSON_CHUNKS,
 // TEXTON_INVERSE_SQRT_INTENSITY, TEXTON_CONSTANT_TERM, TEXTON_MEAN, TEXTON_LEVELS and the
 // TEXTON_LEVEL_* arrays) and `uniform sampler2D stochtex_texton_atlas`: every pyramid level's
 // padded texels (RGBA = up to 4 channels), level l in rows TEXTON_LEVEL_ROW[l] onwards.
 
-const int TEXTON_PADDING = 8;
-const int TEXTON_MAX_PROBES = 8;
-const float TEXTON_LOD_BIAS = 0.79248125036057809;  // log2(3) / 2, see filter_setup
-
 #ifdef TEXTON_TEXTURE_FILTER
-vec4 texton_texture_fetch(float dx, float dy);  // src/gl/texton_hardware.glsl
+vec4 texton_texture_fetch(float dx, float dy);  // hardware.glsl
 #endif
 
 struct TextonFilter {
@@ -136,7 +133,7 @@ vec4 texton_noise(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
         float dx = offset_x - u * TEXTON_CELL_SIZE;
         float dy = offset_y - v * TEXTON_CELL_SIZE;
 #ifdef TEXTON_TEXTURE_FILTER
-        // `render --gl-filter hardware` (src/gl/texton_hardware.glsl): one mip-mapped,
+        // `render --gl-filter hardware` (hardware.glsl): one mip-mapped,
         // anisotropic texture fetch of the texton instead of the exact levels and probes.
         acc += texton_texture_fetch(dx, dy);
 #else

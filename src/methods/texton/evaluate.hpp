@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "core/hash.hpp"
+#include "core/level_of_detail.hpp"
 #include "core/poisson.hpp"
 #include "methods/texton/model.hpp"
 
@@ -107,12 +108,7 @@ inline void accumulate_texton(const PyramidLevel& level, float dx, float dy, flo
 
 // Most probes along the major axis of an anisotropic footprint, as GPU 8x anisotropic filtering.
 inline constexpr int kMaxProbes = 8;
-// A texel of level l reconstructs box(2^l) * tent(2^l) (a box-prefiltered level read with
-// bilinear interpolation), whose variance per axis is 4^l / 4; an ideal box filter of width w
-// has variance w^2 / 12. Equal variances give 2^l = w / sqrt(3): the level of detail is
-// log2(w) - log2(3) / 2, not log2(w), or the filtered noise is too blurred (measured in
-// docs/methods/texton.md).
-inline constexpr double kLodBias = 0.79248125036057809;  // log2(3) / 2
+// The level of detail of a footprint of width w is log2(w) - kLodBias (core/level_of_detail.hpp).
 
 // How a footprint is filtered (section 5): the pyramid level(s) and the probes along the major
 // axis, as GPU trilinear + anisotropic filtering would choose them. Default = point sample.

@@ -47,7 +47,7 @@ class TextonModel {
   std::span<const float> mean() const { return mean_; }
   const std::vector<PyramidLevel>& pyramid() const { return pyramid_; }
   double intensity() const { return intensity_; }
-  // Shot-noise constants, for the GLSL twin of the evaluator (src/gl).
+  // Shot-noise constants, for the GLSL twin of the evaluator (gl_data.cpp).
   double cell_size() const { return cell_size_; }
   const PoissonSampler& cell_count() const { return cell_count_; }
   float inverse_sqrt_intensity() const { return inverse_sqrt_intensity_; }

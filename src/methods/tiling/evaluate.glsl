@@ -1,17 +1,12 @@
 // Histogram-preserving tiling and blending in GLSL: the twin of TilingModel::evaluate (model.cpp,
 // evaluate.hpp), same lattice, same hashed offsets, same tables. Requires random.glsl, then the
-// model's constants (tiling_glsl() in src/gl writes them) and `float tiling_data_at(int index)`,
+// constants shared with the C++ (TILING_GAUSSIAN_*, TILING_INVERSE_SQRT3, TILING_LOD_BIAS:
+// Twin::kConstants in gl_twin.hpp), the model's constants (tiling_glsl() in gl_data.cpp) and `float tiling_data_at(int index)`,
 // the model's one float array: each level's texels, 3-D table and 1-D tables at the
 // TILING_LEVEL_* offsets (a storage buffer in the renderer, a texture in an exported shader).
 
-const float TILING_GAUSSIAN_MEAN = 0.5;
-const float TILING_GAUSSIAN_DEVIATION = 1.0 / 6.0;
-const float TILING_INVERSE_SQRT3 = 0.57735026918962576;
-const float TILING_LOD_BIAS = 0.79248125036057809;  // log2(3) / 2, see level_of_detail
-const uint STREAM_OFFSETS = 0x85ebca6bu;
-
 #ifdef TILING_TEXTURE_FILTER
-// src/gl/tiling_hardware.glsl
+// hardware.glsl
 vec4 tiling_texture_fetch(float x, float y);
 vec3 tiling_texture_lut(vec3 g, int level);
 #endif
@@ -92,7 +87,7 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
     float x = wrapped.x + offset_x;
     float y = wrapped.y + offset_y;
 #ifdef TILING_TEXTURE_FILTER
-    // `render --gl-filter hardware` (src/gl/tiling_hardware.glsl): one mip-mapped, anisotropic
+    // `render --gl-filter hardware` (hardware.glsl): one mip-mapped, anisotropic
     // texture fetch of the patch instead of the exact trilinear reads of the pyramid.
     acc += w[v] * tiling_texture_fetch(x, y);
 #else

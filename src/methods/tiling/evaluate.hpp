@@ -27,12 +27,19 @@ struct LatticePoint {
   float weight[3];  // >= 0, sum to 1
 };
 
+inline constexpr double kInverseSqrt3 = 0.57735026918962576;
+
+// p in skewed lattice units: vertex (i, j) at (i, j).
+inline Vec2d skewed_position(Vec2d p, double edge) noexcept {
+  return {(p.x - p.y * kInverseSqrt3) / edge, (2.0 * kInverseSqrt3 * p.y) / edge};
+}
+
 inline LatticePoint triangle_lattice(Vec2d p, double edge) noexcept {
   // Skewed coordinates are formed in double and split into a 64-bit cell and a float fraction, so
   // the fraction (hence the weights) is as precise at p = 1e7 as at p = 0 (DESIGN.md section 4).
-  constexpr double kInverseSqrt3 = 0.57735026918962576;
-  const double skewed_x = (p.x - p.y * kInverseSqrt3) / edge;
-  const double skewed_y = (2.0 * kInverseSqrt3 * p.y) / edge;
+  const Vec2d skewed = skewed_position(p, edge);
+  const double skewed_x = skewed.x;
+  const double skewed_y = skewed.y;
   const double cell_x = std::floor(skewed_x);
   const double cell_y = std::floor(skewed_y);
   const auto base_x = static_cast<std::int64_t>(cell_x);

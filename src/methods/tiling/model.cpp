@@ -4,16 +4,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/level_of_detail.hpp"
 #include "methods/tiling/params.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::tiling {
 namespace {
 
-// A level-l texel read bilinearly reconstructs box(2^l) * tent(2^l), of variance 4^l / 4 per axis;
-// the box footprint of width w that `render --supersample` averages has variance w^2 / 12. Equal
-// variances give 2^l = w / sqrt(3), the same level-of-detail bias as the texton pyramid.
-constexpr double kLodBias = 0.79248125036057809;  // log2(3) / 2
 // Strata of the quadrature that prefilters T^-1 (see prefilter_kernel).
 constexpr int kPrefilterStrata = 64;
 constexpr int kMaxExemplarSide = 1 << 16;

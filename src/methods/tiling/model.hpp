@@ -85,7 +85,7 @@ class TilingModel {
   MipLevel level(int index) const;
   // T^-1 prefiltered for pyramid level `index`: the 3-D table and the 1-D tables, each empty when
   // the model has none (no T^-1 at all for the variance and linear blends). For the GLSL twin of
-  // the evaluator (src/gl).
+  // the evaluator (gl_data.cpp).
   std::span<const float> level_lut(int index) const {
     const auto i = static_cast<std::size_t>(index);
     return i < level_luts_.size() ? std::span<const float>(level_luts_[i])

@@ -1,8 +1,11 @@
-#include "gl/tiling_glsl.hpp"
+// Histogram-preserving tiling as GLSL data (gl_twin.hpp) and its `stochtex export-shader` files.
 
 #include <span>
+#include <string>
+#include <vector>
 
 #include "gl/shaders.hpp"
+#include "methods/tiling/gl_twin.hpp"
 
 namespace stochtex::gl {
 
@@ -65,7 +68,22 @@ std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
           ? "layout(std430, binding = 0) readonly buffer TilingData { float tiling_data[]; };\n"
             "float tiling_data_at(int index) { return tiling_data[index]; }\n"
           : glsl_packed_read("stochtex_tiling_data", "tiling_data_at");
-  return std::string(kRandomGlsl) + glsl.constants + reader + kTilingGlsl;
+  return random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
+         reader + shader_source("methods/tiling/evaluate.glsl");
+}
+
+ShaderExport Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model) {
+  const TilingGlsl glsl = tiling_glsl(model);
+  std::vector<NamedImage> images;
+  images.push_back({"tiling_data", pack_rgba(glsl.data)});
+  return assemble_export(
+      {tiling::TilingModel::kMethodName, "histogram-preserving tiling",
+       "Histogram-preserving tiling and blending (" + std::to_string(model.channels()) +
+           " channels)",
+       tiling_library_source(glsl, DataSource::textures), std::move(images),
+       "`tiling_data.exr` is one float array (the exemplar's pyramid and look-up tables) packed "
+       "four floats\nper texel, 1024 texels per row. Keep |p| below ~1e4 for full float "
+       "precision."});
 }
 
 }  // namespace stochtex::gl

@@ -1,10 +1,13 @@
-#include "gl/texton_glsl.hpp"
+// Texton noise as GLSL data (gl_twin.hpp) and its `stochtex export-shader` files.
 
+#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gl/glsl_text.hpp"
 #include "gl/shaders.hpp"
+#include "methods/texton/gl_twin.hpp"
 
 namespace stochtex::gl {
 
@@ -58,8 +61,21 @@ TextonGlsl texton_glsl(const texton::TextonModel& model) {
 }
 
 std::string texton_library_source(const TextonGlsl& glsl) {
-  return std::string(kRandomGlsl) + glsl.constants + "uniform sampler2D stochtex_texton_atlas;\n" +
-         kTextonGlsl;
+  return random_source() + glsl_constants(Twin<texton::TextonModel>::kConstants) + glsl.constants +
+         "uniform sampler2D stochtex_texton_atlas;\n" +
+         shader_source("methods/texton/evaluate.glsl");
+}
+
+ShaderExport Twin<texton::TextonModel>::shader(const texton::TextonModel& model) {
+  TextonGlsl glsl = texton_glsl(model);
+  std::ostringstream what;
+  what << "Texton noise (" << model.channels() << " channels, texton " << model.support() << "x"
+       << model.support() << ", MNI " << model.mean_impacts() << ")";
+  std::vector<NamedImage> images;
+  images.push_back({"texton_atlas", std::move(glsl.atlas)});
+  return assemble_export({texton::TextonModel::kMethodName, "texton noise", what.str(),
+                          texton_library_source(glsl), std::move(images),
+                          "Keep |p| below ~1e4 for full float precision."});
 }
 
 }  // namespace stochtex::gl

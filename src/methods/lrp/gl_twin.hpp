@@ -1,13 +1,19 @@
 #pragma once
-// An LRP model as GLSL data: its constants as GLSL source, its frequency and sub-stratum tables as
-// storage-buffer contents, for the GL renderer.
+// The GPU twin of local random-phase noise (gl::Twin, src/gl/twin.hpp): the model as GLSL data,
+// its constants as GLSL source and its tables (gl_data.cpp), as storage buffers for the GL
+// renderer (gl_pass.cpp, render.glsl) and as one texture for `stochtex export-shader`.
 
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "gl/glsl_text.hpp"
+#include "gl/twin.hpp"
+#include "methods/lrp/evaluate.hpp"
 #include "methods/lrp/model.hpp"
+#include "methods/lrp/structure.hpp"
+#include "methods/lrp/window.hpp"
 
 namespace stochtex::gl {
 
@@ -24,9 +30,9 @@ struct LrpGlsl {
 
 LrpGlsl lrp_glsl(const lrp::LrpModel& model);
 
-// random.glsl, the constants, the table readers and lrp evaluate.glsl: all but `#version`. The
-// tables are the storage buffers at bindings 0 and 2, or the texture `stochtex_lrp_tables` of
-// lrp_tables_image().
+// random.glsl, kConstants, the model's constants, the table readers and lrp evaluate.glsl: all but
+// `#version`. The tables are the storage buffers at bindings 0 and 2, or the texture
+// `stochtex_lrp_tables` of lrp_tables_image().
 std::string lrp_library_source(const LrpGlsl& glsl,
                                DataSource source = DataSource::storage_buffers);
 
@@ -36,5 +42,17 @@ std::string lrp_library_source(const LrpGlsl& glsl,
 // sub-strata (first, count); the shader's LRP_*_TEXEL constants give where each starts. Counts
 // are floats, exact below 2^24 (export_shader checks).
 ImageF lrp_tables_image(const LrpGlsl& glsl);
+
+template <>
+struct Twin<lrp::LrpModel> {
+  static constexpr std::array<GlslConstant, 4> kConstants = {{
+      {"LRP_TWO_PI", lrp::kTwoPi},
+      {"LRP_WINDOW_RADIUS_SQUARED", lrp::kWindowRadiusSquared},
+      {"LRP_WINDOW_TERMS", lrp::kWindowTerms},
+      {"LRP_TURBULENCE_STREAM_BASE", static_cast<int>(lrp::kTurbulenceStreamBase)},
+  }};
+  static std::unique_ptr<Pass> pass(const lrp::LrpModel& model);
+  static ShaderExport shader(const lrp::LrpModel& model);
+};
 
 }  // namespace stochtex::gl

@@ -1,10 +1,13 @@
-#include "gl/lrp_glsl.hpp"
+// Local random-phase noise as GLSL data (gl_twin.hpp) and its `stochtex export-shader` files.
 
 #include <algorithm>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "gl/shaders.hpp"
-#include "methods/lrp/window.hpp"
+#include "methods/lrp/gl_twin.hpp"
+#include "stochtex/error.hpp"
 
 namespace stochtex::gl {
 
@@ -107,8 +110,6 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   constant("bool", "LRP_PLACEMENT", st.placement ? "true" : "false");
   constant("float", "LRP_TURBULENCE", glsl_float(st.turbulence));
   constant("int", "LRP_TURBULENCE_STRATA", glsl_int(static_cast<int>(st.turbulence_strata.size())));
-  constant("int", "LRP_TURBULENCE_STREAM_BASE",
-           glsl_int(static_cast<int>(lrp::kTurbulenceStreamBase)));
   // The size of the per-turbulence-stratum arrays of lrp_add_structure (never 0).
   constant("int", "LRP_TURBULENCE_ARRAY",
            glsl_int(std::max(1, static_cast<int>(turbulence_spacing.size()))));
@@ -172,7 +173,8 @@ uvec2 lrp_turbulence_substratum(int index) {
 }
 )glsl";
   }
-  return std::string(kRandomGlsl) + glsl.constants + readers + kLrpGlsl;
+  return random_source() + glsl_constants(Twin<lrp::LrpModel>::kConstants) + glsl.constants +
+         readers + shader_source("methods/lrp/evaluate.glsl");
 }
 
 ImageF lrp_tables_image(const LrpGlsl& glsl) {
@@ -200,6 +202,28 @@ ImageF lrp_tables_image(const LrpGlsl& glsl) {
     texel(layout.turbulence_substrata + i / 2, static_cast<int>(i % 2)) =
         static_cast<float>(glsl.turbulence_substrata[i]);
   return image;
+}
+
+ShaderExport Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model) {
+  const LrpGlsl glsl = lrp_glsl(model);
+  constexpr std::uint32_t kExactFloatIntegers = 1u << 24;
+  const auto too_large = [](std::uint32_t value) { return value >= kExactFloatIntegers; };
+  if (std::any_of(glsl.substrata.begin(), glsl.substrata.end(), too_large) ||
+      std::any_of(glsl.turbulence_substrata.begin(), glsl.turbulence_substrata.end(), too_large))
+    throw Error(ErrorCode::invalid_input,
+                "export-shader: this lrp model has more than 2^24 frequencies, which a float "
+                "texture cannot index exactly");
+  std::vector<NamedImage> images;
+  images.push_back({"lrp_tables", lrp_tables_image(glsl)});
+  return assemble_export(
+      {lrp::LrpModel::kMethodName, "local random-phase noise",
+       "Local random-phase noise (" + std::to_string(model.channels()) + " channels)",
+       lrp_library_source(glsl, DataSource::textures), std::move(images),
+       "`lrp_tables.exr` holds one table entry per texel, the tables one after the other from\n"
+       "the texels LRP_SUBSTRATA_TEXEL, LRP_STRUCTURE_TEXEL, ... of the shader: frequencies\n"
+       "(R, G: cycles per pixel; B: weight), sub-strata (R, G: first frequency and count), and\n"
+       "for a model that keeps structure (ratio > 0) its cosines and turbulence tables. Keep |p|\n"
+       "below ~1e4 for full float precision."});
 }
 
 }  // namespace stochtex::gl

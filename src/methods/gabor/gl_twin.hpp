@@ -1,0 +1,51 @@
+#pragma once
+// The GPU twin of Gabor noise (gl::Twin, src/gl/twin.hpp): the model as GLSL data, its per-grid
+// constants as GLSL source and its Gaussians and Poisson tables packed into one RGBA float image
+// (gl_data.cpp). Used by the GL renderer (gl_pass.cpp, render.glsl) and by `stochtex
+// export-shader`, so both run evaluate.glsl on the same data.
+
+#include <array>
+#include <memory>
+#include <numbers>
+#include <string>
+
+#include "gl/twin.hpp"
+#include "methods/gabor/model.hpp"
+#include "stochtex/image.hpp"
+
+namespace stochtex::gl {
+
+struct GaborGlsl {
+  // Texels per row of `data`: the largest model (kMaxGaussians, 2^22) takes 4112 rows.
+  static constexpr int kDataWidth = kDataTextureWidth;
+  // Texels of one grid's Poisson CDF (PoissonSampler::kTableSize floats, 4 per texel).
+  static constexpr int kCdfTexels = PoissonSampler::kTableSize / 4;
+
+  std::string constants;  // GLSL const declarations, GABOR_* (exact float and double literals)
+  // 4 channels, kDataWidth wide, read in row-major texel order: texel i < gaussians is Gaussian i
+  // of the grid-sorted model (frequency x, frequency y, alias probability, alias index within
+  // its grid); then kCdfTexels texels per grid, its Poisson CDF.
+  ImageF data;
+};
+
+GaborGlsl gabor_glsl(const gabor::GaborModel& model);
+
+// random.glsl, kConstants, the model's constants, the data sampler and gabor evaluate.glsl: all but
+// `#version`.
+std::string gabor_library_source(const GaborGlsl& glsl);
+
+template <>
+struct Twin<gabor::GaborModel> {
+  static constexpr std::array<GlslConstant, 6> kConstants = {{
+      {"GABOR_PI", std::numbers::pi},
+      {"GABOR_PI_F", gabor::kPiF},
+      {"GABOR_TWO_PI_F", gabor::kTwoPiF},
+      {"GABOR_PIXEL_VARIANCE", gabor::kPixelVariance},
+      {"GABOR_NEGLIGIBLE_ATTENUATION", gabor::kNegligibleAttenuation},
+      {"GABOR_MAX_LEVEL_RATIO", static_cast<double>(std::uint64_t{1} << gabor::kMaxLevels)},
+  }};
+  static std::unique_ptr<Pass> pass(const gabor::GaborModel& model);
+  static ShaderExport shader(const gabor::GaborModel& model);
+};
+
+}  // namespace stochtex::gl

@@ -1,0 +1,41 @@
+#pragma once
+// The GPU twin of texton noise (gl::Twin, src/gl/twin.hpp): the model as GLSL data, its constants
+// as GLSL source and its texel pyramid as one RGBA atlas image (gl_data.cpp), used by the GL
+// renderer (gl_pass.cpp: render.glsl, hardware.glsl) and by `stochtex export-shader`, so both run
+// evaluate.glsl on the same data.
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include "core/level_of_detail.hpp"
+#include "gl/twin.hpp"
+#include "methods/texton/evaluate.hpp"
+#include "methods/texton/model.hpp"
+#include "stochtex/image.hpp"
+
+namespace stochtex::gl {
+
+struct TextonGlsl {
+  std::string constants;  // GLSL const declarations (exact: every float reads back unchanged)
+  ImageF atlas;           // 4 channels; level l's padded texels start at row level_rows[l]
+};
+
+TextonGlsl texton_glsl(const texton::TextonModel& model);
+
+// random.glsl, kConstants, the model's constants, the atlas sampler and evaluate.glsl: all but
+// `#version`.
+std::string texton_library_source(const TextonGlsl& glsl);
+
+template <>
+struct Twin<texton::TextonModel> {
+  static constexpr std::array<GlslConstant, 3> kConstants = {{
+      {"TEXTON_PADDING", texton::kPadding},
+      {"TEXTON_MAX_PROBES", texton::kMaxProbes},
+      {"TEXTON_LOD_BIAS", static_cast<float>(kLodBias)},
+  }};
+  static std::unique_ptr<Pass> pass(const texton::TextonModel& model);
+  static ShaderExport shader(const texton::TextonModel& model);
+};
+
+}  // namespace stochtex::gl

@@ -1,0 +1,44 @@
+#pragma once
+// The GPU twin of histogram-preserving tiling (gl::Twin, src/gl/twin.hpp): the model as GLSL
+// data, its constants as GLSL source and its arrays (each pyramid level's texels, 3-D table and
+// 1-D tables) as one float array (gl_data.cpp), for the GL renderer (gl_pass.cpp: a storage
+// buffer; render.glsl, hardware.glsl) and `stochtex export-shader` (a texture).
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/level_of_detail.hpp"
+#include "gl/twin.hpp"
+#include "methods/tiling/evaluate.hpp"
+#include "methods/tiling/model.hpp"
+
+namespace stochtex::gl {
+
+struct TilingGlsl {
+  std::string constants;    // GLSL const declarations, TILING_* (exact float literals)
+  std::vector<float> data;  // read by tiling_data_at() of tiling evaluate.glsl
+};
+
+TilingGlsl tiling_glsl(const tiling::TilingModel& model);
+
+// random.glsl, kConstants, the model's constants, tiling_data_at() and tiling evaluate.glsl: all
+// but `#version`. The data is the storage buffer at binding 0, or the texture
+// `stochtex_tiling_data` of pack_rgba(data).
+std::string tiling_library_source(const TilingGlsl& glsl,
+                                  DataSource source = DataSource::storage_buffers);
+
+template <>
+struct Twin<tiling::TilingModel> {
+  static constexpr std::array<GlslConstant, 4> kConstants = {{
+      {"TILING_GAUSSIAN_MEAN", tiling::kGaussianMean},
+      {"TILING_GAUSSIAN_DEVIATION", tiling::kGaussianDeviation},
+      {"TILING_INVERSE_SQRT3", static_cast<float>(tiling::kInverseSqrt3)},
+      {"TILING_LOD_BIAS", static_cast<float>(kLodBias)},
+  }};
+  static std::unique_ptr<Pass> pass(const tiling::TilingModel& model);
+  static ShaderExport shader(const tiling::TilingModel& model);
+};
+
+}  // namespace stochtex::gl

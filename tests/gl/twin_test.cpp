@@ -1,0 +1,123 @@
+// The methods' GPU twins as a whole (src/gl/twin.hpp): the constants C++ and GLSL share read back
+// in GLSL as the C++ values, and every method of the registry renders on the GL backend.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <iostream>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "gl/context.hpp"
+#include "gl/gl_support.hpp"
+#include "gl/program.hpp"
+#include "gl/shaders.hpp"
+#include "io/image_io.hpp"
+#include "model/model_data.hpp"
+#include "stochtex_gl_twins.hpp"
+
+namespace stochtex {
+namespace {
+
+using namespace gl_test;
+
+// Every table of shared constants: random.glsl's streams and each method's Twin::kConstants.
+std::vector<std::span<const gl::GlslConstant>> shared_constant_tables() {
+  std::vector<std::span<const gl::GlslConstant>> tables = {gl::random_constants()};
+  [&]<typename... MethodModels>(std::type_identity<std::variant<MethodModels...>>) {
+    (tables.push_back(gl::Twin<MethodModels>::kConstants), ...);
+  }(std::type_identity<MethodModel>{});
+  return tables;
+}
+
+// The two 32-bit words of a constant's value as C++ holds it (the second 0 unless a double).
+std::array<std::uint32_t, 2> cpp_words(const gl::GlslConstant& constant) {
+  std::array<std::uint32_t, 2> words{};
+  std::visit(
+      [&](auto value) {
+        if constexpr (std::is_same_v<decltype(value), int>)
+          words[0] = static_cast<std::uint32_t>(value);
+        else
+          std::memcpy(words.data(), &value, sizeof(value));
+      },
+      constant.value);
+  return words;
+}
+
+// GLSL writing the same two words of the GLSL constant.
+std::string glsl_words(const gl::GlslConstant& constant, std::size_t index) {
+  const std::string at = "values[" + std::to_string(2 * index);
+  const std::string name = constant.name;
+  return std::visit(
+      [&](auto value) -> std::string {
+        using T = decltype(value);
+        if constexpr (std::is_same_v<T, double>)
+          return "  { uvec2 w = unpackDouble2x32(" + name + "); " + at + "u] = w.x; " + at +
+                 "u + 1u] = w.y; }\n";
+        const std::string word =
+            std::is_same_v<T, float> ? "floatBitsToUint(" + name + ")" : "uint(" + name + ")";
+        return "  " + at + "u] = " + word + ";\n  " + at + "u + 1u] = 0u;\n";
+      },
+      constant.value);
+}
+
+TEST(GlTwin, SharedConstantsReadBackInGlslAsTheCppValues) {
+  // The GLSL declarations glsl_constants() writes from the C++ constexprs, compiled and read back
+  // bit for bit: a literal that rounds (a float written with too few digits, a double without
+  // `lf`) fails here.
+  const gl::Context context;
+  std::size_t checked = 0;
+  for (const std::span<const gl::GlslConstant> table : shared_constant_tables()) {
+    ASSERT_FALSE(table.empty());
+    std::string body;
+    for (std::size_t i = 0; i < table.size(); ++i) body += glsl_words(table[i], i);
+    const gl::Program program("#version 450\n" + gl::glsl_constants(table) + R"glsl(
+layout(local_size_x = 1) in;
+layout(std430, binding = 0) writeonly buffer Out { uint values[]; };
+void main() {
+)glsl" + body + "}\n");
+    const gl::Buffer buffer(table.size() * 2 * sizeof(std::uint32_t));
+    glUseProgram(program.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<std::uint32_t> values(table.size() * 2);
+    glGetNamedBufferSubData(buffer.id(), 0,
+                            static_cast<GLsizeiptr>(values.size() * sizeof(std::uint32_t)),
+                            values.data());
+    ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+    for (std::size_t i = 0; i < table.size(); ++i) {
+      const std::array<std::uint32_t, 2> expected = cpp_words(table[i]);
+      EXPECT_EQ(values[2 * i], expected[0]) << table[i].name;
+      EXPECT_EQ(values[2 * i + 1], expected[1]) << table[i].name;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 20u);
+}
+
+TEST(GlTwin, EveryRegisteredMethodRendersOnTheGlBackend) {
+  // The methods of the registry, not a list of our own: each has a GPU twin (gl_supports) whose
+  // render of a default model matches the CPU reference (tolerance of the parity tests).
+  EXPECT_FALSE(gl_supports("no-such-method"));
+  const ImageF exemplar = read_image(kTextureDir + "/red_fleece_128.png");
+  const Grid grid{{-20.0, 7.5}, 2.0, 24, 16};
+  for (const MethodInfo& method : methods()) {
+    ASSERT_TRUE(gl_supports(method.name)) << method.name;
+    const Model model = analyze(method.name, exemplar.view(), {}, 0);
+    const ImageF cpu = render_cpu(model, grid, 5);
+    const ImageF gpu = render_gpu(model, grid, 5);
+    std::cout << method.name << ": max |cpu - gl| = " << max_difference(cpu, gpu) << "\n";
+    EXPECT_LT(max_difference(cpu, gpu), 1e-4f) << method.name;
+    EXPECT_EQ(export_shader(model).glsl_file_name,
+              "stochtex_" + std::string(method.name) + ".glsl");
+  }
+}
+
+}  // namespace
+}  // namespace stochtex
