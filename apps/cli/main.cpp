@@ -180,7 +180,9 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
   command->add_option("--target", options.target, std::string(cli::kTargetHelp))->excludes(input);
   command->add_option("--method,-m", options.method, "texture method (see `stochtex methods`)")
       ->required();
-  command->add_option("-p,--param", options.params, "method parameter key=value (repeatable)");
+  command->add_option("-p,--param", options.params,
+                      "method parameter key=value (repeatable; listed below)");
+  command->footer("\nmethods and parameters (-p name=default):\n" + methods_text());
   command
       ->add_option("--analysis-seed", options.seed, "seed of the analysis' random initialisation")
       ->capture_default_str();
@@ -248,23 +250,6 @@ void export_model_images(const Model& model, const std::filesystem::path& folder
     for (float& value : image.pixels()) value = 0.5f + 0.5f * value / std::max(peak, 1e-30f);
     write_image(folder / (name + ".png"), image.view());
   }
-}
-
-nlohmann::ordered_json methods_json() {
-  auto list = nlohmann::ordered_json::array();
-  for (const auto& method : methods()) {
-    auto params = nlohmann::ordered_json::array();
-    for (const auto& p : method.params) {
-      nlohmann::ordered_json param{{"name", p.name},       {"default", p.default_value},
-                                   {"min", p.min_value},   {"max", p.max_value},
-                                   {"integer", p.integer}, {"help", p.help}};
-      if (!p.allowed.empty())
-        param["allowed"] = std::vector<double>(p.allowed.begin(), p.allowed.end());
-      params.push_back(param);
-    }
-    list.push_back({{"name", method.name}, {"summary", method.summary}, {"params", params}});
-  }
-  return list;
 }
 
 int run(int argc, char** argv) {
@@ -408,7 +393,7 @@ int run(int argc, char** argv) {
         fmt::print("model     {}\nmethod    {}\nchannels  {}\n", model_path, model.method(),
                    model.channels());
         for (const auto& [name, value] : doc["params"].items())
-          fmt::print("  {} = {}\n", name, value.dump());
+          fmt::print("  {} = {}\n", name, format_param(model.method(), name, value.get<double>()));
         for (const auto& array : doc["arrays"])
           fmt::print("array     {} {}\n", array["name"].get<std::string>(), array["shape"].dump());
         fmt::print("data      {} bytes\n", doc["array_bytes"].get<std::size_t>());
@@ -438,15 +423,7 @@ int run(int argc, char** argv) {
     } else if (*report_cmd) {
       return cli::run_report(report_options);
     } else if (*methods_cmd) {
-      if (json) {
-        fmt::print("{}\n", methods_json().dump(2));
-      } else {
-        for (const auto& method : methods()) {
-          fmt::print("{}: {}\n", method.name, method.summary);
-          for (const auto& p : method.params)
-            fmt::print("  -p {:<20} {}\n", fmt::format("{}={}", p.name, p.default_value), p.help);
-        }
-      }
+      fmt::print("{}", json ? methods_json() + "\n" : methods_text());
     }
   } catch (const UsageError& e) {
     fmt::print(stderr, "stochtex: error: {}\n", e.what());
