@@ -5,6 +5,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "methods/gabor/analysis.hpp"
@@ -29,35 +30,34 @@ struct MethodEntry {
   AnalyzeFunction analyze;
 };
 
+// Analysis of a method from checked values, through the method's typed parameter record.
+template <const auto& Fields, auto Analyze>
+MethodModel analyze_with(ImageView<const float> exemplar, const ParamValues& params,
+                         std::uint32_t seed) {
+  return MethodModel(Analyze(exemplar, params_from_values(Fields, params), seed));
+}
+
 const std::array kMethods = {
     MethodEntry{{texton::TextonModel::kMethodName,
                  "texton noise (Galerne, Leclaire, Moisan 2017): a small texton summarising the "
                  "spectrum, ~30 fetches per sample",
                  texton::kParams},
-                [](ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
-                  return MethodModel(texton::analyze(exemplar, params, seed));
-                }},
+                analyze_with<texton::kFields, texton::analyze>},
     MethodEntry{{tiling::TilingModel::kMethodName,
                  "histogram-preserving tiling and blending (Heitz, Neyret 2018): 3 patches of the "
                  "Gaussianised exemplar and one look-up per sample",
                  tiling::kParams},
-                [](ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
-                  return MethodModel(tiling::analyze(exemplar, params, seed));
-                }},
+                analyze_with<tiling::kFields, tiling::analyze>},
     MethodEntry{{lrp::LrpModel::kMethodName,
                  "local random-phase noise (Gilet et al. 2014): windowed cosines with random "
                  "phases on a lattice, 9 (J + L) cosines and windows per channel and sample",
                  lrp::kParams},
-                [](ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
-                  return MethodModel(lrp::analyze(exemplar, params, seed));
-                }},
+                analyze_with<lrp::kFields, lrp::analyze>},
     MethodEntry{{gabor::GaborModel::kMethodName,
                  "Gabor noise by example (Galerne, Lagae, Lefebvre, Drettakis 2012): a sparse sum "
                  "of bandwidth-quantised Gaussians fitted to the spectrum, ~2N kernels per sample",
                  gabor::kParams},
-                [](ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
-                  return MethodModel(gabor::analyze(exemplar, params, seed));
-                }},
+                analyze_with<gabor::kFields, gabor::analyze>},
 };
 
 const MethodEntry& find_entry(std::string_view name) {
@@ -74,6 +74,41 @@ std::string format_number(double value) {
   std::array<char, 32> buffer{};
   auto [end, ec] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
   return ec == std::errc() ? std::string(buffer.data(), end) : std::to_string(value);
+}
+
+const ParamInfo& find_param(const MethodInfo& info, const std::string& name) {
+  const auto param = std::find_if(info.params.begin(), info.params.end(),
+                                  [&](const ParamInfo& p) { return p.name == name; });
+  if (param != info.params.end()) return *param;
+  std::string known;
+  for (const auto& p : info.params) known += (known.empty() ? "" : ", ") + std::string(p.name);
+  throw std::invalid_argument("unknown parameter '" + name + "' for method " +
+                              std::string(info.name) + "; its parameters are: " + known);
+}
+
+template <class Predicate>
+const ParamChoice* find_choice(const ParamInfo& param, Predicate matches) {
+  const auto choice = std::find_if(param.choices.begin(), param.choices.end(), matches);
+  return choice == param.choices.end() ? nullptr : &*choice;
+}
+
+// "one of histogram, variance, linear (or 0, 1, 2)": the names a user writes, then the numbers
+// that model files and older scripts use.
+std::string choices_sentence(const ParamInfo& param) {
+  std::string names;
+  std::string numbers;
+  for (const auto& choice : param.choices) {
+    names += (names.empty() ? "" : ", ") + std::string(choice.name);
+    numbers += (numbers.empty() ? "" : ", ") + format_number(choice.value);
+  }
+  return "one of " + names + " (or " + numbers + ")";
+}
+
+// A value as a user writes it: the choice's name for an enumeration or switch, else the number.
+std::string format_value(const ParamInfo& param, double value) {
+  const ParamChoice* named =
+      find_choice(param, [&](const ParamChoice& c) { return c.value == value; });
+  return named ? std::string(named->name) : format_number(value);
 }
 
 }  // namespace
@@ -97,27 +132,18 @@ ParamValues resolve_params(std::string_view method, const ParamValues& given) {
   ParamValues resolved;
   for (const auto& param : info.params) resolved[std::string(param.name)] = param.default_value;
   for (const auto& [name, value] : given) {
-    const auto param = std::find_if(info.params.begin(), info.params.end(),
-                                    [&](const ParamInfo& p) { return p.name == name; });
-    if (param == info.params.end()) {
-      std::string known;
-      for (const auto& p : info.params) known += (known.empty() ? "" : ", ") + std::string(p.name);
-      throw std::invalid_argument("unknown parameter '" + name + "' for method " +
-                                  std::string(method) + "; its parameters are: " + known);
-    }
+    const ParamInfo& param = find_param(info, name);
     const std::string where = "parameter " + name + " of method " + std::string(method);
-    if (!std::isfinite(value) || value < param->min_value || value > param->max_value)
-      throw std::invalid_argument(where + " must be between " + format_number(param->min_value) +
-                                  " and " + format_number(param->max_value) + ", not " +
+    if (!param.choices.empty()) {
+      if (!find_choice(param, [&](const ParamChoice& c) { return c.value == value; }))
+        throw std::invalid_argument(where + " must be " + choices_sentence(param) + ", not " +
+                                    format_number(value));
+    } else if (!std::isfinite(value) || value < param.min_value || value > param.max_value) {
+      throw std::invalid_argument(where + " must be between " + format_number(param.min_value) +
+                                  " and " + format_number(param.max_value) + ", not " +
                                   format_number(value));
-    if (param->integer && value != std::floor(value))
+    } else if (param.integer && value != std::floor(value)) {
       throw std::invalid_argument(where + " must be an integer, not " + format_number(value));
-    if (!param->allowed.empty() &&
-        std::find(param->allowed.begin(), param->allowed.end(), value) == param->allowed.end()) {
-      std::string allowed;
-      for (double a : param->allowed) allowed += (allowed.empty() ? "" : ", ") + format_number(a);
-      throw std::invalid_argument(where + " must be one of " + allowed + ", not " +
-                                  format_number(value));
     }
     resolved[name] = value;
   }
@@ -126,16 +152,69 @@ ParamValues resolve_params(std::string_view method, const ParamValues& given) {
 
 ParamValues resolve_params(std::string_view method,
                            const std::map<std::string, std::string, std::less<>>& given) {
+  const MethodInfo& info = method_info(method);
   ParamValues numbers;
   for (const auto& [name, text] : given) {
+    const ParamInfo& param = find_param(info, name);
+    if (const ParamChoice* named =
+            find_choice(param, [&](const ParamChoice& c) { return c.name == text; })) {
+      numbers[name] = named->value;
+      continue;
+    }
     double value = 0.0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     if (ec != std::errc() || end != text.data() + text.size())
-      throw std::invalid_argument("parameter " + name + " of method " + std::string(method) +
-                                  " must be a number, not '" + text + "'");
+      throw std::invalid_argument(
+          "parameter " + name + " of method " + std::string(method) + " must be " +
+          (param.choices.empty() ? "a number" : choices_sentence(param)) + ", not '" + text + "'");
     numbers[name] = value;
   }
   return resolve_params(method, numbers);
+}
+
+std::string format_param(std::string_view method, std::string_view name, double value) {
+  const auto& params = method_info(method).params;
+  const auto param = std::find_if(params.begin(), params.end(),
+                                  [&](const ParamInfo& p) { return p.name == name; });
+  return param == params.end() ? format_number(value) : format_value(*param, value);
+}
+
+std::string methods_text() {
+  std::string text;
+  for (const auto& method : methods()) {
+    text += std::string(method.name) + ": " + std::string(method.summary) + "\n";
+    for (const auto& p : method.params) {
+      std::string option = std::string(p.name) + "=" + format_value(p, p.default_value);
+      option.resize(std::max<std::size_t>(option.size(), 20), ' ');
+      text += "  -p " + option + " " + std::string(p.help) + "\n";
+    }
+  }
+  return text;
+}
+
+std::string methods_json() {
+  auto list = nlohmann::ordered_json::array();
+  for (const auto& method : methods()) {
+    auto params = nlohmann::ordered_json::array();
+    for (const auto& p : method.params) {
+      nlohmann::ordered_json param{{"name", p.name},       {"default", p.default_value},
+                                   {"min", p.min_value},   {"max", p.max_value},
+                                   {"integer", p.integer}, {"help", p.help}};
+      if (!p.choices.empty()) {
+        auto allowed = nlohmann::ordered_json::array();
+        auto choices = nlohmann::ordered_json::array();
+        for (const auto& choice : p.choices) {
+          allowed.push_back(choice.value);
+          choices.push_back({{"name", choice.name}, {"value", choice.value}});
+        }
+        param["allowed"] = allowed;
+        param["choices"] = choices;
+      }
+      params.push_back(param);
+    }
+    list.push_back({{"name", method.name}, {"summary", method.summary}, {"params", params}});
+  }
+  return list.dump(2);
 }
 
 Model analyze(std::string_view method, ImageView<const float> exemplar, const ParamValues& params,

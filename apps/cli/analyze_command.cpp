@@ -37,7 +37,9 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
   command->add_option("--target", options.target, std::string(kTargetHelp))->excludes(input);
   command->add_option("--method,-m", options.method, "texture method (see `stochtex methods`)")
       ->required();
-  command->add_option("-p,--param", options.params, "method parameter key=value (repeatable)");
+  command->add_option("-p,--param", options.params,
+                      "method parameter key=value (repeatable; listed below)");
+  command->footer("\nmethods and parameters (-p name=default):\n" + methods_text());
   command
       ->add_option("--analysis-seed", options.seed, "seed of the analysis' random initialisation")
       ->capture_default_str();

@@ -34,7 +34,7 @@ void print_text(const Model& model, const std::string& path, const std::string& 
   const auto doc = nlohmann::json::parse(description);
   fmt::print("model     {}\nmethod    {}\nchannels  {}\n", path, model.method(), model.channels());
   for (const auto& [name, value] : doc["params"].items())
-    fmt::print("  {} = {}\n", name, value.dump());
+    fmt::print("  {} = {}\n", name, format_param(model.method(), name, value.get<double>()));
   for (const auto& array : doc["arrays"])
     fmt::print("array     {} {}\n", array["name"].get<std::string>(), array["shape"].dump());
   fmt::print("data      {} bytes\n", doc["array_bytes"].get<std::size_t>());

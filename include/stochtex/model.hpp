@@ -28,6 +28,13 @@ struct Footprint {
   Vec2d dpdy;
 };
 
+// One value of an enumerated parameter (or a switch): the name a user writes and the number the
+// model file stores.
+struct ParamChoice {
+  std::string_view name;
+  double value;
+};
+
 // One parameter of a method, described once: this record feeds the CLI, the model file and docs.
 struct ParamInfo {
   std::string_view name;
@@ -36,7 +43,7 @@ struct ParamInfo {
   double max_value;
   bool integer;
   std::string_view help;
-  std::span<const double> allowed = {};  // when not empty, the only accepted values
+  std::span<const ParamChoice> choices = {};  // when not empty, the only accepted values
 };
 
 using ParamValues = std::map<std::string, double, std::less<>>;

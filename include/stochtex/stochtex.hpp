@@ -30,11 +30,20 @@ std::span<const MethodInfo> methods();
 const MethodInfo& method_info(std::string_view name);
 
 // Completes `given` with defaults and checks every value (known name, number, integer, range,
-// allowed set); throws std::invalid_argument with one sentence naming the parameter.
+// choices); throws std::invalid_argument with one sentence naming the parameter.
 ParamValues resolve_params(std::string_view method, const ParamValues& given);
-// The same from text values (the CLI's -p key=value).
+// The same from text values (the CLI's -p key=value): a number, or for a parameter with choices
+// (an enumeration such as tiling's blend, or an off/on switch) the choice's name or number.
 ParamValues resolve_params(std::string_view method,
                            const std::map<std::string, std::string, std::less<>>& given);
+// A parameter value as a user writes it: the choice's name where the parameter has one for
+// `value`, else the number (`stochtex info`).
+std::string format_param(std::string_view method, std::string_view name, double value);
+
+// `stochtex methods`: every method with its parameters, defaults and help, as text lines or as
+// one JSON document (the ParamInfo fields, plus `allowed` and `choices` for enumerations).
+std::string methods_text();
+std::string methods_json();
 
 // Checks an exemplar: at least 2x2 pixels, 1 to 4 channels, finite values, not constant. Throws
 // Error(invalid_input) with a sentence naming `source_name`.

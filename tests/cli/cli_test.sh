@@ -191,6 +191,12 @@ if expect_ok "analyze" "$stochtex" analyze "$exemplar" "${fast[@]}" -o "$model";
 fi
 expect_ok "info" "$stochtex" info "$model"
 expect_json "info --json" "$stochtex" info "$model" --json
+# Enumerated parameters go in and come out by name.
+expect_ok "analyze -p blend=variance" "$stochtex" analyze "$exemplar" -m tiling -p blend=variance \
+  -o "$models/variance.stx" && expect_ok "info of a named choice" "$stochtex" info \
+  "$models/variance.stx" && if ! grep -q "blend = variance" "$work/stdout"; then
+  fail "info names the blend" "stdout does not show blend = variance"
+fi
 for extension in png exr pfm; do
   expect_ok "render .$extension" "$stochtex" render "$model" -o "$models/render.$extension" \
     "${size[@]}" --seed 3 && expect_file "render writes .$extension" "$models/render.$extension"
@@ -404,6 +410,9 @@ for param in support=1 mni=0 order=2; do
 done
 expect_error "non-numeric -p mni=abc" 2 "mni" \
   "$stochtex" analyze "$exemplar" -m texton -p mni=abc "${analyze_to[@]}"
+# Enumerations take their names; a wrong name is refused with the list of names.
+expect_error "unknown choice -p blend=foo" 2 "histogram, variance, linear" \
+  "$stochtex" analyze "$exemplar" -m tiling -p blend=foo "${analyze_to[@]}"
 expect_error "unknown parameter" 2 "nosuch" \
   "$stochtex" analyze "$exemplar" -m texton -p nosuch=1 "${analyze_to[@]}"
 expect_error "-p without =" 2 "support" \

@@ -1,10 +1,21 @@
-// The method registry and its described parameters.
+// The method registry and its described parameters: the typed records, parsing by name and by
+// number, and the docs' parameter tables against the records.
+
+#include "methods/gabor/params.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "methods/lrp/params.hpp"
+#include "methods/texton/params.hpp"
+#include "methods/tiling/params.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex {
@@ -49,6 +60,168 @@ TEST(Registry, ExemplarValidationNamesTheProblem) {
     FAIL() << "NaN accepted";
   } catch (const Error& error) {
     EXPECT_EQ(std::string(error.what()).find("'bad.pfm'"), 0u);
+  }
+}
+
+using Text = std::map<std::string, std::string, std::less<>>;
+
+// The one-sentence message of a rejected parameter, or "" when it was accepted.
+std::string refusal(std::string_view method, const Text& given) {
+  try {
+    resolve_params(method, given);
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(Params, EnumerationsAndSwitchesTakeNames) {
+  const ParamValues tiling = resolve_params(
+      "tiling", Text{{"transport", "pca"}, {"blend", "linear"}, {"stationarity", "on"}});
+  EXPECT_EQ(tiling.at("transport"), 1);
+  EXPECT_EQ(tiling.at("blend"), 2);
+  EXPECT_EQ(tiling.at("stationarity"), 1);
+  EXPECT_EQ(resolve_params("tiling", Text{{"blend", "variance"}}).at("blend"), 1);
+  EXPECT_EQ(resolve_params("gabor", Text{{"colour_space", "rgb"}}).at("colour_space"), 2);
+  EXPECT_EQ(resolve_params("texton", Text{{"order", "cubic"}}).at("order"), 3);
+  const ParamValues lrp =
+      resolve_params("lrp", Text{{"envelope", "off"}, {"amplitudes", "off"}, {"placement", "off"}});
+  EXPECT_EQ(lrp.at("envelope"), 0);
+  EXPECT_EQ(lrp.at("amplitudes"), 0);
+  EXPECT_EQ(lrp.at("placement"), 0);
+}
+
+TEST(Params, NumbersStayAccepted) {
+  EXPECT_EQ(resolve_params("tiling", Text{{"blend", "2"}, {"transport", "1"}}).at("blend"), 2);
+  EXPECT_EQ(resolve_params("gabor", Text{{"colour_space", "1"}}).at("colour_space"), 1);
+  EXPECT_EQ(resolve_params("lrp", Text{{"envelope", "0"}}).at("envelope"), 0);
+  EXPECT_EQ(resolve_params("texton", Text{{"order", "5"}}).at("order"), 5);
+  EXPECT_EQ(resolve_params("tiling", ParamValues{{"stationarity", 1}}).at("stationarity"), 1);
+}
+
+TEST(Params, BadChoicesAreRefusedWithTheNames) {
+  EXPECT_EQ(refusal("tiling", Text{{"blend", "foo"}}),
+            "parameter blend of method tiling must be one of histogram, variance, linear (or 0, 1, "
+            "2), not 'foo'");
+  EXPECT_EQ(refusal("tiling", Text{{"blend", "3"}}),
+            "parameter blend of method tiling must be one of histogram, variance, linear (or 0, 1, "
+            "2), not 3");
+  EXPECT_EQ(refusal("lrp", Text{{"envelope", "yes"}}),
+            "parameter envelope of method lrp must be one of off, on (or 0, 1), not 'yes'");
+  EXPECT_EQ(refusal("texton", Text{{"order", "2"}}),
+            "parameter order of method texton must be one of nearest, bilinear, cubic, quintic "
+            "(or 0, 1, 3, 5), not 2");
+  // Names are case-sensitive and belong to their own parameter only.
+  EXPECT_NE(refusal("gabor", Text{{"colour_space", "RGB"}}), "");
+  EXPECT_NE(refusal("tiling", Text{{"transport", "variance"}}), "");
+  EXPECT_EQ(refusal("texton", Text{{"mni", "on"}}),
+            "parameter mni of method texton must be a number, not 'on'");
+  EXPECT_NE(refusal("tiling", Text{{"blend", "nan"}}), "");
+}
+
+TEST(Params, ValuesAreWrittenByName) {
+  EXPECT_EQ(format_param("tiling", "blend", 1), "variance");
+  EXPECT_EQ(format_param("lrp", "placement", 1), "on");
+  EXPECT_EQ(format_param("texton", "mni", 12.5), "12.5");
+  EXPECT_EQ(format_param("gabor", "kappa", 1.0 / 256.0), "0.00390625");
+  const std::string text = methods_text();
+  EXPECT_NE(text.find("-p blend=histogram "), std::string::npos);
+  EXPECT_NE(text.find("-p colour_space=independent "), std::string::npos);
+  EXPECT_NE(text.find("-p mni=30 "), std::string::npos);
+  const auto json = nlohmann::json::parse(methods_json());
+  for (const auto& method : json)
+    for (const auto& param : method["params"])
+      if (param["name"] == "blend") {
+        EXPECT_EQ(param["allowed"], nlohmann::json::array({0, 1, 2}));
+        EXPECT_EQ(param["choices"][2], nlohmann::json({{"name", "linear"}, {"value", 2}}));
+      }
+}
+
+// Whether `text` holds `word` between non-letters.
+bool has_word(std::string_view text, std::string_view word) {
+  const auto letter = [&](std::size_t i) {
+    return i < text.size() && std::isalpha(static_cast<unsigned char>(text[i])) != 0;
+  };
+  for (auto at = text.find(word); at != std::string_view::npos; at = text.find(word, at + 1))
+    if ((at == 0 || !letter(at - 1)) && !letter(at + word.size())) return true;
+  return false;
+}
+
+TEST(Params, EveryChoiceIsNamedInItsHelp) {
+  for (const auto& method : methods())
+    for (const auto& param : method.params)
+      for (const auto& choice : param.choices)
+        EXPECT_TRUE(has_word(param.help, choice.name))
+            << method.name << " " << param.name << " " << choice.name;
+}
+
+// A record's struct and the numbers of the model file convert both ways without loss: the
+// defaults are those resolve_params fills in, and a struct of other values comes back equal.
+template <class P, std::size_t N>
+void expect_round_trip(std::string_view method, const std::array<ParamField<P>, N>& fields,
+                       const P& changed) {
+  EXPECT_EQ(param_values(fields, P{}), resolve_params(method, ParamValues{}));
+  const ParamValues values = param_values(fields, changed);
+  EXPECT_EQ(resolve_params(method, values), values);
+  EXPECT_EQ(params_from_values(fields, values), changed);
+  EXPECT_FALSE(changed == P{});
+  EXPECT_EQ(params_from_values(fields, ParamValues{}), P{});
+}
+
+TEST(Params, TypedRecordsRoundTripThroughValues) {
+  expect_round_trip("texton", texton::kFields, texton::Params{64, 3, 10, 12.5});
+  expect_round_trip("tiling", tiling::kFields,
+                    tiling::Params{0.75, tiling::Transport::per_channel, 8, 16, 256,
+                                   tiling::Blend::linear, true});
+  expect_round_trip("lrp", lrp::kFields, lrp::Params{20, 2, false, false, 0.3, 4.5, false});
+  expect_round_trip("gabor", gabor::kFields,
+                    gabor::Params{1.0 / 64.0, 256, gabor::ColourSpace::rgb, 50});
+}
+
+// The rows of the first table headed "| name | default | range | meaning |" of a docs page.
+std::vector<std::vector<std::string>> parameter_table(const std::string& path) {
+  std::ifstream file(path);
+  EXPECT_TRUE(file) << path;
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  while (std::getline(file, line) && line != "| name | default | range | meaning |") {
+  }
+  std::getline(file, line);  // the |---| separator
+  while (std::getline(file, line) && line.starts_with("|")) {
+    std::vector<std::string> cells;
+    std::size_t start = 1;
+    for (std::size_t bar = line.find('|', start); bar != std::string::npos && cells.size() < 3;
+         start = bar + 1, bar = line.find('|', start)) {
+      std::string cell = line.substr(start, bar - start);
+      cell.erase(0, cell.find_first_not_of(' '));
+      cell.erase(cell.find_last_not_of(' ') + 1);
+      cells.push_back(cell);
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST(Params, DocsTablesFollowTheRecords) {
+  for (const auto& method : methods()) {
+    const std::string page =
+        std::string(STOCHTEX_SOURCE_DIR) + "/docs/methods/" + std::string(method.name) + ".md";
+    const auto rows = parameter_table(page);
+    ASSERT_EQ(rows.size(), method.params.size()) << page;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const ParamInfo& param = method.params[i];
+      ASSERT_EQ(rows[i].size(), 3u) << page << " row " << i;
+      const std::string_view name = rows[i][0];
+      EXPECT_TRUE(name.starts_with('`') && name.ends_with('`')) << page << " " << name;
+      EXPECT_EQ(name.substr(1, name.size() - 2), param.name) << page;
+      EXPECT_EQ(rows[i][1], format_param(method.name, param.name, param.default_value))
+          << page << " " << param.name;
+      if (param.choices.empty()) continue;
+      std::string names;
+      for (const auto& choice : param.choices)
+        names += (names.empty() ? "" : ", ") + std::string(choice.name);
+      EXPECT_EQ(rows[i][2], names) << page << " " << param.name;
+    }
   }
 }
 

@@ -543,15 +543,14 @@ double off_diagonality(const Matrix& transform, const std::vector<Matrix>& corre
 // ---------------------------------------------------------------------------------------------
 // The analysis
 
-GaborModel analyze(ImageView<const float> exemplar, const ParamValues& params,
-                   std::uint32_t /*seed*/) {
+GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t /*seed*/) {
   const int width = exemplar.width;
   const int height = exemplar.height;
   const int channels = exemplar.channels;
-  const auto colour_space = static_cast<int>(params.at("colour_space"));
+  const auto colour_space = static_cast<int>(params.colour_space);
   FitOptions options;
-  options.kappa = params.at("kappa");
-  options.max_iterations = static_cast<int>(params.at("iterations"));
+  options.kappa = params.kappa;
+  options.max_iterations = params.iterations;
 
   // The periodic component (section 3.2, [Moisan 2011]): no cross artefact in its spectrum.
   const ImageF periodic = periodic_component(exemplar);
@@ -650,7 +649,7 @@ GaborModel analyze(ImageView<const float> exemplar, const ParamValues& params,
   if (gaussians.size() > kMaxGaussians)
     throw Error(ErrorCode::invalid_input,
                 "gabor: the fit has more Gaussians than a model may hold; raise kappa");
-  return GaborModel(channels, params.at("impulses"), colour_space, std::move(gaussians),
+  return GaborModel(channels, params.impulses, colour_space, std::move(gaussians),
                     std::move(mixing), std::move(mean), report);
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "methods/gabor/model.hpp"
+#include "methods/gabor/params.hpp"
 #include "spectral/fft.hpp"
 #include "stochtex/image.hpp"
 
@@ -143,7 +144,7 @@ Matrix principal_axes(const Matrix& covariance, int n);
 // makes J a fraction in [0, 1] that does not depend on the channels' scales).
 double off_diagonality(const Matrix& transform, const std::vector<Matrix>& correlations, int n);
 
-// The method's analysis: `params` holds every entry of kParams (see registry: resolve_params).
-GaborModel analyze(ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed);
+// The method's analysis.
+GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);
 
 }  // namespace stochtex::gabor

@@ -1,32 +1,49 @@
 #pragma once
 // Gabor noise by example parameters (Galerne, Lagae, Lefebvre, Drettakis, "Gabor Noise by
-// Example", ACM TOG 2012), described once. The record feeds the CLI (`-p name=value`), the model
-// file and docs/methods/gabor.md.
+// Example", ACM TOG 2012), described once (methods/param_record.hpp). The record feeds the CLI
+// (`-p name=value`), the model file and docs/methods/gabor.md.
 
 #include <array>
 
-#include "stochtex/model.hpp"
+#include "methods/param_record.hpp"
 
 namespace stochtex::gabor {
 
 // Colour spaces of section 7, in which each channel is synthesised independently.
 enum class ColourSpace { independent = 0, pca = 1, rgb = 2 };
-inline constexpr std::array<double, 3> kAllowedColourSpaces = {0, 1, 2};
 
-inline constexpr std::array<ParamInfo, 4> kParams = {{
-    {"kappa", 1.0 / 256.0, 1.0 / 65536.0, 1.0, false,
-     "relative regularisation: nu = kappa nu_max in the basis pursuit denoising of eq. (8); "
-     "smaller keeps more Gaussians and fits the spectrum closer (section 5.2)"},
-    {"impulses", 1024, 1, 65536, true,
-     "impulse budget N: the expected number of Gabor kernels overlapping a point, split over the "
-     "Gaussians by variance (section 6.2); the evaluation cost per sample grows linearly with it"},
-    {"colour_space", 0, 0, 2, true,
-     "colour space of the independent channel synthesis (section 7): 0 maximally independent "
-     "(approximate joint diagonalisation), 1 PCA, 2 RGB",
-     kAllowedColourSpaces},
-    {"iterations", 300, 1, 100000, true,
-     "most FISTA iterations per step of the kappa homotopy (section 5.3); the last step stops "
-     "earlier when the duality gap certifies the objective within 1% of its optimum"},
+struct Params {
+  double kappa = 1.0 / 256.0;
+  int impulses = 1024;
+  ColourSpace colour_space = ColourSpace::independent;
+  int iterations = 300;
+
+  bool operator==(const Params&) const = default;
+};
+
+inline constexpr std::array<ParamChoice, 3> kColourSpaces = {
+    {{"independent", 0}, {"pca", 1}, {"rgb", 2}}};
+
+inline constexpr std::array<ParamField<Params>, 4> kFields = {{
+    number_field<&Params::kappa>(
+        "kappa", 1.0 / 65536.0, 1.0,
+        "relative regularisation: nu = kappa nu_max in the basis pursuit denoising of eq. (8); "
+        "smaller keeps more Gaussians and fits the spectrum closer (section 5.2)"),
+    number_field<&Params::impulses>(
+        "impulses", 1, 65536,
+        "impulse budget N: the expected number of Gabor kernels overlapping a point, split over "
+        "the Gaussians by variance (section 6.2); the evaluation cost per sample grows linearly "
+        "with it"),
+    choice_field<&Params::colour_space>(
+        "colour_space", kColourSpaces,
+        "colour space of the independent channel synthesis (section 7): independent, maximally "
+        "independent (approximate joint diagonalisation); pca, PCA; rgb, RGB"),
+    number_field<&Params::iterations>(
+        "iterations", 1, 100000,
+        "most FISTA iterations per step of the kappa homotopy (section 5.3); the last step stops "
+        "earlier when the duality gap certifies the objective within 1% of its optimum"),
 }};
+
+inline constexpr auto kParams = param_infos(kFields);
 
 }  // namespace stochtex::gabor

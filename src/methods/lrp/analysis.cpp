@@ -559,7 +559,7 @@ SpectrumTarget gaussian_spectrum(int size, double centre_x, double centre_y, dou
   });
 }
 
-LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed) {
+LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed) {
   const int width = exemplar.width;
   const int height = exemplar.height;
   const int channels = exemplar.channels;
@@ -569,11 +569,11 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
                 "lrp needs an exemplar of at least 9x9 pixels (its Welch crops are the largest "
                 "power of two below its side, at least 8), not " +
                     std::to_string(width) + "x" + std::to_string(height));
-  const int strata = static_cast<int>(params.at("strata"));
-  const int cosines = static_cast<int>(params.at("cosines"));
-  const bool shaped = params.at("amplitudes") != 0.0;
+  const int strata = params.strata;
+  const int cosines = params.cosines;
+  const bool shaped = params.amplitudes;
   // Section 5.3: J_R = rJ cosines for the fixed-phase region R, (1 - r)J for the random strata.
-  const double ratio = params.at("ratio");
+  const double ratio = params.ratio;
   const int fixed_cosines = structure_cosines(ratio, cosines);
   std::vector<FixedPhaseRegion> regions;
   std::vector<double> turbulence_power;
@@ -604,7 +604,7 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
   LrpData data;
   data.channels = channels;
   data.strata = strata;
-  data.normalise_envelope = params.at("envelope") != 0.0;
+  data.normalise_envelope = params.envelope;
   for (int c = 0; c < channels; ++c) {
     data.mean.push_back(static_cast<float>(mean[c]));
     for (int k = 0; k < channels; ++k) data.colour_basis.push_back(static_cast<float>(basis(c, k)));
@@ -638,8 +638,8 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
   }
   if (fixed_cosines > 0) {
     data.structure = reduce_structure(regions, fixed_cosines, data.colour_basis);
-    data.structure.placement = params.at("placement") != 0.0;
-    plan_turbulence(turbulence_power, size, params.at("turbulence"),
+    data.structure.placement = params.placement;
+    plan_turbulence(turbulence_power, size, params.turbulence,
                     cell_key(kTurbulenceStreamBase, 0, seed, Stream::analysis), data.structure);
   }
   // Frequencies were stored in bins; the model holds cycles per pixel.
@@ -647,31 +647,28 @@ LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std
   return LrpModel(std::move(data));
 }
 
-LrpModel analyze_spectrum(const SpectrumTarget& target, const ParamValues& params,
-                          std::uint32_t seed) {
+LrpModel analyze_spectrum(const SpectrumTarget& target, const Params& params, std::uint32_t seed) {
   check_spectrum_size(target.size);
   if (!std::isfinite(target.mean))
     throw std::invalid_argument("lrp: the target's mean must be finite");
-  if (const auto ratio = params.find("ratio"); ratio != params.end() && ratio->second > 0.0)
+  if (params.ratio > 0.0)
     throw std::invalid_argument(
         "lrp: a continuous target has no phases to keep; the energy ratio r needs an exemplar");
   LrpData data;
   data.channels = 1;
-  data.strata = static_cast<int>(params.at("strata"));
-  data.normalise_envelope = params.at("envelope") != 0.0;
+  data.strata = params.strata;
+  data.normalise_envelope = params.envelope;
   data.mean = {static_cast<float>(target.mean)};
   data.colour_basis = {1.0f};
-  append_channel(
-      data,
-      plan_strata(target.power, target.size, data.strata, static_cast<int>(params.at("cosines")),
-                  params.at("amplitudes") != 0.0, cell_key(0, 0, seed, Stream::analysis)));
+  append_channel(data, plan_strata(target.power, target.size, data.strata, params.cosines,
+                                   params.amplitudes, cell_key(0, 0, seed, Stream::analysis)));
   for (float& f : data.frequencies) f /= static_cast<float>(target.size);
   return LrpModel(std::move(data));
 }
 
 Model spectrum_model(const SpectrumTarget& target, const ParamValues& params, std::uint32_t seed) {
   ParamValues resolved = resolve_params(LrpModel::kMethodName, params);
-  LrpModel model = analyze_spectrum(target, resolved, seed);
+  LrpModel model = analyze_spectrum(target, params_from_values(kFields, resolved), seed);
   return Model(std::make_shared<const ModelData>(
       ModelData{std::move(resolved), MethodModel(std::move(model))}));
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "methods/lrp/model.hpp"
+#include "methods/lrp/params.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
 
@@ -58,12 +59,10 @@ double window_energy_radius(double fraction);
 std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
                                      int cosines, bool shaped, std::uint32_t key);
 
-// The model of an exemplar: PCA-decorrelated channels, Welch spectrum of each, strata. `params`
-// holds every entry of kParams (see registry: resolve_params).
-LrpModel analyze(ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed);
+// The model of an exemplar: PCA-decorrelated channels, Welch spectrum of each, strata.
+LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);
 // The grey model of a continuous target (section 6.1, figure 10).
-LrpModel analyze_spectrum(const SpectrumTarget& target, const ParamValues& params,
-                          std::uint32_t seed);
+LrpModel analyze_spectrum(const SpectrumTarget& target, const Params& params, std::uint32_t seed);
 // The same as a library Model (render, evaluate, save_model work on it); `params` may be partial.
 Model spectrum_model(const SpectrumTarget& target, const ParamValues& params = {},
                      std::uint32_t seed = 0);

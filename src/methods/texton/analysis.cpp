@@ -76,15 +76,14 @@ Eigen::MatrixXd symmetric_power(const Eigen::MatrixXd& matrix, double power) {
 
 }  // namespace
 
-TextonModel analyze(ImageView<const float> exemplar, const ParamValues& params,
-                    std::uint32_t seed) {
+TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed) {
   const int width = exemplar.width;
   const int height = exemplar.height;
   const int channels = exemplar.channels;
-  const int support = std::min({static_cast<int>(params.at("support")), width, height});
-  const int order = static_cast<int>(params.at("order"));
-  const int iterations = static_cast<int>(params.at("iterations"));
-  const double mean_impacts = params.at("mni");
+  const int support = std::min({params.support, width, height});
+  const int order = params.order;
+  const int iterations = params.iterations;
+  const double mean_impacts = params.mni;
 
   // Preprocess: the periodic component (section 4.2, [Moi11]), then the normalised kernel
   // t_u = (p - mean(p)) / sqrt(|Omega|) of section 3.2.

@@ -67,7 +67,8 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
   if (channels_ < 1 || channels_ > 4)
     throw std::invalid_argument("texton: channels must be 1 to 4");
   if (support_ < 1) throw std::invalid_argument("texton: support must be positive");
-  if (std::find(kAllowedOrders.begin(), kAllowedOrders.end(), order_) == kAllowedOrders.end())
+  if (std::none_of(kOrders.begin(), kOrders.end(),
+                   [&](const ParamChoice& choice) { return choice.value == order_; }))
     throw std::invalid_argument("texton: order must be 0, 1, 3 or 5");
   if (!(mean_impacts_ > 0.0) || !std::isfinite(mean_impacts_))
     throw std::invalid_argument("texton: mni must be a positive number");

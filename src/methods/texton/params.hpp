@@ -1,28 +1,43 @@
 #pragma once
-// Texton noise parameters (Galerne, Leclaire, Moisan, "Texton Noise", CGF 2017), described once.
-// The record feeds the CLI (`-p name=value`), the model file and docs/methods/texton.md.
+// Texton noise parameters (Galerne, Leclaire, Moisan, "Texton Noise", CGF 2017), described once
+// (methods/param_record.hpp). The record feeds the CLI (`-p name=value`), the model file and
+// docs/methods/texton.md.
 
 #include <array>
 
-#include "stochtex/model.hpp"
+#include "methods/param_record.hpp"
 
 namespace stochtex::texton {
 
-inline constexpr std::array<double, 4> kAllowedOrders = {0, 1, 3, 5};
+struct Params {
+  int support = 128;
+  int order = 1;
+  int iterations = 50;
+  double mni = 30;
 
-inline constexpr std::array<ParamInfo, 4> kParams = {{
-    {"support", 128, 2, 1024, true,
-     "side of the square support S of the texton coefficients, in exemplar pixels (section 4.2); "
-     "clamped to the exemplar's smaller side"},
-    {"order", 1, 0, 5, true,
-     "B-spline interpolation order k of the texton: 0 nearest, 1 bilinear (the paper's choice), "
-     "3 cubic, 5 quintic (section 10)",
-     kAllowedOrders},
-    {"iterations", 50, 0, 10000, true,
-     "number n of alternating projections of Algorithm 1 (section 4.2)"},
-    {"mni", 30, 1, 10000, false,
-     "mean number of impacts: the mean count of textons covering a point (sections 3.3, 9); the "
-     "evaluation cost per sample grows linearly with it"},
+  bool operator==(const Params&) const = default;
+};
+
+inline constexpr std::array<ParamChoice, 4> kOrders = {
+    {{"nearest", 0}, {"bilinear", 1}, {"cubic", 3}, {"quintic", 5}}};
+
+inline constexpr std::array<ParamField<Params>, 4> kFields = {{
+    number_field<&Params::support>(
+        "support", 2, 1024,
+        "side of the square support S of the texton coefficients, in exemplar pixels (section "
+        "4.2); clamped to the exemplar's smaller side"),
+    choice_field<&Params::order>(
+        "order", kOrders,
+        "B-spline interpolation order k of the texton: nearest (k = 0), bilinear (k = 1, the "
+        "paper's choice), cubic (k = 3), quintic (k = 5) (section 10)"),
+    number_field<&Params::iterations>(
+        "iterations", 0, 10000, "number n of alternating projections of Algorithm 1 (section 4.2)"),
+    number_field<&Params::mni>(
+        "mni", 1, 10000,
+        "mean number of impacts: the mean count of textons covering a point (sections 3.3, 9); "
+        "the evaluation cost per sample grows linearly with it"),
 }};
+
+inline constexpr auto kParams = param_infos(kFields);
 
 }  // namespace stochtex::texton

@@ -251,18 +251,17 @@ void gaussianise_1d(std::span<const float> values, std::span<float> gaussian,
         sorted_quantile(sorted, (static_cast<double>(k) + 0.5) / static_cast<double>(table.size()));
 }
 
-TilingModel analyze(ImageView<const float> exemplar, const ParamValues& params,
-                    std::uint32_t seed) {
+TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed) {
   TilingData data;
   data.channels = exemplar.channels;
   data.width = exemplar.width;
   data.height = exemplar.height;
-  data.tile_radius = params.at("tile_radius");
-  data.transport = static_cast<Transport>(static_cast<int>(params.at("transport")));
-  data.lut_size = static_cast<int>(params.at("lut_size"));
-  data.table_size = static_cast<int>(params.at("table_size"));
-  data.blend = static_cast<Blend>(static_cast<int>(params.at("blend")));
-  const int iterations = static_cast<int>(params.at("iterations"));
+  data.tile_radius = params.tile_radius;
+  data.transport = params.transport;
+  data.lut_size = params.lut_size;
+  data.table_size = params.table_size;
+  data.blend = params.blend;
+  const int iterations = params.iterations;
   const int channels = data.channels;
   const std::size_t pixels = static_cast<std::size_t>(data.width) * data.height;
   std::vector<float> pixel_values(pixels * channels);
@@ -276,7 +275,7 @@ TilingModel analyze(ImageView<const float> exemplar, const ParamValues& params,
     for (std::size_t i = 0; i < pixels; ++i) sum += values[i * channels + c];
     return static_cast<float>(sum / static_cast<double>(pixels));
   };
-  if (params.at("stationarity") != 0.0) {
+  if (params.stationarity) {
     const int colour_channels =
         tiling_layout(channels, data.transport, Blend::histogram).colour_channels;
     remove_large_scales(pixel_values, data.width, data.height, channels, colour_channels,

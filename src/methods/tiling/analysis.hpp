@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "methods/tiling/model.hpp"
+#include "methods/tiling/params.hpp"
 #include "stochtex/image.hpp"
 
 namespace stochtex::tiling {
@@ -32,8 +33,7 @@ std::vector<float> sliced_transport_to_gaussian(std::span<const float> source, i
 void gaussianise_1d(std::span<const float> values, std::span<float> gaussian,
                     std::span<float> table);
 
-// Histogram-preserving tiling and blending analysis. `params` holds every entry of kParams (see
-// registry: resolve_params).
-TilingModel analyze(ImageView<const float> exemplar, const ParamValues& params, std::uint32_t seed);
+// Histogram-preserving tiling and blending analysis.
+TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);
 
 }  // namespace stochtex::tiling

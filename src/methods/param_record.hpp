@@ -1,0 +1,116 @@
+#pragma once
+// A method's parameters as one typed struct whose fields are bound once to their descriptions.
+// Each method's params.hpp declares `Params` (the defaults are its member initialisers) and
+// `kFields`, one ParamField per member; from that single record come the ParamInfo table
+// (`kParams`: the CLI's parsing and help, `methods --json`, the docs' tables, resolve_params'
+// checks) and the conversions between the struct and the ParamValues numbers the model file
+// stores, so that analysis reads `params.mni`, never a name.
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <span>
+#include <string_view>
+#include <type_traits>
+
+#include "stochtex/model.hpp"
+
+namespace stochtex {
+
+template <class P>
+struct ParamField {
+  ParamInfo info;
+  double (*get)(const P&);
+  void (*set)(P&, double);
+};
+
+namespace param_detail {
+
+template <auto Member>
+struct MemberOf;
+template <class P, class T, T P::*Member>
+struct MemberOf<Member> {
+  using Struct = P;
+  using Type = T;
+};
+
+template <class T>
+constexpr double to_number(T value) {
+  if constexpr (std::is_enum_v<T>)
+    return static_cast<double>(static_cast<std::underlying_type_t<T>>(value));
+  else
+    return static_cast<double>(value);
+}
+
+// `value` has passed resolve_params: an integer field receives an integer, a switch 0 or 1.
+template <class T>
+constexpr T from_number(double value) {
+  if constexpr (std::is_enum_v<T>)
+    return static_cast<T>(static_cast<std::underlying_type_t<T>>(value));
+  else if constexpr (std::is_same_v<T, bool>)
+    return value != 0.0;
+  else
+    return static_cast<T>(value);
+}
+
+template <auto Member>
+constexpr auto field(ParamInfo info) {
+  using P = typename MemberOf<Member>::Struct;
+  using T = typename MemberOf<Member>::Type;
+  info.default_value = to_number(P{}.*Member);
+  info.integer = !std::is_floating_point_v<T>;
+  return ParamField<P>{info, [](const P& params) { return to_number(params.*Member); },
+                       [](P& params, double value) { params.*Member = from_number<T>(value); }};
+}
+
+}  // namespace param_detail
+
+// A numeric field (int or double) accepting [min_value, max_value].
+template <auto Member>
+constexpr auto number_field(std::string_view name, double min_value, double max_value,
+                            std::string_view help) {
+  using T = typename param_detail::MemberOf<Member>::Type;
+  static_assert(std::is_same_v<T, int> || std::is_same_v<T, double>, "a number is int or double");
+  return param_detail::field<Member>({name, 0.0, min_value, max_value, false, help});
+}
+
+// An enumeration, switch or other field accepting only `choices`, by name or by number.
+template <auto Member>
+constexpr auto choice_field(std::string_view name, std::span<const ParamChoice> choices,
+                            std::string_view help) {
+  const auto [low, high] =
+      std::minmax_element(choices.begin(), choices.end(),
+                          [](const auto& a, const auto& b) { return a.value < b.value; });
+  return param_detail::field<Member>({name, 0.0, low->value, high->value, true, help, choices});
+}
+
+// The switches' names (bool fields), the same for every method.
+inline constexpr std::array<ParamChoice, 2> kSwitch = {{{"off", 0}, {"on", 1}}};
+
+// The ParamInfo table of a record, in its order.
+template <class P, std::size_t N>
+constexpr std::array<ParamInfo, N> param_infos(const std::array<ParamField<P>, N>& fields) {
+  std::array<ParamInfo, N> infos{};
+  for (std::size_t i = 0; i < N; ++i) infos[i] = fields[i].info;
+  return infos;
+}
+
+// The struct of checked values (resolve_params); a name `values` lacks keeps its default.
+template <class P, std::size_t N>
+P params_from_values(const std::array<ParamField<P>, N>& fields, const ParamValues& values) {
+  P params;
+  for (const auto& field : fields)
+    if (const auto value = values.find(field.info.name); value != values.end())
+      field.set(params, value->second);
+  return params;
+}
+
+// The numbers of every field, as the model file stores them.
+template <class P, std::size_t N>
+ParamValues param_values(const std::array<ParamField<P>, N>& fields, const P& params) {
+  ParamValues values;
+  for (const auto& field : fields) values[std::string(field.info.name)] = field.get(params);
+  return values;
+}
+
+}  // namespace stochtex
