@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "io/image_io.hpp"
-#include "methods/gabor/model.hpp"
+#include "methods/gabor/edit_analysis.hpp"
 #include "model/model_data.hpp"
 #include "number_pair.hpp"
 #include "stochtex/stochtex.hpp"
