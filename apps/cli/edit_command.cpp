@@ -18,7 +18,7 @@
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "io/image_io.hpp"
-#include "methods/gabor/model.hpp"
+#include "methods/gabor/edit_analysis.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/stochtex.hpp"
 

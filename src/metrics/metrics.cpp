@@ -9,8 +9,10 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "core/colour_statistics.hpp"
 #include "core/parallel.hpp"
 #include "spectral/adsn.hpp"
 #include "spectral/fft.hpp"
@@ -279,30 +281,9 @@ double SlicedWassersteinReference::distance(ImageView<const float> image) const 
 
 ColourStatistics colour_statistics(ImageView<const float> image) {
   require_pixels(image, "colour_statistics");
-  const auto channels = static_cast<std::size_t>(image.channels);
-  const double pixel_count = static_cast<double>(image.width) * image.height;
-  ColourStatistics statistics{std::vector<double>(channels, 0.0),
-                              std::vector<double>(channels * channels, 0.0)};
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x)
-      for (std::size_t c = 0; c < channels; ++c)
-        statistics.mean[c] += image.at(x, y, static_cast<int>(c));
-  for (double& mean : statistics.mean) mean /= pixel_count;
-
-  // Second pass around the mean: summing raw squares would cancel catastrophically for images
-  // with a large mean and a small variance.
-  std::vector<double> centred(channels);
-  for (int y = 0; y < image.height; ++y) {
-    for (int x = 0; x < image.width; ++x) {
-      for (std::size_t c = 0; c < channels; ++c)
-        centred[c] = image.at(x, y, static_cast<int>(c)) - statistics.mean[c];
-      for (std::size_t i = 0; i < channels; ++i)
-        for (std::size_t j = 0; j < channels; ++j)
-          statistics.covariance[i * channels + j] += centred[i] * centred[j];
-    }
-  }
-  for (double& covariance : statistics.covariance) covariance /= pixel_count;
-  return statistics;
+  std::vector<double> mean = channel_means(image);
+  std::vector<double> covariance = channel_covariance(image, mean);
+  return {std::move(mean), std::move(covariance)};
 }
 
 double mean_error(const ColourStatistics& a, const ColourStatistics& b) {

@@ -65,6 +65,7 @@ class SlicedWassersteinReference {
   std::vector<std::vector<double>> quantiles_;  // per direction, at the levels
 };
 
+// channel_means and channel_covariance (core/colour_statistics.hpp) of the image.
 struct ColourStatistics {
   std::vector<double> mean;        // per channel
   std::vector<double> covariance;  // channels x channels, row-major, divided by the pixel count

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/colour_statistics.hpp"
 #include "core/hash.hpp"
 #include "spectral/fft.hpp"
 #include "spectral/periodic.hpp"
@@ -49,12 +50,9 @@ ImageF adsn(ImageView<const float> exemplar, int width, int height, std::uint32_
   std::vector<float> plane(fft.image_size());
   std::vector<std::complex<float>> spectrum(fft.spectrum_size());
   const double normalisation = 1.0 / std::sqrt(static_cast<double>(kernel_pixels));
+  const std::vector<double> means = channel_means(periodic.view());
   for (int c = 0; c < channels; ++c) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < kernel_pixels; ++i)
-      sum +=
-          periodic.pixels()[i * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)];
-    const double mean = sum / static_cast<double>(kernel_pixels);
+    const double mean = means[static_cast<std::size_t>(c)];
     // t = (p - mean(p)) / sqrt(|Omega|), zero-padded (texton paper section 3.1).
     std::fill(plane.begin(), plane.end(), 0.0f);
     for (int y = 0; y < kernel_height; ++y)

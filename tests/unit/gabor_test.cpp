@@ -14,6 +14,7 @@
 #include "core/hash.hpp"
 #include "methods/gabor/alias.hpp"
 #include "methods/gabor/analysis.hpp"
+#include "methods/gabor/edit_analysis.hpp"
 #include "methods/gabor/model.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/error.hpp"

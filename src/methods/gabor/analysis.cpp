@@ -6,9 +6,11 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/colour_statistics.hpp"
 #include "core/parallel.hpp"
 #include "methods/gabor/params.hpp"
 #include "spectral/periodic.hpp"
+#include "spectral/principal_components.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::gabor {
@@ -468,18 +470,24 @@ std::vector<Matrix> lagged_correlations(const std::vector<std::vector<float>>& c
 }
 
 Matrix principal_axes(const Matrix& covariance, int n) {
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(to_eigen(covariance, n));
-  // Eigen sorts eigenvalues in increasing order: reverse the rows, largest variance first.
-  return from_eigen(solver.eigenvectors().rowwise().reverse().transpose());
+  const PrincipalComponents components = principal_components(covariance, n);
+  // The variances come in increasing order: the axes as rows, largest variance first.
+  Matrix result(static_cast<std::size_t>(n) * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      result[static_cast<std::size_t>(i) * n + j] =
+          components.axes[static_cast<std::size_t>(j) * n + (n - 1 - i)];
+  return result;
 }
 
 Matrix joint_diagonalizer(const std::vector<Matrix>& correlations, int n) {
   // Whitening: W = Lambda^-1/2 E^T makes W C(0) W^T = I; eigenvalues are floored so a channel with
   // no variance (a grey image stored as RGB) stays finite.
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(to_eigen(correlations.front(), n));
-  const double floor = 1e-9 * std::max(1e-30, solver.eigenvalues().maxCoeff());
-  const Eigen::VectorXd scale = solver.eigenvalues().cwiseMax(floor).cwiseSqrt().cwiseInverse();
-  const Eigen::MatrixXd whitening = scale.asDiagonal() * solver.eigenvectors().transpose();
+  const PrincipalComponents components = principal_components(correlations.front(), n);
+  const Eigen::Map<const Eigen::VectorXd> variances(components.variances.data(), n);
+  const double floor = 1e-9 * std::max(1e-30, variances.maxCoeff());
+  const Eigen::VectorXd scale = variances.cwiseMax(floor).cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd whitening = scale.asDiagonal() * to_eigen(components.axes, n).transpose();
   std::vector<Eigen::MatrixXd> matrices;
   for (std::size_t k = 1; k < correlations.size(); ++k) {
     const Eigen::MatrixXd c = to_eigen(correlations[k], n);
@@ -555,13 +563,12 @@ GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::u
   // The periodic component (section 3.2, [Moisan 2011]): no cross artefact in its spectrum.
   const ImageF periodic = periodic_component(exemplar);
   const std::size_t pixels = periodic.pixel_count();
-  std::vector<float> mean(static_cast<std::size_t>(channels));
+  std::vector<float> mean;
+  for (const double value : channel_means(periodic.view()))
+    mean.push_back(static_cast<float>(value));
   std::vector<std::vector<float>> centred(static_cast<std::size_t>(channels),
                                           std::vector<float>(pixels));
   for (int c = 0; c < channels; ++c) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < pixels; ++i) sum += periodic.pixels()[i * channels + c];
-    mean[c] = static_cast<float>(sum / static_cast<double>(pixels));
     for (std::size_t i = 0; i < pixels; ++i)
       centred[c][i] = periodic.pixels()[i * channels + c] - mean[c];
   }

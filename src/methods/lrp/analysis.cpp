@@ -10,11 +10,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/colour_statistics.hpp"
 #include "core/hash.hpp"
 #include "methods/lrp/params.hpp"
 #include "methods/lrp/structure_analysis.hpp"
 #include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
+#include "spectral/principal_components.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/stochtex.hpp"
 
@@ -582,24 +584,19 @@ LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uin
   // per-channel noises, independent, keep the exemplar's colour covariance. Alpha (channel 2 of
   // 2 or 4 of 4) is its own channel and never mixes with colour (DESIGN.md section 1).
   const int colour_channels = channels >= 3 ? 3 : 1;
-  const std::size_t pixels = static_cast<std::size_t>(width) * height;
-  Eigen::VectorXd mean = Eigen::VectorXd::Zero(channels);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < channels; ++c) mean[c] += exemplar.at(x, y, c);
-  mean /= static_cast<double>(pixels);
-  Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(channels, channels);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int i = 0; i < channels; ++i)
-        for (int j = 0; j < channels; ++j)
-          if ((i < colour_channels) == (j < colour_channels))
-            covariance(i, j) += (exemplar.at(x, y, i) - mean[i]) * (exemplar.at(x, y, j) - mean[j]);
-  covariance /= static_cast<double>(pixels);
+  const std::vector<double> mean = channel_means(exemplar);
+  std::vector<double> covariance = channel_covariance(exemplar, mean);
   // Block-diagonal, so the eigenvectors do not mix colour and alpha.
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(covariance);
-  const Eigen::MatrixXd basis = solver.eigenvectors();
-  const Eigen::VectorXd variances = solver.eigenvalues().cwiseMax(0.0);
+  for (int i = 0; i < channels; ++i)
+    for (int j = 0; j < channels; ++j)
+      if ((i < colour_channels) != (j < colour_channels))
+        covariance[static_cast<std::size_t>(i) * channels + j] = 0.0;
+  const PrincipalComponents components = principal_components(covariance, channels);
+  const auto basis = [&](int c, int k) {
+    return components.axes[static_cast<std::size_t>(c) * channels + k];
+  };
+  const Eigen::VectorXd variances =
+      Eigen::Map<const Eigen::VectorXd>(components.variances.data(), channels).cwiseMax(0.0);
 
   LrpData data;
   data.channels = channels;

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/colour_statistics.hpp"
 #include "core/hash.hpp"
 #include "methods/texton/evaluate.hpp"
 #include "spectral/fft.hpp"
@@ -89,12 +90,9 @@ TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::
   // t_u = (p - mean(p)) / sqrt(|Omega|) of section 3.2.
   const ImageF periodic = periodic_component(exemplar);
   const std::size_t pixels = periodic.pixel_count();
-  std::vector<float> mean(static_cast<std::size_t>(channels));
-  for (int c = 0; c < channels; ++c) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < pixels; ++i) sum += periodic.pixels()[i * channels + c];
-    mean[c] = static_cast<float>(sum / static_cast<double>(pixels));
-  }
+  std::vector<float> mean;
+  for (const double value : channel_means(periodic.view()))
+    mean.push_back(static_cast<float>(value));
   const Fft2d fft(width, height);
   const int spectrum_width = fft.spectrum_width();
   const std::size_t spectrum_size = fft.spectrum_size();
@@ -189,14 +187,11 @@ TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::
         }
     }
   noise_covariance = 0.5 * (noise_covariance + noise_covariance.transpose());
-  Eigen::MatrixXd target_covariance = Eigen::MatrixXd::Zero(channels, channels);
-  for (std::size_t p = 0; p < pixels; ++p)
-    for (int i = 0; i < channels; ++i)
-      for (int j = 0; j < channels; ++j)
-        target_covariance(i, j) +=
-            (periodic.pixels()[p * channels + i] - mean[i]) *
-            static_cast<double>(periodic.pixels()[p * channels + j] - mean[j]);
-  target_covariance /= static_cast<double>(pixels);
+  // The target: the exemplar's covariance about the float mean the kernel is centred on.
+  const std::vector<double> target = channel_covariance(periodic.view(), mean);
+  const Eigen::MatrixXd target_covariance =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          target.data(), channels, channels);
   const Eigen::MatrixXd root = symmetric_power(noise_covariance, 0.5);
   const Eigen::MatrixXd inverse_root = symmetric_power(noise_covariance, -0.5);
   const Eigen::MatrixXd correction =

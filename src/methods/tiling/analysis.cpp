@@ -1,17 +1,24 @@
 #include "methods/tiling/analysis.hpp"
 
-#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
 #include <numbers>
 
+#include "core/colour_statistics.hpp"
 #include "core/hash.hpp"
 #include "methods/tiling/evaluate.hpp"
+#include "spectral/principal_components.hpp"
 
 namespace stochtex::tiling {
 namespace {
+
+// Interleaved pixel values (width x height x channels, row-major) seen as an image.
+ImageView<const float> interleaved(const std::vector<float>& values, int width, int height,
+                                   int channels) {
+  return {values.data(), width, height, channels, static_cast<std::ptrdiff_t>(width) * channels};
+}
 
 // Sort keys of (value, index) pairs: an order-preserving uint32 image of the float in the high
 // half, the index in the low half.
@@ -186,14 +193,11 @@ void remove_large_scales(std::vector<float>& pixels, int width, int height, int 
         low[i] = scratch[i];
   }
   const std::size_t count = static_cast<std::size_t>(width) * height;
-  for (int c = 0; c < colour_channels; ++c) {
-    double mean = 0.0;
-    for (std::size_t i = 0; i < count; ++i) mean += low[i * channels + c];
-    mean /= static_cast<double>(count);
+  const std::vector<double> mean = channel_means(interleaved(low, width, height, channels));
+  for (int c = 0; c < colour_channels; ++c)
     for (std::size_t i = 0; i < count; ++i)
       pixels[i * channels + c] =
-          static_cast<float>(pixels[i * channels + c] - low[i * channels + c] + mean);
-  }
+          static_cast<float>(pixels[i * channels + c] - low[i * channels + c] + mean[c]);
 }
 
 }  // namespace
@@ -270,10 +274,10 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
       for (int c = 0; c < channels; ++c)
         pixel_values[(static_cast<std::size_t>(y) * data.width + x) * channels + c] =
             exemplar.at(x, y, c);
-  const auto channel_mean = [&](const std::vector<float>& values, int c) {
-    double sum = 0.0;
-    for (std::size_t i = 0; i < pixels; ++i) sum += values[i * channels + c];
-    return static_cast<float>(sum / static_cast<double>(pixels));
+  const auto set_blend_mean = [&] {
+    for (const double mean :
+         channel_means(interleaved(data.gaussian, data.width, data.height, channels)))
+      data.blend_mean.push_back(static_cast<float>(mean));
   };
   if (params.stationarity) {
     const int colour_channels =
@@ -285,7 +289,7 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
   if (data.blend != Blend::histogram) {
     // Section 6.1: a Gaussian exemplar is blended as is; eq. (8) needs only its mean.
     data.gaussian = std::move(pixel_values);
-    for (int c = 0; c < channels; ++c) data.blend_mean.push_back(channel_mean(data.gaussian, c));
+    set_blend_mean();
     return TilingModel(std::move(data));
   }
 
@@ -341,38 +345,30 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
   } else {
     // Per-channel transport (Deliot & Heitz 2019): decorrelate the colour by PCA (Heeger & Bergen
     // 1995), then an exact 1-D transport per principal axis. Grey needs no rotation.
-    Eigen::MatrixXd basis = Eigen::MatrixXd::Identity(cc, cc);
-    Eigen::VectorXd mean = Eigen::VectorXd::Zero(cc);
+    std::vector<double> basis = {1.0};
+    std::vector<double> mean = {0.0};
     if (cc > 1) {
-      for (int c = 0; c < cc; ++c) {
-        double sum = 0.0;
-        for (std::size_t i = 0; i < pixels; ++i) sum += colours[i * cc + c];
-        mean[c] = sum / static_cast<double>(pixels);
-      }
-      Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(cc, cc);
-      for (std::size_t i = 0; i < pixels; ++i)
-        for (int a = 0; a < cc; ++a)
-          for (int b = 0; b < cc; ++b)
-            covariance(a, b) += (colours[i * cc + a] - mean[a]) * (colours[i * cc + b] - mean[b]);
-      covariance /= static_cast<double>(pixels);
-      basis = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(covariance).eigenvectors();
+      const ImageView<const float> view = interleaved(colours, data.width, data.height, cc);
+      mean = channel_means(view);
+      basis = principal_components(channel_covariance(view, mean), cc).axes;
     }
     std::vector<float> decorrelated(pixels * cc);
     for (std::size_t i = 0; i < pixels; ++i)
       for (int k = 0; k < cc; ++k) {
         double dot = 0.0;
-        for (int c = 0; c < cc; ++c) dot += basis(c, k) * (colours[i * cc + c] - mean[c]);
+        for (int c = 0; c < cc; ++c) dot += basis[c * cc + k] * (colours[i * cc + c] - mean[c]);
         decorrelated[i * cc + k] = static_cast<float>(dot);
       }
     for (int k = 0; k < cc; ++k) transport_1d(decorrelated, cc, k, k, k);
     for (int c = 0; c < cc; ++c) {
       data.colour_mean.push_back(static_cast<float>(mean[c]));
-      for (int k = 0; k < cc; ++k) data.colour_basis.push_back(static_cast<float>(basis(c, k)));
+      for (int k = 0; k < cc; ++k)
+        data.colour_basis.push_back(static_cast<float>(basis[c * cc + k]));
     }
   }
   if (layout.has_alpha)
     transport_1d(pixel_values, channels, channels - 1, channels - 1, layout.first_alpha_table);
-  for (int c = 0; c < channels; ++c) data.blend_mean.push_back(channel_mean(data.gaussian, c));
+  set_blend_mean();
   return TilingModel(std::move(data));
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/colour_statistics.hpp"
 #include "core/level_of_detail.hpp"
 #include "methods/tiling/params.hpp"
 #include "stochtex/error.hpp"
@@ -47,20 +48,12 @@ std::vector<std::vector<float>> build_pyramid(const std::vector<float>& base, in
   return levels;
 }
 
-std::vector<double> channel_variances(const std::vector<float>& texels, int channels) {
-  const std::size_t count = texels.size() / static_cast<std::size_t>(channels);
-  std::vector<double> mean(static_cast<std::size_t>(channels), 0.0);
-  std::vector<double> variance(static_cast<std::size_t>(channels), 0.0);
-  for (std::size_t i = 0; i < count; ++i)
-    for (int c = 0; c < channels; ++c) mean[c] += texels[i * channels + c];
-  for (double& m : mean) m /= static_cast<double>(count);
-  for (std::size_t i = 0; i < count; ++i)
-    for (int c = 0; c < channels; ++c) {
-      const double d = texels[i * channels + c] - mean[c];
-      variance[c] += d * d;
-    }
-  for (double& v : variance) v /= static_cast<double>(count);
-  return variance;
+// The variance of each channel of a pyramid level's texels (width x height x channels).
+std::vector<double> level_variances(const std::vector<float>& texels, int width, int height,
+                                    int channels) {
+  const ImageView<const float> level{texels.data(), width, height, channels,
+                                     static_cast<std::ptrdiff_t>(width) * channels};
+  return channel_variances(level, channel_means(level));
 }
 
 // One row of a banded matrix: entries first .. first + weights.size() - 1.
@@ -175,9 +168,11 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
   if (d.blend != Blend::histogram) return;
 
   // T^-1 prefiltered per level (see prefilter_kernel); the residual deviation differs per channel.
-  const std::vector<double> base_variance = channel_variances(levels_.front().texels, d.channels);
+  const std::vector<double> base_variance =
+      level_variances(levels_.front().texels, d.width, d.height, d.channels);
   for (std::size_t l = 0; l < levels_.size(); ++l) {
-    const std::vector<double> variance = channel_variances(levels_[l].texels, d.channels);
+    const std::vector<double> variance =
+        level_variances(levels_[l].texels, levels_[l].width, levels_[l].height, d.channels);
     const auto residual = [&](int channel) {
       return l == 0 ? 0.0 : std::sqrt(std::max(0.0, base_variance[channel] - variance[channel]));
     };
