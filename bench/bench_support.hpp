@@ -1,6 +1,6 @@
 #pragma once
 // What every method's benchmark needs: corpus exemplars, square crops of them, and the
-// nanoseconds-per-sample measure (DESIGN.md section 10).
+// nanoseconds-per-sample measure (docs/design.md §10).
 
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// Gabor noise by example costs (DESIGN.md section 10): analysis time for 128² and 256² exemplars
+// Gabor noise by example costs (docs/design.md §10): analysis time for 128² and 256² exemplars
 // (the paper's Matlab takes about 2 minutes for 128² grey, section 9.1), and evaluation cost per
 // sample against the impulse budget N (the paper: roughly linear in N), point-sampled and with
 // scale-8 footprints, on one thread through the batch `evaluate`.

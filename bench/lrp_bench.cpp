@@ -1,4 +1,4 @@
-// Local random-phase noise costs (DESIGN.md section 10): analysis time for 128², 256² and 512²
+// Local random-phase noise costs (docs/design.md §10): analysis time for 128², 256² and 512²
 // exemplars, and evaluation cost per sample for J = 10, 50, 100 cosines. The paper (section 6.2)
 // puts the cost at 9 (J + L) special-function calls (cosines and windows) per channel; the
 // `ns_per_call` counter divides the time per sample by that count, so a constant value across J

@@ -1,4 +1,4 @@
-// Texton noise costs (DESIGN.md section 10): analysis time for 128², 256² and 512² exemplars, and
+// Texton noise costs (docs/design.md §10): analysis time for 128², 256² and 512² exemplars, and
 // evaluation cost per sample for several texton supports, through `render` at 1 and 2 threads and
 // through the batch `evaluate` with point and filtered (scale 8) footprints.
 

@@ -1,4 +1,4 @@
-// Histogram-preserving tiling and blending costs (DESIGN.md section 10): analysis time for 128²,
+// Histogram-preserving tiling and blending costs (docs/design.md §10): analysis time for 128²,
 // 256² and 512² colour exemplars with both transports, and evaluation cost per sample through
 // `render` at 1 and 2 threads for the Gaussian fast path (section 6.1: 3 fetches) and the full
 // path (3 fetches + one T^-1 look-up), point-sampled and filtered (scale 8).

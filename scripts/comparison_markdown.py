@@ -79,7 +79,7 @@ def main():
     out.append("")
     out.append("""## The measures
 
-All errors compare the synthesis with the exemplar (DESIGN.md section 9); lower is better.
+All errors compare the synthesis with the exemplar (docs/design.md §8); lower is better.
 
 | column | measure |
 |---|---|

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs every build, test and benchmark dependency of stochtex from Debian 12 packages
-# (DESIGN.md section 11). Nothing else is downloaded. Safe to run repeatedly.
+# (docs/design.md §3). Nothing else is downloaded. Safe to run repeatedly.
 set -euo pipefail
 
 packages=(

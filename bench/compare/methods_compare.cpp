@@ -1,4 +1,4 @@
-// The four methods side by side (DESIGN.md section 10): analysis time and evaluation cost per
+// The four methods side by side (docs/design.md §10): analysis time and evaluation cost per
 // sample of every registered method on the same exemplar, in one process, at 1 thread and at all
 // hardware threads, with the ratio of each to the fastest and the ratios the papers claim on GPUs
 // beside the measured ones (docs/performance.md explains the differences).

@@ -71,7 +71,7 @@ class Model {
   std::shared_ptr<const ModelData> data_;
 };
 
-// Model files (.stx, DESIGN.md section 7). Loading validates everything before allocating and
+// Model files (.stx, docs/design.md §7). Loading validates everything before allocating and
 // throws stochtex::Error with a message naming the file and the problem.
 void save_model(const Model& model, const std::filesystem::path& path);
 Model load_model(const std::filesystem::path& path);

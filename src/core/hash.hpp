@@ -1,5 +1,5 @@
 #pragma once
-// Integer hashing and random draws: the randomness spec of DESIGN.md section 5, written so that the
+// Integer hashing and random draws: the randomness spec of docs/design.md §5, written so that the
 // GLSL port can mirror it statement for statement (uint32 arithmetic only, which wraps in both
 // languages). Reference: Jarzynski & Olano, "Hash Functions for GPU Rendering", JCGT 2020.
 // The test vectors in tests/unit/hash_test.cpp pin these functions: they must never change, or

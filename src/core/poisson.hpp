@@ -1,5 +1,5 @@
 #pragma once
-// Exact Poisson counts for cell-based point processes (DESIGN.md section 5).
+// Exact Poisson counts for cell-based point processes (docs/design.md §5).
 // A Poisson(m) count is drawn by inversion: one uniform u, and the count is the first k with
 // u < P(X <= k). The CDF is tabulated once per sampler (in double, rounded to float), so a draw
 // is a short search with no arithmetic; uniforms have 24 bits, so the table resolves every

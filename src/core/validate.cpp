@@ -1,4 +1,4 @@
-// Exemplar validation (DESIGN.md section 8): every unusable exemplar gets one sentence that names
+// Exemplar validation (docs/design.md §9): every unusable exemplar gets one sentence that names
 // it.
 
 #include <cmath>

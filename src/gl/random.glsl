@@ -1,4 +1,4 @@
-// The randomness spec of DESIGN.md section 5 in GLSL, statement for statement the same as
+// The randomness spec of docs/design.md §5 in GLSL, statement for statement the same as
 // src/core/hash.hpp (uint arithmetic wraps in both languages). Tests compare the two. The stream
 // constants STREAM_POINTS, STREAM_PHASES, ... of the C++ enum Stream are declared before this
 // file from the enum (random_source() in random.cpp).

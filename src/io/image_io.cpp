@@ -50,7 +50,7 @@ struct FileCloser {
 };
 using File = std::unique_ptr<std::FILE, FileCloser>;
 
-// Refuses a declared size before anything proportional to it is allocated (DESIGN.md section 8).
+// Refuses a declared size before anything proportional to it is allocated (docs/design.md §9).
 void check_size(const fs::path& path, std::int64_t width, std::int64_t height,
                 const ImageReadLimits& limits) {
   const std::string size = std::to_string(width) + "x" + std::to_string(height);

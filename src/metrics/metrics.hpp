@@ -1,5 +1,5 @@
 #pragma once
-// Quality measures of DESIGN.md section 9, used by `stochtex compare`, the statistical tests and
+// Quality measures of docs/design.md §8, used by `stochtex compare`, the statistical tests and
 // the docs. Every function takes views and returns plain numbers. Sums are accumulated in double.
 // Invalid arguments (empty images, a crop that does not fit, channel counts that differ) throw
 // std::invalid_argument. A relative error against a reference that is zero is 0 when the other
@@ -75,7 +75,7 @@ ColourStatistics colour_statistics(ImageView<const float> image);
 double mean_error(const ColourStatistics& a, const ColourStatistics& b);
 double covariance_error(const ColourStatistics& a, const ColourStatistics& reference);
 
-// Stationarity (DESIGN.md section 9): `renders` are the same grid rendered with different seeds.
+// Stationarity (docs/design.md §8): `renders` are the same grid rendered with different seeds.
 // The per-pixel variance across the renders, summed over channels, is averaged over block x block
 // pixel blocks; the result is the coefficient of variation (standard deviation / mean) of those
 // block variances. A stationary field gives only the estimator's noise (compare with the same

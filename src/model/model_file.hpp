@@ -1,5 +1,5 @@
 #pragma once
-// The .stx model file (DESIGN.md section 7), byte layout, all integers little-endian:
+// The .stx model file (docs/design.md §7), byte layout, all integers little-endian:
 //   magic "STOCHTEX" (8 bytes) | format version u32 | header length u32 | header JSON (UTF-8)
 //   | array data: each declared array's float32 values, in header order | FNV-1a 64 checksum u64
 //     of every preceding byte.

@@ -1,7 +1,7 @@
 #pragma once
 // The measurements behind `stochtex report`: every method run on one exemplar with its default
 // parameters, at the same size and seed as the exemplar's Gaussian version (ADSN), measured with
-// the quality measures of DESIGN.md section 9 and timed. Each measurement is one call, so a caller
+// the quality measures of docs/design.md §8 and timed. Each measurement is one call, so a caller
 // can spread (exemplar, method) pairs over threads; every call is single-threaded apart from the
 // sliced Wasserstein distance, and deterministic.
 

@@ -11,7 +11,7 @@ std::vector<float> gaussian_white_noise(std::size_t count, std::uint32_t key) {
   CounterRng rng(key);
   std::vector<float> noise(count);
   for (std::size_t i = 0; i < count; i += 2) {
-    // One draw per statement: the order of the two draws is then fixed (DESIGN.md section 5).
+    // One draw per statement: the order of the two draws is then fixed (docs/design.md §5).
     const float u = rng.uniform();
     const float v = rng.uniform();
     // 1 - u is in (0, 1], so the logarithm is finite.

@@ -1,6 +1,6 @@
 #pragma once
 // Standard Gaussian white noise for the analyses (ADSN, the texton initialisation of Algorithm 1),
-// drawn from the counter-based generator of DESIGN.md section 5 so that it is a pure function of
+// drawn from the counter-based generator of docs/design.md §5 so that it is a pure function of
 // the key and identical on every platform.
 
 #include <cstddef>

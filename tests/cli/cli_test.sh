@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The `stochtex` command as a user meets it (DESIGN.md sections 6 and 8). Every bad input must
+# The `stochtex` command as a user meets it (docs/design.md §6 and §9). Every bad input must
 # exit with its code (1 runtime failure, 2 usage error), print exactly one line on stderr starting
 # with "stochtex: error:", and leave no output file behind, not even a temporary one. The good
 # paths must work, print valid JSON where asked, and render the same bytes whatever the threads.

@@ -1,4 +1,4 @@
-// Deterministic mutation fuzzing of read_image (DESIGN.md section 8): small valid PNG, OpenEXR and
+// Deterministic mutation fuzzing of read_image (docs/design.md §9): small valid PNG, OpenEXR and
 // PFM files are damaged in seeded, reproducible ways, and every damaged file must either read as
 // a consistent image or throw stochtex::Error. Any other exception, or a crash, fails the test.
 

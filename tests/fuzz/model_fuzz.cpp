@@ -1,4 +1,4 @@
-// Deterministic mutation fuzzing of the .stx reader (DESIGN.md section 8): thousands of seeded
+// Deterministic mutation fuzzing of the .stx reader (docs/design.md §9): thousands of seeded
 // mutations of valid model files must each load or be rejected with stochtex::Error, never crash,
 // hang or allocate without bound. Half the mutants get their checksum recomputed so that they
 // reach the header and array validation instead of stopping at the checksum.

@@ -1,4 +1,4 @@
-// The OpenGL backend against the CPU reference (DESIGN.md section 4: the scalar C++ evaluator is
+// The OpenGL backend against the CPU reference (docs/design.md §4: the scalar C++ evaluator is
 // the reference). Runs on Mesa llvmpipe in CI and on NVIDIA drivers where a GPU exists.
 
 #include <gtest/gtest.h>

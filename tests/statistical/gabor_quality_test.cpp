@@ -1,5 +1,5 @@
 // Gabor noise by example against its paper's claims, on `gaussian` exemplars of the corpus
-// (DESIGN.md section 9). Bounds are derived from the estimator's own noise, measured over fixed
+// (docs/design.md §8). Bounds are derived from the estimator's own noise, measured over fixed
 // seeds: the procedural noise must be as close to the exemplar as an ADSN sample (the exact
 // Gaussian texture, the paper's ground truth of section 3.1) up to a few standard deviations of
 // one sample's measurement.
@@ -42,7 +42,7 @@ struct Errors {
 };
 
 // Spectral and covariance errors against the exemplar of `seeds` renders of side `size` and of
-// as many ADSN samples of the same size (DESIGN.md section 9).
+// as many ADSN samples of the same size (docs/design.md §8).
 Errors measure(const Model& model, const ImageF& exemplar, int size, int seeds) {
   const int crop = size / 2;
   const ColourStatistics target = colour_statistics(exemplar.view());

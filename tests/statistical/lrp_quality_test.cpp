@@ -1,5 +1,5 @@
 // Local random-phase noise against its paper's claims (Gilet et al. 2014), on `gaussian` exemplars
-// of the corpus and on a continuous ring target (DESIGN.md section 9). Bounds come from the
+// of the corpus and on a continuous ring target (docs/design.md §8). Bounds come from the
 // estimators' own noise, measured over fixed seeds; each test says how it can fail.
 
 #include <gtest/gtest.h>

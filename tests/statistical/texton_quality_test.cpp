@@ -1,5 +1,5 @@
-// Texton noise against its paper's claims, on the `gaussian` exemplars of the corpus (DESIGN.md
-// section 9). Every bound is derived from the estimator's own noise, measured over fixed seeds: a
+// Texton noise against its paper's claims, on the shipped `gaussian` exemplars (docs/design.md
+// §8). Every bound is derived from the estimator's own noise, measured over fixed seeds: a
 // texton noise sample must be as close to the exemplar as an ADSN sample (the exact Gaussian
 // texture) up to a few standard errors of that difference.
 

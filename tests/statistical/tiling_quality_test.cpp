@@ -1,4 +1,4 @@
-// Histogram-preserving tiling and blending against its paper's claims (DESIGN.md section 9): the
+// Histogram-preserving tiling and blending against its paper's claims (docs/design.md §8): the
 // exemplar's colour histogram is kept (section 3.3), the lattice is invisible (no variance change
 // over a tile, figure 4), Gaussian inputs need no transform (section 6.1), and minified renders
 // match a supersampled reference (section 5.4). Baselines measured in the same tests: linear
@@ -136,7 +136,7 @@ TEST_P(TilingHistogram, IsPreservedUnlikeLinearBlendingOrAdsn) {
     const Sample to_adsn = pooled_gap(g, o);
     EXPECT_GT(to_linear.mean, 4.0 * to_linear.deviation) << name;
     EXPECT_GT(l.mean, 2.0 * o.mean) << name;
-    // DESIGN.md section 9: tiling must beat ADSN on non-Gaussian inputs, i.e. where ADSN's own
+    // docs/design.md §8: tiling must beat ADSN on non-Gaussian inputs, i.e. where ADSN's own
     // error exceeds the floor by more than 4 of its deviations (metal, nuts, water); on the others
     // (moss, sand, bricks: Gaussian-like histograms) it must not be worse.
     if (g.mean - floor > 4.0 * g.deviation)

@@ -1,4 +1,4 @@
-// The randomness spec of DESIGN.md section 5. The vectors below were computed with an independent
+// The randomness spec of docs/design.md §5. The vectors below were computed with an independent
 // Python transcription of Jarzynski & Olano's reference GLSL (JCGT 2020, "pcg" and "pcg4d"); they
 // pin the C++ (and later GLSL) code: a change here re-seeds every stored texture.
 

@@ -1,5 +1,5 @@
 // Image files: exact round trips, format detection by content, and one clear error for every bad
-// file (DESIGN.md sections 6 and 8).
+// file (docs/design.md §6 and §9).
 
 #include "io/image_io.hpp"
 

@@ -1,4 +1,4 @@
-// The .stx model file (DESIGN.md section 7): exact round trips, and every corrupt, truncated,
+// The .stx model file (docs/design.md §7): exact round trips, and every corrupt, truncated,
 // hostile or foreign file rejected by stochtex::Error(format) with a sentence naming the file.
 
 #include "model/model_file.hpp"

@@ -1,4 +1,4 @@
-// Determinism (DESIGN.md section 4): the output is a pure function of (model, position, footprint,
+// Determinism (docs/design.md §4): the output is a pure function of (model, position, footprint,
 // seed), bit for bit, whatever the thread count, tile size or region split; and p = 1e7 is as
 // precise as p = 0.
 

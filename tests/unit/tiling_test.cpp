@@ -128,7 +128,7 @@ TEST(TilingLattice, WeightsAreContinuousSoTheyVanishOnTileBorders) {
 }
 
 TEST(TilingLattice, FarFromTheOriginIsAsPreciseAsNearIt) {
-  // DESIGN.md section 4: p = 1e7 must look like p = 0. The wrapped fetch position moves by a
+  // docs/design.md §4: p = 1e7 must look like p = 0. The wrapped fetch position moves by a
   // quarter pixel for a quarter-pixel step there too (float p would have a resolution of 1), and
   // the weights change by the same amount as near the origin.
   constexpr double kEdge = 128.0;

@@ -379,7 +379,7 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
                  dyy = static_cast<float>(d11);
       float sum = 0.0f;
       // Cells meeting p + [-reach, reach]^2; 64-bit indices, offsets from the cell corner taken in
-      // double before going to float, so p = 1e7 is as precise as p = 0 (DESIGN.md section 4).
+      // double before going to float, so p = 1e7 is as precise as p = 0 (docs/design.md §4).
       const auto first_x = static_cast<std::int64_t>(std::floor((p.x - reach) / cell_size));
       const auto last_x = static_cast<std::int64_t>(std::floor((p.x + reach) / cell_size));
       const auto first_y = static_cast<std::int64_t>(std::floor((p.y - reach) / cell_size));

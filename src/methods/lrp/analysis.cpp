@@ -582,7 +582,7 @@ LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uin
 
   // Colour (section 6 defers it to a decorrelated space): PCA of the colour channels, so the
   // per-channel noises, independent, keep the exemplar's colour covariance. Alpha (channel 2 of
-  // 2 or 4 of 4) is its own channel and never mixes with colour (DESIGN.md section 1).
+  // 2 or 4 of 4) is its own channel and never mixes with colour (docs/design.md §1).
   const int colour_channels = channels >= 3 ? 3 : 1;
   const std::vector<double> mean = channel_means(exemplar);
   std::vector<double> covariance = channel_covariance(exemplar, mean);

@@ -1,5 +1,5 @@
 #pragma once
-// Building blocks of the LRP noise evaluator, in the restricted subset of DESIGN.md section 4
+// Building blocks of the LRP noise evaluator, in the restricted subset of docs/design.md §4
 // (uint32/float, flat arrays, no allocation) so that they can be mirrored in GLSL.
 
 #include <array>
@@ -50,7 +50,7 @@ inline float clamp_weight(float cycles) noexcept {
 }
 
 // The lattice node nearest (u, v), in lattice units, as 64-bit indices, and the offset from it,
-// formed in double before going to float: p = 1e7 is as precise as p = 0 (DESIGN.md section 4).
+// formed in double before going to float: p = 1e7 is as precise as p = 0 (docs/design.md §4).
 struct NearestNode {
   std::int64_t x;
   std::int64_t y;

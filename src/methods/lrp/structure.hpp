@@ -3,7 +3,7 @@
 // fixed-phase region R of the spectrum (eq. 4) approximated by J_R = rJ cosines per block of a
 // subdivided structure image (section 5.3), evaluated at a position distorted by turbulence and
 // shifted by random placement (section 5.2). Plain data and a runtime evaluator in the restricted
-// subset of DESIGN.md section 4; structure_analysis.cpp builds the data.
+// subset of docs/design.md §4; structure_analysis.cpp builds the data.
 
 #include <array>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
 // The texton noise evaluator (sections 3.3, 5 and 8 of the paper), written in the restricted
-// subset of DESIGN.md section 4 (uint32/float, flat arrays, no allocation) so that it can be
+// subset of docs/design.md §4 (uint32/float, flat arrays, no allocation) so that it can be
 // mirrored in GLSL.
 
 #include <algorithm>

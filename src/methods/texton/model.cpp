@@ -193,7 +193,7 @@ void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
     float acc[Channels] = {};
     // The Poisson process is simulated on the grid cells that meet p + [-reach, reach]^2. Cell
     // indices are 64-bit integers and offsets are taken relative to the cell corner in double
-    // before going to float, so p = 1e7 is as precise as p = 0 (DESIGN.md section 4).
+    // before going to float, so p = 1e7 is as precise as p = 0 (docs/design.md §4).
     const auto first_cell_x = static_cast<std::int64_t>(std::floor((p.x - reach) / cell_size_));
     const auto last_cell_x = static_cast<std::int64_t>(std::floor((p.x + reach) / cell_size_));
     const auto first_cell_y = static_cast<std::int64_t>(std::floor((p.y - reach) / cell_size_));

@@ -1,6 +1,6 @@
 #pragma once
 // The pieces of the tiling-and-blending evaluator (Algorithm 1 of the paper), written in the
-// restricted subset of DESIGN.md section 4 (uint32/float, flat arrays, no allocation) so that they
+// restricted subset of docs/design.md §4 (uint32/float, flat arrays, no allocation) so that they
 // can be mirrored in GLSL. Lattice and fetch functions are public so tests and baselines (linear
 // blending) use exactly the evaluator's geometry.
 
@@ -36,7 +36,7 @@ inline Vec2d skewed_position(Vec2d p, double edge) noexcept {
 
 inline LatticePoint triangle_lattice(Vec2d p, double edge) noexcept {
   // Skewed coordinates are formed in double and split into a 64-bit cell and a float fraction, so
-  // the fraction (hence the weights) is as precise at p = 1e7 as at p = 0 (DESIGN.md section 4).
+  // the fraction (hence the weights) is as precise at p = 1e7 as at p = 0 (docs/design.md §4).
   const Vec2d skewed = skewed_position(p, edge);
   const double skewed_x = skewed.x;
   const double skewed_y = skewed.y;
@@ -73,7 +73,7 @@ struct Point2f {
 };
 
 // p wrapped into the exemplar's period [0, width) x [0, height), formed in double so that
-// p = 1e7 keeps its fraction (DESIGN.md section 4); offsets are then added in float.
+// p = 1e7 keeps its fraction (docs/design.md §4); offsets are then added in float.
 inline Point2f wrap_position(Vec2d p, int width, int height) noexcept {
   const auto w = static_cast<double>(width);
   const auto h = static_cast<double>(height);
