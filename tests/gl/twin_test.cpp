@@ -105,7 +105,7 @@ TEST(GlTwin, EveryRegisteredMethodRendersOnTheGlBackend) {
   // The methods of the registry, not a list of our own: each has a GPU twin (gl_supports) whose
   // render of a default model matches the CPU reference (tolerance of the parity tests).
   EXPECT_FALSE(gl_supports("no-such-method"));
-  const ImageF exemplar = read_image(kTextureDir + "/red_fleece_128.png");
+  const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
   const Grid grid{{-20.0, 7.5}, 2.0, 24, 16};
   for (const MethodInfo& method : methods()) {
     ASSERT_TRUE(gl_supports(method.name)) << method.name;

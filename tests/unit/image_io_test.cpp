@@ -249,12 +249,12 @@ TEST_F(ImageIoTest, FormatIsRecognisedByContentNotExtension) {
 }
 
 TEST_F(ImageIoTest, CorpusPngsRead) {
-  const ImageF fleece = read_image(STOCHTEX_TEXTURE_DIR "/grass_lawn_128.png");
-  EXPECT_EQ(fleece.width(), 128);
-  EXPECT_EQ(fleece.height(), 128);
-  EXPECT_EQ(fleece.channels(), 3);
+  const ImageF grass = read_image(STOCHTEX_TEXTURE_DIR "/grass_lawn_128.png");
+  EXPECT_EQ(grass.width(), 128);
+  EXPECT_EQ(grass.height(), 128);
+  EXPECT_EQ(grass.channels(), 3);
   float lowest = 1.0f, highest = 0.0f;
-  for (float value : fleece.pixels()) {
+  for (float value : grass.pixels()) {
     lowest = std::min(lowest, value);
     highest = std::max(highest, value);
   }
