@@ -1,5 +1,6 @@
-// The one table of methods: name, described parameters, analysis. Evaluation and model files
-// dispatch through the closed variant in model/model_data.hpp.
+// The table of methods (name, summary, described parameters, analysis), made from the closed
+// variant of models in model/model_data.hpp, the one list of methods: evaluation, model files and
+// the GPU backend dispatch through the same variant.
 
 #include <algorithm>
 #include <array>
@@ -8,17 +9,10 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "methods/gabor/analysis.hpp"
-#include "methods/gabor/params.hpp"
-#include "methods/lrp/analysis.hpp"
-#include "methods/lrp/params.hpp"
-#include "methods/texton/analysis.hpp"
-#include "methods/texton/params.hpp"
-#include "methods/tiling/analysis.hpp"
-#include "methods/tiling/params.hpp"
 #include "model/model_data.hpp"
 #include "spectral/adsn.hpp"
 #include "stochtex/stochtex.hpp"
+#include "stochtex_method_analyses.hpp"
 
 namespace stochtex {
 namespace {
@@ -30,41 +24,36 @@ struct MethodEntry {
   AnalyzeFunction analyze;
 };
 
-// Analysis of a method from checked values, through the method's typed parameter record.
-template <const auto& Fields, auto Analyze>
-MethodModel analyze_with(ImageView<const float> exemplar, const ParamValues& params,
-                         std::uint32_t seed) {
-  return MethodModel(Analyze(exemplar, params_from_values(Fields, params), seed));
+// The entry of one alternative of MethodModel: its name, the summary and parameter record of its
+// registry row (`registry_row`, in the method's analysis.hpp), and its analysis from checked values
+// through the typed record (`analyze`, found by argument-dependent lookup on the method's Params).
+template <class Model>
+MethodEntry entry_of() {
+  static constexpr auto row = registry_row(std::type_identity<Model>{});
+  static constexpr auto infos = param_infos(row.fields);
+  return {{Model::kMethodName, row.summary, infos},
+          [](ImageView<const float> exemplar, const ParamValues& values, std::uint32_t seed) {
+            return MethodModel(analyze(exemplar, params_from_values(row.fields, values), seed));
+          }};
 }
 
-const std::array kMethods = {
-    MethodEntry{{texton::TextonModel::kMethodName,
-                 "texton noise (Galerne, Leclaire, Moisan 2017): a small texton summarising the "
-                 "spectrum, ~30 fetches per sample",
-                 texton::kParams},
-                analyze_with<texton::kFields, texton::analyze>},
-    MethodEntry{{tiling::TilingModel::kMethodName,
-                 "histogram-preserving tiling and blending (Heitz, Neyret 2018): 3 patches of the "
-                 "Gaussianised exemplar and one look-up per sample",
-                 tiling::kParams},
-                analyze_with<tiling::kFields, tiling::analyze>},
-    MethodEntry{{lrp::LrpModel::kMethodName,
-                 "local random-phase noise (Gilet et al. 2014): windowed cosines with random "
-                 "phases on a lattice, 9 (J + L) cosines and windows per channel and sample",
-                 lrp::kParams},
-                analyze_with<lrp::kFields, lrp::analyze>},
-    MethodEntry{{gabor::GaborModel::kMethodName,
-                 "Gabor noise by example (Galerne, Lagae, Lefebvre, Drettakis 2012): a sparse sum "
-                 "of bandwidth-quantised Gaussians fitted to the spectrum, ~2N kernels per sample",
-                 gabor::kParams},
-                analyze_with<gabor::kFields, gabor::analyze>},
-};
+template <class... Models>
+std::array<MethodEntry, sizeof...(Models)> entries(std::type_identity<std::variant<Models...>>) {
+  return {entry_of<Models>()...};
+}
+
+// Every method, in the order of the closed variant of models (model/model_data.hpp); made on first
+// use, so that no other static initialiser can see it unmade.
+const std::array<MethodEntry, std::variant_size_v<MethodModel>>& method_entries() {
+  static const auto entries_of_every_method = entries(std::type_identity<MethodModel>{});
+  return entries_of_every_method;
+}
 
 const MethodEntry& find_entry(std::string_view name) {
-  for (const auto& entry : kMethods)
+  for (const auto& entry : method_entries())
     if (entry.info.name == name) return entry;
   std::string known;
-  for (const auto& entry : kMethods)
+  for (const auto& entry : method_entries())
     known += (known.empty() ? "" : ", ") + std::string(entry.info.name);
   throw std::invalid_argument("unknown method '" + std::string(name) +
                               "'; known methods: " + known);
@@ -115,8 +104,9 @@ std::string format_value(const ParamInfo& param, double value) {
 
 std::span<const MethodInfo> methods() {
   static const auto infos = [] {
-    std::array<MethodInfo, kMethods.size()> result;
-    std::transform(kMethods.begin(), kMethods.end(), result.begin(),
+    const auto& entries = method_entries();
+    std::array<MethodInfo, std::variant_size_v<MethodModel>> result;
+    std::transform(entries.begin(), entries.end(), result.begin(),
                    [](const auto& e) { return e.info; });
     return result;
   }();

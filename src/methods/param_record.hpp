@@ -113,4 +113,13 @@ ParamValues param_values(const std::array<ParamField<P>, N>& fields, const P& pa
   return values;
 }
 
+// A method's row of the registry (src/registry.cpp): its one-line summary and its parameter
+// record. Each method's analysis.hpp returns it from `registry_row(std::type_identity<Model>)`,
+// which the registry finds by argument-dependent lookup for every alternative of MethodModel.
+template <class P, std::size_t N>
+struct RegistryRow {
+  std::string_view summary;
+  const std::array<ParamField<P>, N>& fields;
+};
+
 }  // namespace stochtex

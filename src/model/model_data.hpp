@@ -1,6 +1,8 @@
 #pragma once
-// The closed set of method models. Adding a method = its folder + one alternative here + one row in
-// src/registry.cpp. Dispatch happens once per batch with std::visit, never per sample.
+// The one list of methods: the closed set of method models. Adding a method = its folder, one
+// include and one alternative here, and its docs page (docs/design.md §11): the registry
+// (src/registry.cpp), the GPU backend and the exporter are made from this variant. Dispatch happens
+// once per batch with std::visit, never per sample.
 
 #include <string>
 #include <variant>

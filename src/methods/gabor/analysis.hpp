@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "methods/gabor/model.hpp"
@@ -146,5 +147,13 @@ double off_diagonality(const Matrix& transform, const std::vector<Matrix>& corre
 
 // The method's analysis.
 GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);
+
+// This method's row of the registry (src/registry.cpp).
+constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<GaborModel>) {
+  return {
+      "Gabor noise by example (Galerne, Lagae, Lefebvre, Drettakis 2012): a sparse sum "
+      "of bandwidth-quantised Gaussians fitted to the spectrum, ~2N kernels per sample",
+      kFields};
+}
 
 }  // namespace stochtex::gabor

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "methods/lrp/model.hpp"
@@ -66,5 +67,13 @@ LrpModel analyze_spectrum(const SpectrumTarget& target, const Params& params, st
 // The same as a library Model (render, evaluate, save_model work on it); `params` may be partial.
 Model spectrum_model(const SpectrumTarget& target, const ParamValues& params = {},
                      std::uint32_t seed = 0);
+
+// This method's row of the registry (src/registry.cpp).
+constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<LrpModel>) {
+  return {
+      "local random-phase noise (Gilet et al. 2014): windowed cosines with random "
+      "phases on a lattice, 9 (J + L) cosines and windows per channel and sample",
+      kFields};
+}
 
 }  // namespace stochtex::lrp

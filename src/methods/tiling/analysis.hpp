@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "methods/tiling/model.hpp"
@@ -35,5 +36,13 @@ void gaussianise_1d(std::span<const float> values, std::span<float> gaussian,
 
 // Histogram-preserving tiling and blending analysis.
 TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);
+
+// This method's row of the registry (src/registry.cpp).
+constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<TilingModel>) {
+  return {
+      "histogram-preserving tiling and blending (Heitz, Neyret 2018): 3 patches of the "
+      "Gaussianised exemplar and one look-up per sample",
+      kFields};
+}
 
 }  // namespace stochtex::tiling
