@@ -1,5 +1,5 @@
 #pragma once
-// The subcommands of `stochtex` (docs/design.md section 6), one source file each. Each add_*
+// The subcommands of `stochtex` (docs/design.md §6), one source file each. Each add_*
 // function adds its subcommand and options to the app and returns it with its handler, which
 // main.cpp runs when that subcommand was given. Exit codes: 0 ok, 1 runtime failure (bad file,
 // numerical failure), 2 usage error. A handler returns 0 or 1 and throws std::invalid_argument

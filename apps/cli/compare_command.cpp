@@ -1,4 +1,4 @@
-// `stochtex compare EXEMPLAR IMAGE`: the quality measures of docs/design.md section 9 (the rows of
+// `stochtex compare EXEMPLAR IMAGE`: the quality measures of docs/design.md §8 (the rows of
 // report/measures.hpp that have a compare label), beside an ADSN sample's and the exemplar's
 // floor where the measure has them.
 

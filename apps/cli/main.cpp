@@ -1,4 +1,4 @@
-// The `stochtex` command (docs/design.md section 6): the subcommands (commands.hpp, one file
+// The `stochtex` command (docs/design.md §6): the subcommands (commands.hpp, one file
 // each), parsed, run, and their failures mapped to exit codes and one-sentence messages on
 // stderr; --json output is one document on stdout.
 

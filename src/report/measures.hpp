@@ -1,5 +1,5 @@
 #pragma once
-// The one table of the quality measures (docs/design.md section 9) that `stochtex compare` and
+// The one table of the quality measures (docs/design.md §8) that `stochtex compare` and
 // `stochtex report` show: every output (compare's text and --json, the report's HTML tables and
 // report.json) iterates it, so a measure is named, explained and formatted in one row. The JSON
 // keys are read by scripts (scripts/comparison_markdown.py) and must not change.
