@@ -24,7 +24,9 @@ float lrp_cos_turns(float t) {
 }
 
 // Frequency clamping, section 6.4 (clamp_weight).
-float lrp_clamp_weight(float cycles) { return clamp((1.0 - cycles) * 2.0, 0.0, 1.0); }
+float lrp_clamp_weight(float cycles) {
+  return clamp((LRP_CLAMP_END - cycles) * (1.0 / (LRP_CLAMP_END - LRP_CLAMP_START)), 0.0, 1.0);
+}
 
 // The Kaiser-Bessel window at squared distance r2 in lattice units (window_from_square).
 float lrp_window(float r2) {
@@ -65,13 +67,13 @@ vec2 lrp_stratum_sum(bool turbulence, int s, vec2 u, uvec2 origin_node, uint str
         uint high;
         uint low;
         uvec2 substratum = turbulence ? lrp_turbulence_substratum(k) : lrp_substratum(k);
-        umulExtended(draw & 0xfffffu, substratum.y, high, low);
-        uint pick = substratum.x + ((high << 12u) | (low >> 20u));
+        umulExtended(draw & LRP_PICK_MASK, substratum.y, high, low);
+        uint pick = substratum.x + ((high << (32u - LRP_PICK_BITS)) | (low >> LRP_PICK_BITS));
         vec3 frequency =
             turbulence ? vec3(lrp_turbulence_frequency(pick), 1.0) : lrp_frequency(pick);
         float fx = frequency.x;
         float fy = frequency.y;
-        float phase = float(draw >> 20u) * (1.0 / 4096.0);
+        float phase = float(draw >> LRP_PICK_BITS) * LRP_PHASE_STEP;
         float c = lrp_cos_turns(fx * px + fy * py + phase);
         if (filtered) {
           float along_a = abs(fx * axis_a.x + fy * axis_a.y);
@@ -166,7 +168,7 @@ float lrp_turbulence_stratum(int t, vec2 u, uvec2 origin_node, uint stratum_seed
 
 // blend_weight: weight of block i + 1 against block i, a smoothstep over 1/8 of a block each side.
 float lrp_blend_weight(float t) {
-  float a = clamp((t - 0.5) * 4.0 + 0.5, 0.0, 1.0);
+  float a = clamp((t - 0.5) * (0.5 / LRP_PLACEMENT_BLEND) + 0.5, 0.0, 1.0);
   return a * a * (3.0 - 2.0 * a);
 }
 

@@ -42,6 +42,12 @@ inline float cos_turns(float t) noexcept {
 // render at scale 1 keeps the exemplar's whole spectrum (no frequency of the model exceeds 1/2
 // cycle per exemplar pixel); above it the weight falls linearly to 0 at one cycle per pixel:
 // cosines that the sampling rate cannot represent fade out instead of aliasing at full strength.
+// One draw per cosine (section 4.3): its low kPickBits bits pick a frequency of the sub-stratum by
+// multiply-shift, its top 32 - kPickBits bits are the phase, on a grid of kPhaseStep turns.
+inline constexpr std::uint32_t kPickBits = 20;
+inline constexpr std::uint32_t kPickMask = (1u << kPickBits) - 1u;
+inline constexpr float kPhaseStep = 1.0f / static_cast<float>(1u << (32u - kPickBits));
+
 inline constexpr float kClampStart = 0.5f;
 inline constexpr float kClampEnd = 1.0f;
 inline float clamp_weight(float cycles) noexcept {
@@ -114,17 +120,18 @@ inline StratumSum stratum_sum(const StratumTables& tables, const StratumDraw& st
       float local = 0.0f;
       for (std::uint32_t j = 0; j < stratum.cosines; ++j) {
         // One draw per cosine, in its own statement (hash.hpp): its top 12 bits are the phase (a
-        // 1/4096 turn grid), its low 20 bits pick one frequency of sub-stratum j uniformly by
-        // multiply-shift (section 4.3; bias <= count / 2^20).
+        // 1/4096 turn grid), its low kPickBits = 20 bits pick one frequency of sub-stratum j
+        // uniformly by multiply-shift (section 4.3; bias <= count / 2^20).
         const std::uint32_t draw = rng.next();
         const std::uint32_t k = stratum.first_substratum + j;
         const std::uint32_t pick =
             tables.substratum_first[k] +
             static_cast<std::uint32_t>(
-                (static_cast<std::uint64_t>(draw & 0xfffffu) * tables.substratum_count[k]) >> 20u);
+                (static_cast<std::uint64_t>(draw & kPickMask) * tables.substratum_count[k]) >>
+                kPickBits);
         const float fx = tables.frequencies[2 * pick];
         const float fy = tables.frequencies[2 * pick + 1];
-        const float phase = static_cast<float>(draw >> 20u) * (1.0f / 4096.0f);
+        const float phase = static_cast<float>(draw >> kPickBits) * kPhaseStep;
         float c = cos_turns(fx * px + fy * py + phase);
         if constexpr (Filtered) {
           const float along_a = std::abs(fx * axes[0] + fy * axes[1]);

@@ -45,8 +45,14 @@ ImageF lrp_tables_image(const LrpGlsl& glsl);
 
 template <>
 struct Twin<lrp::LrpModel> {
-  static constexpr std::array<GlslConstant, 4> kConstants = {{
+  static constexpr std::array<GlslConstant, 10> kConstants = {{
       {"LRP_TWO_PI", lrp::kTwoPi},
+      {"LRP_PICK_BITS", lrp::kPickBits},
+      {"LRP_PICK_MASK", lrp::kPickMask},
+      {"LRP_PHASE_STEP", lrp::kPhaseStep},
+      {"LRP_CLAMP_START", lrp::kClampStart},
+      {"LRP_CLAMP_END", lrp::kClampEnd},
+      {"LRP_PLACEMENT_BLEND", lrp::kPlacementBlend},
       {"LRP_WINDOW_RADIUS_SQUARED", lrp::kWindowRadiusSquared},
       {"LRP_WINDOW_TERMS", lrp::kWindowTerms},
       {"LRP_TURBULENCE_STREAM_BASE", static_cast<int>(lrp::kTurbulenceStreamBase)},

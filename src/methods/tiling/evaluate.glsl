@@ -21,8 +21,7 @@ float tiling_erf(float x) {
 
 // Eq. (22) and table_coordinate: the cell and fraction of U = Phi(g) in a table of `size` cells.
 float tiling_table_coordinate(float g, int size, out int first) {
-  float u = 0.5 + 0.5 * tiling_erf((g - TILING_GAUSSIAN_MEAN) *
-                                   (1.0 / (TILING_GAUSSIAN_DEVIATION * 1.41421356237)));
+  float u = 0.5 + 0.5 * tiling_erf((g - TILING_GAUSSIAN_MEAN) * TILING_ERF_SCALE);
   float last = float(size - 1);
   float x = clamp(u * float(size) - 0.5, 0.0, last);
   first = min(int(x), size - 2);

@@ -16,6 +16,8 @@ namespace stochtex::tiling {
 // in [0, 1] (section 4.2).
 inline constexpr float kGaussianMean = 0.5f;
 inline constexpr float kGaussianDeviation = 1.0f / 6.0f;
+// Eq. (22)'s factor 1 / (sigma sqrt(2)) of the erf: Phi(g) = (1 + erf((g - mu) kErfScale)) / 2.
+inline constexpr float kErfScale = 1.0f / (kGaussianDeviation * 1.41421356237f);
 
 // The three vertices of the equilateral-triangle (simplex) lattice around a point and their
 // blending weights (section 5.1, after Perlin 2001). Vertex (i, j) of the skewed lattice sits at
@@ -143,8 +145,7 @@ inline void fetch_bilinear(const MipLevel& level, int channels, float x, float y
 
 // Eq. (22): the Gaussian value g of eq. (20) mapped to the uniform look-up-table parameter U.
 inline float gaussian_to_uniform(float g) noexcept {
-  constexpr float kScale = 1.0f / (kGaussianDeviation * 1.41421356237f);
-  return 0.5f + 0.5f * std::erf((g - kGaussianMean) * kScale);
+  return 0.5f + 0.5f * std::erf((g - kGaussianMean) * kErfScale);
 }
 
 // Linear interpolation in a table of `size` >= 2 cells centred on (k + 1/2) / size, clamped at

@@ -33,7 +33,7 @@ template <>
 struct Twin<tiling::TilingModel> {
   static constexpr std::array<GlslConstant, 4> kConstants = {{
       {"TILING_GAUSSIAN_MEAN", tiling::kGaussianMean},
-      {"TILING_GAUSSIAN_DEVIATION", tiling::kGaussianDeviation},
+      {"TILING_ERF_SCALE", tiling::kErfScale},
       {"TILING_INVERSE_SQRT3", static_cast<float>(tiling::kInverseSqrt3)},
       {"TILING_LOD_BIAS", static_cast<float>(kLodBias)},
   }};
