@@ -125,7 +125,8 @@ ParamValues resolve_params(std::string_view method, const ParamValues& given) {
     const ParamInfo& param = find_param(info, name);
     const std::string where = "parameter " + name + " of method " + std::string(method);
     if (!param.choices.empty()) {
-      if (!find_choice(param, [&](const ParamChoice& c) { return c.value == value; }))
+      // (The lambda captures a copy: clang 14, the sanitizer build's, cannot capture a binding.)
+      if (!find_choice(param, [number = value](const ParamChoice& c) { return c.value == number; }))
         throw std::invalid_argument(where + " must be " + choices_sentence(param) + ", not " +
                                     format_number(value));
     } else if (!std::isfinite(value) || value < param.min_value || value > param.max_value) {
@@ -146,8 +147,8 @@ ParamValues resolve_params(std::string_view method,
   ParamValues numbers;
   for (const auto& [name, text] : given) {
     const ParamInfo& param = find_param(info, name);
-    if (const ParamChoice* named =
-            find_choice(param, [&](const ParamChoice& c) { return c.name == text; })) {
+    if (const ParamChoice* named = find_choice(
+            param, [&wanted = text](const ParamChoice& c) { return c.name == wanted; })) {
       numbers[name] = named->value;
       continue;
     }
