@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The reliability checks of docs/reliability.md: builds stochtex with clang under AddressSanitizer
+# and UndefinedBehaviorSanitizer (-fno-sanitize-recover: the first report fails), runs the unit,
+# CLI and deterministic fuzz tests in that build, then runs every libFuzzer target
+# (tests/fuzz/libfuzzer) for a bounded time from a copy of its committed seed corpus.
+# Usage: bash scripts/sanitize.sh [build-dir] [seconds per libFuzzer target, default 20]
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${1:-$root/build-sanitize}"
+seconds="${2:-20}"
+bash "$root/scripts/install-deps.sh"
+flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+# Warnings are checked by the gcc build of scripts/test.sh; clang's differ, so no -Werror here.
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags -fsanitize=fuzzer-no-link" \
+  -DSTOCHTEX_LIBFUZZER=ON -DSTOCHTEX_BUILD_BENCH=OFF
+cmake --build "$build" --parallel
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:allocator_may_return_null=1"
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+export LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0"
+ctest --test-dir "$build" -L "unit|cli|fuzz" --output-on-failure --parallel 2
+for fuzzer in "$build"/tests/*_fuzzer; do
+  name=$(basename "$fuzzer" _fuzzer)
+  corpus=$(mktemp -d)
+  cp "$root/tests/fuzz/corpus/$name"/* "$corpus"/
+  echo "sanitize.sh: $name for ${seconds} s from $(ls "$corpus" | wc -l) seeds" >&2
+  (cd "$corpus" && "$fuzzer" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
+    -print_final_stats=1 "$corpus" 2>"$corpus.log") || {
+    tail -n 60 "$corpus.log" >&2
+    echo "sanitize.sh: $name found a failing input (above)" >&2
+    exit 1
+  }
+  grep -E "^stat::(number_of_executed_units|new_units_added|peak_rss_mb)" "$corpus.log" >&2 || true
+  rm -rf "$corpus" "$corpus.log"
+done
+echo "sanitize.sh: sanitizer tests and libFuzzer runs passed"
