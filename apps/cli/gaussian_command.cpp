@@ -8,6 +8,7 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "core/memory_budget.hpp"
 #include "io/image_io.hpp"
 
 namespace stochtex::cli {
@@ -31,6 +32,9 @@ Command add_gaussian_command(CLI::App& app) {
       ->check(CLI::IsMember({8, 16}));
   return {command, [options] {
             const Size size = output_size(options->size);
+            check_memory_budget(gaussian_peak_bytes(size.width, size.height),
+                                fmt::format("the Gaussian version at --size {}", options->size),
+                                "use a smaller --size");
             check_output_path(options->output, true);
             const ImageF exemplar = load_exemplar(options->input);
             const ImageF result =

@@ -11,6 +11,8 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "core/memory_budget.hpp"
+#include "core/parallel.hpp"
 #include "io/image_io.hpp"
 #include "progress.hpp"
 #ifdef STOCHTEX_WITH_GL
@@ -32,7 +34,7 @@ void add_render_options(CLI::App* command, RenderSettings& settings, std::string
       ->capture_default_str();
   command->add_option("--threads", settings.threads, "worker threads (0 = all cores)")
       ->capture_default_str()
-      ->check(CLI::Range(0, 1024));
+      ->check(CLI::Range(0, kMaxThreads));
   command
       ->add_option("--supersample", settings.supersample,
                    "average KxK point samples per pixel (filtering reference)")
@@ -72,11 +74,30 @@ Grid render_grid(const RenderSettings& settings) {
   return Grid{*origin, settings.scale, size.width, size.height, 0, 0};
 }
 
-void render_model(const Model& model, const Grid& grid, const RenderSettings& settings,
+// Each thread holds one tile's samples (docs/design.md §9): with --threads 0 as many cores work
+// as the memory budget allows; a request beyond it is refused before the model is loaded or
+// analysed.
+int render_threads(const RenderSettings& settings, const Grid& grid) {
+  const auto peak = [&](int threads) {
+    return render_peak_bytes(grid.width, grid.height, settings.tile, settings.supersample, threads);
+  };
+  int threads = resolve_thread_count(settings.threads);
+  if (settings.threads == 0)
+    while (threads > 1 && peak(threads) > kMemoryBudgetBytes) --threads;
+  check_memory_budget(
+      peak(threads),
+      fmt::format("rendering {}x{} pixels with --supersample {}, --tile {} and {} "
+                  "threads",
+                  grid.width, grid.height, settings.supersample, settings.tile, threads),
+      "use fewer --threads or a smaller --supersample, --tile or --size");
+  return threads;
+}
+
+void render_model(const Model& model, const Grid& grid, int threads, const RenderSettings& settings,
                   const std::string& output) {
   ImageF image(grid.width, grid.height, model.channels());
   RenderOptions options;
-  options.threads = settings.threads;
+  options.threads = threads;
   options.tile_size = settings.tile;
   options.supersample = settings.supersample;
   options.filter = !settings.no_filter;
@@ -107,8 +128,9 @@ void render_model(const Model& model, const Grid& grid, const RenderSettings& se
 void render_to_file(const std::function<Model()>& make_model, const RenderSettings& settings,
                     const std::string& output) {
   const Grid grid = render_grid(settings);
+  const int threads = render_threads(settings, grid);
   check_output_path(output, true);
-  render_model(make_model(), grid, settings, output);
+  render_model(make_model(), grid, threads, settings, output);
   fmt::print(stderr, "wrote {}\n", output);
 }
 

@@ -63,6 +63,24 @@ void check_size(const fs::path& path, std::int64_t width, std::int64_t height,
                     std::to_string(limits.max_pixels) + " pixels; use a smaller image");
 }
 
+// Deflate codes a 258-byte match in 2 bits at best, so zlib data never expands more than 1032
+// times: the bound behind every minimum compressed size below.
+constexpr double kMaxDeflateRatio = 1032.0;
+
+// A tiny file declaring a huge image must not cost the image's memory: what the declared pixels
+// need at least, compressed as well as the format possibly can, is compared with the file's size
+// before anything proportional to the pixels is allocated (docs/design.md §9).
+void check_fits_file(const fs::path& path, std::int64_t width, std::int64_t height,
+                     double minimum_bytes, std::uintmax_t file_bytes) {
+  if (minimum_bytes > static_cast<double>(file_bytes))
+    throw Error(ErrorCode::format,
+                quoted(path) + " declares " + std::to_string(width) + "x" + std::to_string(height) +
+                    " pixels, which need at least " +
+                    std::to_string(static_cast<std::uintmax_t>(std::ceil(minimum_bytes))) +
+                    " bytes, but the file has " + std::to_string(file_bytes) +
+                    "; it is truncated or corrupt");
+}
+
 // ---------------------------------------------------------------------------------------------
 // PNG. libpng reports errors by longjmp, which would skip C++ destructors: every function that
 // calls setjmp below holds only trivially destructible locals, and the objects that own memory
@@ -122,7 +140,22 @@ struct PngLayout {
   int channels = 0;
   int bit_depth = 0;
   png_size_t row_bytes = 0;
+  int stored_bits_per_pixel = 0;  // as compressed in the file, before the expansions below
 };
+
+// libpng buffers each ancillary chunk (text, colour profile) whole and caches up to a count of
+// them; both are capped, like the image sides, so that a declared chunk length is refused rather
+// than allocated (docs/design.md §9). Real colour profiles are well under 8 MiB.
+constexpr png_alloc_size_t kMaxPngChunkBytes = png_alloc_size_t{8} << 20;
+constexpr png_uint_32 kMaxPngAncillaryChunks = 1000;
+
+void set_png_limits(png_structp png, const ImageReadLimits& limits) {
+  const auto side = static_cast<png_uint_32>(
+      std::clamp<std::int64_t>(limits.max_pixels, 1, std::int64_t{PNG_UINT_31_MAX}));
+  png_set_user_limits(png, side, side);
+  png_set_chunk_malloc_max(png, kMaxPngChunkBytes);
+  png_set_chunk_cache_max(png, kMaxPngAncillaryChunks);
+}
 
 // Reads the chunks before the pixels and asks libpng for 8 or 16 bits per sample with palettes
 // and transparency keys expanded, so 1 to 4 channels remain.
@@ -130,6 +163,8 @@ bool read_png_layout(PngReader& reader, std::FILE* file, PngLayout& layout) {
   if (setjmp(png_jmpbuf(reader.png))) return false;
   png_set_read_fn(reader.png, file, read_png_bytes);
   png_read_info(reader.png, reader.info);
+  layout.stored_bits_per_pixel =
+      png_get_bit_depth(reader.png, reader.info) * png_get_channels(reader.png, reader.info);
   const int color_type = png_get_color_type(reader.png, reader.info);
   if (color_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(reader.png);
   if (color_type == PNG_COLOR_TYPE_GRAY && png_get_bit_depth(reader.png, reader.info) < 8)
@@ -160,11 +195,44 @@ bool read_png_pixels(PngReader& reader, png_bytepp rows) {
                                      "); it is truncated or corrupt, export it again");
 }
 
-ImageF read_png(const fs::path& path, std::FILE* file, const ImageReadLimits& limits) {
+// libpng allocates an ancillary chunk's declared length before reading it: every chunk must fit
+// in the file, whatever the limits above allow (docs/design.md §9).
+void check_png_chunks(const fs::path& path, std::FILE* file, std::uintmax_t file_bytes) {
+  constexpr std::uintmax_t kSignatureBytes = 8;
+  constexpr std::uintmax_t kChunkFrameBytes = 12;  // length, type and checksum
+  std::uintmax_t position = kSignatureBytes;
+  std::array<unsigned char, 4> length{};
+  while (position + 8 <= file_bytes) {  // a chunk's length and type are there
+    if (fseeko(file, static_cast<off_t>(position), SEEK_SET) != 0 ||
+        std::fread(length.data(), 1, length.size(), file) != length.size())
+      throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+    const std::uintmax_t data_bytes = std::uintmax_t{length[0]} << 24 |
+                                      std::uintmax_t{length[1]} << 16 |
+                                      std::uintmax_t{length[2]} << 8 | length[3];
+    if (kChunkFrameBytes + data_bytes > file_bytes - position)
+      throw Error(ErrorCode::format, quoted(path) + " declares a chunk of " +
+                                         std::to_string(data_bytes) +
+                                         " bytes past the end of the file; it is truncated or "
+                                         "corrupt");
+    position += kChunkFrameBytes + data_bytes;
+  }
+  if (std::fseek(file, 0, SEEK_SET) != 0)
+    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+}
+
+ImageF read_png(const fs::path& path, std::FILE* file, const ImageReadLimits& limits,
+                std::uintmax_t file_bytes) {
+  check_png_chunks(path, file, file_bytes);
   PngReader reader;
+  set_png_limits(reader.png, limits);
   PngLayout layout;
   if (!read_png_layout(reader, file, layout)) throw_png_read_error(path, reader);
   check_size(path, layout.width, layout.height, limits);
+  // The pixels are one zlib stream (PNG specification §10).
+  check_fits_file(path, layout.width, layout.height,
+                  static_cast<double>(layout.width) * layout.height * layout.stored_bits_per_pixel /
+                      8.0 / kMaxDeflateRatio,
+                  file_bytes);
   const bool sixteen_bit = layout.bit_depth == 16;
   if (layout.channels < 1 || layout.channels > 4 || (layout.bit_depth != 8 && !sixteen_bit) ||
       layout.row_bytes != std::size_t{layout.width} * layout.channels * (sixteen_bit ? 2 : 1))
@@ -276,9 +344,39 @@ void on_exr_error(exr_const_context_t context, exr_result_t, const char* message
                                      "); it is truncated or corrupt, export it again");
 }
 
-// The OpenEXR C++ reader allocates tables sized by the declared data windows as it opens a file,
-// so the sizes are checked first with the C core library, which parses only the headers.
-void check_exr_sizes(const fs::path& path, const ImageReadLimits& limits) {
+// The most a chunk of each OpenEXR compression can expand: RLE codes a run of at most 128 bytes
+// in 2; ZIP and PXR24 are zlib (PXR24 after storing floats in 24 bits); PIZ's Huffman coder
+// codes a run of 256 values in 10 bits at best, under the zlib bound; B44 keeps at least 3 of every
+// 32 bytes; DWA codes an 8x8 block's DC alone and zlib-compresses it.
+double max_exr_expansion(exr_compression_t compression) {
+  switch (compression) {
+    case EXR_COMPRESSION_NONE:
+      return 1.0;
+    case EXR_COMPRESSION_RLE:
+      return 64.0;
+    case EXR_COMPRESSION_B44:
+    case EXR_COMPRESSION_B44A:
+      return 32.0 / 3.0;
+    case EXR_COMPRESSION_PXR24:
+      return kMaxDeflateRatio * 4.0 / 3.0;
+    case EXR_COMPRESSION_DWAA:
+    case EXR_COMPRESSION_DWAB:
+      return kMaxDeflateRatio * 64.0;
+    default:
+      return kMaxDeflateRatio;
+  }
+}
+
+// The OpenEXR C++ reader allocates from what the header declares (attribute values, the chunk
+// offset tables, a chunk's buffer) as it opens a file, before it reads any pixel. The headers are
+// therefore checked first with the C core library, which parses only them and bounds each
+// attribute by the file size: any problem it reports refuses the file, and every part's chunks
+// must fit in the file: an 8-byte offset and an 8-byte chunk header each, and their pixels at
+// the best ratio of the part's compression. A chunk's buffer is allocated at its nominal size (a
+// whole tile or block of lines, even past the data window): beyond a small allowance it must be
+// one the file could fill (docs/design.md §9).
+void check_exr_header(const fs::path& path, const ImageReadLimits& limits,
+                      std::uintmax_t file_bytes) {
   ExrErrorMessage error;
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
   init.error_handler_fn = on_exr_error;
@@ -288,7 +386,7 @@ void check_exr_sizes(const fs::path& path, const ImageReadLimits& limits) {
     ~Context() { exr_finish(&handle); }
   } context;
   const exr_result_t started = exr_start_read(&context.handle, path.c_str(), &init);
-  if (started != EXR_ERR_SUCCESS)
+  if (started != EXR_ERR_SUCCESS || error.text[0])
     throw_exr_read_error(path, error.text[0] ? error.text : exr_get_default_error_message(started));
   int parts = 0;
   if (exr_get_count(context.handle, &parts) != EXR_ERR_SUCCESS || parts < 1)
@@ -297,8 +395,37 @@ void check_exr_sizes(const fs::path& path, const ImageReadLimits& limits) {
     exr_attr_box2i_t window{};
     if (exr_get_data_window(context.handle, part, &window) != EXR_ERR_SUCCESS)
       throw_exr_read_error(path, "no data window");
-    check_size(path, std::int64_t{window.max.x} - window.min.x + 1,
-               std::int64_t{window.max.y} - window.min.y + 1, limits);
+    const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1;
+    const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
+    check_size(path, width, height, limits);
+    exr_storage_t storage{};
+    exr_compression_t compression{};
+    std::int32_t chunks = 0;
+    std::uint64_t chunk_bytes = 0;
+    const exr_attr_chlist_t* channels = nullptr;
+    if (exr_get_channels(context.handle, part, &channels) != EXR_ERR_SUCCESS ||
+        exr_get_storage(context.handle, part, &storage) != EXR_ERR_SUCCESS ||
+        exr_get_compression(context.handle, part, &compression) != EXR_ERR_SUCCESS ||
+        exr_get_chunk_count(context.handle, part, &chunks) != EXR_ERR_SUCCESS ||
+        exr_get_chunk_unpacked_size(context.handle, part, &chunk_bytes) != EXR_ERR_SUCCESS)
+      throw_exr_read_error(path, "no chunk layout");
+    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED)
+      throw Error(ErrorCode::format, quoted(path) +
+                                         " holds deep data, which is not supported; save it as "
+                                         "a flat image");
+    double pixel_bytes = 0.0;
+    for (int c = 0; c < channels->num_channels; ++c) {
+      const exr_attr_chlist_entry_t& channel = channels->entries[c];
+      pixel_bytes += static_cast<double>(width / std::max(channel.x_sampling, 1)) *
+                     static_cast<double>(height / std::max(channel.y_sampling, 1)) *
+                     (channel.pixel_type == EXR_PIXEL_HALF ? 2.0 : 4.0);
+    }
+    const double expansion = max_exr_expansion(compression);
+    constexpr double kChunkAllowance = 16 << 20;
+    check_fits_file(path, width, height,
+                    std::max(16.0 * chunks + pixel_bytes / expansion,
+                             (static_cast<double>(chunk_bytes) - kChunkAllowance) / expansion),
+                    file_bytes);
   }
 }
 
@@ -332,8 +459,8 @@ std::vector<const char*> exr_channel_names(const fs::path& path, const Imf::Chan
   return names;
 }
 
-ImageF read_exr(const fs::path& path, const ImageReadLimits& limits) {
-  check_exr_sizes(path, limits);
+ImageF read_exr(const fs::path& path, const ImageReadLimits& limits, std::uintmax_t file_bytes) {
+  check_exr_header(path, limits, file_bytes);
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i window = file.header().dataWindow();
@@ -437,7 +564,8 @@ bool parse_number(const std::string& text, T& value) {
   return error == std::errc{} && stop == end;
 }
 
-ImageF read_pfm(const fs::path& path, std::FILE* file, const ImageReadLimits& limits) {
+ImageF read_pfm(const fs::path& path, std::FILE* file, const ImageReadLimits& limits,
+                std::uintmax_t file_bytes) {
   const auto corrupt = [&](const std::string& problem) {
     return Error(ErrorCode::format, quoted(path) + " is not a readable PFM image (" + problem +
                                         "); it is truncated or corrupt, export it again");
@@ -460,14 +588,11 @@ ImageF read_pfm(const fs::path& path, std::FILE* file, const ImageReadLimits& li
   const std::size_t row_bytes = static_cast<std::size_t>(width) * channels * sizeof(float);
   const std::size_t pixel_bytes = row_bytes * static_cast<std::size_t>(height);
   const off_t header_bytes = ftello(file);
-  std::error_code size_error;
-  const std::uintmax_t file_bytes = fs::file_size(path, size_error);
-  if (header_bytes < 0 || size_error)
-    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + size_error.message());
-  if (file_bytes - static_cast<std::uintmax_t>(header_bytes) < pixel_bytes)
-    throw corrupt("the file ends too early: " + std::to_string(width) + "x" +
-                  std::to_string(height) + " pixels need " + std::to_string(pixel_bytes) +
-                  " bytes after the header");
+  if (header_bytes < 0)
+    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+  // Uncompressed: the pixels need exactly their size after the header.
+  check_fits_file(path, width, height,
+                  static_cast<double>(header_bytes) + static_cast<double>(pixel_bytes), file_bytes);
 
   const bool little_endian = scale < 0.0f;
   ImageF image(static_cast<int>(width), static_cast<int>(height), channels);
@@ -563,16 +688,20 @@ ImageF read_image(const fs::path& path, const ImageReadLimits& limits) {
     throw Error(ErrorCode::format, quoted(path) + " is empty (0 bytes), not an image");
   if (std::fseek(file.get(), 0, SEEK_SET) != 0)
     throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+  std::error_code size_error;
+  const std::uintmax_t file_bytes = fs::file_size(path, size_error);
+  if (size_error)
+    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + size_error.message());
 
   if (magic_bytes == magic.size() && png_sig_cmp(magic.data(), 0, magic.size()) == 0)
-    return read_png(path, file.get(), limits);
+    return read_png(path, file.get(), limits, file_bytes);
   if (magic_bytes >= 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 &&
       magic[3] == 0x01) {
     file.reset();
-    return read_exr(path, limits);
+    return read_exr(path, limits, file_bytes);
   }
   if (magic_bytes >= 2 && magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f'))
-    return read_pfm(path, file.get(), limits);
+    return read_pfm(path, file.get(), limits, file_bytes);
   throw Error(ErrorCode::format, quoted(path) +
                                      " is not a PNG, OpenEXR or PFM image (its first bytes match "
                                      "none of them); convert it to one of these formats");

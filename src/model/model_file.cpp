@@ -19,6 +19,8 @@ constexpr int kMaxJsonDepth = 4;
 constexpr std::size_t kMaxArrays = 64;
 constexpr std::size_t kMaxArrayRank = 4;
 constexpr std::size_t kMaxNameLength = 64;
+const std::string kArrayLimitText =
+    "the " + std::to_string(kMaxModelArrayValues) + " values a model file may hold";
 
 void put_u32(std::vector<std::uint8_t>& out, std::uint32_t value) {
   for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::uint8_t>(value >> (8 * i)));
@@ -134,12 +136,13 @@ class Reader {
         dims.push_back(dim.get<std::int64_t>());
         values *= static_cast<std::uint64_t>(dims.back());  // each factor <= 2^28, rank <= 4
         if (values > kMaxModelArrayValues)
-          fail("declares array '" + array_name +
-               "' larger than the 1 GiB limit; the file is corrupt or hostile");
+          fail("declares array '" + array_name + "' of more than " + kArrayLimitText +
+               "; the file is corrupt or hostile");
       }
       total_values += values;
       if (total_values > kMaxModelArrayValues)
-        fail("declares arrays larger than the 1 GiB limit; the file is corrupt or hostile");
+        fail("declares arrays of more than " + kArrayLimitText +
+             "; the file is corrupt or hostile");
       declared.emplace_back(array_name, std::move(dims));
     }
     const std::size_t data_begin = kPreambleBytes + header_length;
@@ -187,6 +190,13 @@ class Reader {
 }  // namespace
 
 std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
+  std::uint64_t values = 0;
+  for (const auto& array : record.arrays) values += array.values.size();
+  if (values > kMaxModelArrayValues)
+    throw Error(ErrorCode::invalid_input,
+                "the " + record.method + " model holds " + std::to_string(values) +
+                    " values, more than " + kArrayLimitText +
+                    " within the memory budget; analyse a smaller exemplar");
   nlohmann::ordered_json header;
   header["method"] = record.method;
   header["params"] = nlohmann::ordered_json::object();

@@ -14,14 +14,20 @@
 #include <string>
 #include <vector>
 
+#include "core/memory_budget.hpp"
 #include "model/model_record.hpp"
 
 namespace stochtex {
 
 inline constexpr std::uint32_t kModelFormatVersion = 1;
 inline constexpr std::uint32_t kMaxModelHeaderBytes = 1u << 20;
-inline constexpr std::uint64_t kMaxModelArrayValues = std::uint64_t{1} << 28;  // 1 GiB of floats
+// Loading a model peaks at about five times its file size (measured: the file's bytes, the
+// decoded record, the method's model and what it derives), 20 bytes a value: the memory budget
+// bounds how many values a file may hold. write_model_record refuses to write more, so that
+// analysis never writes a model that loading would refuse.
+inline constexpr std::uint64_t kMaxModelArrayValues = kMemoryBudgetBytes / 20;
 
+// Throws stochtex::Error(ErrorCode::invalid_input) for a record of more than kMaxModelArrayValues.
 std::vector<std::uint8_t> write_model_record(const ModelRecord& record);
 // The FNV-1a 64 checksum stored in the last 8 bytes of a model file, over all bytes before it.
 std::uint64_t model_checksum(std::span<const std::uint8_t> bytes_before_checksum);

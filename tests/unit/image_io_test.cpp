@@ -4,12 +4,14 @@
 #include "io/image_io.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -359,6 +361,123 @@ TEST_F(ImageIoTest, HugeDeclaredSizesAreRefusedBeforeAllocating) {
     for (int b = 0; b < 4; ++b) box[4 * corner + b] = static_cast<unsigned char>(last >> (8 * b));
   write_bytes(file("huge.exr"), exr);
   EXPECT_EQ(read_error_code(file("huge.exr")), ErrorCode::invalid_input);
+}
+
+// In a child process (a death test), reads `path` with an address space that may grow by 64 MiB
+// only: exits 0 when the read is refused cleanly, and dies when anything near the declared size is
+// allocated.
+[[noreturn]] void read_with_little_memory(const fs::path& path) {
+  std::ifstream statm("/proc/self/statm");
+  std::uint64_t pages = 0;
+  statm >> pages;
+  const rlim_t limit = pages * static_cast<rlim_t>(::sysconf(_SC_PAGESIZE)) + (64u << 20);
+  const rlimit address_space{limit, limit};
+  ::setrlimit(RLIMIT_AS, &address_space);
+  try {
+    read_image(path);
+  } catch (const Error&) {
+    std::_Exit(0);
+  }
+  std::_Exit(1);
+}
+
+void expect_refused_without_allocating(const fs::path& path) {
+  EXPECT_EXIT(read_with_little_memory(path), testing::ExitedWithCode(0), "") << path;
+}
+
+void append_u32_little_endian(Bytes& bytes, std::uint32_t value) {
+  for (int shift = 0; shift < 32; shift += 8)
+    bytes.push_back(static_cast<unsigned char>(value >> shift));
+}
+
+void append_attribute(Bytes& exr, const std::string& name, const std::string& type,
+                      const Bytes& value, std::uint32_t declared_size) {
+  exr.insert(exr.end(), name.begin(), name.end());
+  exr.push_back(0);
+  exr.insert(exr.end(), type.begin(), type.end());
+  exr.push_back(0);
+  append_u32_little_endian(exr, declared_size);
+  exr.insert(exr.end(), value.begin(), value.end());
+}
+
+// An uncompressed scanline OpenEXR header of width x height half R, G, B, A pixels, with `extra`
+// attributes, up to its end: the offset table and the pixels are the caller's.
+Bytes handmade_exr_header(std::uint32_t width, std::uint32_t height, const Bytes& extra = {}) {
+  Bytes exr = {0x76, 0x2f, 0x31, 0x01, 2, 0, 0, 0};
+  Bytes channels;
+  for (const char* name : {"A", "B", "G", "R"}) {
+    channels.insert(channels.end(), {static_cast<unsigned char>(name[0]), 0});
+    for (std::uint32_t field : {1u, 0u, 1u, 1u}) append_u32_little_endian(channels, field);
+  }
+  channels.push_back(0);
+  const auto add = [&](const std::string& name, const std::string& type, const Bytes& value) {
+    append_attribute(exr, name, type, value, static_cast<std::uint32_t>(value.size()));
+  };
+  Bytes window;
+  for (std::uint32_t corner : {0u, 0u, width - 1, height - 1})
+    append_u32_little_endian(window, corner);
+  Bytes one;
+  append_u32_little_endian(one, 0x3f800000);  // 1.0f
+  add("channels", "chlist", channels);
+  add("compression", "compression", {0});
+  add("dataWindow", "box2i", window);
+  add("displayWindow", "box2i", window);
+  add("lineOrder", "lineOrder", {0});
+  add("pixelAspectRatio", "float", one);
+  add("screenWindowCenter", "v2f", Bytes(8, 0));
+  add("screenWindowWidth", "float", one);
+  exr.insert(exr.end(), extra.begin(), extra.end());
+  exr.push_back(0);
+  return exr;
+}
+
+TEST_F(ImageIoTest, TinyFilesDeclaringHugeContentsAreRefusedWithoutAllocatingThem) {
+  // A text chunk declaring 2^31 - 1 bytes, cut off after its type.
+  Bytes text_bomb = handmade_png(1, 1, 8, 0, {0, 0});
+  text_bomb.resize(33);  // the signature and the header chunk
+  append_u32_big_endian(text_bomb, 0x7fffffff);
+  text_bomb.insert(text_bomb.end(), {'t', 'E', 'X', 't'});
+  write_bytes(file("text_bomb.png"), text_bomb);
+
+  // 8192 x 8192 RGBA16 (within the pixel limit) in a few dozen bytes: 512 MiB of pixels.
+  write_bytes(file("huge_rgba16.png"), handmade_png(8192, 8192, 16, 6, {0, 0}));
+
+  // Header attributes declaring 1.6 GB, an unknown type and a string.
+  Bytes attribute_bomb;
+  append_attribute(attribute_bomb, "x", "opaque", {}, 1600000000u);
+  Bytes string_bomb;
+  append_attribute(string_bomb, "owner", "string", {}, 1600000000u);
+  for (const auto& [name, extra] : {std::pair{"attribute_bomb.exr", attribute_bomb},
+                                    std::pair{"string_bomb.exr", string_bomb}}) {
+    Bytes exr = handmade_exr_header(1, 1, extra);
+    exr.resize(exr.size() + 8, 0);
+    write_bytes(file(name), exr);
+  }
+
+  // 8192 x 8192 RGBA half, uncompressed: its offset table, 64 KiB, and no pixels.
+  Bytes huge_window = handmade_exr_header(8192, 8192);
+  huge_window.resize(huge_window.size() + 8 * 8192, 0);
+  write_bytes(file("huge_window.exr"), huge_window);
+
+  // 4096 x 4096 RGB float declared, 16 bytes of pixels.
+  const std::string pfm_header = "PF\n4096 4096\n-1.0\n";
+  Bytes pfm(pfm_header.begin(), pfm_header.end());
+  pfm.resize(pfm.size() + 16, 0);
+  write_bytes(file("huge.pfm"), pfm);
+
+  for (const char* name : {"text_bomb.png", "huge_rgba16.png", "attribute_bomb.exr",
+                           "string_bomb.exr", "huge_window.exr", "huge.pfm"}) {
+    EXPECT_EQ(read_error_code(file(name)), ErrorCode::format) << name;
+    expect_refused_without_allocating(file(name));
+  }
+}
+
+TEST_F(ImageIoTest, CompressedImagesWithinTheirFilesStillRead) {
+  // A constant 4096 x 256 image compresses far below its size, within the zlib bound.
+  for (const char* name : {"flat.png", "flat.exr"}) {
+    write_image(file(name), ImageF(4096, 256, 3, 0.5f).view());
+    EXPECT_EQ(read_image(file(name)).width(), 4096) << name;
+  }
 }
 
 TEST_F(ImageIoTest, PixelLimitIsEnforced) {

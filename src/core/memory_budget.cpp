@@ -1,0 +1,35 @@
+#include "core/memory_budget.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+namespace stochtex {
+
+std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample, int threads) {
+  const auto pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  const auto tile_width = static_cast<std::uint64_t>(std::min(tile, width));
+  const auto tile_height = static_cast<std::uint64_t>(std::min(tile, height));
+  const std::uint64_t tiles = ((static_cast<std::uint64_t>(width) + tile - 1) / tile) *
+                              ((static_cast<std::uint64_t>(height) + tile - 1) / tile);
+  const std::uint64_t workers = std::min<std::uint64_t>(static_cast<std::uint64_t>(threads), tiles);
+  const auto samples_per_pixel = static_cast<std::uint64_t>(supersample) * supersample;
+  const std::uint64_t bytes_per_sample = supersample == 1 ? 48 : 32;
+  return 24 * pixels + workers * tile_width * tile_height * samples_per_pixel * bytes_per_sample;
+}
+
+std::uint64_t gaussian_peak_bytes(int width, int height) {
+  return 48 * static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+}
+
+void check_memory_budget(std::uint64_t bytes, const std::string& request,
+                         const std::string& remedy) {
+  if (bytes <= kMemoryBudgetBytes) return;
+  char needed[32];
+  std::snprintf(needed, sizeof needed, "%.1f", static_cast<double>(bytes) / 1e9);
+  throw std::invalid_argument(request + " needs about " + needed +
+                              " GB of memory, more than the budget of " +
+                              std::to_string(kMemoryBudgetBytes >> 30) + " GiB; " + remedy);
+}
+
+}  // namespace stochtex

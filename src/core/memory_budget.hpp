@@ -1,0 +1,33 @@
+#pragma once
+// The one memory budget of a request (docs/design.md §9): every command estimates the peak of what
+// it is asked to do before doing any of it and refuses, with one sentence naming the option to
+// change, a request whose estimate exceeds the budget. Readers bound what a file may declare by
+// the same budget: a model file holds at most kMaxModelArrayValues (model/model_file.hpp).
+
+#include <cstdint>
+#include <string>
+
+namespace stochtex {
+
+inline constexpr std::uint64_t kMemoryBudgetBytes = std::uint64_t{2} << 30;
+
+// --threads beyond this is refused: more threads than any machine has cores only costs memory.
+inline constexpr int kMaxThreads = 256;
+
+// A CPU render of a width x height image of at most 4 channels: the image and its encoded copy
+// (a 16-bit PNG's), 24 bytes a pixel, and on each of `threads` threads one tile's samples: a
+// position (16 bytes) and a footprint (32 bytes) each, or with supersampling a position and
+// 4 channel values (32 bytes). Threads beyond the number of tiles never start.
+std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample, int threads);
+
+// The Gaussian version (ADSN) of an exemplar at width x height: its FFT domain, at least the
+// output, holds the noise, two spectra and a plane, 24 bytes a pixel, and the output image with
+// its encoded copy 24 more.
+std::uint64_t gaussian_peak_bytes(int width, int height);
+
+// Throws std::invalid_argument: "<request> needs about N GB of memory, more than the budget of
+// 2 GiB; <remedy>" when `bytes` exceed kMemoryBudgetBytes.
+void check_memory_budget(std::uint64_t bytes, const std::string& request,
+                         const std::string& remedy);
+
+}  // namespace stochtex
