@@ -14,20 +14,13 @@
 #include <thread>
 #include <utility>
 
+#include "core/file_message.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string quoted(const fs::path& path) {
-  return "'" + path.string() + "'";
-}
-
-std::string errno_message(int error) {
-  return std::generic_category().message(error);
-}
 
 // The temporaries being written, in fixed buffers that a signal handler may read (it may not
 // allocate or lock). A slot is free (kFree), being filled by its owner (kFilling), or holds the

@@ -31,20 +31,13 @@
 #include <vector>
 
 #include "core/atomic_file.hpp"
+#include "core/file_message.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string quoted(const fs::path& path) {
-  return "'" + path.string() + "'";
-}
-
-std::string errno_message(int error) {
-  return std::generic_category().message(error);
-}
 
 struct FileCloser {
   void operator()(std::FILE* file) const { std::fclose(file); }
