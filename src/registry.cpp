@@ -213,7 +213,14 @@ Model analyze(std::string_view method, ImageView<const float> exemplar, const Pa
   const MethodEntry& entry = find_entry(method);
   ParamValues resolved = resolve_params(method, params);
   validate_exemplar(exemplar, source_name);
-  MethodModel model = entry.analyze(exemplar, resolved, seed);
+  // The methods' analyses do not know the file: their data errors are named here (§9).
+  MethodModel model = [&] {
+    try {
+      return entry.analyze(exemplar, resolved, seed);
+    } catch (const Error& e) {
+      throw Error(e.code(), "cannot analyse '" + source_name + "': " + e.what());
+    }
+  }();
   return Model(std::make_shared<const ModelData>(ModelData{std::move(resolved), std::move(model)}));
 }
 

@@ -1,10 +1,12 @@
 #pragma once
-// Shared by the unit and GL tests: bitwise image comparison and the rejection of corrupt model
-// records.
+// Shared by the unit and GL tests: bitwise image comparison, the rejection of corrupt model
+// records, and a fresh folder per test.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +16,27 @@
 #include "stochtex/image.hpp"
 
 namespace stochtex::test_support {
+
+// A fixture with an empty folder of its own, named after the test and the process, removed after.
+class FolderTest : public testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = testing::UnitTest::GetInstance()->current_test_info();
+    folder_ = std::filesystem::temp_directory_path() /
+              ("stochtex_" + std::string(test->test_suite_name()) + "_" + test->name() + "_" +
+               std::to_string(::getpid()));
+    std::filesystem::remove_all(folder_);
+    std::filesystem::create_directories(folder_);
+  }
+  void TearDown() override { std::filesystem::remove_all(folder_); }
+
+  std::filesystem::path file(const std::string& name) const { return folder_ / name; }
+  std::vector<std::filesystem::path> folder_contents() const {
+    return {std::filesystem::directory_iterator(folder_), std::filesystem::directory_iterator()};
+  }
+
+  std::filesystem::path folder_;
+};
 
 // The same size and the same bytes (determinism checks compare floats bit for bit).
 inline bool same_bytes(const ImageF& a, const ImageF& b) {

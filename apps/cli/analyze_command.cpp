@@ -67,7 +67,7 @@ Command add_analyze_command(CLI::App& app) {
   add_analyze_options(command, options->analyze);
   command->add_option("-o,--output", options->output, "model file to write (.stx)")->required();
   return {command, [options] {
-            check_output_path(options->output, false);
+            check_output_path(options->output, false, options->analyze.input);
             save_model(run_analyze(options->analyze), options->output);
             fmt::print(stderr, "wrote {}\n", options->output);
             return 0;

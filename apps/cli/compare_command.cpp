@@ -4,6 +4,8 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -44,6 +46,20 @@ nlohmann::ordered_json json(const ComparisonReport& report, const std::string& e
   return doc;
 }
 
+// The measures need crops of at least 2x2 pixels and finite values (NaN measures would print as
+// JSON nulls): anything else is refused with a sentence naming the file (§9).
+void check_comparable(const ImageF& image, const std::string& path) {
+  if (image.width() < 2 || image.height() < 2)
+    throw Error(ErrorCode::invalid_input,
+                fmt::format("'{}' is {}x{} pixels; compare needs at least 2x2 pixels", path,
+                            image.width(), image.height()));
+  const auto pixels = image.pixels();
+  if (!std::all_of(pixels.begin(), pixels.end(), [](float v) { return std::isfinite(v); }))
+    throw Error(
+        ErrorCode::invalid_input,
+        fmt::format("'{}' contains NaN or infinite values; compare needs finite images", path));
+}
+
 }  // namespace
 
 Command add_compare_command(CLI::App& app) {
@@ -60,6 +76,7 @@ Command add_compare_command(CLI::App& app) {
   return {command, [options] {
             const ImageF exemplar = load_exemplar(options->exemplar);
             const ImageF image = read_image(options->image);
+            check_comparable(image, options->image);
             if (image.channels() != exemplar.channels())
               throw Error(ErrorCode::invalid_input,
                           fmt::format("'{}' has {} channels but the exemplar '{}' has {}; "

@@ -139,12 +139,13 @@ void add_edit_options(CLI::App* command, EditOptions& options) {
                    "Gaussians, longer-range kernels); each Gaussian keeps its variance")
       ->capture_default_str();
   command->add_flag("--list-groups", options.list_groups,
-                    "print how many Gaussians and how much variance each group holds");
+                    "print how many Gaussians and how much variance each group holds, and write "
+                    "nothing");
   command->add_flag("--json", options.json, "with --list-groups: print one JSON document");
 }
 
-// Lists the groups and/or writes the edited model (save_model writes atomically: a failure never
-// leaves a partial file).
+// Lists the groups (and writes nothing), or writes the edited model (save_model writes
+// atomically: a failure never leaves a partial file).
 void run_edit(const EditOptions& options) {
   // Usage errors first, before any file is read.
   if (options.output.empty() && !options.list_groups)
@@ -167,13 +168,15 @@ void run_edit(const EditOptions& options) {
   edit.translation_y = translation.y;
   edit.magnitude = options.magnitude;
   edit.bandwidth_shift = bandwidth_shift(options.bandwidth);
-  if (!options.output.empty()) check_output_path(options.output, false);
+  if (!options.list_groups) check_output_path(options.output, false, options.model);
 
   const Model model = load_model(options.model);
   const gabor::GaborModel& gabor = gabor_model(model, options.model);
   const std::vector<gabor::WoldComponent> labels = gabor::wold_components(gabor);
-  if (options.list_groups) list_groups(gabor, labels, options.json);
-  if (options.output.empty()) return;
+  if (options.list_groups) {
+    list_groups(gabor, labels, options.json);
+    return;
+  }
 
   std::vector<bool> selected(labels.size(), true);
   if (options.group != "all")

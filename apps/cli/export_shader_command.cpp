@@ -8,8 +8,8 @@
 #include <system_error>
 
 #include "commands.hpp"
+#include "core/atomic_file.hpp"
 #include "io/image_io.hpp"
-#include "io/text_file.hpp"
 #include "stochtex/stochtex.hpp"
 #ifdef STOCHTEX_WITH_GL
 #include "stochtex/gpu.hpp"
@@ -28,10 +28,10 @@ void export_shader_files([[maybe_unused]] const std::string& model_path,
   if (error)
     throw Error(ErrorCode::io,
                 fmt::format("cannot create the folder '{}': {}", output, error.message()));
-  write_text_file(folder / files.glsl_file_name, files.glsl);
+  write_file_atomically(folder / files.glsl_file_name, files.glsl);
   for (const auto& [name, image] : files.images)
     write_image(folder / (name + ".exr"), image.view());
-  write_text_file(folder / "README.md", files.readme);
+  write_file_atomically(folder / "README.md", files.readme);
   fmt::print(stderr, "wrote {} ({}, {} image(s), README.md)\n", output, files.glsl_file_name,
              files.images.size());
 #else

@@ -35,8 +35,9 @@ Command add_gaussian_command(CLI::App& app) {
             check_memory_budget(gaussian_peak_bytes(size.width, size.height),
                                 fmt::format("the Gaussian version at --size {}", options->size),
                                 "use a smaller --size");
-            check_output_path(options->output, true);
+            check_output_path(options->output, true, options->input);
             const ImageF exemplar = load_exemplar(options->input);
+            check_output_channels(options->output, exemplar.channels());
             const ImageF result =
                 gaussian_version(exemplar.view(), size.width, size.height, options->seed);
             write_image(options->output, result.view(), options->bit_depth);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "core/atomic_file.hpp"
 #include "stochtex/error.hpp"
 
 namespace {
@@ -17,6 +18,7 @@ namespace {
 using namespace stochtex;
 
 int run(int argc, char** argv) {
+  remove_temporaries_on_signals();  // an interrupted write leaves no temporary (§6)
   CLI::App app{"stochtex: infinite, seedable, filterable textures from a small exemplar photo"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "stochtex 0.1.0");

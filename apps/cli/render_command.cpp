@@ -126,11 +126,13 @@ void render_model(const Model& model, const Grid& grid, int threads, const Rende
 }  // namespace
 
 void render_to_file(const std::function<Model()>& make_model, const RenderSettings& settings,
-                    const std::string& output) {
+                    const std::string& output, const std::string& input) {
   const Grid grid = render_grid(settings);
   const int threads = render_threads(settings, grid);
-  check_output_path(output, true);
-  render_model(make_model(), grid, threads, settings, output);
+  check_output_path(output, true, input);
+  const Model model = make_model();
+  check_output_channels(output, model.channels());
+  render_model(model, grid, threads, settings, output);
   fmt::print(stderr, "wrote {}\n", output);
 }
 
@@ -146,7 +148,7 @@ Command add_render_command(CLI::App& app) {
   add_render_options(command, options->settings, options->output);
   return {command, [options] {
             render_to_file([&] { return load_model(options->model); }, options->settings,
-                           options->output);
+                           options->output, options->model);
             return 0;
           }};
 }

@@ -27,10 +27,11 @@ struct RenderSettings {
 // -o (an image), --size (required), --origin, --scale, --seed and the render options.
 void add_render_options(CLI::App* command, RenderSettings& settings, std::string& output);
 
-// Checks --size, --origin and the output path, then renders the model that `make_model` returns
-// (called after those checks, so that usage errors come first) with the settings' backend and
-// writes the image to `output`.
+// Checks --size, --origin and the output path (which may not be the `input` file), then renders
+// the model that `make_model` returns (called after those checks, so that usage errors come
+// first) with the settings' backend and writes the image to `output`; an output format that
+// cannot hold the model's channels is refused before the render.
 void render_to_file(const std::function<Model()>& make_model, const RenderSettings& settings,
-                    const std::string& output);
+                    const std::string& output, const std::string& input);
 
 }  // namespace stochtex::cli

@@ -19,9 +19,9 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "core/atomic_file.hpp"
 #include "core/parallel.hpp"
 #include "io/image_io.hpp"
-#include "io/text_file.hpp"
 #include "report/measure_all.hpp"
 #include "report_output.hpp"
 #include "stochtex/stochtex.hpp"
@@ -171,10 +171,10 @@ int run_report(const ReportOptions& options) {
       process_cpu_seconds() - cpu_start,
       failures};
   for (const ExemplarResults& exemplar : exemplars)
-    write_text_file(folder / (exemplar.name + ".html"), exemplar_page(exemplar, settings));
-  write_text_file(folder / "index.html", index_page(run));
+    write_file_atomically(folder / (exemplar.name + ".html"), exemplar_page(exemplar, settings));
+  write_file_atomically(folder / "index.html", index_page(run));
   const std::string json = summary_json(run);
-  write_text_file(folder / "report.json", json + "\n");
+  write_file_atomically(folder / "report.json", json + "\n");
   if (options.json) fmt::print("{}\n", json);
   fmt::print(stderr, "wrote {} ({} exemplar(s), {:.1f} s wall, {:.1f} s CPU)\n",
              (folder / "index.html").string(), exemplars.size(), run.wall_seconds, run.cpu_seconds);

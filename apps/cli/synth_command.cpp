@@ -21,7 +21,7 @@ Command add_synth_command(CLI::App& app) {
   add_render_options(command, options->settings, options->output);
   return {command, [options] {
             render_to_file([&] { return run_analyze(options->analyze); }, options->settings,
-                           options->output);
+                           options->output, options->analyze.input);
             return 0;
           }};
 }

@@ -30,20 +30,14 @@
 #include <utility>
 #include <vector>
 
+#include "core/atomic_file.hpp"
+#include "core/file_message.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string quoted(const fs::path& path) {
-  return "'" + path.string() + "'";
-}
-
-std::string errno_message(int error) {
-  return std::generic_category().message(error);
-}
 
 struct FileCloser {
   void operator()(std::FILE* file) const { std::fclose(file); }
@@ -647,26 +641,6 @@ Format output_format(const fs::path& path) {
                               extension + "'; use .png, .exr or .pfm");
 }
 
-File open_for_writing(const fs::path& path) {
-  File file(std::fopen(path.c_str(), "wb"));
-  if (file) return file;
-  const int error = errno;
-  const fs::path folder = path.parent_path();
-  std::error_code ignored;
-  if (error == ENOENT && !folder.empty() && !fs::is_directory(folder, ignored))
-    throw std::runtime_error("the folder " + quoted(folder) + " does not exist");
-  throw std::runtime_error(errno_message(error));
-}
-
-// fclose reports the errors of buffered writes still pending (a full disk, for example).
-void close_after_writing(File file) {
-  const bool written = std::fflush(file.get()) == 0 && !std::ferror(file.get());
-  const int write_error = errno;
-  const bool closed = std::fclose(file.release()) == 0;
-  if (!written) throw std::runtime_error(errno_message(write_error));
-  if (!closed) throw std::runtime_error(errno_message(errno));
-}
-
 }  // namespace
 
 ImageF read_image(const fs::path& path, const ImageReadLimits& limits) {
@@ -718,45 +692,38 @@ void write_image(const fs::path& path, ImageView<const float> image, int png_bit
   if (format == Format::png && png_bit_depth != 8 && png_bit_depth != 16)
     throw std::invalid_argument("cannot write " + quoted(path) + ": PNG bit depth " +
                                 std::to_string(png_bit_depth) + " is not supported; use 8 or 16");
-  if (format == Format::pfm && image.channels != 1 && image.channels != 3)
-    throw Error(ErrorCode::invalid_input,
-                "cannot write " + quoted(path) + ": PFM holds 1 or 3 channels and the image has " +
-                    std::to_string(image.channels) + "; write .exr or .png instead");
+  check_output_channels(path, image.channels);
 
-  fs::path temporary = path;
-  temporary += ".tmp";
+  AtomicFile file(path);
   try {
-    File file = open_for_writing(temporary);
     switch (format) {
       case Format::png:
-        write_png(file.get(), image, png_bit_depth);
+        write_png(file.stream(), image, png_bit_depth);
         break;
       case Format::exr:
-        write_exr(file.get(), temporary, image);
+        write_exr(file.stream(), file.temporary(), image);
         break;
       case Format::pfm:
-        write_pfm(file.get(), image);
+        write_pfm(file.stream(), image);
         break;
     }
-    close_after_writing(std::move(file));
-    fs::rename(temporary, path);
   } catch (const std::exception& e) {
-    std::error_code ignored;
-    fs::remove(temporary, ignored);
-    const auto* filesystem_error = dynamic_cast<const fs::filesystem_error*>(&e);
-    throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": " +
-                                   (filesystem_error ? filesystem_error->code().message()
-                                                     : std::string(e.what())));
+    throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": " + e.what());
   }
+  file.commit();
 }
 
-void check_output_path(const fs::path& path, bool image) {
+void check_output_channels(const fs::path& path, int channels) {
+  if (output_format(path) == Format::pfm && channels != 1 && channels != 3)
+    throw Error(ErrorCode::invalid_input,
+                "cannot write " + quoted(path) + ": PFM holds 1 or 3 channels and the image has " +
+                    std::to_string(channels) + "; write .exr or .png instead");
+}
+
+void check_output_path(const fs::path& path, bool image, const fs::path& input) {
   if (image) output_format(path);
-  const fs::path folder = path.parent_path();
-  std::error_code ignored;
-  if (!folder.empty() && !fs::is_directory(folder, ignored))
-    throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": the folder " + quoted(folder) +
-                                   " does not exist; create it or choose another path");
+  check_output_target(path);
+  if (!input.empty()) check_output_is_not_input(path, input);
 }
 
 }  // namespace stochtex

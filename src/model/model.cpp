@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/atomic_file.hpp"
 #include "model/model_data.hpp"
 #include "model/model_file.hpp"
 #include "stochtex/error.hpp"
@@ -56,28 +57,8 @@ Model deserialize_model(std::span<const std::uint8_t> bytes, const std::string& 
 
 void save_model(const Model& model, const std::filesystem::path& path) {
   const std::vector<std::uint8_t> bytes = serialize_model(model);
-  // Write next to the destination, then rename: a failure never leaves a partial model file.
-  std::filesystem::path temporary = path;
-  temporary += ".tmp";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    file.write(reinterpret_cast<const char*>(bytes.data()),
-               static_cast<std::streamsize>(bytes.size()));
-    file.close();
-    if (!file) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw Error(ErrorCode::io,
-                  "cannot write '" + path.string() +
-                      "': the folder is missing or not writable; choose another path");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw Error(ErrorCode::io, "cannot write '" + path.string() + "': " + error.message());
-  }
+  write_file_atomically(
+      path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 Model load_model(const std::filesystem::path& path) {

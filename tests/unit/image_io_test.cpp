@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "stochtex/error.hpp"
+#include "test_support.hpp"
 
 namespace stochtex {
 namespace {
@@ -29,24 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 using Bytes = std::vector<unsigned char>;
 
-class ImageIoTest : public testing::Test {
- protected:
-  void SetUp() override {
-    const auto* test = testing::UnitTest::GetInstance()->current_test_info();
-    folder_ = fs::temp_directory_path() /
-              ("stochtex_image_io_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-  }
-  void TearDown() override { fs::remove_all(folder_); }
-
-  fs::path file(const std::string& name) const { return folder_ / name; }
-  std::vector<fs::path> folder_contents() const {
-    return {fs::directory_iterator(folder_), fs::directory_iterator()};
-  }
-
-  fs::path folder_;
-};
+using ImageIoTest = test_support::FolderTest;
 
 ImageF make_image(int width, int height, int channels, float (*value)(int x, int y, int c)) {
   ImageF image(width, height, channels);

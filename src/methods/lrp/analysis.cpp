@@ -384,7 +384,8 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
       bin.self_paired = index == negative;
       bin.power = bin.self_paired ? power[index] : power[index] + power[negative];
       if (!(bin.power >= 0.0) || !std::isfinite(bin.power))
-        throw std::invalid_argument("lrp: the power spectrum has a negative or non-finite value");
+        throw Error(ErrorCode::numerical,
+                    "lrp: the power spectrum has a negative or non-finite value");
       // Signed coordinates in the upper half-plane, x in (-size/2, size/2].
       bin.sx = kx > size / 2 ? kx - size : kx;
       bin.sy = ky;
