@@ -157,9 +157,12 @@ void run_edit(const EditOptions& options) {
     throw std::invalid_argument(
         fmt::format("--rotate must be finite and --scale a positive number, not {} and {}",
                     options.rotate_degrees, options.scale));
-  if (!(options.magnitude >= 0.0) || !std::isfinite(options.magnitude))
-    throw std::invalid_argument(
-        fmt::format("--magnitude must be a finite number >= 0, not {}", options.magnitude));
+  // The variance grows by the square: up to 1e3, variances (about 10 after analysis) stay far
+  // within the model value range (model/value_range.hpp).
+  constexpr double kMaxMagnitude = 1e3;
+  if (!(options.magnitude >= 0.0 && options.magnitude <= kMaxMagnitude))
+    throw std::invalid_argument(fmt::format("--magnitude must be a number from 0 to {}, not {}",
+                                            kMaxMagnitude, options.magnitude));
   const Translation translation = parse_translation(options.translate);
   gabor::SpectrumEdit edit;
   edit.rotation = options.rotate_degrees * std::numbers::pi / 180.0;

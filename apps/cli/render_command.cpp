@@ -71,7 +71,12 @@ Grid render_grid(const RenderSettings& settings) {
   if (!origin)
     throw std::invalid_argument("--origin must be X,Y in exemplar pixels, e.g. 1000,-250.5, not '" +
                                 settings.origin + "'");
-  return Grid{*origin, settings.scale, size.width, size.height, 0, 0};
+  // CLI11's range check lets NaN through (every comparison with it is false): the grid check
+  // refuses it with the origin and positions beyond the precise range (render.hpp).
+  const Grid grid{*origin, settings.scale, size.width, size.height, 0, 0};
+  check_grid(grid, fmt::format("--origin {} with --scale {} and --size {}", settings.origin,
+                               settings.scale, settings.size));
+  return grid;
 }
 
 // Each thread holds one tile's samples (docs/design.md §9): with --threads 0 as many cores work

@@ -78,8 +78,14 @@ Model target_model(const std::string& text, std::string_view method, const Param
       throw bad(text, e.what());
     }
   };
+  // The mean and the standard deviation stay within the exemplar value range (stochtex.hpp).
+  const double mean = optional("mean", kDefaultMean);
+  const double variance = optional("variance", kDefaultVariance);
+  const double largest = kMaxExemplarValue;
+  if (std::abs(mean) > largest || variance > largest * largest)
+    throw bad(text, "the mean must be within +-1e6 and the variance at most 1e12");
   lrp::SpectrumTarget target = spectrum();
-  target.mean = optional("mean", kDefaultMean);
+  target.mean = mean;
   return lrp::spectrum_model(target, params, seed);
 }
 

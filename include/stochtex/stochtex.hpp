@@ -45,8 +45,15 @@ std::string format_param(std::string_view method, std::string_view name, double 
 std::string methods_text();
 std::string methods_json();
 
-// Checks an exemplar: at least 2x2 pixels, 1 to 4 channels, finite values, not constant. Throws
-// Error(invalid_input) with a sentence naming `source_name`.
+// The largest magnitude of an exemplar value (docs/design.md §9). Analysis squares values and sums
+// them over up to 2^26 pixels in float (power spectra, covariances): (1e6 * 2^26)^2 = 4.5e27 keeps
+// a margin of 1e10 below float's 3.4e38, and HDR exemplars in scene units (the sun near 1e5) fit;
+// larger values are refused rather than rendered as NaN.
+inline constexpr float kMaxExemplarValue = 1e6f;
+
+// Checks an exemplar: at least 2x2 pixels, 1 to 4 channels, finite values within
+// +-kMaxExemplarValue, not constant. Throws Error(invalid_input) with a sentence naming
+// `source_name`.
 void validate_exemplar(ImageView<const float> exemplar, const std::string& source_name);
 
 // Builds a model of the exemplar with the named method. `params` may be partial (defaults fill it).

@@ -28,6 +28,10 @@ void validate_exemplar(ImageView<const float> exemplar, const std::string& sourc
           throw Error(ErrorCode::invalid_input,
                       name + " contains a NaN or infinite value at pixel (" + std::to_string(x) +
                           ", " + std::to_string(y) + "); replace it with a finite value");
+        if (std::abs(value) > kMaxExemplarValue)
+          throw Error(ErrorCode::invalid_input,
+                      name + " has a value beyond +-1e6 (the largest exemplar value) at pixel (" +
+                          std::to_string(x) + ", " + std::to_string(y) + "); rescale the image");
         varies = varies || value != exemplar.at(0, 0, c);
       }
   if (!varies)

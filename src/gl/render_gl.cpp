@@ -74,6 +74,7 @@ void GlRenderer::render(const Grid& grid, std::uint32_t seed, ImageView<float> o
   const int channels = impl_->model.channels();
   if (out.width != grid.width || out.height != grid.height || out.channels != channels)
     throw std::invalid_argument("render_gl: the output view does not match the grid and model");
+  check_grid(grid, "render_gl: the grid");
   constexpr std::int64_t kMaxPixelIndex = std::int64_t{1} << 30;
   if (std::abs(grid.first_pixel_x) + grid.width > kMaxPixelIndex ||
       std::abs(grid.first_pixel_y) + grid.height > kMaxPixelIndex)

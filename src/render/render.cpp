@@ -1,6 +1,8 @@
 #include "stochtex/render.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -9,6 +11,50 @@
 #include "model/model_data.hpp"
 
 namespace stochtex {
+namespace {
+
+// Finite and within the precise range (render.hpp): also false for NaN.
+bool in_range(Vec2d v) {
+  return std::abs(v.x) <= kPositionLimit && std::abs(v.y) <= kPositionLimit;
+}
+
+// "+-<limit> exemplar pixels, the precise range of docs/design.md §4", the end of every refusal.
+std::string range_text() {
+  return "+-" + std::to_string(static_cast<std::int64_t>(kPositionLimit)) +
+         " exemplar pixels, the precise range of positions (docs/design.md §4)";
+}
+
+// One dispatch per batch; the method's loop over samples is concrete and inlined. The arguments
+// have been checked.
+void evaluate_checked(const Model& model, std::span<const Vec2d> positions,
+                      std::span<const Footprint> footprints, std::uint32_t seed,
+                      ImageView<float> out) {
+  std::visit([&](const auto& m) { m.evaluate(positions, footprints, seed, out); },
+             model.data().model);
+}
+
+}  // namespace
+
+void check_grid(const Grid& grid, std::string_view what) {
+  // The pixel indices' extremes, in double (no integer overflow for any first_pixel value); the
+  // samples lie between the corners origin + scale * index.
+  const auto reach = [&](std::int64_t first, int count) {
+    const auto low = static_cast<double>(first);
+    return std::max(std::abs(low), std::abs(low + static_cast<double>(count)));
+  };
+  const double x =
+      std::abs(grid.origin.x) + std::abs(grid.scale) * reach(grid.first_pixel_x, grid.width);
+  const double y =
+      std::abs(grid.origin.y) + std::abs(grid.scale) * reach(grid.first_pixel_y, grid.height);
+  if (in_range({x, y})) return;
+  std::ostringstream reached;
+  reached.precision(12);
+  reached << std::max(x, y);
+  throw std::invalid_argument(std::string(what) +
+                              (std::isfinite(x + y) ? " reaches " + reached.str() + ", beyond "
+                                                    : " is not finite; positions must be within ") +
+                              range_text());
+}
 
 void evaluate(const Model& model, std::span<const Vec2d> positions,
               std::span<const Footprint> footprints, std::uint32_t seed, ImageView<float> out) {
@@ -19,17 +65,22 @@ void evaluate(const Model& model, std::span<const Vec2d> positions,
       static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) < positions.size())
     throw std::invalid_argument("evaluate: the output view must hold one pixel of " +
                                 std::to_string(model.channels()) + " channels per position");
-  // One dispatch per batch; the method's loop over samples is concrete and inlined.
-  std::visit([&](const auto& m) { m.evaluate(positions, footprints, seed, out); },
-             model.data().model);
+  if (!std::all_of(positions.begin(), positions.end(), in_range))
+    throw std::invalid_argument("evaluate: a position is not finite or beyond " + range_text());
+  if (!std::all_of(footprints.begin(), footprints.end(),
+                   [](const Footprint& f) { return in_range(f.dpdx) && in_range(f.dpdy); }))
+    throw std::invalid_argument("evaluate: a footprint is not finite or beyond " + range_text());
+  evaluate_checked(model, positions, footprints, seed, out);
 }
 
 void render(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
             const RenderOptions& options) {
+  if (model.empty()) throw std::invalid_argument("render: the model is empty");
   if (out.width != grid.width || out.height != grid.height || out.channels != model.channels())
     throw std::invalid_argument("render: the output view does not match the grid and model");
   if (options.tile_size < 1 || options.supersample < 1)
     throw std::invalid_argument("render: tile_size and supersample must be positive");
+  check_grid(grid, "render: the grid");
   const int tile = options.tile_size;
   const int tiles_x = (grid.width + tile - 1) / tile;
   const int tiles_y = (grid.height + tile - 1) / tile;
@@ -63,13 +114,13 @@ void render(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<
     std::vector<Footprint> footprints;
     if (with_footprints) footprints.assign(samples, pixel_footprint);
     if (sub == 1) {
-      evaluate(model, positions, footprints, seed, out.sub(x0, y0, w, h));
+      evaluate_checked(model, positions, footprints, seed, out.sub(x0, y0, w, h));
       return;
     }
     std::vector<float> values(samples * static_cast<std::size_t>(channels));
-    evaluate(model, positions, footprints, seed,
-             ImageView<float>{values.data(), static_cast<int>(samples), 1, channels,
-                              static_cast<std::ptrdiff_t>(samples) * channels});
+    evaluate_checked(model, positions, footprints, seed,
+                     ImageView<float>{values.data(), static_cast<int>(samples), 1, channels,
+                                      static_cast<std::ptrdiff_t>(samples) * channels});
     const std::size_t per_pixel = static_cast<std::size_t>(sub) * sub;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -54,8 +55,42 @@ void edit_number(std::vector<std::uint8_t>& bytes, std::mt19937& engine) {
     bytes[12 + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(length >> (8 * i));
 }
 
-// Mutates the seeds `mutants` times (bit flips, bytes, truncations, insertions, header numbers);
-// every mutant must load and evaluate to finite values, or be refused with Error(format).
+// Overwrites one float of the array data (after the header, before the checksum) with a huge
+// finite value or one at the edge of the model value range: either the file is refused or its
+// model renders finite values (issue 19: values near 1e38 loaded and rendered NaN or Inf).
+void write_huge_value(std::vector<std::uint8_t>& bytes, std::mt19937& engine) {
+  if (bytes.size() < 16) return;
+  std::uint32_t header = 0;
+  for (int i = 0; i < 4; ++i) header |= static_cast<std::uint32_t>(bytes[12 + i]) << (8 * i);
+  const std::size_t first = 16 + static_cast<std::size_t>(header);
+  if (bytes.size() < first + 4 + 8) return;
+  const std::size_t count = (bytes.size() - 8 - first) / 4;
+  static const std::vector<float> values = {1e38f, -3e38f, 1e20f, -1e13f, 1e12f, -1e12f, 9e11f};
+  const float value = values[engine() % values.size()];
+  std::uint32_t word = 0;
+  std::memcpy(&word, &value, 4);
+  const std::size_t at = first + 4 * (engine() % count);
+  for (int i = 0; i < 4; ++i)
+    bytes[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(word >> (8 * i));
+}
+
+// Renders a few points of the model with and without footprints at several scales; every value
+// must be finite.
+void expect_finite_renders(const Model& model, int mutant) {
+  const std::vector<Vec2d> points = {{0.5, 0.5}, {-3.25, 7.5}, {1e5, -2e5}};
+  for (const double scale : {0.0, 1.0, 5.0, 300.0}) {
+    const std::vector<Footprint> footprints(points.size(), Footprint{{scale, 0.0}, {0.0, scale}});
+    ImageF out(static_cast<int>(points.size()), 1, model.channels());
+    evaluate(model, points, scale == 0.0 ? std::span<const Footprint>{} : footprints, 1,
+             out.view());
+    for (const float value : out.pixels())
+      ASSERT_TRUE(std::isfinite(value)) << "mutant " << mutant << " at scale " << scale;
+  }
+}
+
+// Mutates the seeds `mutants` times (bit flips, bytes, truncations, insertions, header numbers,
+// huge array values); every mutant must load and evaluate to finite values, or be refused with
+// Error(format).
 void fuzz_models(const std::vector<std::vector<std::uint8_t>>& seeds, int mutants,
                  std::uint32_t engine_seed) {
   std::mt19937 engine(engine_seed);
@@ -66,7 +101,7 @@ void fuzz_models(const std::vector<std::vector<std::uint8_t>>& seeds, int mutant
     const int edits = 1 + static_cast<int>(engine() % 4);
     for (int e = 0; e < edits && !bytes.empty(); ++e) {
       const std::size_t at = engine() % bytes.size();
-      switch (engine() % 5) {
+      switch (engine() % 6) {
         case 0:
           bytes[at] ^= static_cast<std::uint8_t>(1u << (engine() % 8));
           break;
@@ -80,8 +115,11 @@ void fuzz_models(const std::vector<std::vector<std::uint8_t>>& seeds, int mutant
           bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at),
                        static_cast<std::uint8_t>(engine()));
           break;
-        default:
+        case 4:
           edit_number(bytes, engine);
+          break;
+        default:
+          write_huge_value(bytes, engine);
           break;
       }
     }
@@ -89,10 +127,8 @@ void fuzz_models(const std::vector<std::vector<std::uint8_t>>& seeds, int mutant
     try {
       const Model model = deserialize_model(bytes, "fuzz.stx");
       // Whatever loads must evaluate to finite values.
-      ImageF out(2, 1, model.channels());
-      const std::vector<Vec2d> points = {{0.5, 0.5}, {-3.25, 7.5}};
-      evaluate(model, points, {}, 1, out.view());
-      for (const float value : out.pixels()) ASSERT_TRUE(std::isfinite(value)) << "mutant " << n;
+      expect_finite_renders(model, n);
+      if (testing::Test::HasFatalFailure()) return;
       ++accepted;
     } catch (const Error& error) {
       ASSERT_EQ(error.code(), ErrorCode::format) << "mutant " << n << ": " << error.what();

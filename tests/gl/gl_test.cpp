@@ -296,5 +296,17 @@ void main() {
   }
 }
 
+TEST(Gl, RefusesGridsBeyondThePreciseRange) {
+  // The same check as render() (render.hpp): before any dispatch, for a NaN scale or an origin
+  // beyond +-kPositionLimit.
+  const Model& model = model_of("grass_lawn_128.png", 1);
+  GlRenderer renderer(model);
+  ImageF out(4, 4, model.channels());
+  for (const Grid& grid : {Grid{{0.0, 0.0}, std::nan(""), 4, 4}, Grid{{1e19, 0.0}, 1.0, 4, 4},
+                           Grid{{kPositionLimit, 0.0}, 1.0, 4, 4}})
+    EXPECT_THROW(renderer.render(grid, 1, out.view()), std::invalid_argument);
+  EXPECT_NO_THROW(renderer.render(Grid{{kPositionLimit - 8.0, 0.0}, 1.0, 4, 4}, 1, out.view()));
+}
+
 }  // namespace
 }  // namespace stochtex

@@ -11,6 +11,7 @@
 #include "methods/gabor/alias.hpp"
 #include "methods/gabor/params.hpp"
 #include "methods/texton/evaluate.hpp"
+#include "model/value_range.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::gabor {
@@ -55,17 +56,16 @@ GaborModel::GaborModel(int channels, double impulses, int colour_space,
       mean_.size() != static_cast<std::size_t>(channels_))
     throw std::invalid_argument("gabor: colour matrix or mean has the wrong size");
   if (gaussians_.size() > kMaxGaussians) throw std::invalid_argument("gabor: too many Gaussians");
-  const auto finite = [](float v) { return std::isfinite(v); };
-  if (!std::all_of(mixing_.begin(), mixing_.end(), finite) ||
-      !std::all_of(mean_.begin(), mean_.end(), finite))
-    throw std::invalid_argument("gabor: non-finite colour matrix or mean");
+  if (!within_model_range(mixing_) || !within_model_range(mean_))
+    throw std::invalid_argument(
+        "gabor: a colour matrix or mean value is not finite or beyond +-1e12");
   for (const GaussianComponent& g : gaussians_) {
     if (g.channel < 0 || g.channel >= channels_ || g.band < 0 || g.band >= kMaxBands)
       throw std::invalid_argument("gabor: a Gaussian has an invalid channel or bandwidth index");
     if (!(std::abs(g.frequency_x) <= 0.5f) || !(std::abs(g.frequency_y) <= 0.5f))
       throw std::invalid_argument("gabor: a Gaussian frequency is beyond the Nyquist limit");
-    if (!(g.variance > 0.0f) || !std::isfinite(g.variance))
-      throw std::invalid_argument("gabor: a Gaussian variance is not a positive number");
+    if (!(g.variance > 0.0f && g.variance <= kMaxModelValue))
+      throw std::invalid_argument("gabor: a Gaussian variance is not a positive number up to 1e12");
   }
   for (const double value :
        {report_.sparseness, report_.fit_error, report_.offdiagonality_independent,

@@ -8,6 +8,7 @@
 #include "methods/lrp/evaluate.hpp"
 #include "methods/lrp/params.hpp"
 #include "methods/lrp/tables.hpp"
+#include "model/value_range.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::lrp {
@@ -26,10 +27,6 @@ const ParamInfo& param(std::string_view name) {
                        [&](const ParamInfo& p) { return p.name == name; });
 }
 
-bool finite(const std::vector<float>& values) {
-  return std::all_of(values.begin(), values.end(), [](float x) { return std::isfinite(x); });
-}
-
 }  // namespace
 
 LrpModel::LrpModel(LrpData data) : data_(std::move(data)) {
@@ -42,8 +39,10 @@ LrpModel::LrpModel(LrpData data) : data_(std::move(data)) {
   const auto channel_count = static_cast<std::size_t>(channels);
   if (data_.mean.size() != channel_count || data_.colour_basis.size() != channel_count * channels)
     throw std::invalid_argument("lrp: the mean or colour basis has the wrong size");
-  if (!finite(data_.mean) || !finite(data_.colour_basis) || !finite(data_.frequencies))
-    throw std::invalid_argument("lrp: non-finite mean, colour basis or frequency");
+  if (!within_model_range(data_.mean) || !within_model_range(data_.colour_basis) ||
+      !within_model_range(data_.frequencies))
+    throw std::invalid_argument(
+        "lrp: a mean, colour basis or frequency value is not finite or beyond +-1e12");
   if (data_.strata_table.size() != channel_count * strata)
     throw std::invalid_argument("lrp: the strata table has the wrong size");
   std::size_t substrata = 0;
@@ -106,7 +105,8 @@ LrpModel LrpModel::from_record(const ModelRecord& record, const std::string& sou
   const NamedArray& ranges = record.array("substrata", {substrata, 2}, source);
   const NamedArray& frequency = record.array("frequencies", {frequencies, 2}, source);
   const NamedArray& weights = record.array("weights", {frequencies}, source);
-  if (!finite(table.values) || !finite(ranges.values)) throw invalid("strata table");
+  if (!within_model_range(table.values) || !within_model_range(ranges.values))
+    throw invalid("strata table");
 
   LrpData data;
   data.channels = static_cast<int>(channels);

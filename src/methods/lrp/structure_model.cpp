@@ -6,6 +6,7 @@
 #include "methods/lrp/evaluate.hpp"
 #include "methods/lrp/structure.hpp"
 #include "methods/lrp/tables.hpp"
+#include "model/value_range.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::lrp {
@@ -23,10 +24,6 @@ constexpr double kMaxAmplitude = 1e6;
 
 bool power_of_two(std::int64_t n) {
   return n > 0 && (n & (n - 1)) == 0;
-}
-
-bool finite(const std::vector<float>& values) {
-  return std::all_of(values.begin(), values.end(), [](float x) { return std::isfinite(x); });
 }
 
 // Floor division and modulo of 64-bit lattice indices (blocks repeat every B nodes).
@@ -63,8 +60,9 @@ void validate_structure(const StructureData& s, int channels) {
   const double values = 4.0 * channels * double(s.blocks) * s.blocks * s.cosines;
   if (values > kMaxStructureValues || s.cosine_table.size() != static_cast<std::size_t>(values))
     throw std::invalid_argument("lrp: the structure cosine table has the wrong size");
-  if (!finite(s.cosine_table))
-    throw std::invalid_argument("lrp: the structure cosine table has a non-finite value");
+  if (!within_model_range(s.cosine_table))
+    throw std::invalid_argument(
+        "lrp: the structure cosine table has a value that is not finite or beyond +-1e12");
   for (std::size_t k = 0; k < s.cosine_table.size(); k += 4) {
     const float* c = &s.cosine_table[k];
     if (std::abs(c[0]) > 0.5f || std::abs(c[1]) > 0.5f || !(c[2] >= 0.0f) || c[2] > kMaxAmplitude ||
@@ -85,7 +83,7 @@ void validate_structure(const StructureData& s, int channels) {
     substrata += static_cast<std::size_t>(stratum.cosines);
   }
   if (s.turbulence_first.size() != substrata || s.turbulence_count.size() != substrata ||
-      s.turbulence_frequencies.size() % 2 != 0 || !finite(s.turbulence_frequencies))
+      s.turbulence_frequencies.size() % 2 != 0 || !within_model_range(s.turbulence_frequencies))
     throw std::invalid_argument("lrp: the turbulence sub-strata do not match its strata");
   check_substrata(s.turbulence_first, s.turbulence_count, s.turbulence_frequencies, "turbulence");
 }

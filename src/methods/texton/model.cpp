@@ -6,6 +6,7 @@
 
 #include "methods/texton/evaluate.hpp"
 #include "methods/texton/params.hpp"
+#include "model/value_range.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::texton {
@@ -109,12 +110,10 @@ TextonModel TextonModel::from_record(const ModelRecord& record, const std::strin
   const double mean_impacts = read_param("mni");
   const NamedArray& coefficients = record.array("texton", {support, support, channels}, source);
   const NamedArray& mean = record.array("mean", {channels}, source);
-  const auto finite = [](const std::vector<float>& v) {
-    return std::all_of(v.begin(), v.end(), [](float x) { return std::isfinite(x); });
-  };
-  if (!finite(coefficients.values) || !finite(mean.values))
-    throw Error(ErrorCode::format,
-                "'" + source + "' holds non-finite texton values; re-run `stochtex analyze`");
+  if (!within_model_range(coefficients.values) || !within_model_range(mean.values))
+    throw Error(ErrorCode::format, "'" + source +
+                                       "' holds texton values that are not finite or beyond "
+                                       "+-1e12; re-run `stochtex analyze`");
   try {
     return TextonModel(channels, support, order, mean_impacts, coefficients.values, mean.values);
   } catch (const std::invalid_argument& e) {

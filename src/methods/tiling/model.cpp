@@ -7,6 +7,7 @@
 #include "core/colour_statistics.hpp"
 #include "core/level_of_detail.hpp"
 #include "methods/tiling/params.hpp"
+#include "model/value_range.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::tiling {
@@ -230,9 +231,10 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
   const std::int64_t cc = layout.colour_channels;
   const auto take = [&](const std::string& name, const std::vector<std::int64_t>& shape) {
     const NamedArray& array = record.array(name, shape, source);
-    if (!std::all_of(array.values.begin(), array.values.end(),
-                     [](float x) { return std::isfinite(x); }))
-      throw Error(ErrorCode::format, "'" + source + "' holds non-finite values in tiling array '" +
+    if (!within_model_range(array.values))
+      throw Error(ErrorCode::format, "'" + source +
+                                         "' holds values that are not finite or beyond "
+                                         "+-1e12 in tiling array '" +
                                          name + "'; re-run `stochtex analyze`");
     return array.values;
   };
