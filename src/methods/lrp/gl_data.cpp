@@ -31,6 +31,31 @@ TableLayout table_layout(const LrpGlsl& glsl) {
   return layout;
 }
 
+// The GLSL arrays <prefix>_SPACING, _AMPLITUDE, _FIRST (a stratum's first cosine: the running
+// sum of the cosines before it) and _COSINES of a table of strata, the random strata
+// (lrp::Stratum) and the turbulence strata (lrp::TurbulenceStratum) alike.
+template <typename StratumType>
+std::string stratum_arrays(const std::string& prefix, const std::vector<StratumType>& strata) {
+  std::vector<float> spacing;
+  std::vector<float> amplitude;
+  std::vector<int> first;
+  std::vector<int> cosines;
+  int next = 0;
+  for (const StratumType& stratum : strata) {
+    spacing.push_back(stratum.spacing);
+    amplitude.push_back(stratum.amplitude);
+    first.push_back(next);
+    cosines.push_back(stratum.cosines);
+    next += stratum.cosines;
+  }
+  return glsl_array("float", (prefix + "_SPACING").c_str(), std::span<const float>(spacing),
+                    glsl_float) +
+         glsl_array("float", (prefix + "_AMPLITUDE").c_str(), std::span<const float>(amplitude),
+                    glsl_float) +
+         glsl_array("int", (prefix + "_FIRST").c_str(), std::span<const int>(first), glsl_int) +
+         glsl_array("int", (prefix + "_COSINES").c_str(), std::span<const int>(cosines), glsl_int);
+}
+
 }  // namespace
 
 LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
@@ -46,20 +71,9 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
     glsl.substrata.push_back(d.substratum_count[k]);
   }
   // The strata in the evaluator's order (channel-major), as LrpModel's runtime table.
-  std::vector<float> spacing;
-  std::vector<float> amplitude;
-  std::vector<int> first;
-  std::vector<int> cosines;
   std::vector<int> channel;
-  int next = 0;
-  for (std::size_t s = 0; s < d.strata_table.size(); ++s) {
-    spacing.push_back(d.strata_table[s].spacing);
-    amplitude.push_back(d.strata_table[s].amplitude);
-    first.push_back(next);
-    cosines.push_back(d.strata_table[s].cosines);
+  for (std::size_t s = 0; s < d.strata_table.size(); ++s)
     channel.push_back(static_cast<int>(s) / d.strata);
-    next += d.strata_table[s].cosines;
-  }
   const std::array<float, lrp::kWindowTerms> window = lrp::window_coefficients();
   std::string& text = glsl.constants;
   const auto constant = [&](const char* type, const char* name, const std::string& value) {
@@ -73,11 +87,7 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   constant("vec4", "LRP_MEAN", glsl_vec4(d.mean));
   text += glsl_array("float", "LRP_BASIS", std::span<const float>(d.colour_basis), glsl_float);
   text += glsl_array("float", "LRP_WINDOW", std::span<const float>(window), glsl_float);
-  text += glsl_array("float", "LRP_STRATUM_SPACING", std::span<const float>(spacing), glsl_float);
-  text +=
-      glsl_array("float", "LRP_STRATUM_AMPLITUDE", std::span<const float>(amplitude), glsl_float);
-  text += glsl_array("int", "LRP_STRATUM_FIRST", std::span<const int>(first), glsl_int);
-  text += glsl_array("int", "LRP_STRATUM_COSINES", std::span<const int>(cosines), glsl_int);
+  text += stratum_arrays("LRP_STRATUM", d.strata_table);
   text += glsl_array("int", "LRP_STRATUM_CHANNEL", std::span<const int>(channel), glsl_int);
 
   // Section 5 (structure_model.cpp); glsl_array writes one zero for an empty table.
@@ -87,18 +97,6 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   for (std::size_t k = 0; k < st.turbulence_first.size(); ++k) {
     glsl.turbulence_substrata.push_back(st.turbulence_first[k]);
     glsl.turbulence_substrata.push_back(st.turbulence_count[k]);
-  }
-  std::vector<float> turbulence_spacing;
-  std::vector<float> turbulence_amplitude;
-  std::vector<int> turbulence_first;
-  std::vector<int> turbulence_cosines;
-  int next_turbulence = 0;
-  for (const lrp::TurbulenceStratum& stratum : st.turbulence_strata) {
-    turbulence_spacing.push_back(stratum.spacing);
-    turbulence_amplitude.push_back(stratum.amplitude);
-    turbulence_first.push_back(next_turbulence);
-    turbulence_cosines.push_back(stratum.cosines);
-    next_turbulence += stratum.cosines;
   }
   constant("bool", "LRP_HAS_STRUCTURE", st.empty() ? "false" : "true");
   constant("int", "LRP_STRUCTURE_BLOCKS", glsl_int(std::max(st.blocks, 1)));
@@ -112,15 +110,8 @@ LrpGlsl lrp_glsl(const lrp::LrpModel& model) {
   constant("int", "LRP_TURBULENCE_STRATA", glsl_int(static_cast<int>(st.turbulence_strata.size())));
   // The size of the per-turbulence-stratum arrays of lrp_add_structure (never 0).
   constant("int", "LRP_TURBULENCE_ARRAY",
-           glsl_int(std::max(1, static_cast<int>(turbulence_spacing.size()))));
-  text += glsl_array("float", "LRP_TURBULENCE_SPACING", std::span<const float>(turbulence_spacing),
-                     glsl_float);
-  text += glsl_array("float", "LRP_TURBULENCE_AMPLITUDE",
-                     std::span<const float>(turbulence_amplitude), glsl_float);
-  text +=
-      glsl_array("int", "LRP_TURBULENCE_FIRST", std::span<const int>(turbulence_first), glsl_int);
-  text += glsl_array("int", "LRP_TURBULENCE_COSINES", std::span<const int>(turbulence_cosines),
-                     glsl_int);
+           glsl_int(std::max(1, static_cast<int>(st.turbulence_strata.size()))));
+  text += stratum_arrays("LRP_TURBULENCE", st.turbulence_strata);
   return glsl;
 }
 
