@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs every build, test and benchmark dependency of stochtex from Debian 12 packages
 # (docs/design.md §3). Nothing else is downloaded. Safe to run repeatedly.
+# Usage: bash scripts/install-deps.sh [--sanitize]   (--sanitize: also what scripts/sanitize.sh
+# needs: clang with its sanitizer and libFuzzer runtimes, and llvm-symbolizer for the reports)
 set -euo pipefail
 
 packages=(
@@ -11,6 +13,9 @@ packages=(
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   python3
 )
+if [[ ${1:-} == --sanitize ]]; then
+  packages+=(clang libclang-rt-14-dev llvm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

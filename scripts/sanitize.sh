@@ -8,7 +8,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build-sanitize}"
 seconds="${2:-20}"
-bash "$root/scripts/install-deps.sh"
+bash "$root/scripts/install-deps.sh" --sanitize
 flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 # Warnings are checked by the gcc build of scripts/test.sh; clang's differ, so no -Werror here.
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -17,8 +17,13 @@ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
 cmake --build "$build" --parallel
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
-export LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0"
-ctest --test-dir "$build" -L "unit|cli|fuzz" --output-on-failure --parallel 2
+# Mesa's software OpenGL driver (llvmpipe in swrast_dri.so) leaks 128 bytes at every
+# eglTerminate and is unloaded by it, so LeakSanitizer sees a leak from an unknown module that no
+# suppression can name. Kept loaded, the driver's memory stays reachable from its own globals and
+# stochtex's allocations are still checked (docs/reliability.md).
+mesa_driver=$(find /usr/lib -name swrast_dri.so -print -quit)
+LD_PRELOAD=$mesa_driver ctest --test-dir "$build" -L "unit|cli|fuzz" --output-on-failure \
+  --parallel 2
 for fuzzer in "$build"/tests/*_fuzzer; do
   name=$(basename "$fuzzer" _fuzzer)
   corpus=$(mktemp -d)
