@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "core/memory_budget.hpp"
 #include "model/model_data.hpp"
 #include "spectral/adsn.hpp"
 #include "stochtex/stochtex.hpp"
@@ -22,6 +23,7 @@ using AnalyzeFunction = MethodModel (*)(ImageView<const float>, const ParamValue
 struct MethodEntry {
   MethodInfo info;
   AnalyzeFunction analyze;
+  AnalysisMemory analysis_memory;
 };
 
 // The entry of one alternative of MethodModel: its name, the summary and parameter record of its
@@ -34,7 +36,8 @@ MethodEntry entry_of() {
   return {{Model::kMethodName, row.summary, infos},
           [](ImageView<const float> exemplar, const ParamValues& values, std::uint32_t seed) {
             return MethodModel(analyze(exemplar, params_from_values(row.fields, values), seed));
-          }};
+          },
+          row.analysis_memory};
 }
 
 template <class... Models>
@@ -208,10 +211,25 @@ std::string methods_json() {
   return list.dump(2);
 }
 
+std::uint64_t analysis_peak_bytes(std::string_view method, int width, int height, int channels) {
+  const AnalysisMemory& memory = find_entry(method).analysis_memory;
+  // (Negative sides, refused by validate_exemplar, count as none here.)
+  const auto pixels = static_cast<std::uint64_t>(std::max(width, 0)) *
+                      static_cast<std::uint64_t>(std::max(height, 0));
+  return (std::uint64_t{32} << 20) +
+         pixels * (memory.per_pixel +
+                   memory.per_channel * static_cast<std::uint64_t>(std::max(channels, 0)));
+}
+
 Model analyze(std::string_view method, ImageView<const float> exemplar, const ParamValues& params,
               std::uint32_t seed, const std::string& source_name) {
   const MethodEntry& entry = find_entry(method);
   ParamValues resolved = resolve_params(method, params);
+  check_memory_budget(
+      analysis_peak_bytes(method, exemplar.width, exemplar.height, exemplar.channels),
+      "analysing the " + std::to_string(exemplar.width) + "x" + std::to_string(exemplar.height) +
+          " exemplar '" + source_name + "' with method " + std::string(method),
+      "crop or downscale the exemplar");
   validate_exemplar(exemplar, source_name);
   // The methods' analyses do not know the file: their data errors are named here (§9).
   MethodModel model = [&] {

@@ -56,7 +56,13 @@ inline constexpr float kMaxExemplarValue = 1e6f;
 // `source_name`.
 void validate_exemplar(ImageView<const float> exemplar, const std::string& source_name);
 
+// About the peak memory, in bytes, of analysing a width x height exemplar of `channels` channels
+// with `method` (docs/design.md §9; the method's registry row, measured).
+std::uint64_t analysis_peak_bytes(std::string_view method, int width, int height, int channels);
+
 // Builds a model of the exemplar with the named method. `params` may be partial (defaults fill it).
+// Throws std::invalid_argument, before any work, when analysis_peak_bytes exceeds the memory
+// budget of 2 GiB.
 Model analyze(std::string_view method, ImageView<const float> exemplar,
               const ParamValues& params = {}, std::uint32_t seed = 0,
               const std::string& source_name = "exemplar");

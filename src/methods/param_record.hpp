@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string_view>
 #include <type_traits>
@@ -113,13 +114,25 @@ ParamValues param_values(const std::array<ParamField<P>, N>& fields, const P& pa
   return values;
 }
 
-// A method's row of the registry (src/registry.cpp): its one-line summary and its parameter
-// record. Each method's analysis.hpp returns it from `registry_row(std::type_identity<Model>)`,
-// which the registry finds by argument-dependent lookup for every alternative of MethodModel.
+// The peak memory of a method's analysis of a width x height exemplar with c channels, about
+// (per_pixel + per_channel * c) bytes a pixel above a fixed 32 MiB (docs/design.md §9): the
+// method's peak resident size, measured at 512² and 1024² (256² and 512² for gabor) in grey and
+// colour over its parameters, plus a margin; AnalysisMemoryTest checks the row against a
+// measurement.
+struct AnalysisMemory {
+  std::uint64_t per_pixel = 0;
+  std::uint64_t per_channel = 0;
+};
+
+// A method's row of the registry (src/registry.cpp): its one-line summary, its parameter record
+// and its analysis's memory. Each method's analysis.hpp returns it from
+// `registry_row(std::type_identity<Model>)`, which the registry finds by argument-dependent lookup
+// for every alternative of MethodModel.
 template <class P, std::size_t N>
 struct RegistryRow {
   std::string_view summary;
   const std::array<ParamField<P>, N>& fields;
+  AnalysisMemory analysis_memory;
 };
 
 }  // namespace stochtex

@@ -136,22 +136,23 @@ expect_file() {
 
 printf 'this is not an image\n' >"$inputs/x.png"
 head -c 2000 "$exemplar" >"$inputs/truncated.png"
-# Minimal 8-bit greyscale PNGs: a 1x1 image and a constant 16x16 one.
+# Minimal 8-bit PNGs: a 1x1 grey image, a constant 16x16 one, and a 2048x2048 colour ramp.
 python3 - "$inputs" <<'EOF'
 import struct, sys, zlib
 
-def png(path, width, height, value):
+def png(path, width, height, row, colour_type=0):
     def chunk(kind, data):
         return (struct.pack(">I", len(data)) + kind + data
                 + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF))
-    rows = b"".join(b"\x00" + bytes([value]) * width for _ in range(height))
     with open(path, "wb") as f:
         f.write(b"\x89PNG\r\n\x1a\n"
-                + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0))
-                + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+                + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress((b"\x00" + row) * height))
+                + chunk(b"IEND", b""))
 
-png(sys.argv[1] + "/one_pixel.png", 1, 1, 128)
-png(sys.argv[1] + "/constant.png", 16, 16, 128)
+png(sys.argv[1] + "/one_pixel.png", 1, 1, bytes([128]))
+png(sys.argv[1] + "/constant.png", 16, 16, bytes([128]) * 16)
+png(sys.argv[1] + "/ramp_2048.png", 2048, 2048, bytes(range(256)) * 24, colour_type=2)
 EOF
 # A 4x4 greyscale PFM (negative scale: little-endian) alternating 0.25 and 0.75, one pixel NaN.
 {
@@ -395,6 +396,9 @@ expect_error "constant PNG" 1 "constant.png" \
   "$stochtex" analyze "$inputs/constant.png" -m texton "${analyze_to[@]}"
 expect_error "PFM with a NaN" 1 "nan.pfm" \
   "$stochtex" analyze "$inputs/nan.pfm" -m texton "${analyze_to[@]}"
+# 2048² in colour: about 4.1 GB for gabor's analysis (docs/design.md §9), refused before any work.
+expect_error "analysis beyond the memory budget" 2 "ramp_2048.png" \
+  "$stochtex" analyze "$inputs/ramp_2048.png" -m gabor "${analyze_to[@]}"
 expect_error "synth of a truncated PNG" 1 "truncated.png" \
   "$stochtex" synth "$inputs/truncated.png" "${fast[@]}" -o "$out/synth.png" "${size[@]}"
 expect_error "gaussian of a constant PNG" 1 "constant.png" \

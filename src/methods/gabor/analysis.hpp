@@ -153,7 +153,8 @@ constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<Ga
   return {
       "Gabor noise by example (Galerne, Lagae, Lefebvre, Drettakis 2012): a sparse sum "
       "of bandwidth-quantised Gaussians fitted to the spectrum, ~2N kernels per sample",
-      kFields};
+      kFields,
+      {.per_pixel = 200, .per_channel = 260}};
 }
 
 }  // namespace stochtex::gabor

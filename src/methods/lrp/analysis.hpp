@@ -73,7 +73,8 @@ constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<Lr
   return {
       "local random-phase noise (Gilet et al. 2014): windowed cosines with random "
       "phases on a lattice, 9 (J + L) cosines and windows per channel and sample",
-      kFields};
+      kFields,
+      {.per_pixel = 36, .per_channel = 12}};
 }
 
 }  // namespace stochtex::lrp

@@ -18,7 +18,8 @@ constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<Te
   return {
       "texton noise (Galerne, Leclaire, Moisan 2017): a small texton summarising the "
       "spectrum, ~30 fetches per sample",
-      kFields};
+      kFields,
+      {.per_pixel = 28, .per_channel = 20}};
 }
 
 }  // namespace stochtex::texton

@@ -42,7 +42,8 @@ constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<Ti
   return {
       "histogram-preserving tiling and blending (Heitz, Neyret 2018): 3 patches of the "
       "Gaussianised exemplar and one look-up per sample",
-      kFields};
+      kFields,
+      {.per_pixel = 40, .per_channel = 25}};
 }
 
 }  // namespace stochtex::tiling
