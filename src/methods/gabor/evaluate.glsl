@@ -3,9 +3,8 @@
 // GaborModel::evaluate (model.cpp), made from the same source (glsl_precision_variant) and run by
 // `render --backend gl --gl-filter hardware`. Same hash, streams, draws and maths as the C++ and
 // the double variant; what is float here is the filter maths, the positions and the cell
-// arithmetic, so the CPU and GPU agree in distribution and to about 1e-3 of the image's standard
-// deviation, not to the rounding of exp and cos (docs/methods/gabor.md gives the measured
-// differences). Requires random.glsl, then the model's constants (gabor_glsl() in gl_data.cpp:
+// arithmetic, so the CPU and GPU agree to about 1e-5 of the image's standard deviation rather than
+// to the rounding of exp and cos (tests/gl/gabor_gl_test.cpp, docs/methods/gabor.md). Requires random.glsl, then the model's constants (gabor_glsl() in gl_data.cpp:
 // GABOR_CHANNELS, GABOR_GRIDS, GABOR_GRID_ARRAY, GABOR_DATA_WIDTH, GABOR_MIXING, GABOR_MEAN and the
 // GABOR_GRID_* arrays, one entry per Poisson grid) and `uniform sampler2D stochtex_gabor_data`:
 // texel i < GABOR_GAUSSIANS is Gaussian i in grid order (frequency x, frequency y, alias
