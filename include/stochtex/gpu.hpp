@@ -22,8 +22,10 @@ namespace stochtex {
 //   hardware: texton (order 1) and tiling read their pyramids as mip-mapped GL textures with
 //             textureGrad (trilinear, anisotropic up to 16x where the driver has it), as the
 //             papers' shaders do: faster on GPUs, equal to the CPU in distribution (mean,
-//             variance; tested), not pixel for pixel. lrp, gabor and other texton orders filter
-//             analytically and render as `exact`.
+//             variance; tested), not pixel for pixel. gabor runs its float-only GLSL (no
+//             doubles: positions split per grid into a 64-bit cell and a float offset), within
+//             about 1e-3 of the image's standard deviation of `exact` (tested). lrp and other
+//             texton orders filter analytically and render as `exact`.
 enum class GlFilter { exact, hardware };
 
 struct GpuRenderOptions {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <span>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <variant>
@@ -47,6 +48,20 @@ inline std::string glsl_uint_hex(std::uint32_t value) {
   return text.data();
 }
 
+// Which arithmetic a method's GLSL keeps where it matches the CPU to the last bit: `doubles`
+// (OpenGL 4.0+, the `--gl-filter exact` twins) or `floats` only (the `--gl-filter hardware` path
+// and the targets without doubles: GLSL ES 3.00 for WebGL2, most engines' pixel shaders, Metal).
+enum class GlslPrecision { doubles, floats };
+
+// One GLSL source written for both precisions, as compiled for `precision`. Blocks
+//   #ifdef STOCHTEX_FLOAT / (float lines) / #else / (double lines) / #endif
+// (not nested, `#else` optional) keep the float lines for `floats` and the double lines for
+// `doubles`, without the directive lines; for `floats` the code outside `//` comments also
+// becomes float-only: the types double and dvecN become float and vecN, double literals (`0.5lf`)
+// float ones. So the double text is unchanged where both precisions share it, and the float text
+// is the same maths, written once. Throws std::logic_error on unbalanced blocks.
+std::string glsl_precision_variant(std::string_view source, GlslPrecision precision);
+
 // A constant that C++ and a GLSL twin share: written once, in C++, and declared in GLSL from the
 // C++ value by glsl_constants (GLSL type from the value's: int, uint, float or double).
 struct GlslConstant {
@@ -54,17 +69,24 @@ struct GlslConstant {
   std::variant<int, std::uint32_t, float, double> value;
 };
 
-// "const <type> <name> = <value>;" per constant, every value reading back exactly.
-inline std::string glsl_constants(std::span<const GlslConstant> constants) {
+// "const <type> <name> = <value>;" per constant, every value reading back exactly; with
+// GlslPrecision::floats a double constant is declared as the float nearest it (as the C++ float
+// path rounds it, static_cast<float>).
+inline std::string glsl_constants(std::span<const GlslConstant> constants,
+                                  GlslPrecision precision = GlslPrecision::doubles) {
   std::string text;
   for (const GlslConstant& constant : constants) {
     const auto [type, value] = std::visit(
-        [](auto v) -> std::pair<const char*, std::string> {
+        [precision](auto v) -> std::pair<const char*, std::string> {
           using T = decltype(v);
           if constexpr (std::is_same_v<T, int>) return {"int", glsl_int(v)};
           if constexpr (std::is_same_v<T, std::uint32_t>) return {"uint", glsl_uint_hex(v)};
           if constexpr (std::is_same_v<T, float>) return {"float", glsl_float(v)};
-          if constexpr (std::is_same_v<T, double>) return {"double", glsl_double(v)};
+          if constexpr (std::is_same_v<T, double>) {
+            if (precision == GlslPrecision::floats)
+              return {"float", glsl_float(static_cast<float>(v))};
+            return {"double", glsl_double(v)};
+          }
         },
         constant.value);
     text += "const " + std::string(type) + " " + constant.name + " = " + value + ";\n";

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <iostream>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -99,6 +100,34 @@ void main() {
     }
   }
   EXPECT_GT(checked, 20u);
+}
+
+TEST(GlTwin, PrecisionVariantsOfOneSource) {
+  // Shared lines: unchanged for doubles, float-only code (comments untouched) for floats; the
+  // STOCHTEX_FLOAT blocks give each precision its own lines, without the directives.
+  const std::string source =
+      "precise double x = 0.5lf * y + 1e-3lf; // a double\n"
+      "dvec2 p = dvec2(x, 2.0lf); uint k = 0x0000ffu; float half_x = 3.0;\n"
+      "  #ifdef STOCHTEX_FLOAT\n"
+      "float only;\n"
+      "#else\n"
+      "double only;\n"
+      "#endif\n"
+      "#ifdef STOCHTEX_FLOAT\n"
+      "float extra;\n"
+      "#endif\n";
+  EXPECT_EQ(gl::glsl_precision_variant(source, gl::GlslPrecision::doubles),
+            "precise double x = 0.5lf * y + 1e-3lf; // a double\n"
+            "dvec2 p = dvec2(x, 2.0lf); uint k = 0x0000ffu; float half_x = 3.0;\n"
+            "double only;\n");
+  EXPECT_EQ(gl::glsl_precision_variant(source, gl::GlslPrecision::floats),
+            "precise float x = 0.5 * y + 1e-3; // a double\n"
+            "vec2 p = vec2(x, 2.0); uint k = 0x0000ffu; float half_x = 3.0;\n"
+            "float only;\n"
+            "float extra;\n");
+  EXPECT_THROW(
+      gl::glsl_precision_variant("#ifdef STOCHTEX_FLOAT\nfloat x;\n", gl::GlslPrecision::floats),
+      std::logic_error);
 }
 
 TEST(GlTwin, EveryRegisteredMethodRendersOnTheGlBackend) {

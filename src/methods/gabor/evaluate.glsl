@@ -1,3 +1,21 @@
+#ifdef STOCHTEX_FLOAT
+// Gabor noise by example in GLSL without doubles: the float-only variant of the GLSL twin of
+// GaborModel::evaluate (model.cpp), made from the same source (glsl_precision_variant) and run by
+// `render --backend gl --gl-filter hardware`. Same hash, streams, draws and maths as the C++ and
+// the double variant; what is float here is the filter maths, the positions and the cell
+// arithmetic, so the CPU and GPU agree to about 1e-5 of the image's standard deviation rather than
+// to the rounding of exp and cos (tests/gl/gabor_gl_test.cpp, docs/methods/gabor.md). Requires random.glsl, then the model's constants (gabor_glsl() in gl_data.cpp:
+// GABOR_CHANNELS, GABOR_GRIDS, GABOR_GRID_ARRAY, GABOR_DATA_WIDTH, GABOR_MIXING, GABOR_MEAN and the
+// GABOR_GRID_* arrays, one entry per Poisson grid) and `uniform sampler2D stochtex_gabor_data`:
+// texel i < GABOR_GAUSSIANS is Gaussian i in grid order (frequency x, frequency y, alias
+// probability, alias index relative to its grid); grid g's Poisson CDF (96 floats) fills the 24
+// texels from GABOR_GRID_CDF[g]. Texels are read with texelFetch (exact floats).
+//
+// Positions come split as on the CPU: per grid, a 64-bit cell index of the grid's level-0 cells
+// and a float offset from that cell's corner (gabor_noise); the cells the sum visits are then
+// small integers relative to it, and their hash keys the low 32 bits of the sum, so a position
+// 1e7 pixels out is as precise as one near 0. `precise` keeps the compiler from fusing a * b + c.
+#else
 // Gabor noise by example in GLSL: the twin of GaborModel::evaluate (model.cpp), same hash, same
 // streams, same draws (Poisson counts, positions, alias column and coin, phase) in the same order,
 // same constants and the same arithmetic statement for statement, so the CPU and GPU agree to
@@ -13,6 +31,7 @@
 // kernel's truncation test (envelope < pi, a jump of e^-pi of the kernel) decides the same way.
 // `precise` keeps the compiler from fusing a * b + c into an fma the C++ does not use.
 
+#endif
 // GABOR_PI, GABOR_PI_F, GABOR_TWO_PI_F, GABOR_PIXEL_VARIANCE, GABOR_NEGLIGIBLE_ATTENUATION and
 // GABOR_MAX_LEVEL_RATIO (2^kMaxLevels) are the C++ constants of model.hpp, declared before this
 // file from Twin::kConstants (gl_twin.hpp).
@@ -92,9 +111,17 @@ GaborGridFilter gabor_grid_filter(int g, dvec2 dpdx, dvec2 dpdy) {
     f00 = pp * i00;
     f01 = pp * i01;
     f11 = pp * i11;
+#ifdef STOCHTEX_FLOAT
+    // D = P - P S^-1 P = P S^-1 Q: the same matrix without the cancellation of P - P S^-1 P,
+    // which in float loses D where Q << P (narrow bands seen through small footprints).
+    d00 = pp * (i00 * q00 + i01 * q01);
+    d01 = pp * (i00 * q01 + i01 * q11);
+    d11 = pp * (i01 * q01 + i11 * q11);
+#else
     d00 = pp - pp * pp * i00;
     d01 = -pp * pp * i01;
     d11 = pp - pp * pp * i11;
+#endif
     gain = pp / sqrt(det);
     precise double half_trace = 0.5lf * (s00 + s11);
     precise double spread = sqrt(0.25lf * (s00 - s11) * (s00 - s11) + s01 * s01);
@@ -157,14 +184,47 @@ vec4 gabor_draw_alias(int g, inout CounterRng rng) {
   return coin < entry.z ? entry : gabor_texel(GABOR_GRID_FIRST[g] + int(entry.w));
 }
 
+#ifdef STOCHTEX_FLOAT
+// The low 32 bits (two's complement) of a small integral float: a cell relative to the origin's.
+uint gabor_low_bits(float cell) {
+  return uint(int(cell));
+}
+
+// The caller's cell, a 64-bit index (low, high words) of level-0 cells `cell_size` wide, on the
+// lattice of level `level` (cells 2^level times as wide): the low 32 bits of the level's cell
+// holding it, floor(cell / 2^level), in `origin`, and the offset of the level-0 cell's corner from
+// that cell's corner, (cell mod 2^level) cell_size, returned. Integer arithmetic, as the CPU's
+// floor(p / (cell_size 2^level)) on 64-bit cells.
+float gabor_level_origin(uint low, uint high, int level, float cell_size, out uint origin) {
+  if (level == 0) {
+    origin = low;
+    return 0.0;
+  }
+  if (level < 32) {
+    origin = (low >> uint(level)) | (high << uint(32 - level));
+    return float(low & ((1u << uint(level)) - 1u)) * cell_size;
+  }
+  uint shift = uint(level - 32);
+  origin = uint(int(high) >> shift);
+  return (float(high & ((1u << shift) - 1u)) * 4294967296.0 + float(low)) * cell_size;
+}
+#else
 // The low 32 bits (two's complement) of an integral double, as cell_key takes int64 cells.
 uint gabor_low_bits(double cell) {
   return uint(cell - 4294967296.0lf * floor(cell / 4294967296.0lf));
 }
+#endif
 
+#ifdef STOCHTEX_FLOAT
+// The noise of grid g at p (exemplar pixels from the corner of the level's cell whose index has
+// the low bits `origin`) for the grid's filter f, before the amplitude: the sum over the cells
+// meeting p + [-reach, reach]^2 of their truncated kernels.
+float gabor_grid_sum(int g, vec2 p, uvec2 origin, GaborGridFilter f, uint level_seed) {
+#else
 // The noise of grid g at p (exemplar pixels, double) for the grid's filter f, before the
 // amplitude: the sum over the cells meeting p + [-reach, reach]^2 of their truncated kernels.
 float gabor_grid_sum(int g, dvec2 p, GaborGridFilter f, uint level_seed) {
+#endif
   precise float sum = 0.0;
   float cell_size_f = float(f.cell_size);
   double first_x = floor((p.x - f.reach) / f.cell_size);
@@ -181,8 +241,13 @@ float gabor_grid_sum(int g, dvec2 p, GaborGridFilter f, uint level_seed) {
       double cell_x = first_x + double(i);
       precise double offset_x_exact = p.x - cell_x * f.cell_size;
       float offset_x = float(offset_x_exact);
+#ifdef STOCHTEX_FLOAT
+      uint key_x = origin.x + gabor_low_bits(cell_x);
+      uint key_y = origin.y + gabor_low_bits(cell_y);
+#else
       uint key_x = gabor_low_bits(cell_x);
       uint key_y = gabor_low_bits(cell_y);
+#endif
       CounterRng point_rng = CounterRng(cell_key(key_x, key_y, level_seed, STREAM_POINTS), 0u);
       CounterRng kernel_rng = CounterRng(cell_key(key_x, key_y, level_seed, STREAM_KERNELS), 0u);
       uint impulses = gabor_poisson_count(g, point_rng);
@@ -212,15 +277,34 @@ float gabor_grid_sum(int g, dvec2 p, GaborGridFilter f, uint level_seed) {
   return sum;
 }
 
+#ifdef STOCHTEX_FLOAT
+// Bandwidth-quantised Gabor noise (eq. 5) with footprint (dpdx, dpdy) (zero = point sample), mixed
+// back to the exemplar's colours: the value of GaborModel::evaluate at the position that is, for
+// every grid g, the corner of its level-0 cell cell[g] (64-bit indices as (x low, x high, y low,
+// y high) words) plus offset[g] exemplar pixels. The caller splits its position so, as the CPU
+// does (floor(p / GABOR_GRID_CELL_SIZE[g]) and p minus that cell's corner, in double or integers);
+// any cell works, the nearest keeps the offsets small and precise.
+vec4 gabor_noise(uvec4 cell[GABOR_GRID_ARRAY], vec2 offset[GABOR_GRID_ARRAY], vec2 dpdx, vec2 dpdy,
+                 uint seed) {
+#else
 // Bandwidth-quantised Gabor noise (eq. 5) at p with footprint (dpdx, dpdy) (zero = point sample),
 // mixed back to the exemplar's colours: the value of GaborModel::evaluate.
 vec4 gabor_noise(dvec2 p, dvec2 dpdx, dvec2 dpdy, uint seed) {
+#endif
   precise vec4 noise = vec4(0.0);
   for (int g = 0; g < GABOR_GRIDS; ++g) {
     GaborGridFilter f = gabor_grid_filter(g, dpdx, dpdy);
     if (f.skip) continue;
     uint level_seed = cell_key(uint(g), uint(f.level), seed, STREAM_KERNELS);
+#ifdef STOCHTEX_FLOAT
+    uvec2 origin;
+    vec2 p = offset[g];
+    p.x += gabor_level_origin(cell[g].x, cell[g].y, f.level, GABOR_GRID_CELL_SIZE[g], origin.x);
+    p.y += gabor_level_origin(cell[g].z, cell[g].w, f.level, GABOR_GRID_CELL_SIZE[g], origin.y);
+    precise float grid_noise = f.amplitude * gabor_grid_sum(g, p, origin, f, level_seed);
+#else
     precise float grid_noise = f.amplitude * gabor_grid_sum(g, p, f, level_seed);
+#endif
     noise[GABOR_GRID_CHANNEL[g]] += grid_noise;
   }
   // colour = mean + mixing * noise (section 7).
@@ -231,8 +315,24 @@ vec4 gabor_noise(dvec2 p, dvec2 dpdx, dvec2 dpdy, uint seed) {
   return colour;
 }
 
+#ifdef STOCHTEX_FLOAT
+// The engine-facing entry point: p in exemplar pixels, its screen derivatives (dFdx(p), dFdy(p)
+// in a fragment shader; zero = no filtering) and a seed. Keep |p| below ~1e4 for full precision;
+// further out, split the position per grid and call gabor_noise (gl_pass.cpp does it for
+// `stochtex render`).
+vec4 stochtex_gabor(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {
+  uvec4 cell[GABOR_GRID_ARRAY];
+  vec2 offset[GABOR_GRID_ARRAY];
+  for (int g = 0; g < GABOR_GRID_ARRAY; ++g) {
+    cell[g] = uvec4(0u);
+    offset[g] = p;
+  }
+  return gabor_noise(cell, offset, dpdx, dpdy, seed);
+}
+#else
 // The engine-facing entry point (`stochtex export-shader`): p in exemplar pixels, its screen
 // derivatives (dFdx(p), dFdy(p) in a fragment shader; zero = no filtering) and a seed.
 vec4 stochtex_gabor(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {
   return gabor_noise(dvec2(p), dvec2(dpdx), dvec2(dpdy), seed);
 }
+#endif

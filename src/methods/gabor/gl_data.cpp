@@ -11,13 +11,14 @@
 
 namespace stochtex::gl {
 
-GaborGlsl gabor_glsl(const gabor::GaborModel& model) {
+GaborGlsl gabor_glsl(const gabor::GaborModel& model, GlslPrecision precision) {
   const auto& grids = model.grids();
   const std::span<const float> probability = model.alias_probability();
   const std::span<const std::uint32_t> alias = model.alias_index();
   const std::size_t gaussians = probability.size();
   const std::size_t texels = gaussians + grids.size() * GaborGlsl::kCdfTexels;
   GaborGlsl glsl;
+  glsl.precision = precision;
   glsl.data = ImageF(
       GaborGlsl::kDataWidth,
       std::max(1, static_cast<int>((texels + GaborGlsl::kDataWidth - 1) / GaborGlsl::kDataWidth)),
@@ -77,9 +78,19 @@ GaborGlsl gabor_glsl(const gabor::GaborModel& model) {
       glsl_array("float", "GABOR_GRID_AMPLITUDE", std::span<const float>(amplitude), glsl_float);
   text += glsl_array("float", "GABOR_GRID_MIN_FREQUENCY_SQUARED",
                      std::span<const float>(min_frequency_squared), glsl_float);
-  text += glsl_array("double", "GABOR_GRID_RADIUS", std::span<const double>(radius), glsl_double);
-  text +=
-      glsl_array("double", "GABOR_GRID_CELL_SIZE", std::span<const double>(cell_size), glsl_double);
+  if (precision == GlslPrecision::doubles) {
+    text += glsl_array("double", "GABOR_GRID_RADIUS", std::span<const double>(radius), glsl_double);
+    text += glsl_array("double", "GABOR_GRID_CELL_SIZE", std::span<const double>(cell_size),
+                       glsl_double);
+  } else {
+    // The floats the C++ rounds them to (cell_size_f in GaborModel::evaluate), and the size of
+    // gabor_noise's per-grid arrays (never 0).
+    const auto to_float = [](double value) { return glsl_float(static_cast<float>(value)); };
+    text += glsl_array("float", "GABOR_GRID_RADIUS", std::span<const double>(radius), to_float);
+    text +=
+        glsl_array("float", "GABOR_GRID_CELL_SIZE", std::span<const double>(cell_size), to_float);
+    constant("int", "GABOR_GRID_ARRAY", glsl_int(std::max(1, static_cast<int>(grids.size()))));
+  }
   text +=
       glsl_array("uint", "GABOR_GRID_POISSON_CHUNKS", std::span<const unsigned>(chunks), glsl_uint);
   text += glsl_array("int", "GABOR_GRID_CDF", std::span<const int>(cdf_texel), glsl_int);
@@ -87,8 +98,9 @@ GaborGlsl gabor_glsl(const gabor::GaborModel& model) {
 }
 
 std::string gabor_library_source(const GaborGlsl& glsl) {
-  return random_source() + glsl_constants(Twin<gabor::GaborModel>::kConstants) + glsl.constants +
-         "uniform sampler2D stochtex_gabor_data;\n" + shader_source("methods/gabor/evaluate.glsl");
+  return random_source() + glsl_constants(Twin<gabor::GaborModel>::kConstants, glsl.precision) +
+         glsl.constants + "uniform sampler2D stochtex_gabor_data;\n" +
+         glsl_precision_variant(shader_source("methods/gabor/evaluate.glsl"), glsl.precision);
 }
 
 ShaderExport Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model) {

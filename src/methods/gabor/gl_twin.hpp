@@ -21,6 +21,7 @@ struct GaborGlsl {
   // Texels of one grid's Poisson CDF (PoissonSampler::kTableSize floats, 4 per texel).
   static constexpr int kCdfTexels = PoissonSampler::kTableSize / 4;
 
+  GlslPrecision precision = GlslPrecision::doubles;
   std::string constants;  // GLSL const declarations, GABOR_* (exact float and double literals)
   // 4 channels, kDataWidth wide, read in row-major texel order: texel i < gaussians is Gaussian i
   // of the grid-sorted model (frequency x, frequency y, alias probability, alias index within
@@ -28,9 +29,14 @@ struct GaborGlsl {
   ImageF data;
 };
 
-GaborGlsl gabor_glsl(const gabor::GaborModel& model);
+// The model's data and constants for the GLSL of `precision`: with GlslPrecision::floats the
+// grids' radius and cell size are the floats the C++ rounds them to, and GABOR_GRID_ARRAY sizes
+// gabor_noise's per-grid arrays.
+GaborGlsl gabor_glsl(const gabor::GaborModel& model,
+                     GlslPrecision precision = GlslPrecision::doubles);
 
-// random.glsl, kConstants, the model's constants, the data sampler and gabor evaluate.glsl: all but
+// random.glsl, kConstants, the model's constants, the data sampler and gabor evaluate.glsl, all in
+// glsl.precision (the float one is the `--gl-filter hardware` library, without doubles): all but
 // `#version`.
 std::string gabor_library_source(const GaborGlsl& glsl);
 

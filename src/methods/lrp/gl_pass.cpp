@@ -28,7 +28,9 @@ void put_nearest_node(double u, double v, std::size_t i, std::vector<GLuint>& no
 }
 
 // The LRP evaluator's GPU state: the program (compiled with the model's constants) and the
-// frequency and sub-stratum tables.
+// frequency and sub-stratum tables, in the smallest exact format: tightly packed std430 arrays of
+// the C++ floats and uint32 counts (no padding channel, no integer stored as a float). The GLSL
+// has no doubles: positions come split into a lattice node and a float offset (prepare).
 class LrpPass final : public Pass {
  public:
   explicit LrpPass(const lrp::LrpModel& model)
