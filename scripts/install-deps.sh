@@ -11,6 +11,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
+  glslang-dev spirv-tools libspirv-cross-c-shared-dev
   python3
 )
 if [[ ${1:-} == --sanitize ]]; then

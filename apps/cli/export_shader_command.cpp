@@ -1,11 +1,16 @@
-// `stochtex export-shader MODEL -o DIR`: a self-contained GLSL file, the model's data images and a
-// README for engines (include/stochtex/gpu.hpp).
+// `stochtex export-shader MODEL -o DIR [--language glsl|essl|hlsl|msl]`: a self-contained shader
+// library, its wrappers, the model's data images and a README for engines
+// (include/stochtex/gpu.hpp).
 
 #include <fmt/core.h>
 
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <system_error>
+#include <vector>
 
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
@@ -18,21 +23,45 @@
 namespace stochtex::cli {
 namespace {
 
-void export_shader_files([[maybe_unused]] const std::string& model_path,
-                         [[maybe_unused]] const std::string& output) {
 #ifdef STOCHTEX_WITH_GL
-  const ShaderExport files = export_shader(load_model(model_path));
+// The --language names, as ShaderLanguage.
+const std::map<std::string, ShaderLanguage> kLanguages = {{"glsl", ShaderLanguage::glsl},
+                                                          {"essl", ShaderLanguage::essl},
+                                                          {"hlsl", ShaderLanguage::hlsl},
+                                                          {"msl", ShaderLanguage::msl}};
+#endif
+
+void export_shader_files([[maybe_unused]] const std::string& model_path,
+                         [[maybe_unused]] const std::string& output,
+                         [[maybe_unused]] const std::string& language) {
+#ifdef STOCHTEX_WITH_GL
+  ShaderExportOptions options;
+  options.language = kLanguages.at(language);
+  ShaderExport files;
+  try {
+    files = export_shader(load_model(model_path), options);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("{}: {}", model_path, e.what()));
+  }
+  // Every file's place is checked before the first is written, so that a folder that cannot take
+  // one of them gets none (each file is itself written atomically, docs/design.md section 6).
   const std::filesystem::path folder(output);
   std::error_code error;
   std::filesystem::create_directories(folder, error);
   if (error)
     throw Error(ErrorCode::io,
                 fmt::format("cannot create the folder '{}': {}", output, error.message()));
-  write_file_atomically(folder / files.glsl_file_name, files.glsl);
+  std::vector<std::filesystem::path> targets = {folder / files.shader.name, folder / "README.md"};
+  for (const TextFile& wrapper : files.wrappers) targets.push_back(folder / wrapper.name);
+  for (const NamedImage& image : files.images) targets.push_back(folder / (image.name + ".exr"));
+  for (const std::filesystem::path& target : targets) check_output_target(target);
+  write_file_atomically(folder / files.shader.name, files.shader.text);
+  for (const TextFile& wrapper : files.wrappers)
+    write_file_atomically(folder / wrapper.name, wrapper.text);
   for (const auto& [name, image] : files.images)
     write_image(folder / (name + ".exr"), image.view());
   write_file_atomically(folder / "README.md", files.readme);
-  fmt::print(stderr, "wrote {} ({}, {} image(s), README.md)\n", output, files.glsl_file_name,
+  fmt::print(stderr, "wrote {} ({}, {} image(s), README.md)\n", output, files.shader.name,
              files.images.size());
 #else
   throw Error(ErrorCode::io,
@@ -47,6 +76,7 @@ Command add_export_shader_command(CLI::App& app) {
   struct Options {
     std::string model;
     std::string output;
+    std::string language = "glsl";
   };
   auto options = std::make_shared<Options>();
   auto* command = app.add_subcommand("export-shader",
@@ -54,8 +84,14 @@ Command add_export_shader_command(CLI::App& app) {
   command->add_option("MODEL", options->model, "model file (.stx)")->required();
   command->add_option("-o,--output", options->output, "folder to write (created if missing)")
       ->required();
+  command
+      ->add_option("--language", options->language,
+                   "glsl (GLSL 4.50), essl (GLSL ES 3.00, WebGL2), hlsl (Shader Model 5, with a "
+                   "Unity Shader Graph function) or msl (Metal)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"glsl", "essl", "hlsl", "msl"}));
   return {command, [options] {
-            export_shader_files(options->model, options->output);
+            export_shader_files(options->model, options->output, options->language);
             return 0;
           }};
 }

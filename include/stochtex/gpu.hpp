@@ -64,18 +64,40 @@ class GlRenderer {
 void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
                const GpuRenderOptions& options = {});
 
-// `stochtex export-shader`: a self-contained GLSL source exposing
+// The language of an exported shader (`export-shader --language`):
+//   glsl: GLSL 4.50 (OpenGL 4.5), the method's own source. The default.
+//   essl: GLSL ES 3.00 (WebGL2, OpenGL ES 3.0);
+//   hlsl: HLSL Shader Model 5 (Direct3D 11, Unity, Unreal);
+//   msl:  Metal Shading Language 1.2.
+// essl, hlsl and msl are cross-compiled from the GLSL through SPIR-V (glslang, SPIRV-Cross).
+enum class ShaderLanguage { glsl, essl, hlsl, msl };
+
+struct ShaderExportOptions {
+  ShaderLanguage language = ShaderLanguage::glsl;
+};
+
+// A text file of an export: its name in the export folder and its contents.
+struct TextFile {
+  std::string name;
+  std::string text;
+};
+
+// `stochtex export-shader`: a self-contained shader library exposing, in every language,
 //   vec4 stochtex_<method>(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)
-// (p in exemplar pixels, dpdx/dpdy its screen derivatives, zero = no filtering), the model's
-// data as images to bind as textures, and a README showing how. Needs no GL context.
+// (float2/float4 in HLSL and MSL; p in exemplar pixels, dpdx/dpdy its screen derivatives, zero =
+// no filtering), the model's data as images to bind as textures, and a README showing how. Needs
+// no GL context.
 struct ShaderExport {
-  std::string glsl_file_name;
-  std::string glsl;
-  // Write each as <name>.exr (float32, exact); it binds to `uniform sampler2D stochtex_<name>`.
+  TextFile shader;  // stochtex_<method>.glsl, .essl, .hlsl or .metal
+  // Engine-shaped wrappers of `shader` (HLSL: a Unity Shader Graph custom function file).
+  std::vector<TextFile> wrappers;
+  // Write each as <name>.exr (float32, exact); it binds to the texture `stochtex_<name>`.
   std::vector<NamedImage> images;
   std::string readme;
 };
-ShaderExport export_shader(const Model& model);
+// Throws std::invalid_argument, one sentence, when the model's shader uses what the language
+// lacks (the gabor shader's double precision in GLSL ES, HLSL and Metal).
+ShaderExport export_shader(const Model& model, const ShaderExportOptions& options = {});
 
 // "OpenGL <version> on <renderer>" of the context render_gl uses (creates one).
 std::string gl_device_description();

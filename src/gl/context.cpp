@@ -13,12 +13,15 @@
 namespace stochtex::gl {
 namespace {
 
-[[noreturn]] void fail(const std::string& problem) {
+[[noreturn]] void fail(Api api, const std::string& problem) {
+  if (api == Api::gles30)
+    throw Error(ErrorCode::io, "cannot create an OpenGL ES 3.0 context: " + problem +
+                                   "; install the Mesa or NVIDIA EGL drivers");
   throw Error(ErrorCode::io, "cannot create an OpenGL 4.5 context for --backend gl: " + problem +
                                  "; install the Mesa or NVIDIA EGL drivers, or use --backend cpu");
 }
 
-EGLDisplay open_display() {
+EGLDisplay open_display(Api api) {
   const auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
       eglGetProcAddress("eglGetPlatformDisplayEXT"));
   const auto query_devices =
@@ -40,7 +43,7 @@ EGLDisplay open_display() {
   }
   EGLDisplay display = eglGetDisplay(EGL_DEFAULT_DISPLAY);
   if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr)) return display;
-  fail("no EGL display could be opened");
+  fail(api, "no EGL display could be opened");
 }
 
 }  // namespace
@@ -50,14 +53,16 @@ struct Context::State {
   EGLContext context = EGL_NO_CONTEXT;
 };
 
-Context::Context() : state_(new State) {
-  state_->display = open_display();
-  if (!eglBindAPI(EGL_OPENGL_API)) {
+Context::Context(Api api) : state_(new State) {
+  const bool es = api == Api::gles30;
+  state_->display = open_display(api);
+  if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) {
     eglTerminate(state_->display);
-    fail("EGL has no desktop OpenGL API");
+    fail(api, es ? "EGL has no OpenGL ES API" : "EGL has no desktop OpenGL API");
   }
-  const std::array<EGLint, 5> config_attributes = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                                                   EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+  const std::array<EGLint, 5> config_attributes = {
+      EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
+      es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT, EGL_NONE};
   EGLConfig config = nullptr;
   EGLint configs = 0;
   if (!eglChooseConfig(state_->display, config_attributes.data(), &config, 1, &configs))
@@ -69,13 +74,17 @@ Context::Context() : state_(new State) {
                                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                                     EGL_NONE};
-  state_->context = eglCreateContext(state_->display, configs > 0 ? config : nullptr,
-                                     EGL_NO_CONTEXT, context_attributes.data());
+  const std::array<EGLint, 5> es_attributes = {EGL_CONTEXT_MAJOR_VERSION, 3,
+                                               EGL_CONTEXT_MINOR_VERSION, 0, EGL_NONE};
+  state_->context =
+      eglCreateContext(state_->display, configs > 0 ? config : nullptr, EGL_NO_CONTEXT,
+                       es ? es_attributes.data() : context_attributes.data());
   if (state_->context == EGL_NO_CONTEXT ||
       !eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, state_->context)) {
     if (state_->context != EGL_NO_CONTEXT) eglDestroyContext(state_->display, state_->context);
     eglTerminate(state_->display);
-    fail("the driver offers no OpenGL 4.5 core context without a surface");
+    fail(api, es ? "the driver offers no OpenGL ES 3.0 context without a surface"
+                 : "the driver offers no OpenGL 4.5 core context without a surface");
   }
 }
 

@@ -2,16 +2,19 @@
 // A headless OpenGL 4.5 core context through EGL (no window, no display server): the EGL device
 // platform (NVIDIA and Mesa), then Mesa's surfaceless platform (llvmpipe on machines without a
 // GPU), then the default display. One context per thread that uses it; made current on creation.
+// An OpenGL ES 3.0 context the same way runs exported GLSL ES shaders (tests/gl).
 
 #include <memory>
 #include <string>
 
 namespace stochtex::gl {
 
+enum class Api { gl45, gles30 };
+
 class Context {
  public:
-  // Throws stochtex::Error(io) with one sentence saying why no OpenGL 4.5 context could be made.
-  Context();
+  // Throws stochtex::Error(io) with one sentence saying why no such context could be made.
+  explicit Context(Api api = Api::gl45);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;

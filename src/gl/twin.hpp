@@ -6,7 +6,7 @@
 //   template <> struct Twin<m::MModel> {
 //     static constexpr std::array<GlslConstant, N> kConstants;  // C++ constants its GLSL shares
 //     static std::unique_ptr<Pass> pass(const m::MModel&);       // gl_pass.cpp: GL state
-//     static ShaderExport shader(const m::MModel&);              // gl_data.cpp: export-shader
+//     static ExportParts shader(const m::MModel&);               // gl_data.cpp: export-shader
 //   };
 //
 // The renderer and the exporter visit stochtex::MethodModel (model/model_data.hpp) with it, so a
@@ -38,6 +38,18 @@ class Pass {
                         const Buffer& result) const = 0;
 };
 
+// What a method's export differs in; export_shader() (export_shader.cpp) writes the rest (the
+// file names, header comments, the language and the README) the same for every method.
+struct ExportParts {
+  std::string_view method;  // the model's kMethodName: the entry point is stochtex_<method>
+  std::string title;        // the README's, e.g. "texton noise"
+  std::string what;         // the GLSL file's first line, e.g. "Texton noise (3 channels, ...)"
+  std::string library;      // the method's GLSL library: all but `#version`
+  // The data, each bound to `uniform sampler2D stochtex_<name>` (written as <name>.exr).
+  std::vector<NamedImage> images;
+  std::string notes;  // the README's method notes
+};
+
 // Declared only: the specialisations in the method folders are the twins.
 template <typename MethodModel>
 struct Twin;
@@ -46,7 +58,7 @@ template <typename MethodModel>
 concept HasTwin = requires(const MethodModel& model) {
   {std::span<const GlslConstant>(Twin<MethodModel>::kConstants)};
   { Twin<MethodModel>::pass(model) } -> std::same_as<std::unique_ptr<Pass>>;
-  { Twin<MethodModel>::shader(model) } -> std::same_as<ShaderExport>;
+  { Twin<MethodModel>::shader(model) } -> std::same_as<ExportParts>;
 };
 
 // Whether every alternative of a std::variant of method models has a twin.
@@ -83,18 +95,5 @@ std::vector<float> to_rgba(const float* values, std::size_t texels, int channels
 
 // An RGBA32F texture of `image` (4 channels), read with texelFetch.
 GLuint data_texture(const ImageF& image);
-
-// What a method's export differs in; assemble_export() writes the rest (file name
-// stochtex_<method>.glsl, its header comment, the README) the same for every method.
-struct ExportParts {
-  std::string_view method;  // the model's kMethodName: the entry point is stochtex_<method>
-  std::string title;        // the README's, e.g. "texton noise"
-  std::string what;         // the GLSL file's first line, e.g. "Texton noise (3 channels, ...)"
-  std::string library;      // the method's GLSL library: all but `#version`
-  // The data, each bound to `uniform sampler2D stochtex_<name>` (written as <name>.exr).
-  std::vector<NamedImage> images;
-  std::string notes;  // the README's method notes
-};
-ShaderExport assemble_export(ExportParts parts);
 
 }  // namespace stochtex::gl

@@ -269,6 +269,52 @@ if expect_ok "analyze gabor" "$stochtex" analyze "$exemplar" -m gabor -p impulse
     expect_file "export-shader gabor writes the data" "$models/gabor_shader/gabor_data.exr"
 fi
 
+# export-shader --language: each target's files; a language the model cannot be written in
+# (gabor's doubles), an unknown language and folders that cannot take the files are refused with
+# nothing written. (tests/gl/export_language_test.cpp compiles and runs what is written.)
+for language in essl hlsl msl; do
+  expect_ok "export-shader --language $language" "$stochtex" export-shader "$model" \
+    -o "$models/shader_$language" --language "$language" &&
+    expect_file "export-shader --language $language writes the README" \
+      "$models/shader_$language/README.md" &&
+    expect_file "export-shader --language $language writes the atlas" \
+      "$models/shader_$language/texton_atlas.exr"
+done
+expect_file "export-shader --language essl writes the GLSL ES" "$models/shader_essl/stochtex_texton.essl"
+expect_file "export-shader --language hlsl writes the HLSL" "$models/shader_hlsl/stochtex_texton.hlsl"
+expect_file "export-shader --language hlsl writes the Shader Graph function" \
+  "$models/shader_hlsl/stochtex_texton_shadergraph.hlsl"
+expect_file "export-shader --language msl writes the Metal" "$models/shader_msl/stochtex_texton.metal"
+if expect_ok "export-shader --language glsl" "$stochtex" export-shader "$model" \
+  -o "$models/shader_glsl" --language glsl; then
+  if cmp -s "$models/shader/stochtex_texton.glsl" "$models/shader_glsl/stochtex_texton.glsl"; then
+    pass
+  else
+    fail "export-shader --language glsl" "differs from the default export"
+  fi
+fi
+if [[ -f $models/gabor.stx ]]; then
+  for language in essl hlsl msl; do
+    expect_error "export-shader gabor --language $language" 2 "double precision" \
+      "$stochtex" export-shader "$models/gabor.stx" -o "$out/gabor_$language" --language "$language"
+  done
+fi
+expect_parse_error "unknown --language" "$stochtex" export-shader "$model" -o "$out/shader" \
+  --language wgsl
+touch "$inputs/not_a_folder"
+expect_error "export-shader into a path below a file" 1 "not_a_folder" \
+  "$stochtex" export-shader "$model" -o "$inputs/not_a_folder/shader" --language hlsl
+# One of the files' places is a folder: refused before any file is written.
+mkdir -p "$work/taken/README.md"
+capture "$stochtex" export-shader "$model" -o "$work/taken" --language essl
+if [[ $status -ne 1 ]]; then
+  fail "export-shader into a folder holding README.md/" "exit code $status, expected 1"
+elif [[ -n $(find "$work/taken" -type f -print -quit) ]]; then
+  fail "export-shader into a folder holding README.md/" "wrote $(find "$work/taken" -type f)"
+else
+  pass
+fi
+
 # lrp structure preservation (section 5) and continuous targets (section 6.1, figure 10).
 expect_ok "analyze lrp with structure" "$stochtex" analyze "$exemplar" -m lrp -p cosines=10 \
   -p ratio=0.3 -p turbulence=2 -o "$models/lrp_structure.stx" &&

@@ -1,9 +1,12 @@
 #pragma once
 // Shared by the OpenGL tests: CPU and GL renders of one grid, and their comparison.
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "stochtex/gpu.hpp"
 #include "stochtex/stochtex.hpp"
@@ -33,6 +36,37 @@ inline ImageF render_gpu(const Model& model, const Grid& grid, std::uint32_t see
 }
 
 using test_support::same_bytes;
+
+// A model to export (tests of export-shader): method, exemplar, parameters and the side of the
+// grid its renders are compared on.
+struct ExportCase {
+  const char* method;
+  const char* exemplar;
+  ParamValues params;
+  int size;
+};
+
+// The export cases: every method of the registry at least once (checked), every lrp section 5
+// option, both tiling transports.
+inline std::vector<ExportCase> export_cases() {
+  std::vector<ExportCase> cases = {
+      {"texton", "grass_lawn_128.png", {{"support", 48}}, 48},
+      {"tiling", "grass_lawn_128.png", {}, 48},
+      {"tiling", "metal_grey_256.png", {{"transport", 1}}, 48},
+      {"lrp", "metal_grey_256.png", {{"cosines", 10}}, 32},
+      // Section 5: fixed phases, turbulence and random placement.
+      {"lrp",
+       "wool_knit_blue_256.png",
+       {{"cosines", 10}, {"ratio", 0.3}, {"turbulence", 2.0}, {"placement", 1}},
+       32},
+      {"gabor", "grass_lawn_128.png", {{"impulses", 256}}, 24},
+  };
+  for (const MethodInfo& method : methods())
+    EXPECT_TRUE(std::any_of(cases.begin(), cases.end(),
+                            [&](const ExportCase& c) { return c.method == method.name; }))
+        << "no export case for " << method.name;
+  return cases;
+}
 
 inline float max_difference(const ImageF& a, const ImageF& b) {
   float worst = 0.0f;

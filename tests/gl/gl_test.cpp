@@ -190,42 +190,19 @@ TEST(Gl, BitIdenticalWhateverTheDispatchTilesAndRegions) {
   EXPECT_FALSE(same_bytes(reference, other_seed));
 }
 
-struct ExportCase {
-  const char* method;
-  const char* exemplar;
-  ParamValues params;
-  int size;
-};
-
 TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
   // What an engine gets from `stochtex export-shader`: the GLSL file and the data images, read
   // back from disk, each bound to `stochtex_<name>`, driven by a minimal compute shader through
   // the public entry point stochtex_<method>(p, dpdx, dpdy, seed), which computes the filter from
   // the footprint in GLSL (texton_filter, the tiling level of detail, the lrp clamping axes, the
   // Gabor kernel filter).
-  const std::vector<ExportCase> cases = {
-      {"texton", "grass_lawn_128.png", {{"support", 48}}, 48},
-      {"tiling", "grass_lawn_128.png", {}, 48},
-      {"tiling", "metal_grey_256.png", {{"transport", 1}}, 48},
-      {"lrp", "metal_grey_256.png", {{"cosines", 10}}, 32},
-      // Section 5: fixed phases, turbulence and random placement.
-      {"lrp",
-       "wool_knit_blue_256.png",
-       {{"cosines", 10}, {"ratio", 0.3}, {"turbulence", 2.0}, {"placement", 1}},
-       32},
-      {"gabor", "grass_lawn_128.png", {{"impulses", 256}}, 24},
-  };
-  // Every method of the registry is exported by at least one case.
-  for (const MethodInfo& method : methods())
-    EXPECT_TRUE(std::any_of(cases.begin(), cases.end(),
-                            [&](const ExportCase& c) { return c.method == method.name; }))
-        << "no export case for " << method.name;
+  const std::vector<ExportCase> cases = export_cases();
   const gl::Context context;
   for (const auto& c : cases) {
     const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
     const Model model = analyze(c.method, exemplar.view(), c.params, 0);
     const ShaderExport files = export_shader(model);
-    ASSERT_EQ(files.glsl_file_name, "stochtex_" + std::string(c.method) + ".glsl");
+    ASSERT_EQ(files.shader.name, "stochtex_" + std::string(c.method) + ".glsl");
     EXPECT_NE(files.readme.find("stochtex_" + std::string(c.method) + "(vec2 p"),
               std::string::npos);
     const auto folder = std::filesystem::temp_directory_path() / "stochtex_export_test";
@@ -246,7 +223,7 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
     }
     std::filesystem::remove_all(folder);
 
-    const std::string source = "#version 450\n" + files.glsl + R"glsl(
+    const std::string source = "#version 450\n" + files.shader.text + R"glsl(
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) writeonly buffer Out { vec4 values[]; };
 uniform int width;

@@ -103,20 +103,22 @@ std::string gabor_library_source(const GaborGlsl& glsl) {
          glsl_precision_variant(shader_source("methods/gabor/evaluate.glsl"), glsl.precision);
 }
 
-ShaderExport Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model) {
+ExportParts Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model) {
   GaborGlsl glsl = gabor_glsl(model);
   std::vector<NamedImage> images;
   images.push_back({"gabor_data", std::move(glsl.data)});
-  return assemble_export(
-      {gabor::GaborModel::kMethodName, "Gabor noise",
-       "Gabor noise by example (" + std::to_string(model.channels()) + " channels, " +
-           std::to_string(model.grids().size()) + " grids, " +
-           std::to_string(static_cast<int>(model.impulses())) + " impulses)",
-       gabor_library_source(glsl), std::move(images),
-       "Texel i < GABOR_GAUSSIANS of `gabor_data.exr` is Gaussian i (frequency x, y, alias "
-       "probability,\nalias index); then 24 texels per grid hold its Poisson table. The shader "
-       "uses double precision\n(core since OpenGL 4.0) for positions and cell corners, as the CPU "
-       "reference does."});
+  return {
+      gabor::GaborModel::kMethodName,
+      "Gabor noise",
+      "Gabor noise by example (" + std::to_string(model.channels()) + " channels, " +
+          std::to_string(model.grids().size()) + " grids, " +
+          std::to_string(static_cast<int>(model.impulses())) + " impulses)",
+      gabor_library_source(glsl),
+      std::move(images),
+      "Texel i < GABOR_GAUSSIANS of `gabor_data.exr` is Gaussian i (frequency x, y, alias "
+      "probability,\nalias index); then 24 texels per grid hold its Poisson table. The shader "
+      "uses double precision\n(core since OpenGL 4.0) for positions and cell corners, as the CPU "
+      "reference does."};
 }
 
 }  // namespace stochtex::gl

@@ -51,7 +51,7 @@ struct Twin<gabor::GaborModel> {
       {"GABOR_MAX_LEVEL_RATIO", static_cast<double>(std::uint64_t{1} << gabor::kMaxLevels)},
   }};
   static std::unique_ptr<Pass> pass(const gabor::GaborModel& model);
-  static ShaderExport shader(const gabor::GaborModel& model);
+  static ExportParts shader(const gabor::GaborModel& model);
 };
 
 }  // namespace stochtex::gl

@@ -195,7 +195,7 @@ ImageF lrp_tables_image(const LrpGlsl& glsl) {
   return image;
 }
 
-ShaderExport Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model) {
+ExportParts Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model) {
   const LrpGlsl glsl = lrp_glsl(model);
   constexpr std::uint32_t kExactFloatIntegers = 1u << 24;
   const auto too_large = [](std::uint32_t value) { return value >= kExactFloatIntegers; };
@@ -206,15 +206,17 @@ ShaderExport Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model) {
                 "texture cannot index exactly");
   std::vector<NamedImage> images;
   images.push_back({"lrp_tables", lrp_tables_image(glsl)});
-  return assemble_export(
-      {lrp::LrpModel::kMethodName, "local random-phase noise",
-       "Local random-phase noise (" + std::to_string(model.channels()) + " channels)",
-       lrp_library_source(glsl, DataSource::textures), std::move(images),
-       "`lrp_tables.exr` holds one table entry per texel, the tables one after the other from\n"
-       "the texels LRP_SUBSTRATA_TEXEL, LRP_STRUCTURE_TEXEL, ... of the shader: frequencies\n"
-       "(R, G: cycles per pixel; B: weight), sub-strata (R, G: first frequency and count), and\n"
-       "for a model that keeps structure (ratio > 0) its cosines and turbulence tables. Keep |p|\n"
-       "below ~1e4 for full float precision."});
+  return {
+      lrp::LrpModel::kMethodName,
+      "local random-phase noise",
+      "Local random-phase noise (" + std::to_string(model.channels()) + " channels)",
+      lrp_library_source(glsl, DataSource::textures),
+      std::move(images),
+      "`lrp_tables.exr` holds one table entry per texel, the tables one after the other from\n"
+      "the texels LRP_SUBSTRATA_TEXEL, LRP_STRUCTURE_TEXEL, ... of the shader: frequencies\n"
+      "(R, G: cycles per pixel; B: weight), sub-strata (R, G: first frequency and count), and\n"
+      "for a model that keeps structure (ratio > 0) its cosines and turbulence tables. Keep |p|\n"
+      "below ~1e4 for full float precision."};
 }
 
 }  // namespace stochtex::gl

@@ -58,7 +58,7 @@ struct Twin<lrp::LrpModel> {
       {"LRP_TURBULENCE_STREAM_BASE", static_cast<int>(lrp::kTurbulenceStreamBase)},
   }};
   static std::unique_ptr<Pass> pass(const lrp::LrpModel& model);
-  static ShaderExport shader(const lrp::LrpModel& model);
+  static ExportParts shader(const lrp::LrpModel& model);
 };
 
 }  // namespace stochtex::gl

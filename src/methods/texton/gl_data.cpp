@@ -66,16 +66,19 @@ std::string texton_library_source(const TextonGlsl& glsl) {
          shader_source("methods/texton/evaluate.glsl");
 }
 
-ShaderExport Twin<texton::TextonModel>::shader(const texton::TextonModel& model) {
+ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model) {
   TextonGlsl glsl = texton_glsl(model);
   std::ostringstream what;
   what << "Texton noise (" << model.channels() << " channels, texton " << model.support() << "x"
        << model.support() << ", MNI " << model.mean_impacts() << ")";
   std::vector<NamedImage> images;
   images.push_back({"texton_atlas", std::move(glsl.atlas)});
-  return assemble_export({texton::TextonModel::kMethodName, "texton noise", what.str(),
-                          texton_library_source(glsl), std::move(images),
-                          "Keep |p| below ~1e4 for full float precision."});
+  return {texton::TextonModel::kMethodName,
+          "texton noise",
+          what.str(),
+          texton_library_source(glsl),
+          std::move(images),
+          "Keep |p| below ~1e4 for full float precision."};
 }
 
 }  // namespace stochtex::gl

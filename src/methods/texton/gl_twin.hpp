@@ -35,7 +35,7 @@ struct Twin<texton::TextonModel> {
       {"TEXTON_LOD_BIAS", static_cast<float>(kLodBias)},
   }};
   static std::unique_ptr<Pass> pass(const texton::TextonModel& model);
-  static ShaderExport shader(const texton::TextonModel& model);
+  static ExportParts shader(const texton::TextonModel& model);
 };
 
 }  // namespace stochtex::gl

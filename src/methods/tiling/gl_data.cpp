@@ -72,18 +72,19 @@ std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
          reader + shader_source("methods/tiling/evaluate.glsl");
 }
 
-ShaderExport Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model) {
+ExportParts Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model) {
   const TilingGlsl glsl = tiling_glsl(model);
   std::vector<NamedImage> images;
   images.push_back({"tiling_data", pack_rgba(glsl.data)});
-  return assemble_export(
-      {tiling::TilingModel::kMethodName, "histogram-preserving tiling",
-       "Histogram-preserving tiling and blending (" + std::to_string(model.channels()) +
-           " channels)",
-       tiling_library_source(glsl, DataSource::textures), std::move(images),
-       "`tiling_data.exr` is one float array (the exemplar's pyramid and look-up tables) packed "
-       "four floats\nper texel, 1024 texels per row. Keep |p| below ~1e4 for full float "
-       "precision."});
+  return {tiling::TilingModel::kMethodName,
+          "histogram-preserving tiling",
+          "Histogram-preserving tiling and blending (" + std::to_string(model.channels()) +
+              " channels)",
+          tiling_library_source(glsl, DataSource::textures),
+          std::move(images),
+          "`tiling_data.exr` is one float array (the exemplar's pyramid and look-up tables) packed "
+          "four floats\nper texel, 1024 texels per row. Keep |p| below ~1e4 for full float "
+          "precision."};
 }
 
 }  // namespace stochtex::gl

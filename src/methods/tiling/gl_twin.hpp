@@ -38,7 +38,7 @@ struct Twin<tiling::TilingModel> {
       {"TILING_LOD_BIAS", static_cast<float>(kLodBias)},
   }};
   static std::unique_ptr<Pass> pass(const tiling::TilingModel& model);
-  static ShaderExport shader(const tiling::TilingModel& model);
+  static ExportParts shader(const tiling::TilingModel& model);
 };
 
 }  // namespace stochtex::gl

@@ -1,0 +1,242 @@
+// GLSL 4.50 -> SPIR-V (glslang) -> GLSL ES 3.00 / HLSL / Metal (SPIRV-Cross's C API).
+//
+// SPIR-V needs an entry point, so the library is compiled inside a fragment shader whose main()
+// calls the exported function once with zeros. Neither glslang (no optimiser run) nor SPIRV-Cross
+// inlines functions, and both keep OpName names, so the library comes out function for function
+// with its names and parameters; the entry point SPIRV-Cross writes last is then cut off.
+
+#include "gl/cross_compile.hpp"
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+#include <spirv_cross_c.h>
+
+#include <array>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gl/shaders.hpp"
+
+namespace stochtex::gl {
+namespace {
+
+void initialise_glslang() {
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+// Parses and links `source` as a fragment shader; fills `spirv` (when given) from GLSL 4.50.
+// Returns glslang's log on failure, empty on success.
+std::string compile(std::string_view source, ShaderLanguage language,
+                    std::vector<unsigned>* spirv) {
+  initialise_glslang();
+  glslang::TShader shader(EShLangFragment);
+  const std::string text(source);
+  const char* strings = text.c_str();
+  shader.setStrings(&strings, 1);
+  auto messages = static_cast<EShMessages>(EShMsgDefault);
+  if (language == ShaderLanguage::hlsl) {
+    shader.setEnvInput(glslang::EShSourceHlsl, EShLangFragment, glslang::EShClientOpenGL, 450);
+    shader.setEntryPoint("main");
+    messages = static_cast<EShMessages>(messages | EShMsgReadHlsl);
+  } else if (spirv != nullptr) {
+    shader.setEnvInput(glslang::EShSourceGlsl, EShLangFragment, glslang::EShClientOpenGL, 450);
+    shader.setEnvClient(glslang::EShClientOpenGL, glslang::EShTargetOpenGL_450);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+    messages = static_cast<EShMessages>(messages | EShMsgSpvRules);
+  }
+  const int version = language == ShaderLanguage::essl ? 300 : 450;
+  const EProfile profile = language == ShaderLanguage::essl ? EEsProfile : ECoreProfile;
+  if (!shader.parse(GetDefaultResources(), version, profile, false, false, messages))
+    return std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
+  glslang::TProgram program;
+  program.addShader(&shader);
+  if (!program.link(messages)) return std::string(program.getInfoLog()) + program.getInfoDebugLog();
+  if (spirv != nullptr) {
+    glslang::SpvOptions options;
+    options.disableOptimizer = true;
+    glslang::GlslangToSpv(*program.getIntermediate(EShLangFragment), *spirv, &options);
+  }
+  return {};
+}
+
+// What a target lacks that SPIR-V can declare: the capability, and the sentence's reason.
+struct Lack {
+  ShaderLanguage language;
+  SpvCapability capability;
+  const char* reason;
+};
+constexpr std::array<Lack, 4> kLacks = {{
+    {ShaderLanguage::essl, SpvCapabilityFloat64,
+     "computes in double precision, which GLSL ES 3.00 does not have"},
+    {ShaderLanguage::essl, SpvCapabilityInt64,
+     "uses 64-bit integers, which GLSL ES 3.00 does not have"},
+    {ShaderLanguage::hlsl, SpvCapabilityFloat64,
+     "computes in double precision, which HLSL Shader Model 5 cannot express (no double sqrt, "
+     "double division only as an optional feature)"},
+    {ShaderLanguage::msl, SpvCapabilityFloat64,
+     "computes in double precision, which Metal does not have"},
+}};
+
+// Where SPIRV-Cross's text for the fragment entry point begins: it writes the entry point after
+// every function it calls, and nothing after it.
+std::string_view entry_point_start(ShaderLanguage language) {
+  switch (language) {
+    case ShaderLanguage::essl:
+      return "\nvoid main()\n";
+    case ShaderLanguage::hlsl:
+      return "\nvoid frag_main()\n";
+    case ShaderLanguage::msl:
+      return "\nfragment void main0(";
+    case ShaderLanguage::glsl:
+      break;
+  }
+  throw std::logic_error("cross_compile: GLSL is not cross-compiled");
+}
+
+// SPIRV-Cross through its C API: one context per call, freed on every path.
+class Cross {
+ public:
+  Cross() {
+    if (spvc_context_create(&context_) != SPVC_SUCCESS)
+      throw std::logic_error("cross_compile: SPIRV-Cross could not create a context");
+    spvc_context_set_error_callback(
+        context_,
+        [](void* log, const char* message) { *static_cast<std::string*>(log) += message; }, &log_);
+  }
+  ~Cross() { spvc_context_destroy(context_); }
+  Cross(const Cross&) = delete;
+  Cross& operator=(const Cross&) = delete;
+
+  void check(spvc_result result, const char* step) const {
+    if (result != SPVC_SUCCESS)
+      throw std::logic_error(std::string("cross_compile: SPIRV-Cross failed to ") + step + ": " +
+                             log_);
+  }
+  spvc_context context() const { return context_; }
+
+ private:
+  spvc_context context_ = nullptr;
+  std::string log_;
+};
+
+}  // namespace
+
+std::string_view language_option(ShaderLanguage language) {
+  switch (language) {
+    case ShaderLanguage::glsl:
+      return "glsl";
+    case ShaderLanguage::essl:
+      return "essl";
+    case ShaderLanguage::hlsl:
+      return "hlsl";
+    case ShaderLanguage::msl:
+      return "msl";
+  }
+  return "?";
+}
+
+std::string_view language_title(ShaderLanguage language) {
+  switch (language) {
+    case ShaderLanguage::glsl:
+      return "GLSL 4.50";
+    case ShaderLanguage::essl:
+      return "GLSL ES 3.00";
+    case ShaderLanguage::hlsl:
+      return "HLSL Shader Model 5";
+    case ShaderLanguage::msl:
+      return "Metal Shading Language 1.2";
+  }
+  return "?";
+}
+
+std::string front_end_errors(std::string_view source, ShaderLanguage language) {
+  if (language == ShaderLanguage::msl)
+    throw std::invalid_argument("front_end_errors: glslang has no Metal front end");
+  return compile(source, language, nullptr);
+}
+
+std::string cross_compile(std::string_view library, std::string_view function,
+                          std::string_view method, ShaderLanguage language) {
+  const std::string_view entry = entry_point_start(language);
+  const std::string wrapper = "#version 450\n" + shader_source("gl/portable.glsl") +
+                              std::string(library) + "void main() {\n  " + std::string(function) +
+                              "(vec2(0.0), vec2(0.0), vec2(0.0), 0u);\n}\n";
+  std::vector<unsigned> spirv;
+  const std::string errors = compile(wrapper, ShaderLanguage::glsl, &spirv);
+  if (!errors.empty())
+    throw std::logic_error("cross_compile: glslang refused the " + std::string(method) +
+                           " library: " + errors);
+
+  Cross cross;
+  spvc_parsed_ir ir = nullptr;
+  cross.check(spvc_context_parse_spirv(cross.context(), spirv.data(), spirv.size(), &ir),
+              "parse the SPIR-V");
+  const spvc_backend backend = language == ShaderLanguage::essl   ? SPVC_BACKEND_GLSL
+                               : language == ShaderLanguage::hlsl ? SPVC_BACKEND_HLSL
+                                                                  : SPVC_BACKEND_MSL;
+  spvc_compiler compiler = nullptr;
+  cross.check(spvc_context_create_compiler(cross.context(), backend, ir,
+                                           SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &compiler),
+              "create a compiler");
+
+  const SpvCapability* capabilities = nullptr;
+  std::size_t count = 0;
+  cross.check(spvc_compiler_get_declared_capabilities(compiler, &capabilities, &count),
+              "list the capabilities");
+  for (const Lack& lack : kLacks)
+    for (std::size_t i = 0; i < count; ++i)
+      if (lack.language == language && capabilities[i] == lack.capability)
+        throw std::invalid_argument("the " + std::string(method) +
+                                    " shader cannot be exported as " +
+                                    std::string(language_title(language)) + ": it " + lack.reason +
+                                    "; export it with --language glsl (OpenGL 4.0 or later)");
+
+  spvc_compiler_options options = nullptr;
+  cross.check(spvc_compiler_create_compiler_options(compiler, &options), "make options");
+  if (language == ShaderLanguage::essl) {
+    cross.check(spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_GLSL_VERSION, 300),
+                "set the version");
+    cross.check(spvc_compiler_options_set_bool(options, SPVC_COMPILER_OPTION_GLSL_ES, SPVC_TRUE),
+                "select ES");
+    cross.check(spvc_compiler_options_set_bool(
+                    options, SPVC_COMPILER_OPTION_GLSL_ES_DEFAULT_FLOAT_PRECISION_HIGHP, SPVC_TRUE),
+                "set highp");
+  } else if (language == ShaderLanguage::hlsl) {
+    cross.check(spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_HLSL_SHADER_MODEL, 50),
+                "set the shader model");
+    // GLSL's samplers all default to binding 0; without a binding the textures get no register(),
+    // so that the engine's compiler places them among its own.
+    spvc_resources resources = nullptr;
+    const spvc_reflected_resource* textures = nullptr;
+    std::size_t texture_count = 0;
+    cross.check(spvc_compiler_create_shader_resources(compiler, &resources), "list the resources");
+    cross.check(spvc_resources_get_resource_list_for_type(
+                    resources, SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, &textures, &texture_count),
+                "list the textures");
+    for (std::size_t i = 0; i < texture_count; ++i)
+      spvc_compiler_unset_decoration(compiler, textures[i].id, SpvDecorationBinding);
+  } else {
+    cross.check(spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_MSL_VERSION,
+                                               SPVC_MAKE_MSL_VERSION(1, 2, 0)),
+                "set the Metal version");
+  }
+  cross.check(spvc_compiler_install_compiler_options(compiler, options), "install the options");
+  const char* text = nullptr;
+  cross.check(spvc_compiler_compile(compiler, &text), "write the source");
+
+  std::string source(text);
+  const std::size_t cut = source.rfind(entry);
+  if (cut == std::string::npos)
+    throw std::logic_error("cross_compile: no entry point in SPIRV-Cross's output");
+  source.erase(cut + 1);
+  if (language == ShaderLanguage::essl) source.erase(0, source.find('\n') + 1);  // #version
+  while (source.size() > 1 && source.ends_with("\n\n")) source.pop_back();
+  return source;
+}
+
+}  // namespace stochtex::gl

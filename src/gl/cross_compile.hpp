@@ -1,0 +1,39 @@
+#pragma once
+// The languages of `export-shader --language`: a method's GLSL 4.50 library compiled to SPIR-V by
+// glslang, then written as GLSL ES 3.00, HLSL Shader Model 5 or Metal by SPIRV-Cross, the same
+// way for every method. Both are linked from Debian 12's packages (glslang-dev,
+// libspirv-cross-c-shared-dev).
+
+#include <string>
+#include <string_view>
+
+#include "stochtex/gpu.hpp"
+
+namespace stochtex::gl {
+
+// The --language spelling: "glsl", "essl", "hlsl" or "msl".
+std::string_view language_option(ShaderLanguage language);
+
+// "GLSL 4.50", "GLSL ES 3.00", "HLSL Shader Model 5" or "Metal Shading Language 1.2".
+std::string_view language_title(ShaderLanguage language);
+
+// `library` (GLSL 4.50 without `#version`: uniform sampler2D declarations, constants and
+// functions, among them `vec4 <function>(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)`) in `language`
+// (essl, hlsl or msl): every function reachable from `function` kept with its name and parameter
+// names, no entry point and no `#version` line, to paste into the caller's shader.
+//   essl: `uniform highp sampler2D <name>` as in the GLSL; default precision highp;
+//   hlsl: `Texture2D<float4> <name>` and `SamplerState _<name>_sampler` globals, no registers;
+//   msl:  each texture2d<float> <name> and `sampler <name>Smplr` become parameters of the
+//         functions that read them, `function` included (Metal has no global textures).
+// Throws std::invalid_argument, one sentence naming `method` and the language, when the library
+// uses what the language lacks (double precision, 64-bit integers); std::logic_error when glslang
+// or SPIRV-Cross refuse it (a bug).
+std::string cross_compile(std::string_view library, std::string_view function,
+                          std::string_view method, ShaderLanguage language);
+
+// glslang's front end (parser and linker) on a complete fragment shader in `language` (glsl:
+// GLSL 4.50, essl: GLSL ES 3.00, hlsl: HLSL with the entry point `main`): empty when it compiles,
+// else glslang's log. There is no Metal front end here (msl throws std::invalid_argument).
+std::string front_end_errors(std::string_view source, ShaderLanguage language);
+
+}  // namespace stochtex::gl
