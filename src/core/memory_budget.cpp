@@ -22,6 +22,12 @@ std::uint64_t gaussian_peak_bytes(int width, int height) {
   return 48 * static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
 }
 
+std::uint64_t compare_peak_bytes(std::uint64_t exemplar_pixels, std::uint64_t image_pixels,
+                                 int channels) {
+  return (std::uint64_t{32} << 20) +
+         (exemplar_pixels + image_pixels) * (56 + 12 * static_cast<std::uint64_t>(channels));
+}
+
 void check_memory_budget(std::uint64_t bytes, const std::string& request,
                          const std::string& remedy) {
   if (bytes <= kMemoryBudgetBytes) return;

@@ -25,6 +25,13 @@ std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample
 // its encoded copy 24 more.
 std::uint64_t gaussian_peak_bytes(int width, int height);
 
+// The measures of `compare` (metrics/metrics.hpp compare_images): 32 MiB plus 56 + 12 x channels
+// bytes a pixel of the exemplar and of the image together (spectra, the ADSN sample, sorted
+// projections). Measured peaks of `stochtex compare`: 56 (grey), 73 (RGB) and 82 (RGBA) bytes a
+// pixel for 1024² and 2048² pairs, and as much for pixels of either image.
+std::uint64_t compare_peak_bytes(std::uint64_t exemplar_pixels, std::uint64_t image_pixels,
+                                 int channels);
+
 // Throws std::invalid_argument: "<request> needs about N GB of memory, more than the budget of
 // 2 GiB; <remedy>" when `bytes` exceed kMemoryBudgetBytes.
 void check_memory_budget(std::uint64_t bytes, const std::string& request,

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/colour_statistics.hpp"
+#include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "spectral/adsn.hpp"
 #include "spectral/fft.hpp"
@@ -365,6 +366,15 @@ ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const
   require_pixels(exemplar, "compare_images");
   require_pixels(image, "compare_images");
   require_same_channels(image, exemplar, "compare_images");
+  const auto pixels = [](ImageView<const float> v) {
+    return static_cast<std::uint64_t>(v.width) * static_cast<std::uint64_t>(v.height);
+  };
+  check_memory_budget(compare_peak_bytes(pixels(exemplar), pixels(image), image.channels),
+                      "comparing a " + std::to_string(image.width) + "x" +
+                          std::to_string(image.height) + " image with a " +
+                          std::to_string(exemplar.width) + "x" + std::to_string(exemplar.height) +
+                          " exemplar",
+                      "compare crops of them");
   ComparisonReport report;
   report.crop = welch_crop_size(exemplar, image);
   const ImageF gaussian = adsn(exemplar, image.width, image.height, seed);

@@ -108,7 +108,8 @@ struct ComparisonReport {
   double histogram_error_floor = 0;  // exemplar top half vs bottom half
 };
 // The full `stochtex compare` report; the ADSN sample (adsn(exemplar, image size, seed)) uses
-// `seed`. The images must have the same channel count and sides of at least 2 pixels.
+// `seed`. The images must have the same channel count and sides of at least 2 pixels. Throws
+// std::invalid_argument, before any work, when compare_peak_bytes exceeds the memory budget.
 ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,
                                 std::uint32_t seed = 1);
 

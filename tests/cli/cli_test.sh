@@ -136,7 +136,7 @@ expect_file() {
 
 printf 'this is not an image\n' >"$inputs/x.png"
 head -c 2000 "$exemplar" >"$inputs/truncated.png"
-# Minimal 8-bit PNGs: a 1x1 grey image, a constant 16x16 one, and a 2048x2048 colour ramp.
+# Minimal 8-bit PNGs: a 1x1 grey image, a constant 16x16 one, and 2048² and 4096² colour ramps.
 python3 - "$inputs" <<'EOF'
 import struct, sys, zlib
 
@@ -153,6 +153,7 @@ def png(path, width, height, row, colour_type=0):
 png(sys.argv[1] + "/one_pixel.png", 1, 1, bytes([128]))
 png(sys.argv[1] + "/constant.png", 16, 16, bytes([128]) * 16)
 png(sys.argv[1] + "/ramp_2048.png", 2048, 2048, bytes(range(256)) * 24, colour_type=2)
+png(sys.argv[1] + "/ramp_4096.png", 4096, 4096, bytes(range(256)) * 48, colour_type=2)
 EOF
 # A 4x4 greyscale PFM (negative scale: little-endian) alternating 0.25 and 0.75, one pixel NaN.
 {
@@ -637,6 +638,9 @@ expect_error "compare with a 1x4096 image" 1 "thin.pfm" \
   "$stochtex" compare "$exemplar" "$inputs/thin.pfm"
 if grep -q "welch" "$work/stderr"; then fail "compare 1x4096" "names an internal function"; fi
 expect_error "compare with a NaN image" 1 "nan.pfm" "$stochtex" compare "$exemplar" "$inputs/nan.pfm"
+# Two 4096² colour images: about 3.1 GB for the measures (docs/design.md §9), refused before them.
+expect_error "compare beyond the memory budget" 2 "4096x4096 image" \
+  "$stochtex" compare "$inputs/ramp_4096.png" "$inputs/ramp_4096.png"
 expect_error "lrp of values near float's limit is a data problem" 1 "huge.pfm" \
   "$stochtex" analyze "$inputs/huge.pfm" -m lrp -o "$out/huge.stx"
 expect_error "gabor's singular colour transform names the file" 1 "huge_rgb.pfm" \
