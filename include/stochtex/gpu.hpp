@@ -62,18 +62,63 @@ class GlRenderer {
 void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
                const GpuRenderOptions& options = {});
 
+// Which GLSL `stochtex export-shader` writes (`--variant`):
+//   exact: the `--gl-filter exact` evaluator: float32 data read with texelFetch, the shader's own
+//          interpolation and pyramid levels; the CPU's output to float rounding. The default.
+//   fast:  the GLSL that `render --backend gl --gl-filter hardware` runs, with its data as the
+//          images engines import (PNG where 8 or 16 bits lose nothing measurable) read through
+//          hardware-filtered, mip-mapped samplers; equal to the CPU in distribution. For methods
+//          whose hardware path is the exact one (lrp, gabor), fast is exact.
+enum class ShaderVariant { exact, fast };
+
+struct ShaderExportOptions {
+  ShaderVariant variant = ShaderVariant::exact;
+};
+
+// How an exported data image is stored: its file and the GL texture format it loads into.
+//   exr_float32: <name>.exr, float32 (GL_R32F .. GL_RGBA32F);
+//   png8:        <name>.png, 8 bits per channel, value = byte / 255 (GL_R8 .. GL_RGBA8);
+//   png16:       <name>.png, 16 bits per channel, value = sample / 65535 (GL_R16 .. GL_RGBA16).
+// Every data image is linear data: load it without sRGB decoding (UNORM, not SRGB8).
+enum class TextureEncoding { exr_float32, png8, png16 };
+// The sampler's filter: nearest (texelFetch reads), linear (bilinear / trilinear for 3-D, no
+// mip-maps) or mipmap (trilinear between mip levels, anisotropic up to 16x where available).
+enum class TextureFilter { nearest, linear, mipmap };
+// The sampler's wrap on every axis; clamp_to_border uses transparent black (0, 0, 0, 0).
+enum class TextureWrap { clamp_to_edge, clamp_to_border, repeat };
+
+// One exported data image and the texture it becomes.
+struct ShaderTexture {
+  std::string name;  // the file <name>.exr or <name>.png, bound to `stochtex_<name>`
+  ImageF image;      // the values the file holds (PNG: already quantised to its bit depth)
+  TextureEncoding encoding = TextureEncoding::exr_float32;
+  // 1: a 2-D texture. More: a 3-D texture of image.width x (image.height / depth) x depth, its
+  // slices stacked top to bottom in the image (slice z in rows z * height / depth onwards), so the
+  // image's texels in row order are the 3-D texture's in x, y, z order.
+  int depth = 1;
+  TextureFilter filter = TextureFilter::nearest;
+  TextureWrap wrap = TextureWrap::clamp_to_edge;
+  // 1: no mip-maps. More: the engine generates the mip chain from the image (2 x 2 box filter,
+  // glGenerateMipmap) and samples levels 0 .. mip_levels - 1 (GL_TEXTURE_MAX_LEVEL).
+  int mip_levels = 1;
+  std::string file_name() const;
+};
+
 // `stochtex export-shader`: a self-contained GLSL source exposing
 //   vec4 stochtex_<method>(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)
 // (p in exemplar pixels, dpdx/dpdy its screen derivatives, zero = no filtering), the model's
-// data as images to bind as textures, and a README showing how. Needs no GL context.
+// data as images to bind as textures, and a README showing how. The result has the model's
+// values: those of the analysed exemplar file (PNG bytes / 255, not decoded from sRGB), so for an
+// ordinary sRGB exemplar it is sRGB-encoded, as the CPU render's PNG is, and a linear-space
+// engine converts it to linear (or writes it unconverted to a non-sRGB target). Needs no GL
+// context.
 struct ShaderExport {
   std::string glsl_file_name;
   std::string glsl;
-  // Write each as <name>.exr (float32, exact); it binds to `uniform sampler2D stochtex_<name>`.
-  std::vector<NamedImage> images;
+  std::vector<ShaderTexture> textures;  // each bound to `uniform sampler<2D|3D> stochtex_<name>`
   std::string readme;
 };
-ShaderExport export_shader(const Model& model);
+ShaderExport export_shader(const Model& model, const ShaderExportOptions& options = {});
 
 // "OpenGL <version> on <renderer>" of the context render_gl uses (creates one).
 std::string gl_device_description();

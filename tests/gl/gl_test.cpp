@@ -232,9 +232,9 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
     std::filesystem::create_directories(folder);
     std::vector<GLuint> textures;
     std::vector<std::string> samplers;
-    for (const auto& [name, image] : files.images) {
-      write_image(folder / (name + ".exr"), image.view());
-      const ImageF texels = read_image(folder / (name + ".exr"));
+    for (const ShaderTexture& t : files.textures) {
+      write_image(folder / t.file_name(), t.image.view());
+      const ImageF texels = read_image(folder / t.file_name());
       ASSERT_EQ(texels.channels(), 4);
       GLuint texture = 0;
       glCreateTextures(GL_TEXTURE_2D, 1, &texture);
@@ -242,7 +242,7 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
       glTextureSubImage2D(texture, 0, 0, 0, texels.width(), texels.height(), GL_RGBA, GL_FLOAT,
                           texels.pixels().data());
       textures.push_back(texture);
-      samplers.push_back("stochtex_" + name);
+      samplers.push_back("stochtex_" + t.name);
     }
     std::filesystem::remove_all(folder);
 

@@ -91,9 +91,10 @@ std::string gabor_library_source(const GaborGlsl& glsl) {
          "uniform sampler2D stochtex_gabor_data;\n" + shader_source("methods/gabor/evaluate.glsl");
 }
 
-ShaderExport Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model) {
+ShaderExport Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model,
+                                             ShaderVariant /*variant: fast is exact*/) {
   GaborGlsl glsl = gabor_glsl(model);
-  std::vector<NamedImage> images;
+  std::vector<ShaderTexture> images;
   images.push_back({"gabor_data", std::move(glsl.data)});
   return assemble_export(
       {gabor::GaborModel::kMethodName, "Gabor noise",

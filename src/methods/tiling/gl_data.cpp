@@ -1,5 +1,6 @@
 // Histogram-preserving tiling as GLSL data (gl_twin.hpp) and its `stochtex export-shader` files.
 
+#include <algorithm>
 #include <span>
 #include <string>
 #include <vector>
@@ -9,7 +10,8 @@
 
 namespace stochtex::gl {
 
-TilingGlsl tiling_glsl(const tiling::TilingModel& model) {
+TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) {
+  const bool exact = variant == ShaderVariant::exact;
   const tiling::TilingData& d = model.data();
   const tiling::TilingLayout& layout = model.layout();
   TilingGlsl glsl;
@@ -24,12 +26,14 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model) {
     return offset;
   };
   for (int level = 0; level < model.level_count(); ++level) {
-    const tiling::MipLevel mip = model.level(level);
-    widths.push_back(mip.width);
-    heights.push_back(mip.height);
-    texels.push_back(append({mip.texels, static_cast<std::size_t>(mip.width) * mip.height *
-                                             static_cast<std::size_t>(d.channels)}));
-    luts.push_back(append(model.level_lut(level)));
+    if (exact) {
+      const tiling::MipLevel mip = model.level(level);
+      widths.push_back(mip.width);
+      heights.push_back(mip.height);
+      texels.push_back(append({mip.texels, static_cast<std::size_t>(mip.width) * mip.height *
+                                               static_cast<std::size_t>(d.channels)}));
+      luts.push_back(append(model.level_lut(level)));
+    }
     tables.push_back(append(model.level_tables(level)));
   }
   std::string& text = glsl.constants;
@@ -54,10 +58,12 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model) {
                      glsl_float);
   text +=
       glsl_array("float", "TILING_COLOUR_MEAN", std::span<const float>(d.colour_mean), glsl_float);
-  text += glsl_array("int", "TILING_LEVEL_WIDTH", std::span<const int>(widths), glsl_int);
-  text += glsl_array("int", "TILING_LEVEL_HEIGHT", std::span<const int>(heights), glsl_int);
-  text += glsl_array("int", "TILING_LEVEL_TEXELS", std::span<const int>(texels), glsl_int);
-  text += glsl_array("int", "TILING_LEVEL_LUT", std::span<const int>(luts), glsl_int);
+  if (exact) {
+    text += glsl_array("int", "TILING_LEVEL_WIDTH", std::span<const int>(widths), glsl_int);
+    text += glsl_array("int", "TILING_LEVEL_HEIGHT", std::span<const int>(heights), glsl_int);
+    text += glsl_array("int", "TILING_LEVEL_TEXELS", std::span<const int>(texels), glsl_int);
+    text += glsl_array("int", "TILING_LEVEL_LUT", std::span<const int>(luts), glsl_int);
+  }
   text += glsl_array("int", "TILING_LEVEL_TABLES", std::span<const int>(tables), glsl_int);
   return glsl;
 }
@@ -69,12 +75,93 @@ std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
             "float tiling_data_at(int index) { return tiling_data[index]; }\n"
           : glsl_packed_read("stochtex_tiling_data", "tiling_data_at");
   return random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
-         reader + shader_source("methods/tiling/evaluate.glsl");
+         reader + shader_source("methods/tiling/evaluate.glsl") +
+         shader_source("methods/tiling/exact_fetch.glsl") +
+         shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/entry.glsl");
 }
 
-ShaderExport Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model) {
+namespace {
+
+// An image of values in [0, 1] as a PNG of `bits` bits, or as float32 EXR where a value falls
+// outside (an HDR exemplar); `clamp` quantises to PNG whatever the range.
+ShaderTexture png_or_exr(std::string name, ImageF image, int bits, bool clamp) {
+  const auto pixels = image.pixels();
+  const bool unit =
+      std::all_of(pixels.begin(), pixels.end(), [](float v) { return v >= 0.0f && v <= 1.0f; });
+  ShaderTexture texture{std::move(name), std::move(image)};
+  if (clamp || unit) {
+    texture.image = quantized(std::move(texture.image), bits);
+    texture.encoding = bits == 16 ? TextureEncoding::png16 : TextureEncoding::png8;
+  }
+  return texture;
+}
+
+// The fast variant: tiling hardware.glsl's textures and the 1-D tables as exact float reads.
+ShaderExport fast_shader(const tiling::TilingModel& model) {
+  const TilingGlsl glsl = tiling_glsl(model, ShaderVariant::fast);
+  const tiling::TilingData& d = model.data();
+  const tiling::MipLevel base = model.level(0);
+  ImageF exemplar(base.width, base.height, d.channels);
+  std::copy_n(base.texels, exemplar.pixels().size(), exemplar.pixels().begin());
+  // The Gaussianised exemplar (mean 1/2, deviation 1/6) clamped to [0, 1] as the paper's 8-bit
+  // texture is (section 4.2: 0.27% of a Gaussian's values lie beyond 3 deviations); the variance
+  // and linear blends read the exemplar's own values.
+  std::vector<ShaderTexture> textures;
+  ShaderTexture& texture = textures.emplace_back(png_or_exr(
+      "tiling_exemplar", std::move(exemplar), kExemplarBits, d.blend == tiling::Blend::histogram));
+  texture.filter = TextureFilter::mipmap;
+  texture.wrap = TextureWrap::repeat;
+  while ((std::max(base.width, base.height) >> texture.mip_levels) > 0) ++texture.mip_levels;
+  std::string defines = "#define TILING_TEXTURE_FILTER\n";
+  if (model.layout().colour_lut && !model.level_lut(0).empty()) {
+    // Each level's 3-D table (lut_size^3 RGB, x fastest): lut_size slices of lut_size rows per
+    // level, the levels one after the other, as one lut_size x lut_size x lut_size levels texture.
+    const int n = d.lut_size;
+    ImageF lut(n, n * n * model.level_count(), 3);
+    auto out = lut.pixels().begin();
+    for (int l = 0; l < model.level_count(); ++l)
+      out = std::copy(model.level_lut(l).begin(), model.level_lut(l).end(), out);
+    ShaderTexture& table =
+        textures.emplace_back(png_or_exr("tiling_lut", std::move(lut), kLutBits, false));
+    table.depth = n * model.level_count();
+    table.filter = TextureFilter::linear;
+    defines += "#define TILING_LUT_TEXTURE\n";
+  }
+  std::string reader =
+      "// This model has no 1-D tables (its colour goes through the 3-D table, no alpha): never "
+      "called.\nfloat tiling_data_at(int index) {\n  return 0.0;\n}\n";
+  if (!glsl.data.empty()) {
+    textures.push_back({"tiling_tables", pack_rgba(glsl.data)});
+    reader = glsl_packed_read("stochtex_tiling_tables", "tiling_data_at");
+  }
+  const std::string library =
+      defines + random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) +
+      glsl.constants + reader + shader_source("methods/tiling/evaluate.glsl") +
+      shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/hardware.glsl") +
+      "#define stochtex_tiling tiling_at_level_of_detail\n" +
+      shader_source("methods/tiling/entry.glsl") + "#undef stochtex_tiling\n" +
+      shader_source("methods/tiling/fast_entry.glsl");
+  std::string notes =
+      "`tiling_exemplar` is the Gaussianised exemplar (histogram blend; the exemplar itself for "
+      "the variance\nand linear blends)";
+  if (textures.back().name == "tiling_tables")
+    notes +=
+        "; `tiling_tables.exr` holds the 1-D tables of T^-1, one float array packed four "
+        "floats per\ntexel, 1024 texels per row, read with texelFetch";
+  notes += ". Keep |p| below ~1e4 for full float precision.";
+  return assemble_export({tiling::TilingModel::kMethodName, "histogram-preserving tiling",
+                          "Histogram-preserving tiling and blending, fast variant (" +
+                              std::to_string(model.channels()) + " channels)",
+                          library, std::move(textures), notes, ShaderVariant::fast});
+}
+
+}  // namespace
+
+ShaderExport Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model,
+                                               ShaderVariant variant) {
+  if (variant == ShaderVariant::fast) return fast_shader(model);
   const TilingGlsl glsl = tiling_glsl(model);
-  std::vector<NamedImage> images;
+  std::vector<ShaderTexture> images;
   images.push_back({"tiling_data", pack_rgba(glsl.data)});
   return assemble_export(
       {tiling::TilingModel::kMethodName, "histogram-preserving tiling",
