@@ -27,8 +27,8 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model,
                        ShaderVariant variant = ShaderVariant::exact);
 
 // Bits per channel of the fast variant's PNGs, from measured quality (docs/methods/tiling.md).
-inline constexpr int kExemplarBits = 8;
-inline constexpr int kLutBits = 8;
+inline constexpr int kExemplarBits = 16;
+inline constexpr int kLutBits = 16;
 
 // The exact variant: random.glsl, kConstants, the model's constants, tiling_data_at() and tiling
 // evaluate.glsl, exact_fetch.glsl, blend.glsl and entry.glsl: all but `#version`. The data is the

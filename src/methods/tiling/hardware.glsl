@@ -22,9 +22,13 @@ void tiling_set_gradients(vec2 dpdx, vec2 dpdy) {
   tiling_duv_dy = dpdy * texel;
 }
 
+// The texture holds (value - 1/2) / TILING_TEXTURE_SCALE + 1/2, which fits [0, 1] (gl_data.cpp):
+// an affine map, so it commutes with the hardware's filtering.
 vec4 tiling_texture_fetch(float x, float y) {
-  return textureGrad(stochtex_tiling_exemplar, vec2(x, y) / vec2(TILING_WIDTH, TILING_HEIGHT),
-                     tiling_duv_dx, tiling_duv_dy);
+  vec4 stored = textureGrad(stochtex_tiling_exemplar,
+                            vec2(x, y) / vec2(TILING_WIDTH, TILING_HEIGHT), tiling_duv_dx,
+                            tiling_duv_dy);
+  return (stored - 0.5) * TILING_TEXTURE_SCALE + 0.5;
 }
 
 #ifdef TILING_LUT_TEXTURE
