@@ -21,9 +21,9 @@ namespace stochtex {
 //             pyramid levels): the CPU's output to float rounding. The default.
 //   hardware: texton (order 1) and tiling read their pyramids as mip-mapped GL textures with
 //             textureGrad (trilinear, anisotropic up to 16x where the driver has it), as the
-//             papers' shaders do: faster on GPUs, equal to the CPU in distribution (mean,
-//             variance; tested), not pixel for pixel. lrp, gabor and other texton orders filter
-//             analytically and render as `exact`.
+//             papers' shaders do, running the GLSL and data of ShaderVariant::fast: faster on GPUs,
+//             equal to the CPU in distribution (mean, variance; tested), not pixel for pixel. lrp,
+//             gabor and other texton orders filter analytically and render as `exact`.
 enum class GlFilter { exact, hardware };
 
 struct GpuRenderOptions {

@@ -87,12 +87,10 @@ namespace {
 // outside (an HDR exemplar's table).
 ShaderTexture png_or_exr(std::string name, ImageF image, int bits) {
   const auto pixels = image.pixels();
-  ShaderTexture texture{std::move(name), std::move(image)};
-  if (std::all_of(pixels.begin(), pixels.end(), [](float v) { return v >= 0.0f && v <= 1.0f; })) {
-    texture.image = quantized(std::move(texture.image), bits);
-    texture.encoding = bits == 16 ? TextureEncoding::png16 : TextureEncoding::png8;
-  }
-  return texture;
+  if (!std::all_of(pixels.begin(), pixels.end(), [](float v) { return v >= 0.0f && v <= 1.0f; }))
+    return {std::move(name), std::move(image)};
+  return {std::move(name), quantized(std::move(image), bits),
+          bits == 16 ? TextureEncoding::png16 : TextureEncoding::png8};
 }
 
 // The fast variant: tiling hardware.glsl's textures and the 1-D tables as exact float reads.
@@ -103,18 +101,18 @@ ShaderExport fast_shader(const tiling::TilingModel& model) {
   // The Gaussianised exemplar (mean 1/2, deviation 1/6; the exemplar itself for the variance and
   // linear blends) shrunk about 1/2 into [0, 1] where it spills over: the paper's 8-bit texture
   // clamps the Gaussian's tails beyond 3 deviations (section 4.2), which moves the extreme
-  // colours of a render (measured: 0.007 at scale 1); this loses nothing.
+  // colours of a render (measured: 0.007 at scale 1); this loses nothing (the clamp below only
+  // catches float rounding).
   ImageF exemplar(base.width, base.height, d.channels);
   float spread = 0.5f;
   for (std::size_t i = 0; i < exemplar.pixels().size(); ++i)
     spread = std::max(spread, std::abs(base.texels[i] - 0.5f));
   const float scale = spread / 0.5f;
   for (std::size_t i = 0; i < exemplar.pixels().size(); ++i)
-    exemplar.pixels()[i] = (base.texels[i] - 0.5f) / scale + 0.5f;
+    exemplar.pixels()[i] = std::clamp((base.texels[i] - 0.5f) / scale + 0.5f, 0.0f, 1.0f);
   std::vector<ShaderTexture> textures;
-  ShaderTexture& texture = textures.emplace_back(
-      ShaderTexture{"tiling_exemplar", quantized(std::move(exemplar), kExemplarBits),
-                    kExemplarBits == 16 ? TextureEncoding::png16 : TextureEncoding::png8});
+  ShaderTexture& texture =
+      textures.emplace_back(png_or_exr("tiling_exemplar", std::move(exemplar), kExemplarBits));
   texture.filter = TextureFilter::mipmap;
   texture.wrap = TextureWrap::repeat;
   while ((std::max(base.width, base.height) >> texture.mip_levels) > 0) ++texture.mip_levels;
