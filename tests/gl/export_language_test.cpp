@@ -80,10 +80,10 @@ std::vector<float> render_fragments(const ShaderExport& files, const std::string
   EXPECT_EQ(linked, GL_TRUE);
   glUseProgram(program);
 
-  std::vector<GLuint> textures(files.images.size());
+  std::vector<GLuint> textures(files.textures.size());
   glGenTextures(static_cast<GLsizei>(textures.size()), textures.data());
   for (std::size_t i = 0; i < textures.size(); ++i) {
-    const ImageF& image = files.images[i].image;
+    const ImageF& image = files.textures[i].image;
     glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(i));
     glBindTexture(GL_TEXTURE_2D, textures[i]);
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA32F, image.width(), image.height());
@@ -91,7 +91,7 @@ std::vector<float> render_fragments(const ShaderExport& files, const std::string
                     image.pixels().data());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glUniform1i(glGetUniformLocation(program, ("stochtex_" + files.images[i].name).c_str()),
+    glUniform1i(glGetUniformLocation(program, ("stochtex_" + files.textures[i].name).c_str()),
                 static_cast<GLint>(i));
   }
   glUniform1f(glGetUniformLocation(program, "scale"), scale);
@@ -189,7 +189,7 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
           "float4 stochtex_" + method +
               "(thread const float2& p, thread const float2& dpdx, thread const float2& dpdy, "
               "thread const uint& seed, texture2d<float> stochtex_" +
-              files.images.front().name + ", sampler stochtex_" + files.images.front().name +
+              files.textures.front().name + ", sampler stochtex_" + files.textures.front().name +
               "Smplr"};
       const std::string& signature = signatures[static_cast<std::size_t>(language)];
       EXPECT_NE(files.shader.text.find(signature), std::string::npos) << signature;

@@ -103,9 +103,10 @@ std::string gabor_library_source(const GaborGlsl& glsl) {
          glsl_precision_variant(shader_source("methods/gabor/evaluate.glsl"), glsl.precision);
 }
 
-ExportParts Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model) {
+ExportParts Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model,
+                                            ShaderVariant /*variant: fast is exact*/) {
   GaborGlsl glsl = gabor_glsl(model);
-  std::vector<NamedImage> images;
+  std::vector<ShaderTexture> images;
   images.push_back({"gabor_data", std::move(glsl.data)});
   return {
       gabor::GaborModel::kMethodName,
