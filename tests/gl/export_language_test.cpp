@@ -161,7 +161,7 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
     const std::string method = c.method;
     for (const ShaderLanguage language :
          {ShaderLanguage::glsl, ShaderLanguage::essl, ShaderLanguage::hlsl, ShaderLanguage::msl}) {
-      const std::string name(gl::language_option(language));
+      const std::string name(gl::language_row(language).option);
       SCOPED_TRACE(method + " " + name);
       if (language != ShaderLanguage::glsl && uses_doubles(c)) {
         // Gabor's exact shader keeps positions and cell corners in double precision.
@@ -171,7 +171,7 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
         } catch (const std::invalid_argument& e) {
           const std::string message = e.what();
           EXPECT_NE(message.find("the gabor shader"), std::string::npos) << message;
-          EXPECT_NE(message.find(gl::language_title(language)), std::string::npos) << message;
+          EXPECT_NE(message.find(gl::language_row(language).title), std::string::npos) << message;
           EXPECT_NE(message.find("double precision"), std::string::npos) << message;
           EXPECT_NE(message.find("--language glsl"), std::string::npos) << message;
         }

@@ -51,8 +51,8 @@ struct Twin<gabor::GaborModel> {
       {"GABOR_MAX_LEVEL_RATIO", static_cast<double>(std::uint64_t{1} << gabor::kMaxLevels)},
   }};
   static std::unique_ptr<Pass> pass(const gabor::GaborModel& model);
-  // The hardware path of gabor is its exact one (it filters analytically), so ShaderVariant::fast
-  // exports the exact variant: the same files, byte for byte.
+  // fast: the float-only library of --gl-filter hardware (gabor_glsl with GlslPrecision::floats,
+  // the same data image read with texelFetch), which GLSL ES, HLSL and Metal can express.
   static ExportParts shader(const gabor::GaborModel& model, ShaderVariant variant);
 };
 

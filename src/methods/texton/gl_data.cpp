@@ -103,6 +103,7 @@ ExportParts fast_shader(const texton::TextonModel& model) {
               shader_source("methods/texton/entry.glsl") + "#undef stochtex_texton\n" +
               shader_source("methods/texton/fast_entry.glsl"),
           std::move(textures),
+          "Equal to the CPU render in distribution (mean, variance; tested), not pixel for pixel.\n"
           "`texton_texture.exr` is the texton (level 0 of the model's pyramid, padded with zeros): "
           "signed\nvalues, so float. Keep |p| below ~1e4 for full float precision.",
           ShaderVariant::fast};

@@ -148,6 +148,7 @@ ExportParts fast_shader(const tiling::TilingModel& model) {
       shader_source("methods/tiling/entry.glsl") + "#undef stochtex_tiling\n" +
       shader_source("methods/tiling/fast_entry.glsl");
   std::string notes =
+      "Equal to the CPU render in distribution (mean, variance; tested), not pixel for pixel.\n"
       "`tiling_exemplar` is the Gaussianised exemplar (histogram blend; the exemplar itself for "
       "the variance\nand linear blends)";
   if (textures.back().name == "tiling_tables")
