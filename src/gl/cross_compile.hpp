@@ -24,7 +24,8 @@ struct LanguageRow {
   std::string_view filtered_read;  // how the fast variant reads its filtered textures
   // The texture types of a 2-D and a 3-D data texture, as the shader declares them.
   std::array<std::string_view, 2> texture_types;
-  // The texture format of a data image per TextureEncoding and channel count (1-4).
+  // The texture format of a data image per TextureEncoding and channel count (1-4); three channels
+  // load as RGBA (alpha 1) where the API has no such format or cannot generate its mip-maps.
   std::array<std::array<std::string_view, 4>, 3> formats;
   // Where SPIRV-Cross's text for the fragment entry point begins: it writes the entry point after
   // every function it calls, and nothing after it (empty for GLSL, which is not cross-compiled).
@@ -52,9 +53,9 @@ inline constexpr std::array<LanguageRow, 4> kLanguageRows = {{
      "`texelFetch`",
      "`textureGrad`, `textureLod`",
      {"highp sampler2D", "highp sampler3D"},
-     {{{"R32F", "RG32F", "RGB32F", "RGBA32F"},
-       {"R8", "RG8", "RGB8", "RGBA8"},
-       {"R16_EXT", "RG16_EXT", "RGB16_EXT", "RGBA16_EXT"}}},
+     {{{"R32F", "RG32F", "RGBA32F", "RGBA32F"},
+       {"R8", "RG8", "RGBA8", "RGBA8"},
+       {"R16_EXT", "RG16_EXT", "RGBA16_EXT", "RGBA16_EXT"}}},
      "\nvoid main()\n"},
     {ShaderLanguage::hlsl,
      "hlsl",

@@ -237,10 +237,12 @@ void write_binding(std::ostringstream& text, ShaderLanguage language, ShaderVari
                 "(`texStorage2D`/`texStorage3D` with the\nformat and levels of the table, "
                 "`texSubImage` with the file's values as `UNSIGNED_BYTE`,\n`UNSIGNED_SHORT` or "
                 "`FLOAT`), `generateMipmap` where it has mip-maps, the filter and wrap of\nthe "
-                "table, and `gl.uniform1i` with its sampler's name. WebGL2 lacks three of "
-                "these: the 16-bit\nformats need `EXT_texture_norm16`, filtering a float texture "
-                "needs `OES_texture_float_linear`,\nand there is no clamp to border "
-                "(CLAMP_TO_EDGE instead reads the texton texture's zero padding\nat level 0, "
+                "table, and `gl.uniform1i` with its sampler's name; an RGB file loads as RGBA "
+                "(alpha 1),\nsince `generateMipmap` needs a colour-renderable format. WebGL2 "
+                "lacks some of this: the 16-bit\nformats need `EXT_texture_norm16`, a float "
+                "texture needs `OES_texture_float_linear` to be filtered\nand "
+                "`EXT_color_buffer_float` for its mip-maps, and there is no clamp to border "
+                "(CLAMP_TO_EDGE\ninstead reads the texton texture's zero padding at level 0, "
                 "not at coarser levels; not measured).\n\n```glsl";
       } else {
         text << "Binding it in WebGL2 (load each EXR into `texels`, a Float32Array of `width` x "

@@ -271,6 +271,13 @@ for method in $methods; do
       -o "${each}_fast" --variant fast &&
       expect_readme_files "export-shader $method --variant fast writes its README's files" \
         "${each}_fast"
+    # The fast variant in every language (gabor's float-only shader included).
+    for language in essl hlsl msl; do
+      expect_ok "export-shader $method --variant fast --language $language" "$stochtex" \
+        export-shader "$each.stx" -o "${each}_fast_$language" --variant fast --language "$language" &&
+        expect_readme_files "export-shader $method --variant fast --language $language writes" \
+          "${each}_fast_$language"
+    done
   fi
 done
 
@@ -317,7 +324,7 @@ if expect_ok "export-shader --language glsl" "$stochtex" export-shader "$model" 
 fi
 if [[ -f $models/gabor.stx ]]; then
   for language in essl hlsl msl; do
-    expect_error "export-shader gabor --language $language" 2 "double precision" \
+    expect_error "export-shader gabor --language $language" 2 "float-only shader with --variant fast" \
       "$stochtex" export-shader "$models/gabor.stx" -o "$out/gabor_$language" --language "$language"
   done
 fi
