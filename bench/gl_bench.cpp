@@ -20,10 +20,12 @@ namespace {
 using namespace stochtex;
 
 // Renders width x height frames of `method` analysed on `exemplar`, point samples by default,
-// or zoomed out by `scale` and filtered by `texture_filter`.
+// or zoomed out by `scale` and filtered by `texture_filter`; on llvmpipe only frames of at most
+// `software_pixels` pixels.
 void frame_benchmark(benchmark::State& state, const char* method, const ParamValues& params,
                      int width, int height, const ImageF& exemplar = bench::colour_exemplar(),
-                     double scale = 1.0, GlFilter texture_filter = GlFilter::exact) {
+                     double scale = 1.0, GlFilter texture_filter = GlFilter::exact,
+                     int software_pixels = 256 * 256) {
   std::unique_ptr<GlRenderer> renderer;
   Model model;
   try {
@@ -35,15 +37,17 @@ void frame_benchmark(benchmark::State& state, const char* method, const ParamVal
   }
   state.SetLabel(renderer->device());
   // llvmpipe runs the shaders on the CPU (texton: about 20 us per sample): small frames only.
-  if (renderer->device().find("llvmpipe") != std::string::npos && width * height > 256 * 256) {
-    state.SkipWithError("no GPU: llvmpipe (software) runs the 256x256 frames only");
+  if (renderer->device().find("llvmpipe") != std::string::npos &&
+      width * height > software_pixels) {
+    state.SkipWithError("no GPU: llvmpipe (software) runs the small frames only");
     return;
   }
   ImageF out(width, height, model.channels());
   const Grid grid{{0.0, 0.0}, scale, width, height};
   GpuRenderOptions options;
   options.texture_filter = texture_filter;
-  // One untimed render: programs made on first use (--gl-filter hardware) compile here.
+  // One frame outside the timing: the program of a filter is compiled and its data uploaded on
+  // first use.
   renderer->render(grid, 0, out.view(), options);
   std::uint32_t seed = 0;
   double gpu_milliseconds = 0.0;
@@ -115,6 +119,24 @@ BENCHMARK(BM_GlFilteredFrame)
     ->ArgsProduct({{0, 1}, {0, 1}, {256}, {256}})
     ->ArgsProduct({{0, 1}, {0, 1}, {1920}, {1080}})
     ->Iterations(10)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// The fast path (`--gl-filter hardware` = `export-shader --variant fast`) at 1920x1080: tiling
+// (3 + 1 filtered fetches: the 16-bit exemplar, the 3-D table of T^-1) and texton noise (support
+// 64), at scale 1 and zoomed out by 4. Run on llvmpipe too (one frame each: wall times of the
+// software rasteriser, not GPU times).
+void BM_GlFastFrame(benchmark::State& state) {
+  const bool texton = state.range(0) == 1;
+  frame_benchmark(state, texton ? "texton" : "tiling",
+                  texton ? ParamValues{{"support", 64}} : ParamValues{}, 1920, 1080,
+                  bench::colour_exemplar(), static_cast<double>(state.range(1)), GlFilter::hardware,
+                  1920 * 1080);
+}
+BENCHMARK(BM_GlFastFrame)
+    ->ArgNames({"texton", "scale"})
+    ->ArgsProduct({{0, 1}, {1, 4}})
+    ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -1,5 +1,5 @@
-// `stochtex export-shader MODEL -o DIR [--language glsl|essl|hlsl|msl]`: a self-contained shader
-// library, its wrappers, the model's data images and a README for engines
+// `stochtex export-shader MODEL -o DIR [--variant exact|fast] [--language glsl|essl|hlsl|msl]`:
+// a self-contained shader library, its wrappers, the model's data images and a README for engines
 // (include/stochtex/gpu.hpp).
 
 #include <fmt/core.h>
@@ -33,9 +33,11 @@ const std::map<std::string, ShaderLanguage> kLanguages = {{"glsl", ShaderLanguag
 
 void export_shader_files([[maybe_unused]] const std::string& model_path,
                          [[maybe_unused]] const std::string& output,
+                         [[maybe_unused]] const std::string& variant,
                          [[maybe_unused]] const std::string& language) {
 #ifdef STOCHTEX_WITH_GL
   ShaderExportOptions options;
+  options.variant = variant == "fast" ? ShaderVariant::fast : ShaderVariant::exact;
   options.language = kLanguages.at(language);
   ShaderExport files;
   try {
@@ -53,16 +55,18 @@ void export_shader_files([[maybe_unused]] const std::string& model_path,
                 fmt::format("cannot create the folder '{}': {}", output, error.message()));
   std::vector<std::filesystem::path> targets = {folder / files.shader.name, folder / "README.md"};
   for (const TextFile& wrapper : files.wrappers) targets.push_back(folder / wrapper.name);
-  for (const NamedImage& image : files.images) targets.push_back(folder / (image.name + ".exr"));
+  for (const ShaderTexture& texture : files.textures)
+    targets.push_back(folder / texture.file_name());
   for (const std::filesystem::path& target : targets) check_output_target(target);
   write_file_atomically(folder / files.shader.name, files.shader.text);
   for (const TextFile& wrapper : files.wrappers)
     write_file_atomically(folder / wrapper.name, wrapper.text);
-  for (const auto& [name, image] : files.images)
-    write_image(folder / (name + ".exr"), image.view());
+  for (const ShaderTexture& texture : files.textures)
+    write_image(folder / texture.file_name(), texture.image.view(),
+                texture.encoding == TextureEncoding::png16 ? 16 : 8);
   write_file_atomically(folder / "README.md", files.readme);
   fmt::print(stderr, "wrote {} ({}, {} image(s), README.md)\n", output, files.shader.name,
-             files.images.size());
+             files.textures.size());
 #else
   throw Error(ErrorCode::io,
               "this stochtex was built without the OpenGL backend "
@@ -76,6 +80,7 @@ Command add_export_shader_command(CLI::App& app) {
   struct Options {
     std::string model;
     std::string output;
+    std::string variant = "exact";
     std::string language = "glsl";
   };
   auto options = std::make_shared<Options>();
@@ -85,13 +90,21 @@ Command add_export_shader_command(CLI::App& app) {
   command->add_option("-o,--output", options->output, "folder to write (created if missing)")
       ->required();
   command
+      ->add_option("--variant", options->variant,
+                   "exact (the CPU's filter in the shader, to float rounding) or fast (the "
+                   "--gl-filter hardware GLSL: PNG data, mip-mapped hardware filtering; equal to "
+                   "the CPU in distribution)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"exact", "fast"}));
+  command
       ->add_option("--language", options->language,
                    "glsl (GLSL 4.50), essl (GLSL ES 3.00, WebGL2), hlsl (Shader Model 5, with a "
-                   "Unity Shader Graph function) or msl (Metal)")
+                   "Unity Shader Graph function) or msl (Metal); both variants")
       ->capture_default_str()
       ->check(CLI::IsMember({"glsl", "essl", "hlsl", "msl"}));
   return {command, [options] {
-            export_shader_files(options->model, options->output, options->language);
+            export_shader_files(options->model, options->output, options->variant,
+                                options->language);
             return 0;
           }};
 }

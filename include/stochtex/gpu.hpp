@@ -21,11 +21,12 @@ namespace stochtex {
 //             pyramid levels): the CPU's output to float rounding. The default.
 //   hardware: texton (order 1) and tiling read their pyramids as mip-mapped GL textures with
 //             textureGrad (trilinear, anisotropic up to 16x where the driver has it), as the
-//             papers' shaders do: faster on GPUs, equal to the CPU in distribution (mean,
-//             variance; tested), not pixel for pixel. gabor runs its float-only GLSL (no
-//             doubles: positions split per grid into a 64-bit cell and a float offset), within
-//             about 1e-3 of the image's standard deviation of `exact` (tested). lrp and other
-//             texton orders filter analytically and render as `exact`.
+//             papers' shaders do, running the GLSL and data of ShaderVariant::fast: faster on GPUs,
+//             equal to the CPU in distribution (mean, variance; tested), not pixel for pixel.
+//             gabor runs its float-only GLSL (no doubles: positions split per grid into a 64-bit
+//             cell and a float offset), within about 1e-3 of the image's standard deviation of
+//             `exact` (tested). lrp and other texton orders filter analytically and render as
+//             `exact`.
 enum class GlFilter { exact, hardware };
 
 struct GpuRenderOptions {
@@ -64,16 +65,58 @@ class GlRenderer {
 void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
                const GpuRenderOptions& options = {});
 
+// Which GLSL `stochtex export-shader` writes (`--variant`):
+//   exact: the `--gl-filter exact` evaluator: float32 data read with texelFetch, the shader's own
+//          interpolation and pyramid levels; the CPU's output to float rounding. The default.
+//   fast:  the GLSL that `render --backend gl --gl-filter hardware` runs, with its data as the
+//          images engines import (PNG where 8 or 16 bits lose nothing measurable) read through
+//          hardware-filtered, mip-mapped samplers; equal to the CPU in distribution (texton,
+//          tiling). gabor's fast variant is its float-only GLSL (no doubles), within about 1e-3
+//          of the image's standard deviation of exact; lrp's hardware path is its exact one, so
+//          its fast variant is exact.
+enum class ShaderVariant { exact, fast };
+
 // The language of an exported shader (`export-shader --language`):
 //   glsl: GLSL 4.50 (OpenGL 4.5), the method's own source. The default.
 //   essl: GLSL ES 3.00 (WebGL2, OpenGL ES 3.0);
 //   hlsl: HLSL Shader Model 5 (Direct3D 11, Unity, Unreal);
 //   msl:  Metal Shading Language 1.2.
-// essl, hlsl and msl are cross-compiled from the GLSL through SPIR-V (glslang, SPIRV-Cross).
+// essl, hlsl and msl are cross-compiled from the GLSL through SPIR-V (glslang, SPIRV-Cross), the
+// same for both variants.
 enum class ShaderLanguage { glsl, essl, hlsl, msl };
 
 struct ShaderExportOptions {
+  ShaderVariant variant = ShaderVariant::exact;
   ShaderLanguage language = ShaderLanguage::glsl;
+};
+
+// How an exported data image is stored: its file and the GL texture format it loads into.
+//   exr_float32: <name>.exr, float32 (GL_R32F .. GL_RGBA32F);
+//   png8:        <name>.png, 8 bits per channel, value = byte / 255 (GL_R8 .. GL_RGBA8);
+//   png16:       <name>.png, 16 bits per channel, value = sample / 65535 (GL_R16 .. GL_RGBA16).
+// Every data image is linear data: load it without sRGB decoding (UNORM, not SRGB8).
+enum class TextureEncoding { exr_float32, png8, png16 };
+// The sampler's filter: nearest (texelFetch reads), linear (bilinear / trilinear for 3-D, no
+// mip-maps) or mipmap (trilinear between mip levels, anisotropic up to 16x where available).
+enum class TextureFilter { nearest, linear, mipmap };
+// The sampler's wrap on every axis; clamp_to_border uses transparent black (0, 0, 0, 0).
+enum class TextureWrap { clamp_to_edge, clamp_to_border, repeat };
+
+// One exported data image and the texture it becomes.
+struct ShaderTexture {
+  std::string name;  // the file <name>.exr or <name>.png, bound to the texture `stochtex_<name>`
+  ImageF image;      // the values the file holds (PNG: already quantised to its bit depth)
+  TextureEncoding encoding = TextureEncoding::exr_float32;
+  // 1: a 2-D texture. More: a 3-D texture of image.width x (image.height / depth) x depth, its
+  // slices stacked top to bottom in the image (slice z in rows z * height / depth onwards), so the
+  // image's texels in row order are the 3-D texture's in x, y, z order.
+  int depth = 1;
+  TextureFilter filter = TextureFilter::nearest;
+  TextureWrap wrap = TextureWrap::clamp_to_edge;
+  // 1: no mip-maps. More: the engine generates the mip chain from the image (2 x 2 box filter,
+  // glGenerateMipmap) and samples levels 0 .. mip_levels - 1 (GL_TEXTURE_MAX_LEVEL).
+  int mip_levels = 1;
+  std::string file_name() const;
 };
 
 // A text file of an export: its name in the export folder and its contents.
@@ -85,18 +128,20 @@ struct TextFile {
 // `stochtex export-shader`: a self-contained shader library exposing, in every language,
 //   vec4 stochtex_<method>(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)
 // (float2/float4 in HLSL and MSL; p in exemplar pixels, dpdx/dpdy its screen derivatives, zero =
-// no filtering), the model's data as images to bind as textures, and a README showing how. Needs
-// no GL context.
+// no filtering), the model's data as images to bind as textures, and a README showing how. The
+// result has the model's values: those of the analysed exemplar file (PNG bytes / 255, not decoded
+// from sRGB), so for an ordinary sRGB exemplar it is sRGB-encoded, as the CPU render's PNG is, and
+// a linear-space engine converts it to linear (or writes it unconverted to a non-sRGB target).
+// Needs no GL context.
 struct ShaderExport {
   TextFile shader;  // stochtex_<method>.glsl, .essl, .hlsl or .metal
   // Engine-shaped wrappers of `shader` (HLSL: a Unity Shader Graph custom function file).
   std::vector<TextFile> wrappers;
-  // Write each as <name>.exr (float32, exact); it binds to the texture `stochtex_<name>`.
-  std::vector<NamedImage> images;
+  std::vector<ShaderTexture> textures;  // each bound to the texture `stochtex_<name>`
   std::string readme;
 };
 // Throws std::invalid_argument, one sentence, when the model's shader uses what the language
-// lacks (the gabor shader's double precision in GLSL ES, HLSL and Metal).
+// lacks (the gabor exact shader's double precision in GLSL ES, HLSL and Metal).
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options = {});
 
 // "OpenGL <version> on <renderer>" of the context render_gl uses (creates one).

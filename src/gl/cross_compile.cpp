@@ -82,22 +82,6 @@ constexpr std::array<Lack, 4> kLacks = {{
      "computes in double precision, which Metal does not have"},
 }};
 
-// Where SPIRV-Cross's text for the fragment entry point begins: it writes the entry point after
-// every function it calls, and nothing after it.
-std::string_view entry_point_start(ShaderLanguage language) {
-  switch (language) {
-    case ShaderLanguage::essl:
-      return "\nvoid main()\n";
-    case ShaderLanguage::hlsl:
-      return "\nvoid frag_main()\n";
-    case ShaderLanguage::msl:
-      return "\nfragment void main0(";
-    case ShaderLanguage::glsl:
-      break;
-  }
-  throw std::logic_error("cross_compile: GLSL is not cross-compiled");
-}
-
 // SPIRV-Cross through its C API: one context per call, freed on every path.
 class Cross {
  public:
@@ -126,32 +110,11 @@ class Cross {
 
 }  // namespace
 
-std::string_view language_option(ShaderLanguage language) {
-  switch (language) {
-    case ShaderLanguage::glsl:
-      return "glsl";
-    case ShaderLanguage::essl:
-      return "essl";
-    case ShaderLanguage::hlsl:
-      return "hlsl";
-    case ShaderLanguage::msl:
-      return "msl";
-  }
-  return "?";
-}
-
-std::string_view language_title(ShaderLanguage language) {
-  switch (language) {
-    case ShaderLanguage::glsl:
-      return "GLSL 4.50";
-    case ShaderLanguage::essl:
-      return "GLSL ES 3.00";
-    case ShaderLanguage::hlsl:
-      return "HLSL Shader Model 5";
-    case ShaderLanguage::msl:
-      return "Metal Shading Language 1.2";
-  }
-  return "?";
+const LanguageRow& language_row(ShaderLanguage language) {
+  const auto index = static_cast<std::size_t>(language);
+  if (index >= kLanguageRows.size() || kLanguageRows[index].language != language)
+    throw std::logic_error("language_row: kLanguageRows is not in ShaderLanguage's order");
+  return kLanguageRows[index];
 }
 
 std::string front_end_errors(std::string_view source, ShaderLanguage language) {
@@ -162,7 +125,9 @@ std::string front_end_errors(std::string_view source, ShaderLanguage language) {
 
 std::string cross_compile(std::string_view library, std::string_view function,
                           std::string_view method, ShaderLanguage language) {
-  const std::string_view entry = entry_point_start(language);
+  if (language == ShaderLanguage::glsl)
+    throw std::logic_error("cross_compile: GLSL is not cross-compiled");
+  const std::string_view entry = language_row(language).entry_point_start;
   const std::string wrapper = "#version 450\n" + shader_source("gl/portable.glsl") +
                               std::string(library) + "void main() {\n  " + std::string(function) +
                               "(vec2(0.0), vec2(0.0), vec2(0.0), 0u);\n}\n";
@@ -191,10 +156,11 @@ std::string cross_compile(std::string_view library, std::string_view function,
   for (const Lack& lack : kLacks)
     for (std::size_t i = 0; i < count; ++i)
       if (lack.language == language && capabilities[i] == lack.capability)
-        throw std::invalid_argument("the " + std::string(method) +
-                                    " shader cannot be exported as " +
-                                    std::string(language_title(language)) + ": it " + lack.reason +
-                                    "; export it with --language glsl (OpenGL 4.0 or later)");
+        throw std::invalid_argument(
+            "the " + std::string(method) + " shader cannot be exported as " +
+            std::string(language_row(language).title) + ": it " + lack.reason +
+            "; export its float-only shader with --variant fast, or use "
+            "--language glsl (OpenGL 4.0 or later)");
 
   spvc_compiler_options options = nullptr;
   cross.check(spvc_compiler_create_compiler_options(compiler, &options), "make options");

@@ -4,6 +4,7 @@
 #include "gl/twin.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -48,39 +49,75 @@ void run_tile(const Program& program, std::int64_t first_x, std::int64_t first_y
 }
 
 float hardware_footprint(const Grid& grid, bool filter) {
-  return filter ? static_cast<float>(grid.scale / std::sqrt(3.0)) : 0.0f;
+  return filter ? static_cast<float>(grid.scale) : 0.0f;
 }
 
-GLuint mipmapped_texture(int width, int height, const std::vector<std::vector<float>>& levels,
-                         GLenum wrap) {
-  int count = 1;
-  while ((std::max(width, height) >> count) > 0) ++count;
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, count, GL_RGBA32F, width, height);
-  for (std::size_t l = 0; l < levels.size() && static_cast<int>(l) < count; ++l)
-    glTextureSubImage2D(texture, static_cast<GLint>(l), 0, 0, std::max(1, width >> l),
-                        std::max(1, height >> l), GL_RGBA, GL_FLOAT, levels[l].data());
-  if (static_cast<int>(levels.size()) < count) {
-    glTextureParameteri(texture, GL_TEXTURE_BASE_LEVEL, static_cast<GLint>(levels.size()) - 1);
-    glGenerateTextureMipmap(texture);
-    glTextureParameteri(texture, GL_TEXTURE_BASE_LEVEL, 0);
+ImageF quantized(ImageF image, int bits) {
+  const float maximum = bits == 16 ? 65535.0f : 255.0f;
+  for (float& value : image.pixels()) {
+    const float clamped = value > 0.0f ? std::min(value, 1.0f) : 0.0f;
+    value = static_cast<float>(std::lround(clamped * maximum)) / maximum;
   }
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, static_cast<GLint>(wrap));
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, static_cast<GLint>(wrap));
-  glTextureParameterf(texture, GL_TEXTURE_MAX_ANISOTROPY, max_anisotropy());
-  return texture;
+  return image;
 }
 
-std::vector<float> to_rgba(const float* values, std::size_t texels, int channels) {
-  std::vector<float> rgba(texels * 4, 0.0f);
-  for (std::size_t i = 0; i < texels; ++i)
-    for (int c = 0; c < channels; ++c)
-      rgba[i * 4 + static_cast<std::size_t>(c)] =
-          values[i * static_cast<std::size_t>(channels) + static_cast<std::size_t>(c)];
-  return rgba;
+GLuint texture_of(const ShaderTexture& texture) {
+  const ImageF& image = texture.image;
+  const auto channel = static_cast<std::size_t>(image.channels() - 1);
+  constexpr std::array<std::array<GLenum, 4>, 3> kFormats = {{
+      {GL_R32F, GL_RG32F, GL_RGB32F, GL_RGBA32F},  // exr_float32
+      {GL_R8, GL_RG8, GL_RGB8, GL_RGBA8},          // png8
+      {GL_R16, GL_RG16, GL_RGB16, GL_RGBA16},      // png16
+  }};
+  constexpr std::array<GLenum, 4> kLayouts = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+  const GLenum format = kFormats[static_cast<std::size_t>(texture.encoding)][channel];
+  const int width = image.width();
+  const int height = image.height() / texture.depth;
+  GLuint id = 0;
+  if (texture.depth == 1) {
+    glCreateTextures(GL_TEXTURE_2D, 1, &id);
+    glTextureStorage2D(id, texture.mip_levels, format, width, height);
+    glTextureSubImage2D(id, 0, 0, 0, width, height, kLayouts[channel], GL_FLOAT,
+                        image.pixels().data());
+  } else {
+    glCreateTextures(GL_TEXTURE_3D, 1, &id);
+    glTextureStorage3D(id, texture.mip_levels, format, width, height, texture.depth);
+    glTextureSubImage3D(id, 0, 0, 0, 0, width, height, texture.depth, kLayouts[channel], GL_FLOAT,
+                        image.pixels().data());
+  }
+  if (texture.mip_levels > 1) glGenerateTextureMipmap(id);
+  glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, texture.mip_levels - 1);
+  const bool nearest = texture.filter == TextureFilter::nearest;
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER,
+                      nearest                                   ? GL_NEAREST
+                      : texture.filter == TextureFilter::mipmap ? GL_LINEAR_MIPMAP_LINEAR
+                                                                : GL_LINEAR);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, nearest ? GL_NEAREST : GL_LINEAR);
+  if (texture.filter == TextureFilter::mipmap)
+    glTextureParameterf(id, GL_TEXTURE_MAX_ANISOTROPY, max_anisotropy());
+  constexpr std::array<GLenum, 3> kWraps = {GL_CLAMP_TO_EDGE, GL_CLAMP_TO_BORDER, GL_REPEAT};
+  for (const GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+    glTextureParameteri(id, axis,
+                        static_cast<GLint>(kWraps[static_cast<std::size_t>(texture.wrap)]));
+  return id;
+}
+
+ExportedProgram::ExportedProgram(const ExportParts& parts, const std::string& render_source)
+    : program_("#version 450\n" + parts.library + render_source) {
+  for (const ShaderTexture& texture : parts.textures) {
+    program_.set(("stochtex_" + texture.name).c_str(), static_cast<int>(textures_.size()));
+    textures_.push_back(texture_of(texture));
+  }
+  check_gl("uploading the exported textures");
+}
+
+ExportedProgram::~ExportedProgram() {
+  glDeleteTextures(static_cast<GLsizei>(textures_.size()), textures_.data());
+}
+
+void ExportedProgram::bind_textures() const {
+  for (std::size_t unit = 0; unit < textures_.size(); ++unit)
+    glBindTextureUnit(static_cast<GLuint>(unit), textures_[unit]);
 }
 
 GLuint data_texture(const ImageF& image) {

@@ -6,9 +6,11 @@
 //   template <> struct Twin<m::MModel> {
 //     static constexpr std::array<GlslConstant, N> kConstants;  // C++ constants its GLSL shares
 //     static std::unique_ptr<Pass> pass(const m::MModel&);       // gl_pass.cpp: GL state
-//     static ExportParts shader(const m::MModel&);               // gl_data.cpp: export-shader
+//     static ExportParts shader(const m::MModel&, ShaderVariant);  // gl_data.cpp: export-shader
 //   };
 //
+// `fast` is the GLSL and data that the pass runs for --gl-filter hardware (one source); a method
+// whose hardware path is its exact one exports `exact` for both.
 // The renderer and the exporter visit stochtex::MethodModel (model/model_data.hpp) with it, so a
 // method of the variant without a twin is a compile error (HasTwin below), not a runtime surprise.
 
@@ -45,9 +47,10 @@ struct ExportParts {
   std::string title;        // the README's, e.g. "texton noise"
   std::string what;         // the GLSL file's first line, e.g. "Texton noise (3 channels, ...)"
   std::string library;      // the method's GLSL library: all but `#version`
-  // The data, each bound to `uniform sampler2D stochtex_<name>` (written as <name>.exr).
-  std::vector<NamedImage> images;
-  std::string notes;  // the README's method notes
+  // The data, each bound to `uniform sampler<2D|3D> stochtex_<name>`.
+  std::vector<ShaderTexture> textures;
+  std::string notes;                             // the README's method notes
+  ShaderVariant variant = ShaderVariant::exact;  // fast: the README lists each file's settings
 };
 
 // Declared only: the specialisations in the method folders are the twins.
@@ -58,7 +61,7 @@ template <typename MethodModel>
 concept HasTwin = requires(const MethodModel& model) {
   {std::span<const GlslConstant>(Twin<MethodModel>::kConstants)};
   { Twin<MethodModel>::pass(model) } -> std::same_as<std::unique_ptr<Pass>>;
-  { Twin<MethodModel>::shader(model) } -> std::same_as<ExportParts>;
+  { Twin<MethodModel>::shader(model, ShaderVariant::exact) } -> std::same_as<ExportParts>;
 };
 
 // Whether every alternative of a std::variant of method models has a twin.
@@ -79,19 +82,35 @@ inline GLuint low_bits(double cell) {
 void run_tile(const Program& program, std::int64_t first_x, std::int64_t first_y, int width,
               int height, const Buffer& result);
 
-// --gl-filter hardware (texton, tiling): the footprint side given to textureGrad, the grid's scale
-// over sqrt(3), so that the hardware's level of detail log2(scale / sqrt(3)) is the CPU pyramids'
-// (kLodBias, core/level_of_detail.hpp), or zero for point samples.
+// --gl-filter hardware (texton, tiling): the footprint side the fast GLSL takes as the screen
+// derivatives' length, the grid's scale, or zero for point samples.
 float hardware_footprint(const Grid& grid, bool filter);
 
-// An RGBA32F texture with a full mip chain for hardware filtering: `levels[l]` (RGBA texels of
-// max(1, width >> l) x max(1, height >> l)) where the caller has the level, glGenerateTextureMipmap
-// for the rest. Trilinear, anisotropic where available, `wrap` on both axes.
-GLuint mipmapped_texture(int width, int height, const std::vector<std::vector<float>>& levels,
-                         GLenum wrap);
+// `image` rounded to what a PNG of `bits` (8 or 16) bits per channel holds and reads back (values
+// clamped to [0, 1], sample / (2^bits - 1)), as write_image and read_image do.
+ImageF quantized(ImageF image, int bits);
 
-// `values` with `channels` floats per texel as RGBA (missing channels zero).
-std::vector<float> to_rgba(const float* values, std::size_t texels, int channels);
+// The GL texture of an exported data image, made as its ShaderTexture says (format, 2-D or 3-D,
+// generated mip-maps, filter, wrap): the fast renderer binds what the export ships.
+GLuint texture_of(const ShaderTexture& texture);
+
+// The --gl-filter hardware program of a method with a fast variant (texton, tiling): the fast
+// export's GLSL library (what `export-shader --variant fast` ships, less its header comment)
+// followed by the method's render.glsl, and the export's textures on units 0, 1, ... in their
+// order, so the renderer runs and measures exactly what the export ships.
+class ExportedProgram {
+ public:
+  ExportedProgram(const ExportParts& parts, const std::string& render_source);
+  ~ExportedProgram();
+  ExportedProgram(const ExportedProgram&) = delete;
+  ExportedProgram& operator=(const ExportedProgram&) = delete;
+  const Program& program() const { return program_; }
+  void bind_textures() const;
+
+ private:
+  Program program_;
+  std::vector<GLuint> textures_;
+};
 
 // An RGBA32F texture of `image` (4 channels), read with texelFetch.
 GLuint data_texture(const ImageF& image);

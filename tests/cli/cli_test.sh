@@ -105,6 +105,22 @@ expect_ok() {
   pass
 }
 
+# expect_readme_files NAME DIR: every GLSL and data file an export's README names was written.
+expect_readme_files() {
+  local name=$1 dir=$2 files missing=""
+  files=$(grep -o '`[A-Za-z0-9_]*\.\(png\|exr\|glsl\)`' "$dir/README.md" | tr -d '`' | sort -u)
+  for file in $files; do
+    [[ -s $dir/$file ]] || missing+=" $file"
+  done
+  if [[ -z $files ]]; then
+    fail "$name" "the README names no file"
+  elif [[ -n $missing ]]; then
+    fail "$name" "missing:$missing"
+  else
+    pass
+  fi
+}
+
 # expect_json NAME COMMAND...: exit code 0 and stdout is one valid JSON document.
 expect_json() {
   local name=$1
@@ -252,9 +268,22 @@ for method in $methods; do
       --size 24x24 --backend gl && expect_file "render $method --backend gl" "${each}_gl.png"
     expect_ok "export-shader $method" "$stochtex" export-shader "$each.stx" -o "${each}_shader" &&
       expect_file "export-shader $method writes the GLSL" "${each}_shader/stochtex_$method.glsl"
+    expect_ok "export-shader $method --variant fast" "$stochtex" export-shader "$each.stx" \
+      -o "${each}_fast" --variant fast &&
+      expect_readme_files "export-shader $method --variant fast writes its README's files" \
+        "${each}_fast"
+    # The fast variant in every language (gabor's float-only shader included).
+    for language in essl hlsl msl; do
+      expect_ok "export-shader $method --variant fast --language $language" "$stochtex" \
+        export-shader "$each.stx" -o "${each}_fast_$language" --variant fast --language "$language" &&
+        expect_readme_files "export-shader $method --variant fast --language $language writes" \
+          "${each}_fast_$language"
+    done
   fi
 done
 
+expect_parse_error "unknown --variant" "$stochtex" export-shader "$model" -o "$out/shader" \
+  --variant fastest
 expect_ok "export-shader" "$stochtex" export-shader "$model" -o "$models/shader" &&
   expect_file "export-shader writes the GLSL" "$models/shader/stochtex_texton.glsl" &&
   expect_file "export-shader writes the atlas" "$models/shader/texton_atlas.exr" &&
@@ -296,7 +325,7 @@ if expect_ok "export-shader --language glsl" "$stochtex" export-shader "$model" 
 fi
 if [[ -f $models/gabor.stx ]]; then
   for language in essl hlsl msl; do
-    expect_error "export-shader gabor --language $language" 2 "double precision" \
+    expect_error "export-shader gabor --language $language" 2 "float-only shader with --variant fast" \
       "$stochtex" export-shader "$models/gabor.stx" -o "$out/gabor_$language" --language "$language"
   done
 fi

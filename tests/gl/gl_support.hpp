@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "gl/program.hpp"
 #include "stochtex/gpu.hpp"
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
@@ -73,6 +75,53 @@ inline float max_difference(const ImageF& a, const ImageF& b) {
   for (std::size_t i = 0; i < a.pixels().size(); ++i)
     worst = std::max(worst, std::abs(a.pixels()[i] - b.pixels()[i]));
   return worst;
+}
+
+// Runs an exported shader as an engine would: a compute shader after `#version 450` and the
+// exported GLSL calls stochtex_<method>(p, (scale, 0), (0, scale), seed) at p = scale * (pixel +
+// 0.5) for size x size pixels (size a multiple of 8), with `textures[i]` bound to the sampler of
+// files.textures[i]. Returns the image of the model's `channels` channels.
+inline ImageF run_export(const ShaderExport& files, const std::string& method,
+                         const std::vector<GLuint>& textures, int channels, int size, float scale,
+                         std::uint32_t seed) {
+  const std::string source = "#version 450\n" + files.shader.text + R"glsl(
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(std430, binding = 0) writeonly buffer Out { vec4 values[]; };
+uniform int width;
+uniform float scale;
+uniform uint seed;
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  vec2 p = scale * (vec2(pixel) + 0.5);
+  values[pixel.y * width + pixel.x] =
+      stochtex_)glsl" + method +
+                             R"glsl((p, vec2(scale, 0.0), vec2(0.0, scale), seed);
+}
+)glsl";
+  const gl::Program program(source);
+  for (std::size_t i = 0; i < textures.size(); ++i) {
+    glBindTextureUnit(static_cast<GLuint>(i), textures[i]);
+    program.set(("stochtex_" + files.textures[i].name).c_str(), static_cast<int>(i));
+  }
+  program.set("width", size);
+  program.set("scale", scale);
+  program.set("seed", static_cast<unsigned>(seed));
+  const gl::Buffer buffer(static_cast<std::size_t>(size) * size * 4 * sizeof(float));
+  glUseProgram(program.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
+  glDispatchCompute(static_cast<GLuint>(size / 8), static_cast<GLuint>(size / 8), 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<float> values(static_cast<std::size_t>(size) * size * 4);
+  glGetNamedBufferSubData(buffer.id(), 0, static_cast<GLsizeiptr>(values.size() * sizeof(float)),
+                          values.data());
+  gl::check_gl("running an exported shader");
+  ImageF image(size, size, channels);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      for (int c = 0; c < channels; ++c)
+        image.at(x, y, c) =
+            values[(static_cast<std::size_t>(y) * size + x) * 4 + static_cast<std::size_t>(c)];
+  return image;
 }
 
 }  // namespace stochtex::gl_test

@@ -208,10 +208,9 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
     const auto folder = std::filesystem::temp_directory_path() / "stochtex_export_test";
     std::filesystem::create_directories(folder);
     std::vector<GLuint> textures;
-    std::vector<std::string> samplers;
-    for (const auto& [name, image] : files.images) {
-      write_image(folder / (name + ".exr"), image.view());
-      const ImageF texels = read_image(folder / (name + ".exr"));
+    for (const ShaderTexture& t : files.textures) {
+      write_image(folder / t.file_name(), t.image.view());
+      const ImageF texels = read_image(folder / t.file_name());
       ASSERT_EQ(texels.channels(), 4);
       GLuint texture = 0;
       glCreateTextures(GL_TEXTURE_2D, 1, &texture);
@@ -219,49 +218,15 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
       glTextureSubImage2D(texture, 0, 0, 0, texels.width(), texels.height(), GL_RGBA, GL_FLOAT,
                           texels.pixels().data());
       textures.push_back(texture);
-      samplers.push_back("stochtex_" + name);
     }
     std::filesystem::remove_all(folder);
 
-    const std::string source = "#version 450\n" + files.shader.text + R"glsl(
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 0) writeonly buffer Out { vec4 values[]; };
-uniform int width;
-uniform float scale;
-void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  vec2 p = scale * (vec2(pixel) + 0.5);
-  values[pixel.y * width + pixel.x] =
-      stochtex_)glsl" + std::string(c.method) +
-                               R"glsl((p, vec2(scale, 0.0), vec2(0.0, scale), 11u);
-}
-)glsl";
-    const gl::Program program(source);
-    for (std::size_t i = 0; i < textures.size(); ++i) {
-      glBindTextureUnit(static_cast<GLuint>(i), textures[i]);
-      program.set(samplers[i].c_str(), static_cast<int>(i));
-    }
     const int size = c.size;
     for (const double scale : {1.0, 3.0}) {
-      program.set("width", size);
-      program.set("scale", static_cast<float>(scale));
-      const gl::Buffer buffer(static_cast<std::size_t>(size) * size * 4 * sizeof(float));
-      glUseProgram(program.id());
-      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
-      glDispatchCompute(static_cast<GLuint>(size / 8), static_cast<GLuint>(size / 8), 1);
-      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      std::vector<float> values(static_cast<std::size_t>(size) * size * 4);
-      glGetNamedBufferSubData(
-          buffer.id(), 0, static_cast<GLsizeiptr>(values.size() * sizeof(float)), values.data());
-      ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
-      const ImageF cpu = render_cpu(model, Grid{{0.0, 0.0}, scale, size, size}, 11);
-      float worst = 0.0f;
-      for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x)
-          for (int ch = 0; ch < model.channels(); ++ch)
-            worst = std::max(worst, std::abs(cpu.at(x, y, ch) -
-                                             values[(static_cast<std::size_t>(y) * size + x) * 4 +
-                                                    static_cast<std::size_t>(ch)]));
+      const ImageF gl = run_export(files, c.method, textures, model.channels(), size,
+                                   static_cast<float>(scale), 11);
+      const float worst =
+          max_difference(render_cpu(model, Grid{{0.0, 0.0}, scale, size, size}, 11), gl);
       std::cout << "exported " << c.method << " shader (" << c.exemplar << "), scale " << scale
                 << ": max |cpu - gl| = " << worst << "\n";
       // The renderers' parity tolerance (TextonMatchesTheCpuReference); the exported tiling and

@@ -103,22 +103,29 @@ std::string gabor_library_source(const GaborGlsl& glsl) {
          glsl_precision_variant(shader_source("methods/gabor/evaluate.glsl"), glsl.precision);
 }
 
-ExportParts Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model) {
-  GaborGlsl glsl = gabor_glsl(model);
-  std::vector<NamedImage> images;
+ExportParts Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model, ShaderVariant variant) {
+  const bool fast = variant == ShaderVariant::fast;
+  GaborGlsl glsl = gabor_glsl(model, fast ? GlslPrecision::floats : GlslPrecision::doubles);
+  std::vector<ShaderTexture> images;
   images.push_back({"gabor_data", std::move(glsl.data)});
-  return {
-      gabor::GaborModel::kMethodName,
-      "Gabor noise",
-      "Gabor noise by example (" + std::to_string(model.channels()) + " channels, " +
-          std::to_string(model.grids().size()) + " grids, " +
-          std::to_string(static_cast<int>(model.impulses())) + " impulses)",
-      gabor_library_source(glsl),
-      std::move(images),
-      "Texel i < GABOR_GAUSSIANS of `gabor_data.exr` is Gaussian i (frequency x, y, alias "
-      "probability,\nalias index); then 24 texels per grid hold its Poisson table. The shader "
-      "uses double precision\n(core since OpenGL 4.0) for positions and cell corners, as the CPU "
-      "reference does."};
+  return {gabor::GaborModel::kMethodName,
+          "Gabor noise",
+          std::string("Gabor noise by example") + (fast ? ", fast variant (" : " (") +
+              std::to_string(model.channels()) + " channels, " +
+              std::to_string(model.grids().size()) + " grids, " +
+              std::to_string(static_cast<int>(model.impulses())) + " impulses)",
+          gabor_library_source(glsl),
+          std::move(images),
+          std::string("Texel i < GABOR_GAUSSIANS of `gabor_data.exr` is Gaussian i (frequency x, "
+                      "y, alias probability,\nalias index); then 24 texels per grid hold its "
+                      "Poisson table. ") +
+              (fast ? "The shader is float-only (the `--gl-filter hardware` GLSL): positions are "
+                      "split per grid\ninto a cell and a float offset, so it runs where doubles "
+                      "are missing (GLSL ES, HLSL, Metal),\nwithin about 1e-3 of the image's "
+                      "standard deviation of the exact variant."
+                    : "The shader uses double precision\n(core since OpenGL 4.0) for positions "
+                      "and cell corners, as the CPU reference does."),
+          variant};
 }
 
 }  // namespace stochtex::gl

@@ -51,7 +51,9 @@ struct Twin<gabor::GaborModel> {
       {"GABOR_MAX_LEVEL_RATIO", static_cast<double>(std::uint64_t{1} << gabor::kMaxLevels)},
   }};
   static std::unique_ptr<Pass> pass(const gabor::GaborModel& model);
-  static ExportParts shader(const gabor::GaborModel& model);
+  // fast: the float-only library of --gl-filter hardware (gabor_glsl with GlslPrecision::floats,
+  // the same data image read with texelFetch), which GLSL ES, HLSL and Metal can express.
+  static ExportParts shader(const gabor::GaborModel& model, ShaderVariant variant);
 };
 
 }  // namespace stochtex::gl

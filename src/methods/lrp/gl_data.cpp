@@ -195,7 +195,8 @@ ImageF lrp_tables_image(const LrpGlsl& glsl) {
   return image;
 }
 
-ExportParts Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model) {
+ExportParts Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model,
+                                        ShaderVariant /*variant: fast is exact*/) {
   const LrpGlsl glsl = lrp_glsl(model);
   constexpr std::uint32_t kExactFloatIntegers = 1u << 24;
   const auto too_large = [](std::uint32_t value) { return value >= kExactFloatIntegers; };
@@ -204,7 +205,7 @@ ExportParts Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model) {
     throw Error(ErrorCode::invalid_input,
                 "export-shader: this lrp model has more than 2^24 frequencies, which a float "
                 "texture cannot index exactly");
-  std::vector<NamedImage> images;
+  std::vector<ShaderTexture> images;
   images.push_back({"lrp_tables", lrp_tables_image(glsl)});
   return {
       lrp::LrpModel::kMethodName,

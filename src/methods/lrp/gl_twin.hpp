@@ -58,7 +58,9 @@ struct Twin<lrp::LrpModel> {
       {"LRP_TURBULENCE_STREAM_BASE", static_cast<int>(lrp::kTurbulenceStreamBase)},
   }};
   static std::unique_ptr<Pass> pass(const lrp::LrpModel& model);
-  static ExportParts shader(const lrp::LrpModel& model);
+  // The hardware path of lrp is its exact one (it filters analytically), so ShaderVariant::fast
+  // exports the exact variant: the same files, byte for byte.
+  static ExportParts shader(const lrp::LrpModel& model, ShaderVariant variant);
 };
 
 }  // namespace stochtex::gl

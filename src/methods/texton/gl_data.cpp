@@ -1,5 +1,6 @@
 // Texton noise as GLSL data (gl_twin.hpp) and its `stochtex export-shader` files.
 
+#include <algorithm>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -63,15 +64,65 @@ TextonGlsl texton_glsl(const texton::TextonModel& model) {
 std::string texton_library_source(const TextonGlsl& glsl) {
   return random_source() + glsl_constants(Twin<texton::TextonModel>::kConstants) + glsl.constants +
          "uniform sampler2D stochtex_texton_atlas;\n" +
-         shader_source("methods/texton/evaluate.glsl");
+         shader_source("methods/texton/evaluate.glsl") +
+         shader_source("methods/texton/exact_fetch.glsl") +
+         shader_source("methods/texton/noise.glsl") + shader_source("methods/texton/entry.glsl");
 }
 
-ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model) {
+namespace {
+
+// The fast variant (order-1 models): texton hardware.glsl and level 0 of the pyramid as a
+// mip-mapped float texture. Textons are signed and the texture's border must read zero: PNG's
+// unsigned samples would need an offset that a transparent-black border (the only border colour
+// every API has) breaks, so the texture is float32 OpenEXR (the data itself: nothing lost).
+ExportParts fast_shader(const texton::TextonModel& model) {
+  const TextonGlsl glsl = texton_glsl(model);
+  const texton::PyramidLevel& base = model.pyramid().front();
+  ShaderTexture texture{"texton_texture", ImageF(base.stride, base.stride, model.channels())};
+  std::copy(base.coefficients.begin(), base.coefficients.end(), texture.image.pixels().begin());
+  texture.filter = TextureFilter::mipmap;
+  texture.wrap = TextureWrap::clamp_to_border;
+  // The model's levels, as far as GL's chain for the texture's side goes.
+  const auto levels = static_cast<int>(model.pyramid().size());
+  while (texture.mip_levels < levels && (base.stride >> texture.mip_levels) > 0)
+    ++texture.mip_levels;
+  std::ostringstream what;
+  what << "Texton noise, fast variant (" << model.channels() << " channels, texton "
+       << model.support() << "x" << model.support() << ", MNI " << model.mean_impacts() << ")";
+  std::vector<ShaderTexture> textures;
+  textures.push_back(std::move(texture));
+  return {texton::TextonModel::kMethodName,
+          "texton noise",
+          what.str(),
+          "#define TEXTON_TEXTURE_FILTER\n" + random_source() +
+              glsl_constants(Twin<texton::TextonModel>::kConstants) + glsl.constants +
+              shader_source("methods/texton/evaluate.glsl") +
+              shader_source("methods/texton/hardware.glsl") +
+              shader_source("methods/texton/noise.glsl") +
+              "#define stochtex_texton texton_at_level_of_detail\n" +
+              shader_source("methods/texton/entry.glsl") + "#undef stochtex_texton\n" +
+              shader_source("methods/texton/fast_entry.glsl"),
+          std::move(textures),
+          "Equal to the CPU render in distribution (mean, variance; tested), not pixel for pixel.\n"
+          "`texton_texture.exr` is the texton (level 0 of the model's pyramid, padded with zeros): "
+          "signed\nvalues, so float. Keep |p| below ~1e4 for full float precision.",
+          ShaderVariant::fast};
+}
+
+}  // namespace
+
+bool has_fast_variant(const texton::TextonModel& model) {
+  return model.order() == 1;
+}
+
+ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model,
+                                              ShaderVariant variant) {
+  if (variant == ShaderVariant::fast && has_fast_variant(model)) return fast_shader(model);
   TextonGlsl glsl = texton_glsl(model);
   std::ostringstream what;
   what << "Texton noise (" << model.channels() << " channels, texton " << model.support() << "x"
        << model.support() << ", MNI " << model.mean_impacts() << ")";
-  std::vector<NamedImage> images;
+  std::vector<ShaderTexture> images;
   images.push_back({"texton_atlas", std::move(glsl.atlas)});
   return {texton::TextonModel::kMethodName,
           "texton noise",

@@ -1,6 +1,6 @@
 // Texton noise on the GL renderer: the program (compiled with the model's constants) and the texel
-// atlas; for --gl-filter hardware (order-1 models), a second program and level 0 of the pyramid as
-// a mip-mapped texture (hardware.glsl).
+// atlas; for --gl-filter hardware (order-1 models), the fast export's program and texture
+// (hardware.glsl, gl_data.cpp).
 
 #include <cmath>
 #include <memory>
@@ -15,8 +15,9 @@ namespace stochtex::gl {
 namespace {
 
 // The texton evaluator's GPU state: the program (compiled with the model's constants) and the
-// texel atlas; for --gl-filter hardware (order-1 models), a second program and level 0 of the
-// pyramid as a mip-mapped texture, made on first use.
+// texel atlas; for --gl-filter hardware (order-1 models), the program and texture of
+// `export-shader --variant fast` (level 0 of the pyramid as a mip-mapped texture), made on first
+// use.
 class TextonPass final : public Pass {
  public:
   explicit TextonPass(const texton::TextonModel& model)
@@ -28,20 +29,19 @@ class TextonPass final : public Pass {
     exact_.set("stochtex_texton_atlas", 0);
     check_gl("uploading the texton");
   }
-  ~TextonPass() {
-    glDeleteTextures(1, &atlas_);
-    glDeleteTextures(1, &texture_);
-  }
+  ~TextonPass() { glDeleteTextures(1, &atlas_); }
   TextonPass(const TextonPass&) = delete;
   TextonPass& operator=(const TextonPass&) = delete;
 
   void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) override {
     const bool filter = options.filter;
     active_ = &exact_;
-    // Hardware bilinear reconstruction is the order-1 B-spline only: other orders stay exact.
-    if (options.texture_filter == GlFilter::hardware && model_.order() == 1) {
-      if (!hardware_) make_hardware();
-      active_ = hardware_.get();
+    if (options.texture_filter == GlFilter::hardware && has_fast_variant(model_)) {
+      if (!hardware_)
+        hardware_ = std::make_unique<ExportedProgram>(
+            Twin<texton::TextonModel>::shader(model_, ShaderVariant::fast),
+            shader_source("methods/texton/render.glsl"));
+      active_ = &hardware_->program();
     }
     const Program& program = *active_;
     const int top_level = static_cast<int>(model_.pyramid().size()) - 1;
@@ -69,35 +69,19 @@ class TextonPass final : public Pass {
 
   void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
                 const Buffer& result) const override {
-    glBindTextureUnit(0, atlas_);
-    glBindTextureUnit(1, texture_);
+    if (active_ == &exact_)
+      glBindTextureUnit(0, atlas_);
+    else
+      hardware_->bind_textures();
     run_tile(*active_, first_x, first_y, width, height, result);
   }
 
  private:
-  void make_hardware() {
-    hardware_ = std::make_unique<Program>(
-        std::string("#version 450\n#define TEXTON_TEXTURE_FILTER\n") +
-        texton_library_source(glsl_) + shader_source("methods/texton/hardware.glsl") +
-        shader_source("methods/texton/render.glsl"));
-    const texton::PyramidLevel& base = model_.pyramid().front();
-    const std::size_t texels = static_cast<std::size_t>(base.stride) * base.stride;
-    texture_ = mipmapped_texture(base.stride, base.stride,
-                                 {to_rgba(base.coefficients.data(), texels, model_.channels())},
-                                 GL_CLAMP_TO_BORDER);
-    glTextureParameterf(texture_, GL_TEXTURE_MAX_LOD,
-                        static_cast<float>(model_.pyramid().size() - 1));
-    hardware_->set("stochtex_texton_atlas", 0);
-    hardware_->set("stochtex_texton_texture", 1);
-    check_gl("uploading the texton texture");
-  }
-
   const texton::TextonModel& model_;
   TextonGlsl glsl_;
   Program exact_;
   GLuint atlas_ = 0;
-  std::unique_ptr<Program> hardware_;
-  GLuint texture_ = 0;
+  std::unique_ptr<ExportedProgram> hardware_;
   const Program* active_ = &exact_;
 };
 

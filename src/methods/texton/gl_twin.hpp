@@ -23,9 +23,13 @@ struct TextonGlsl {
 
 TextonGlsl texton_glsl(const texton::TextonModel& model);
 
-// random.glsl, kConstants, the model's constants, the atlas sampler and evaluate.glsl: all but
-// `#version`.
+// The exact variant: random.glsl, kConstants, the model's constants, the atlas sampler and texton
+// evaluate.glsl, exact_fetch.glsl, noise.glsl and entry.glsl: all but `#version`.
 std::string texton_library_source(const TextonGlsl& glsl);
+
+// Whether the model has a fast variant: hardware bilinear reconstruction is the order-1 B-spline
+// only, so other orders export (and render with --gl-filter hardware) as exact.
+bool has_fast_variant(const texton::TextonModel& model);
 
 template <>
 struct Twin<texton::TextonModel> {
@@ -35,7 +39,8 @@ struct Twin<texton::TextonModel> {
       {"TEXTON_LOD_BIAS", static_cast<float>(kLodBias)},
   }};
   static std::unique_ptr<Pass> pass(const texton::TextonModel& model);
-  static ExportParts shader(const texton::TextonModel& model);
+  // fast: the library and texture of --gl-filter hardware (TextonPass compiles and binds them).
+  static ExportParts shader(const texton::TextonModel& model, ShaderVariant variant);
 };
 
 }  // namespace stochtex::gl

@@ -17,7 +17,7 @@ uniform float filter_level_blend;
 uniform int filter_probes;
 uniform vec2 filter_probe_step;
 uniform float filter_fade;
-// --gl-filter hardware: the footprint's side over sqrt(3) (zero for point samples).
+// --gl-filter hardware: the footprint's side (zero for point samples).
 uniform float filter_scale;
 
 void main() {
@@ -27,10 +27,7 @@ void main() {
   TextonFilter f = TextonFilter(filter_level, filter_level_blend, filter_probes,
                                 filter_probe_step, filter_fade);
 #ifdef TEXTON_TEXTURE_FILTER
-  vec2 texel_scale = vec2(filter_scale / TEXTON_LEVEL_SPACING[0]) /
-                     vec2(textureSize(stochtex_texton_texture, 0));
-  texton_duv_dx = vec2(texel_scale.x, 0.0);
-  texton_duv_dy = vec2(0.0, texel_scale.y);
+  texton_set_gradients(vec2(filter_scale, 0.0), vec2(0.0, filter_scale));
 #endif
   vec4 value = texton_noise(p, origin_cell, seed, f);
   int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * TEXTON_CHANNELS;

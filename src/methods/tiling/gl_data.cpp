@@ -1,5 +1,7 @@
 // Histogram-preserving tiling as GLSL data (gl_twin.hpp) and its `stochtex export-shader` files.
 
+#include <algorithm>
+#include <cmath>
 #include <span>
 #include <string>
 #include <vector>
@@ -9,7 +11,8 @@
 
 namespace stochtex::gl {
 
-TilingGlsl tiling_glsl(const tiling::TilingModel& model) {
+TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) {
+  const bool exact = variant == ShaderVariant::exact;
   const tiling::TilingData& d = model.data();
   const tiling::TilingLayout& layout = model.layout();
   TilingGlsl glsl;
@@ -24,12 +27,14 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model) {
     return offset;
   };
   for (int level = 0; level < model.level_count(); ++level) {
-    const tiling::MipLevel mip = model.level(level);
-    widths.push_back(mip.width);
-    heights.push_back(mip.height);
-    texels.push_back(append({mip.texels, static_cast<std::size_t>(mip.width) * mip.height *
-                                             static_cast<std::size_t>(d.channels)}));
-    luts.push_back(append(model.level_lut(level)));
+    if (exact) {
+      const tiling::MipLevel mip = model.level(level);
+      widths.push_back(mip.width);
+      heights.push_back(mip.height);
+      texels.push_back(append({mip.texels, static_cast<std::size_t>(mip.width) * mip.height *
+                                               static_cast<std::size_t>(d.channels)}));
+      luts.push_back(append(model.level_lut(level)));
+    }
     tables.push_back(append(model.level_tables(level)));
   }
   std::string& text = glsl.constants;
@@ -54,10 +59,12 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model) {
                      glsl_float);
   text +=
       glsl_array("float", "TILING_COLOUR_MEAN", std::span<const float>(d.colour_mean), glsl_float);
-  text += glsl_array("int", "TILING_LEVEL_WIDTH", std::span<const int>(widths), glsl_int);
-  text += glsl_array("int", "TILING_LEVEL_HEIGHT", std::span<const int>(heights), glsl_int);
-  text += glsl_array("int", "TILING_LEVEL_TEXELS", std::span<const int>(texels), glsl_int);
-  text += glsl_array("int", "TILING_LEVEL_LUT", std::span<const int>(luts), glsl_int);
+  if (exact) {
+    text += glsl_array("int", "TILING_LEVEL_WIDTH", std::span<const int>(widths), glsl_int);
+    text += glsl_array("int", "TILING_LEVEL_HEIGHT", std::span<const int>(heights), glsl_int);
+    text += glsl_array("int", "TILING_LEVEL_TEXELS", std::span<const int>(texels), glsl_int);
+    text += glsl_array("int", "TILING_LEVEL_LUT", std::span<const int>(luts), glsl_int);
+  }
   text += glsl_array("int", "TILING_LEVEL_TABLES", std::span<const int>(tables), glsl_int);
   return glsl;
 }
@@ -69,12 +76,103 @@ std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
             "float tiling_data_at(int index) { return tiling_data[index]; }\n"
           : glsl_packed_read("stochtex_tiling_data", "tiling_data_at");
   return random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
-         reader + shader_source("methods/tiling/evaluate.glsl");
+         reader + shader_source("methods/tiling/evaluate.glsl") +
+         shader_source("methods/tiling/exact_fetch.glsl") +
+         shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/entry.glsl");
 }
 
-ExportParts Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model) {
+namespace {
+
+// An image of values in [0, 1] as a PNG of `bits` bits, or as float32 EXR where a value falls
+// outside (an HDR exemplar's table).
+ShaderTexture png_or_exr(std::string name, ImageF image, int bits) {
+  const auto pixels = image.pixels();
+  if (!std::all_of(pixels.begin(), pixels.end(), [](float v) { return v >= 0.0f && v <= 1.0f; }))
+    return {std::move(name), std::move(image)};
+  return {std::move(name), quantized(std::move(image), bits),
+          bits == 16 ? TextureEncoding::png16 : TextureEncoding::png8};
+}
+
+// The fast variant: tiling hardware.glsl's textures and the 1-D tables as exact float reads.
+ExportParts fast_shader(const tiling::TilingModel& model) {
+  const TilingGlsl glsl = tiling_glsl(model, ShaderVariant::fast);
+  const tiling::TilingData& d = model.data();
+  const tiling::MipLevel base = model.level(0);
+  // The Gaussianised exemplar (mean 1/2, deviation 1/6; the exemplar itself for the variance and
+  // linear blends) shrunk about 1/2 into [0, 1] where it spills over: the paper's 8-bit texture
+  // clamps the Gaussian's tails beyond 3 deviations (section 4.2), which moves the extreme
+  // colours of a render (measured: 0.007 at scale 1); this loses nothing (the clamp below only
+  // catches float rounding).
+  ImageF exemplar(base.width, base.height, d.channels);
+  float spread = 0.5f;
+  for (std::size_t i = 0; i < exemplar.pixels().size(); ++i)
+    spread = std::max(spread, std::abs(base.texels[i] - 0.5f));
+  const float scale = spread / 0.5f;
+  for (std::size_t i = 0; i < exemplar.pixels().size(); ++i)
+    exemplar.pixels()[i] = std::clamp((base.texels[i] - 0.5f) / scale + 0.5f, 0.0f, 1.0f);
+  std::vector<ShaderTexture> textures;
+  ShaderTexture& texture =
+      textures.emplace_back(png_or_exr("tiling_exemplar", std::move(exemplar), kExemplarBits));
+  texture.filter = TextureFilter::mipmap;
+  texture.wrap = TextureWrap::repeat;
+  while ((std::max(base.width, base.height) >> texture.mip_levels) > 0) ++texture.mip_levels;
+  const std::string constants =
+      glsl.constants + "const float TILING_TEXTURE_SCALE = " + glsl_float(scale) + ";\n";
+  std::string defines = "#define TILING_TEXTURE_FILTER\n";
+  if (model.layout().colour_lut && !model.level_lut(0).empty()) {
+    // Each level's 3-D table (lut_size^3 RGB, x fastest): lut_size slices of lut_size rows per
+    // level, the levels one after the other, as one lut_size x lut_size x lut_size levels texture.
+    const int n = d.lut_size;
+    ImageF lut(n, n * n * model.level_count(), 3);
+    auto out = lut.pixels().begin();
+    for (int l = 0; l < model.level_count(); ++l)
+      out = std::copy(model.level_lut(l).begin(), model.level_lut(l).end(), out);
+    ShaderTexture& table =
+        textures.emplace_back(png_or_exr("tiling_lut", std::move(lut), kLutBits));
+    table.depth = n * model.level_count();
+    table.filter = TextureFilter::linear;
+    defines += "#define TILING_LUT_TEXTURE\n";
+  }
+  std::string reader =
+      "// This model has no 1-D tables (its colour goes through the 3-D table, no alpha): never "
+      "called.\nfloat tiling_data_at(int index) {\n  return 0.0;\n}\n";
+  if (!glsl.data.empty()) {
+    textures.push_back({"tiling_tables", pack_rgba(glsl.data)});
+    reader = glsl_packed_read("stochtex_tiling_tables", "tiling_data_at");
+  }
+  const std::string library =
+      defines + random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) +
+      constants + reader + shader_source("methods/tiling/evaluate.glsl") +
+      shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/hardware.glsl") +
+      "#define stochtex_tiling tiling_at_level_of_detail\n" +
+      shader_source("methods/tiling/entry.glsl") + "#undef stochtex_tiling\n" +
+      shader_source("methods/tiling/fast_entry.glsl");
+  std::string notes =
+      "Equal to the CPU render in distribution (mean, variance; tested), not pixel for pixel.\n"
+      "`tiling_exemplar` is the Gaussianised exemplar (histogram blend; the exemplar itself for "
+      "the variance\nand linear blends)";
+  if (textures.back().name == "tiling_tables")
+    notes +=
+        "; `tiling_tables.exr` holds the 1-D tables of T^-1, one float array packed four "
+        "floats per\ntexel, 1024 texels per row, read with texelFetch";
+  notes += ". Keep |p| below ~1e4 for full float precision.";
+  return {tiling::TilingModel::kMethodName,
+          "histogram-preserving tiling",
+          "Histogram-preserving tiling and blending, fast variant (" +
+              std::to_string(model.channels()) + " channels)",
+          library,
+          std::move(textures),
+          notes,
+          ShaderVariant::fast};
+}
+
+}  // namespace
+
+ExportParts Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model,
+                                              ShaderVariant variant) {
+  if (variant == ShaderVariant::fast) return fast_shader(model);
   const TilingGlsl glsl = tiling_glsl(model);
-  std::vector<NamedImage> images;
+  std::vector<ShaderTexture> images;
   images.push_back({"tiling_data", pack_rgba(glsl.data)});
   return {tiling::TilingModel::kMethodName,
           "histogram-preserving tiling",

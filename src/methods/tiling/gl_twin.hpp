@@ -21,11 +21,18 @@ struct TilingGlsl {
   std::vector<float> data;  // read by tiling_data_at() of tiling evaluate.glsl
 };
 
-TilingGlsl tiling_glsl(const tiling::TilingModel& model);
+// exact: `data` holds each level's texels, 3-D table and 1-D tables (the TILING_LEVEL_* offsets);
+// fast: the 1-D tables only (TILING_LEVEL_TABLES), the rest being textures (hardware.glsl).
+TilingGlsl tiling_glsl(const tiling::TilingModel& model,
+                       ShaderVariant variant = ShaderVariant::exact);
 
-// random.glsl, kConstants, the model's constants, tiling_data_at() and tiling evaluate.glsl: all
-// but `#version`. The data is the storage buffer at binding 0, or the texture
-// `stochtex_tiling_data` of pack_rgba(data).
+// Bits per channel of the fast variant's PNGs, from measured quality (docs/methods/tiling.md).
+inline constexpr int kExemplarBits = 16;
+inline constexpr int kLutBits = 16;
+
+// The exact variant: random.glsl, kConstants, the model's constants, tiling_data_at() and tiling
+// evaluate.glsl, exact_fetch.glsl, blend.glsl and entry.glsl: all but `#version`. The data is the
+// storage buffer at binding 0, or the texture `stochtex_tiling_data` of pack_rgba(data).
 std::string tiling_library_source(const TilingGlsl& glsl,
                                   DataSource source = DataSource::storage_buffers);
 
@@ -38,7 +45,8 @@ struct Twin<tiling::TilingModel> {
       {"TILING_LOD_BIAS", static_cast<float>(kLodBias)},
   }};
   static std::unique_ptr<Pass> pass(const tiling::TilingModel& model);
-  static ExportParts shader(const tiling::TilingModel& model);
+  // fast: the library and textures of --gl-filter hardware (TilingPass compiles and binds them).
+  static ExportParts shader(const tiling::TilingModel& model, ShaderVariant variant);
 };
 
 }  // namespace stochtex::gl

@@ -15,7 +15,7 @@ uniform uint seed;
 // The grid's footprint gives one level of detail for the render (level_of_detail in C++).
 uniform int lod_level;
 uniform float lod_blend;
-// --gl-filter hardware: the footprint's side over sqrt(3) (zero for point samples).
+// --gl-filter hardware: the footprint's side (zero for point samples).
 uniform float filter_scale;
 
 void main() {
@@ -25,9 +25,7 @@ void main() {
   vec2 skewed = origin_skewed + vec2(p.x - p.y * TILING_INVERSE_SQRT3,
                                      2.0 * TILING_INVERSE_SQRT3 * p.y) / TILING_EDGE;
 #ifdef TILING_TEXTURE_FILTER
-  vec2 texel_scale = filter_scale / vec2(TILING_WIDTH, TILING_HEIGHT);
-  tiling_duv_dx = vec2(texel_scale.x, 0.0);
-  tiling_duv_dy = vec2(0.0, texel_scale.y);
+  tiling_set_gradients(vec2(filter_scale, 0.0), vec2(0.0, filter_scale));
 #endif
   vec4 g = tiling_blended_gaussian(skewed, origin_cell, origin_wrapped + p, seed, lod_level,
                                    lod_blend);

@@ -1,0 +1,107 @@
+// Steps 1-2 of Algorithm 1 (blended_gaussian). `skewed` is the position in skewed lattice units
+// relative to the lattice cell `origin_cell` (low 32 bits), `wrapped` the position modulo the
+// exemplar's period; both formed on the CPU in double for the far part.
+vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint seed, int level,
+                             float level_blend) {
+  vec2 cell = floor(skewed);
+  vec2 f = skewed - cell;
+  bool lower = f.x + f.y < 1.0;
+  ivec2 d[3] = ivec2[3](lower ? ivec2(0, 0) : ivec2(1, 1), lower ? ivec2(1, 0) : ivec2(0, 1),
+                        lower ? ivec2(0, 1) : ivec2(1, 0));
+  float w[3] = lower ? float[3](1.0 - f.x - f.y, f.x, f.y)
+                     : float[3](f.x + f.y - 1.0, 1.0 - f.x, 1.0 - f.y);
+  int coarse = min(level + 1, TILING_LEVELS - 1);
+  vec4 acc = vec4(0.0);
+  float weight_squares = 0.0;
+  for (int v = 0; v < 3; ++v) {
+    weight_squares += w[v] * w[v];
+    uvec2 vertex = origin_cell + uvec2(ivec2(cell) + d[v]);
+    CounterRng rng = CounterRng(cell_key(vertex.x, vertex.y, seed, STREAM_OFFSETS), 0u);
+    uint draw_u = rng_next(rng);
+    uint draw_v = rng_next(rng);
+    uint high;
+    uint low;
+    umulExtended(draw_u, uint(TILING_WIDTH), high, low);
+    float offset_x = float(high);
+    umulExtended(draw_v, uint(TILING_HEIGHT), high, low);
+    float offset_y = float(high);
+    float x = wrapped.x + offset_x;
+    float y = wrapped.y + offset_y;
+#ifdef TILING_TEXTURE_FILTER
+    // `render --gl-filter hardware` (hardware.glsl): one mip-mapped, anisotropic
+    // texture fetch of the patch instead of the exact trilinear reads of the pyramid.
+    acc += w[v] * tiling_texture_fetch(x, y);
+#else
+    tiling_fetch(level, x, y, w[v] * (1.0 - level_blend), acc);
+    if (level_blend > 0.0) tiling_fetch(coarse, x, y, w[v] * level_blend, acc);
+#endif
+  }
+  float inverse_norm = TILING_BLEND == 2 ? 1.0 : 1.0 / sqrt(weight_squares);
+  return (acc - TILING_BLEND_MEAN) * inverse_norm + TILING_BLEND_MEAN;
+}
+
+float tiling_table(int offset, float g) {
+  int cell;
+  float t = tiling_table_coordinate(g, TILING_TABLE_SIZE, cell);
+  float a = tiling_data_at(offset + cell);
+  return a + t * (tiling_data_at(offset + cell + 1) - a);
+}
+
+// Step 3 at one pyramid level (inverse_at_level).
+vec4 tiling_inverse_at_level(vec4 g, int level) {
+  vec4 result = vec4(0.0);
+  if (TILING_COLOUR_LUT) {
+#ifdef TILING_TEXTURE_FILTER
+    result.rgb = tiling_texture_lut(g.rgb, level);
+#else
+    int n = TILING_LUT_SIZE;
+    ivec3 cell;
+    vec3 t;
+    for (int c = 0; c < 3; ++c) {
+      int first;
+      t[c] = tiling_table_coordinate(g[c], n, first);
+      cell[c] = first;
+    }
+    int step_y = n * 3;
+    int step_z = step_y * n;
+    int base = TILING_LEVEL_LUT[level] + cell.z * step_z + cell.y * step_y + cell.x * 3;
+    for (int c = 0; c < 3; ++c) {
+      int p = base + c;
+      float x00 = tiling_data_at(p) + t.x * (tiling_data_at(p + 3) - tiling_data_at(p));
+      float x10 = tiling_data_at(p + step_y) +
+                  t.x * (tiling_data_at(p + step_y + 3) - tiling_data_at(p + step_y));
+      float x01 = tiling_data_at(p + step_z) +
+                  t.x * (tiling_data_at(p + step_z + 3) - tiling_data_at(p + step_z));
+      float x11 = tiling_data_at(p + step_z + step_y) +
+                  t.x * (tiling_data_at(p + step_z + step_y + 3) - tiling_data_at(p + step_z + step_y));
+      float y0 = x00 + t.y * (x10 - x00);
+      float y1 = x01 + t.y * (x11 - x01);
+      result[c] = y0 + t.z * (y1 - y0);
+    }
+#endif
+  } else {
+    vec3 decorrelated = vec3(0.0);
+    for (int c = 0; c < TILING_COLOUR_CHANNELS; ++c)
+      decorrelated[c] = tiling_table(TILING_LEVEL_TABLES[level] + c * TILING_TABLE_SIZE, g[c]);
+    for (int c = 0; c < TILING_COLOUR_CHANNELS; ++c) {
+      float value = TILING_COLOUR_MEAN[c];
+      for (int k = 0; k < TILING_COLOUR_CHANNELS; ++k)
+        value += TILING_COLOUR_BASIS[c * TILING_COLOUR_CHANNELS + k] * decorrelated[k];
+      result[c] = value;
+    }
+  }
+  if (TILING_HAS_ALPHA)
+    result[TILING_CHANNELS - 1] = tiling_table(
+        TILING_LEVEL_TABLES[level] + TILING_FIRST_ALPHA_TABLE * TILING_TABLE_SIZE,
+        g[TILING_CHANNELS - 1]);
+  return result;
+}
+
+// Step 3 (inverse_transform): the identity for the variance and linear blends.
+vec4 tiling_inverse(vec4 g, int level, float level_blend) {
+  if (TILING_BLEND != 0) return g;
+  vec4 result = tiling_inverse_at_level(g, level);
+  if (level_blend > 0.0) result += level_blend * (tiling_inverse_at_level(g, level + 1) - result);
+  return result;
+}
+
