@@ -8,6 +8,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <memory>
 #include <string>
 
@@ -122,20 +123,26 @@ BENCHMARK(BM_GlFilteredFrame)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// The fast path (`--gl-filter hardware` = `export-shader --variant fast`) at 1920x1080: tiling
-// (3 + 1 filtered fetches: the 16-bit exemplar, the 3-D table of T^-1) and texton noise (support
-// 64), at scale 1 and zoomed out by 4. Run on llvmpipe too (one frame each: wall times of the
-// software rasteriser, not GPU times).
+// The fast path (`--gl-filter hardware` = `export-shader --variant fast`) of every method at
+// 1920x1080, at scale 1 and zoomed out by 4: tiling (3 + 1 filtered fetches: the 16-bit exemplar,
+// the 3-D table of T^-1), texton noise (support 64, the mip-mapped texton), lrp (its exact path)
+// and gabor (the float-only GLSL; 128² colour crop, N = 1024, as BM_GlGaborFrame). On llvmpipe
+// the 1080p frames of tiling and texton run (one frame each: wall times of the software
+// rasteriser, not GPU times); the others are for a GPU.
 void BM_GlFastFrame(benchmark::State& state) {
-  const bool texton = state.range(0) == 1;
-  frame_benchmark(state, texton ? "texton" : "tiling",
-                  texton ? ParamValues{{"support", 64}} : ParamValues{}, 1920, 1080,
-                  bench::colour_exemplar(), static_cast<double>(state.range(1)), GlFilter::hardware,
-                  1920 * 1080);
+  static const ImageF gabor_exemplar = bench::crop_top_left(bench::colour_exemplar(), 128);
+  constexpr std::array<const char*, 4> kMethods = {"tiling", "texton", "lrp", "gabor"};
+  const std::string method = kMethods[static_cast<std::size_t>(state.range(0))];
+  const ParamValues params = method == "texton" ? ParamValues{{"support", 64}} : ParamValues{};
+  const bool software_frame = method == "tiling" || method == "texton";
+  frame_benchmark(state, method.c_str(), params, 1920, 1080,
+                  method == "gabor" ? gabor_exemplar : bench::colour_exemplar(),
+                  static_cast<double>(state.range(1)), GlFilter::hardware,
+                  software_frame ? 1920 * 1080 : 256 * 256);
 }
 BENCHMARK(BM_GlFastFrame)
-    ->ArgNames({"texton", "scale"})
-    ->ArgsProduct({{0, 1}, {1, 4}})
+    ->ArgNames({"method", "scale"})
+    ->ArgsProduct({{0, 1, 2, 3}, {1, 4}})
     ->Iterations(1)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
