@@ -216,7 +216,7 @@ std::uint64_t analysis_peak_bytes(std::string_view method, int width, int height
   // (Negative sides, refused by validate_exemplar, count as none here.)
   const auto pixels = static_cast<std::uint64_t>(std::max(width, 0)) *
                       static_cast<std::uint64_t>(std::max(height, 0));
-  return (std::uint64_t{32} << 20) +
+  return kFixedPeakBytes +
          pixels * (memory.per_pixel +
                    memory.per_channel * static_cast<std::uint64_t>(std::max(channels, 0)));
 }

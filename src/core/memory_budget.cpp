@@ -24,7 +24,7 @@ std::uint64_t gaussian_peak_bytes(int width, int height) {
 
 std::uint64_t compare_peak_bytes(std::uint64_t exemplar_pixels, std::uint64_t image_pixels,
                                  int channels) {
-  return (std::uint64_t{32} << 20) +
+  return kFixedPeakBytes +
          (exemplar_pixels + image_pixels) * (56 + 12 * static_cast<std::uint64_t>(channels));
 }
 

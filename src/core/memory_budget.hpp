@@ -11,6 +11,10 @@ namespace stochtex {
 
 inline constexpr std::uint64_t kMemoryBudgetBytes = std::uint64_t{2} << 30;
 
+// What a command costs before its data: the process, its libraries and small tables. The
+// estimates of analysis and compare below add their per-pixel costs to it.
+inline constexpr std::uint64_t kFixedPeakBytes = std::uint64_t{32} << 20;
+
 // --threads beyond this is refused: more threads than any machine has cores only costs memory.
 inline constexpr int kMaxThreads = 256;
 
@@ -25,10 +29,10 @@ std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample
 // its encoded copy 24 more.
 std::uint64_t gaussian_peak_bytes(int width, int height);
 
-// The measures of `compare` (metrics/metrics.hpp compare_images): 32 MiB plus 56 + 12 x channels
-// bytes a pixel of the exemplar and of the image together (spectra, the ADSN sample, sorted
-// projections). Measured peaks of `stochtex compare`: 56 (grey), 73 (RGB) and 82 (RGBA) bytes a
-// pixel for 1024² and 2048² pairs, and as much for pixels of either image.
+// The measures of `compare` (metrics/metrics.hpp compare_images): kFixedPeakBytes plus 56 + 12 x
+// channels bytes a pixel of the exemplar and of the image together (spectra, the ADSN sample,
+// sorted projections). Measured peaks of `stochtex compare`: 56 (grey), 73 (RGB) and 82 (RGBA)
+// bytes a pixel for 1024² and 2048² pairs, and as much for pixels of either image.
 std::uint64_t compare_peak_bytes(std::uint64_t exemplar_pixels, std::uint64_t image_pixels,
                                  int channels);
 

@@ -115,10 +115,10 @@ ParamValues param_values(const std::array<ParamField<P>, N>& fields, const P& pa
 }
 
 // The peak memory of a method's analysis of a width x height exemplar with c channels, about
-// (per_pixel + per_channel * c) bytes a pixel above a fixed 32 MiB (docs/design.md §9): the
-// method's peak resident size, measured at 512² and 1024² (256² and 512² for gabor) in grey and
-// colour over its parameters, plus a margin; AnalysisMemoryTest checks the row against a
-// measurement.
+// (per_pixel + per_channel * c) bytes a pixel above kFixedPeakBytes (core/memory_budget.hpp,
+// docs/design.md §9): the method's peak resident size, measured at 512² and 1024² (128² to 512²
+// for gabor) in grey and colour over its parameters, plus a margin; AnalysisMemoryTest checks the
+// row against a measurement.
 struct AnalysisMemory {
   std::uint64_t per_pixel = 0;
   std::uint64_t per_channel = 0;
