@@ -5,9 +5,10 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <string>
 #include <vector>
+
+#include "io/png_sample.hpp"
 
 namespace stochtex::gl {
 namespace {
@@ -53,11 +54,9 @@ float hardware_footprint(const Grid& grid, bool filter) {
 }
 
 ImageF quantized(ImageF image, int bits) {
-  const float maximum = bits == 16 ? 65535.0f : 255.0f;
-  for (float& value : image.pixels()) {
-    const float clamped = value > 0.0f ? std::min(value, 1.0f) : 0.0f;
-    value = static_cast<float>(std::lround(clamped * maximum)) / maximum;
-  }
+  const unsigned maximum = bits == 16 ? 65535 : 255;
+  for (float& value : image.pixels())
+    value = static_cast<float>(png_sample(value, maximum)) / static_cast<float>(maximum);
   return image;
 }
 

@@ -32,6 +32,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/file_message.hpp"
+#include "io/png_sample.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
@@ -283,13 +284,6 @@ bool write_png_rows(PngWriter& writer, std::FILE* file, png_uint_32 width, png_u
   return true;
 }
 
-// NaN and values below 0 become 0, values above 1 become the maximum.
-unsigned quantize(float value, unsigned maximum) {
-  if (!(value > 0.0f)) return 0;
-  if (value >= 1.0f) return maximum;
-  return static_cast<unsigned>(std::lround(value * static_cast<float>(maximum)));
-}
-
 void write_png(std::FILE* file, ImageView<const float> image, int bit_depth) {
   constexpr std::array<int, 4> color_types = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
                                               PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGBA};
@@ -304,11 +298,11 @@ void write_png(std::FILE* file, ImageView<const float> image, int bit_depth) {
     const float* values = image.row(y);
     for (std::size_t i = 0; i < static_cast<std::size_t>(image.width) * image.channels; ++i) {
       if (bit_depth == 16) {
-        const unsigned sample = quantize(values[i], 65535);
+        const unsigned sample = png_sample(values[i], 65535);
         row[2 * i] = static_cast<png_byte>(sample >> 8);
         row[2 * i + 1] = static_cast<png_byte>(sample & 0xff);
       } else {
-        row[i] = static_cast<png_byte>(quantize(values[i], 255));
+        row[i] = static_cast<png_byte>(png_sample(values[i], 255));
       }
     }
   }
