@@ -124,6 +124,29 @@ KernelFilter kernel_filter(const GaborModel::Grid& grid, const Footprint* footpr
   return k;
 }
 
+// The kernel parameters of one grid (section 6.2): its frequencies and alias table.
+struct GridKernels {
+  const float* frequency_x;
+  const float* frequency_y;
+  const float* probability;
+  const std::uint32_t* alias;
+  std::uint32_t count;
+
+  // One impulse's kernel: a frequency by the alias method, then a uniform phase, in this order.
+  void draw(CounterRng& rng, float& wx, float& wy, float& phase) const noexcept {
+    const std::uint32_t k = draw_alias(probability, alias, count, rng);
+    phase = rng.uniform();
+    wx = frequency_x[k];
+    wy = frequency_y[k];
+  }
+};
+
+GridKernels grid_kernels(const GaborModel& model, const GaborModel::Grid& grid) {
+  return {model.frequency_x().data() + grid.first, model.frequency_y().data() + grid.first,
+          model.alias_probability().data() + grid.first, model.alias_index().data() + grid.first,
+          grid.count};
+}
+
 // Channel c of the index-th point of a batch, whose output is row-major (docs/design.md §4).
 float& batch_pixel(ImageView<float> out, std::size_t index, int c) {
   const auto width = static_cast<std::size_t>(out.width);
@@ -407,10 +430,7 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
   // does not depend on the batch).
   for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
     const Grid& grid = grids_[grid_index];
-    const float* frequency_x = frequency_x_.data() + grid.first;
-    const float* frequency_y = frequency_y_.data() + grid.first;
-    const float* probability = alias_probability_.data() + grid.first;
-    const std::uint32_t* alias = alias_index_.data() + grid.first;
+    const GridKernels kernels = grid_kernels(*this, grid);
     std::optional<texton::CellCache> cells;
     int cached_level = -1;
     std::uint32_t level_seed = 0;
@@ -443,11 +463,11 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
           // own stream, so cached positions and fresh parameters stay paired.
           CounterRng kernel_rng(cell_key(cell_x, cell_y, level_seed, Stream::kernels));
           cells->for_each_point(cell_x, cell_y, [&](float u, float v) {
-            const std::uint32_t k = draw_alias(probability, alias, grid.count, kernel_rng);
-            const float phase = kernel_rng.uniform();
+            float wx, wy, phase;
+            kernels.draw(kernel_rng, wx, wy, phase);
             float value;
-            if (shape.at(frequency_x[k], frequency_y[k], phase, offset_x - u * cell_size_f,
-                         offset_y - v * cell_size_f, value))
+            if (shape.at(wx, wy, phase, offset_x - u * cell_size_f, offset_y - v * cell_size_f,
+                         value))
               sum += value;
           });
         }
@@ -494,10 +514,7 @@ void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double s
   const double amplitude_gain = std::sqrt(1.5 * kSurfaceMniReference / surface_mni);
   for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
     const Grid& grid = grids_[grid_index];
-    const float* frequency_x = frequency_x_.data() + grid.first;
-    const float* frequency_y = frequency_y_.data() + grid.first;
-    const float* probability = alias_probability_.data() + grid.first;
-    const std::uint32_t* alias = alias_index_.data() + grid.first;
+    const GridKernels kernels = grid_kernels(*this, grid);
     const double planar_intensity = grid.impulses / (kPi * grid.radius * grid.radius);
     const double intensity = planar_intensity * surface_mni / (kSurfaceMniReference * grid.radius);
     // Cubic cells holding about kPointsPerCell impulses, side within [r/4, 2r]. A footprint of
@@ -520,16 +537,16 @@ void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double s
       const std::uint32_t level_seed =
           cell_key(static_cast<std::int64_t>(grid_index), filter.level, seed, Stream::kernels);
       float sum = 0.0f;
-      for_each_surface_impulse(
-          p, frame, filter.reach, depth, std::ldexp(cell_size, filter.level), count, level_seed,
-          [&](CounterRng& rng, float t, float z1, float z2) {
-            const std::uint32_t k = draw_alias(probability, alias, grid.count, rng);
-            const float phase = rng.uniform();
-            const float weight = 1.0f - std::abs(t) * inverse_depth;
-            float value;
-            if (weight > 0.0f && shape.at(frequency_x[k], frequency_y[k], phase, z1, z2, value))
-              sum += weight * value;
-          });
+      for_each_surface_impulse(p, frame, filter.reach, depth, std::ldexp(cell_size, filter.level),
+                               count, level_seed,
+                               [&](CounterRng& rng, float t, float z1, float z2) {
+                                 float wx, wy, phase;
+                                 kernels.draw(rng, wx, wy, phase);
+                                 const float weight = 1.0f - std::abs(t) * inverse_depth;
+                                 float value;
+                                 if (weight > 0.0f && shape.at(wx, wy, phase, z1, z2, value))
+                                   sum += weight * value;
+                               });
       pixel(index, grid.channel) +=
           static_cast<float>(std::ldexp(grid.amplitude * filter.gain, filter.level) *
                              amplitude_gain) *
