@@ -52,6 +52,15 @@ constexpr std::uint32_t cell_key(std::int64_t cell_x, std::int64_t cell_y, std::
                 static_cast<std::uint32_t>(stream)})[0];
 }
 
+// The key of 3-D lattice cell (x, y, z), for processes in space (surface noise, docs/surface.md):
+// the 2-D key of (x, y) hashed again with z, seed and stream, so no 2-D key or draw changes and
+// cells differing only in z get unrelated keys.
+constexpr std::uint32_t cell_key(std::int64_t cell_x, std::int64_t cell_y, std::int64_t cell_z,
+                                 std::uint32_t seed, Stream stream) noexcept {
+  return pcg4d({cell_key(cell_x, cell_y, seed, stream), static_cast<std::uint32_t>(cell_z), seed,
+                static_cast<std::uint32_t>(stream)})[0];
+}
+
 // Counter-based generator: draw n of a cell is pcg_hash(key ^ pcg_hash(n)), a pure function of
 // (key, n). Call next() in its own statement: function-argument evaluation order is unspecified in
 // C++, so two draws inside one expression could swap between compilers (and differ from GLSL).

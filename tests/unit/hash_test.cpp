@@ -51,6 +51,22 @@ TEST(Hash, CellKeyAndCounterStreamMatchReferenceVectors) {
   EXPECT_EQ(third, 0x8906aa8bu);
 }
 
+TEST(Hash, CellKey3dMatchesReferenceVectorsAndLeaves2dKeysAlone) {
+  // The 3-D key (surface noise) hashes the 2-D key again with z: 2-D keys are unchanged, and the
+  // plane z = 0 does not repeat them.
+  const std::uint32_t key = cell_key(-1, 5, -3, 42, Stream::points);
+  EXPECT_EQ(key, 0xda30818cu);
+  CounterRng rng(key);
+  const std::uint32_t first = rng.next();
+  const std::uint32_t second = rng.next();
+  EXPECT_EQ(first, 0xf3103d40u);
+  EXPECT_EQ(second, 0x5c51f367u);
+  EXPECT_EQ(cell_key(-1, 5, 0, 42, Stream::points), 0x070fbd7fu);
+  EXPECT_NE(cell_key(-1, 5, 0, 42, Stream::points), cell_key(-1, 5, 42, Stream::points));
+  EXPECT_NE(cell_key(0, 0, 0, 1, Stream::points), cell_key(0, 0, 1, 1, Stream::points));
+  EXPECT_NE(cell_key(0, 0, 0, 1, Stream::points), cell_key(0, 0, 0, 2, Stream::points));
+}
+
 TEST(Hash, CellKeysDifferAcrossCellsSeedsStreamsAndFar) {
   EXPECT_NE(cell_key(0, 0, 1, Stream::points), cell_key(0, 0, 2, Stream::points));
   EXPECT_NE(cell_key(0, 0, 1, Stream::points), cell_key(0, 0, 1, Stream::phases));

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/hash.hpp"
+#include "core/surface_process.hpp"
 #include "methods/gabor/alias.hpp"
 #include "methods/gabor/params.hpp"
 #include "methods/texton/evaluate.hpp"
@@ -29,6 +30,164 @@ static_assert(kParams[1].name == "impulses", "the evaluator reads the impulse bu
 constexpr std::array<const char*, 5> kReportNames = {"sparseness", "fit_error",
                                                      "offdiagonality_independent",
                                                      "offdiagonality_pca", "offdiagonality_rgb"};
+
+// The kernel of one grid filtered by one footprint, as the evaluator uses it: envelope
+// exp(-x^T E x), frequency map omega' = F omega, attenuation exp(-omega^T D omega), amplitude
+// gain, the radius the envelope reaches and the thinning level. Shared by the planar and the
+// surface evaluators (the latter with the footprint projected on the tangent plane).
+struct KernelFilter {
+  double e00, e01, e11;
+  double f00 = 1.0, f01 = 0.0, f11 = 1.0;
+  double d00 = 0.0, d01 = 0.0, d11 = 0.0;
+  double gain = 1.0;
+  double reach = 0.0;
+  bool filtered = false;
+  bool skip = true;  // the filtered grid adds nothing at this footprint
+  int level = 0;
+};
+
+KernelFilter kernel_filter(const GaborModel::Grid& grid, const Footprint* footprint) {
+  const double a2 = static_cast<double>(grid.bandwidth) * grid.bandwidth;
+  KernelFilter k{kPi * a2, 0.0, kPi * a2};
+  k.reach = grid.radius;
+  if (footprint != nullptr) {
+    const Footprint& fp = *footprint;
+    // Filtering (Lagae et al. 2009, as the paper inherits in section 9.1): a Gabor kernel
+    // convolved with a Gaussian stays a Gabor kernel. The pixel filter is the Gaussian with
+    // the covariance of the footprint's box, Sigma_f = (dpdx dpdx^T + dpdy dpdy^T) / 12. In
+    // frequency the kernel is exp(-(xi - omega)^T P (xi - omega)) with P = (pi / a^2) I and
+    // the filter exp(-xi^T Q xi) with Q = 2 pi^2 Sigma_f. Their product is a Gaussian of
+    // precision S = P + Q centred at omega' = S^-1 P omega, scaled by exp(-omega^T D omega)
+    // with D = P - P S^-1 P; in space the envelope becomes exp(-pi^2 x^T S^-1 x) and the
+    // amplitude gains sqrt(det P / det S).
+    // The fitted spectrum already describes exemplar pixels, i.e. the field integrated over
+    // one pixel: the filter adds only the footprint's covariance beyond that pixel's I / 12
+    // (eigenvalues clipped at 0), so a scale-1 render is unfiltered and matches point
+    // samples, and a scale-s render matches the average of s x s point samples.
+    double q00 = (fp.dpdx.x * fp.dpdx.x + fp.dpdy.x * fp.dpdy.x) / 12.0;
+    double q01 = (fp.dpdx.x * fp.dpdx.y + fp.dpdy.x * fp.dpdy.y) / 12.0;
+    double q11 = (fp.dpdx.y * fp.dpdx.y + fp.dpdy.y * fp.dpdy.y) / 12.0;
+    const double centre = 0.5 * (q00 + q11);
+    const double radius = std::sqrt(0.25 * (q00 - q11) * (q00 - q11) + q01 * q01);
+    const double major = centre + radius - kPixelVariance;
+    const double minor = centre - radius - kPixelVariance;
+    if (major <= 0.0) {
+      q00 = q01 = q11 = 0.0;
+    } else if (minor < 0.0) {
+      // Only the major axis is wider than a pixel: keep (major) v v^T, v v^T read from
+      // (Sigma - lambda_min I) / (lambda_max - lambda_min).
+      const double lambda_min = centre - radius;
+      const double scale = major / (2.0 * radius);
+      q00 = scale * (q00 - lambda_min);
+      q01 = scale * q01;
+      q11 = scale * (q11 - lambda_min);
+    } else {
+      q00 -= kPixelVariance;
+      q11 -= kPixelVariance;
+    }
+    q00 *= 2.0 * kPi * kPi;
+    q01 *= 2.0 * kPi * kPi;
+    q11 *= 2.0 * kPi * kPi;
+    if (q00 + q11 > 0.0 && std::isfinite(q00 + q11 + q01)) {
+      k.filtered = true;
+      const double pp = kPi / a2;
+      const double s00 = pp + q00, s01 = q01, s11 = pp + q11;
+      const double det = s00 * s11 - s01 * s01;
+      const double i00 = s11 / det, i01 = -s01 / det, i11 = s00 / det;
+      k.e00 = kPi * kPi * i00;
+      k.e01 = kPi * kPi * i01;
+      k.e11 = kPi * kPi * i11;
+      k.f00 = pp * i00;
+      k.f01 = pp * i01;
+      k.f11 = pp * i11;
+      k.d00 = pp - pp * pp * i00;
+      k.d01 = -pp * pp * i01;
+      k.d11 = pp - pp * pp * i11;
+      k.gain = pp / std::sqrt(det);
+      // The envelope reaches e^-pi where x^T S^-1 x = 1 / pi: at most sqrt(lmax(S) / pi).
+      const double half_trace = 0.5 * (s00 + s11);
+      const double spread = std::sqrt(0.25 * (s00 - s11) * (s00 - s11) + s01 * s01);
+      k.reach = std::sqrt((half_trace + spread) / kPi);
+      const double d_half_trace = 0.5 * (k.d00 + k.d11);
+      const double d_spread = std::sqrt(0.25 * (k.d00 - k.d11) * (k.d00 - k.d11) + k.d01 * k.d01);
+      if ((d_half_trace - d_spread) * grid.min_frequency_squared > kNegligibleAttenuation) return k;
+    }
+  }
+  if (k.filtered && k.reach > grid.radius) {
+    const double wanted = std::ceil(std::log2(k.reach / grid.radius));
+    // Beyond the last level the kernel's amplitude gain (r / reach)^2 is below 4^-40: the
+    // filtered grid is zero to float precision, and skipping it bounds the cells visited.
+    if (!(wanted <= kMaxLevels)) return k;
+    k.level = static_cast<int>(wanted);
+  }
+  k.skip = false;
+  return k;
+}
+
+// The kernel parameters of one grid (section 6.2): its frequencies and alias table.
+struct GridKernels {
+  const float* frequency_x;
+  const float* frequency_y;
+  const float* probability;
+  const std::uint32_t* alias;
+  std::uint32_t count;
+
+  // One impulse's kernel: a frequency by the alias method, then a uniform phase, in this order.
+  void draw(CounterRng& rng, float& wx, float& wy, float& phase) const noexcept {
+    const std::uint32_t k = draw_alias(probability, alias, count, rng);
+    phase = rng.uniform();
+    wx = frequency_x[k];
+    wy = frequency_y[k];
+  }
+};
+
+GridKernels grid_kernels(const GaborModel& model, const GaborModel::Grid& grid) {
+  return {model.frequency_x().data() + grid.first, model.frequency_y().data() + grid.first,
+          model.alias_probability().data() + grid.first, model.alias_index().data() + grid.first,
+          grid.count};
+}
+
+// Channel c of the index-th point of a batch, whose output is row-major (docs/design.md §4).
+float& batch_pixel(ImageView<float> out, std::size_t index, int c) {
+  const auto width = static_cast<std::size_t>(out.width);
+  return out.at(static_cast<int>(index % width), static_cast<int>(index / width), c);
+}
+
+// KernelFilter in float, for the inner loop.
+struct KernelShape {
+  float ex, exy, ey;
+  float fxx, fxy, fyy;
+  float dxx, dxy, dyy;
+  bool filtered;
+
+  explicit KernelShape(const KernelFilter& k)
+      : ex(static_cast<float>(k.e00)),
+        exy(static_cast<float>(2.0 * k.e01)),
+        ey(static_cast<float>(k.e11)),
+        fxx(static_cast<float>(k.f00)),
+        fxy(static_cast<float>(k.f01)),
+        fyy(static_cast<float>(k.f11)),
+        dxx(static_cast<float>(k.d00)),
+        dxy(static_cast<float>(2.0 * k.d01)),
+        dyy(static_cast<float>(k.d11)),
+        filtered(k.filtered) {}
+
+  // The filtered kernel of frequency (wx, wy) and phase at offset (dx, dy) = x - x_i, into
+  // `value`; false where the envelope is truncated (beyond e^-pi).
+  bool at(float wx, float wy, float phase, float dx, float dy, float& value) const noexcept {
+    const float envelope = ex * dx * dx + exy * dx * dy + ey * dy * dy;
+    if (envelope >= kPiF) return false;
+    float attenuation = 0.0f;
+    if (filtered) {
+      attenuation = dxx * wx * wx + dxy * wx * wy + dyy * wy * wy;
+      const float mapped_x = fxx * wx + fxy * wy;
+      wy = fxy * wx + fyy * wy;
+      wx = mapped_x;
+    }
+    value = std::exp(-envelope - attenuation) * std::cos(kTwoPiF * (wx * dx + wy * dy + phase));
+    return true;
+  }
+};
 
 }  // namespace
 
@@ -261,10 +420,7 @@ std::vector<float> GaborModel::spectrum_preview() const {
 
 void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                           std::uint32_t seed, ImageView<float> out) const noexcept {
-  const auto width = static_cast<std::size_t>(out.width);
-  const auto pixel = [&](std::size_t index, int c) -> float& {
-    return out.at(static_cast<int>(index % width), static_cast<int>(index / width), c);
-  };
+  const auto pixel = [&](std::size_t index, int c) -> float& { return batch_pixel(out, index, c); };
   // `out` accumulates the noise of each synthesis channel, then is mixed back to colour.
   for (std::size_t index = 0; index < positions.size(); ++index)
     for (int c = 0; c < channels_; ++c) pixel(index, c) = 0.0f;
@@ -274,96 +430,16 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
   // does not depend on the batch).
   for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
     const Grid& grid = grids_[grid_index];
-    const float* frequency_x = frequency_x_.data() + grid.first;
-    const float* frequency_y = frequency_y_.data() + grid.first;
-    const float* probability = alias_probability_.data() + grid.first;
-    const std::uint32_t* alias = alias_index_.data() + grid.first;
-    const double a2 = static_cast<double>(grid.bandwidth) * grid.bandwidth;
+    const GridKernels kernels = grid_kernels(*this, grid);
     std::optional<texton::CellCache> cells;
     int cached_level = -1;
     std::uint32_t level_seed = 0;
     for (std::size_t index = 0; index < positions.size(); ++index) {
       const Vec2d p = positions[index];
-      // Kernel envelope exp(-x^T E x) and frequency map omega' = F omega, attenuation
-      // exp(-omega^T D omega) and amplitude gain, all from the footprint (see below).
-      double e00 = kPi * a2, e01 = 0.0, e11 = kPi * a2;
-      double f00 = 1.0, f01 = 0.0, f11 = 1.0;
-      double d00 = 0.0, d01 = 0.0, d11 = 0.0;
-      double gain = 1.0;
-      double reach = grid.radius;
-      bool filtered = false;
-      if (!footprints.empty()) {
-        // Filtering (Lagae et al. 2009, as the paper inherits in section 9.1): a Gabor kernel
-        // convolved with a Gaussian stays a Gabor kernel. The pixel filter is the Gaussian with
-        // the covariance of the footprint's box, Sigma_f = (dpdx dpdx^T + dpdy dpdy^T) / 12. In
-        // frequency the kernel is exp(-(xi - omega)^T P (xi - omega)) with P = (pi / a^2) I and
-        // the filter exp(-xi^T Q xi) with Q = 2 pi^2 Sigma_f. Their product is a Gaussian of
-        // precision S = P + Q centred at omega' = S^-1 P omega, scaled by exp(-omega^T D omega)
-        // with D = P - P S^-1 P; in space the envelope becomes exp(-pi^2 x^T S^-1 x) and the
-        // amplitude gains sqrt(det P / det S).
-        // The fitted spectrum already describes exemplar pixels, i.e. the field integrated over
-        // one pixel: the filter adds only the footprint's covariance beyond that pixel's I / 12
-        // (eigenvalues clipped at 0), so a scale-1 render is unfiltered and matches point
-        // samples, and a scale-s render matches the average of s x s point samples.
-        const Footprint& fp = footprints[index];
-        double q00 = (fp.dpdx.x * fp.dpdx.x + fp.dpdy.x * fp.dpdy.x) / 12.0;
-        double q01 = (fp.dpdx.x * fp.dpdx.y + fp.dpdy.x * fp.dpdy.y) / 12.0;
-        double q11 = (fp.dpdx.y * fp.dpdx.y + fp.dpdy.y * fp.dpdy.y) / 12.0;
-        const double centre = 0.5 * (q00 + q11);
-        const double radius = std::sqrt(0.25 * (q00 - q11) * (q00 - q11) + q01 * q01);
-        const double major = centre + radius - kPixelVariance;
-        const double minor = centre - radius - kPixelVariance;
-        if (major <= 0.0) {
-          q00 = q01 = q11 = 0.0;
-        } else if (minor < 0.0) {
-          // Only the major axis is wider than a pixel: keep (major) v v^T, v v^T read from
-          // (Sigma - lambda_min I) / (lambda_max - lambda_min).
-          const double lambda_min = centre - radius;
-          const double scale = major / (2.0 * radius);
-          q00 = scale * (q00 - lambda_min);
-          q01 = scale * q01;
-          q11 = scale * (q11 - lambda_min);
-        } else {
-          q00 -= kPixelVariance;
-          q11 -= kPixelVariance;
-        }
-        q00 *= 2.0 * kPi * kPi;
-        q01 *= 2.0 * kPi * kPi;
-        q11 *= 2.0 * kPi * kPi;
-        if (q00 + q11 > 0.0 && std::isfinite(q00 + q11 + q01)) {
-          filtered = true;
-          const double pp = kPi / a2;
-          const double s00 = pp + q00, s01 = q01, s11 = pp + q11;
-          const double det = s00 * s11 - s01 * s01;
-          const double i00 = s11 / det, i01 = -s01 / det, i11 = s00 / det;
-          e00 = kPi * kPi * i00;
-          e01 = kPi * kPi * i01;
-          e11 = kPi * kPi * i11;
-          f00 = pp * i00;
-          f01 = pp * i01;
-          f11 = pp * i11;
-          d00 = pp - pp * pp * i00;
-          d01 = -pp * pp * i01;
-          d11 = pp - pp * pp * i11;
-          gain = pp / std::sqrt(det);
-          // The envelope reaches e^-pi where x^T S^-1 x = 1 / pi: at most sqrt(lmax(S) / pi).
-          const double half_trace = 0.5 * (s00 + s11);
-          const double spread = std::sqrt(0.25 * (s00 - s11) * (s00 - s11) + s01 * s01);
-          reach = std::sqrt((half_trace + spread) / kPi);
-          const double d_half_trace = 0.5 * (d00 + d11);
-          const double d_spread = std::sqrt(0.25 * (d00 - d11) * (d00 - d11) + d01 * d01);
-          if ((d_half_trace - d_spread) * grid.min_frequency_squared > kNegligibleAttenuation)
-            continue;
-        }
-      }
-      int level = 0;
-      if (filtered && reach > grid.radius) {
-        const double wanted = std::ceil(std::log2(reach / grid.radius));
-        // Beyond the last level the kernel's amplitude gain (r / reach)^2 is below 4^-40: the
-        // filtered grid is zero to float precision, and skipping it bounds the cells visited.
-        if (!(wanted <= kMaxLevels)) continue;
-        level = static_cast<int>(wanted);
-      }
+      const KernelFilter filter =
+          kernel_filter(grid, footprints.empty() ? nullptr : &footprints[index]);
+      if (filter.skip) continue;
+      const int level = filter.level;
       if (level != cached_level) {
         cached_level = level;
         level_seed = cell_key(static_cast<std::int64_t>(grid_index), level, seed, Stream::kernels);
@@ -371,19 +447,14 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
       }
       const double cell_size = std::ldexp(grid.cell_size, level);
       const auto cell_size_f = static_cast<float>(cell_size);
-      const auto ex = static_cast<float>(e00), exy = static_cast<float>(2.0 * e01),
-                 ey = static_cast<float>(e11);
-      const auto fxx = static_cast<float>(f00), fxy = static_cast<float>(f01),
-                 fyy = static_cast<float>(f11);
-      const auto dxx = static_cast<float>(d00), dxy = static_cast<float>(2.0 * d01),
-                 dyy = static_cast<float>(d11);
+      const KernelShape shape(filter);
       float sum = 0.0f;
       // Cells meeting p + [-reach, reach]^2; 64-bit indices, offsets from the cell corner taken in
       // double before going to float, so p = 1e7 is as precise as p = 0 (docs/design.md §4).
-      const auto first_x = static_cast<std::int64_t>(std::floor((p.x - reach) / cell_size));
-      const auto last_x = static_cast<std::int64_t>(std::floor((p.x + reach) / cell_size));
-      const auto first_y = static_cast<std::int64_t>(std::floor((p.y - reach) / cell_size));
-      const auto last_y = static_cast<std::int64_t>(std::floor((p.y + reach) / cell_size));
+      const auto first_x = static_cast<std::int64_t>(std::floor((p.x - filter.reach) / cell_size));
+      const auto last_x = static_cast<std::int64_t>(std::floor((p.x + filter.reach) / cell_size));
+      const auto first_y = static_cast<std::int64_t>(std::floor((p.y - filter.reach) / cell_size));
+      const auto last_y = static_cast<std::int64_t>(std::floor((p.y + filter.reach) / cell_size));
       for (std::int64_t cell_y = first_y; cell_y <= last_y; ++cell_y) {
         const auto offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * cell_size);
         for (std::int64_t cell_x = first_x; cell_x <= last_x; ++cell_x) {
@@ -392,33 +463,27 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
           // own stream, so cached positions and fresh parameters stay paired.
           CounterRng kernel_rng(cell_key(cell_x, cell_y, level_seed, Stream::kernels));
           cells->for_each_point(cell_x, cell_y, [&](float u, float v) {
-            const std::uint32_t k = draw_alias(probability, alias, grid.count, kernel_rng);
-            const float phase = kernel_rng.uniform();
-            const float dx = offset_x - u * cell_size_f;
-            const float dy = offset_y - v * cell_size_f;
-            const float envelope = ex * dx * dx + exy * dx * dy + ey * dy * dy;
-            if (envelope >= kPiF) return;
-            float wx = frequency_x[k];
-            float wy = frequency_y[k];
-            float attenuation = 0.0f;
-            if (filtered) {
-              attenuation = dxx * wx * wx + dxy * wx * wy + dyy * wy * wy;
-              const float mapped_x = fxx * wx + fxy * wy;
-              wy = fxy * wx + fyy * wy;
-              wx = mapped_x;
-            }
-            sum +=
-                std::exp(-envelope - attenuation) * std::cos(kTwoPiF * (wx * dx + wy * dy + phase));
+            float wx, wy, phase;
+            kernels.draw(kernel_rng, wx, wy, phase);
+            float value;
+            if (shape.at(wx, wy, phase, offset_x - u * cell_size_f, offset_y - v * cell_size_f,
+                         value))
+              sum += value;
           });
         }
       }
       pixel(index, grid.channel) +=
-          static_cast<float>(std::ldexp(grid.amplitude * gain, level)) * sum;
+          static_cast<float>(std::ldexp(grid.amplitude * filter.gain, level)) * sum;
     }
   }
 
+  mix_to_colour(positions.size(), out);
+}
+
+void GaborModel::mix_to_colour(std::size_t count, ImageView<float> out) const noexcept {
+  const auto pixel = [&](std::size_t index, int c) -> float& { return batch_pixel(out, index, c); };
   // Back to the exemplar's colours: colour = mean + mixing * noise (section 7).
-  for (std::size_t index = 0; index < positions.size(); ++index) {
+  for (std::size_t index = 0; index < count; ++index) {
     float noise[4] = {};
     for (int c = 0; c < channels_; ++c) noise[c] = pixel(index, c);
     for (int c = 0; c < channels_; ++c) {
@@ -428,6 +493,67 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
       pixel(index, c) = value;
     }
   }
+}
+
+void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double surface_mni,
+                                  std::uint32_t seed, ImageView<float> out) const noexcept {
+  const auto pixel = [&](std::size_t index, int c) -> float& { return batch_pixel(out, index, c); };
+  for (std::size_t index = 0; index < points.size(); ++index)
+    for (int c = 0; c < channels_; ++c) pixel(index, c) = 0.0f;
+
+  // Surface Gabor noise (section 9.1, after Lagae et al. 2009) on the impulse process of texton
+  // surface noise (texton paper section 6): per grid, a 3-D Poisson process whose impulses within
+  // the kernel radius r_b of the tangent plane are weighted by (1 - |t| / r_b)+ and carry their
+  // Gabor kernel in the frame (u1, u2). Its intensity is lambda_3 = lambda_2 surface_mni /
+  // (kSurfaceMniReference r_b): at the reference the weights sum on average to the planar noise's
+  // impulse count, as texton surface noise at MNI 60 against planar texton noise at 30 (the
+  // paper's figures). By Campbell's theorem the variance is lambda_3 (2 r_b / 3) integral(h^2)
+  // against lambda_2 integral(h^2) in the plane: the amplitude gains
+  // sqrt(lambda_2 / (lambda_3 2 r_b / 3)) = sqrt(1.5 kSurfaceMniReference / surface_mni), and the
+  // noise keeps the planar noise's variance (and zero mean, the phases being uniform).
+  const double amplitude_gain = std::sqrt(1.5 * kSurfaceMniReference / surface_mni);
+  for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
+    const Grid& grid = grids_[grid_index];
+    const GridKernels kernels = grid_kernels(*this, grid);
+    const double planar_intensity = grid.impulses / (kPi * grid.radius * grid.radius);
+    const double intensity = planar_intensity * surface_mni / (kSurfaceMniReference * grid.radius);
+    // Cubic cells holding about kPointsPerCell impulses, side within [r/4, 2r]. A footprint of
+    // thinning level l scales the whole process by 2^l (cells, depth; intensity / 8^l, so the
+    // count per cell stays), and the amplitude by 2^l keeps the variance, as in the plane.
+    const double cell_size =
+        grid.radius * std::clamp(std::cbrt(kPointsPerCell /
+                                           (intensity * grid.radius * grid.radius * grid.radius)),
+                                 0.25, 2.0);
+    const PoissonSampler count(intensity * cell_size * cell_size * cell_size);
+    for (std::size_t index = 0; index < points.size(); ++index) {
+      const SurfacePoint& p = points[index];
+      const SurfaceFrame frame = surface_frame(p);
+      const Footprint footprint = tangent_footprint(p, frame);
+      const KernelFilter filter = kernel_filter(grid, &footprint);
+      if (filter.skip) continue;
+      const KernelShape shape(filter);
+      const double depth = std::ldexp(grid.radius, filter.level);
+      const auto inverse_depth = static_cast<float>(1.0 / depth);
+      const std::uint32_t level_seed =
+          cell_key(static_cast<std::int64_t>(grid_index), filter.level, seed, Stream::kernels);
+      float sum = 0.0f;
+      for_each_surface_impulse(p, frame, filter.reach, depth, std::ldexp(cell_size, filter.level),
+                               count, level_seed,
+                               [&](CounterRng& rng, float t, float z1, float z2) {
+                                 float wx, wy, phase;
+                                 kernels.draw(rng, wx, wy, phase);
+                                 const float weight = 1.0f - std::abs(t) * inverse_depth;
+                                 float value;
+                                 if (weight > 0.0f && shape.at(wx, wy, phase, z1, z2, value))
+                                   sum += weight * value;
+                               });
+      pixel(index, grid.channel) +=
+          static_cast<float>(std::ldexp(grid.amplitude * filter.gain, filter.level) *
+                             amplitude_gain) *
+          sum;
+    }
+  }
+  mix_to_colour(points.size(), out);
 }
 
 }  // namespace stochtex::gabor

@@ -16,6 +16,7 @@
 #include "model/model_record.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
+#include "stochtex/surface.hpp"
 
 namespace stochtex::gabor {
 
@@ -41,6 +42,10 @@ inline constexpr double kNegligibleAttenuation = 12.0;
 // unchanged) so that the cost per sample stays bounded. At most this many levels; wider
 // footprints make the grid vanish.
 inline constexpr int kMaxLevels = 40;
+// The surface_mni at which surface noise has, at a point, tent weights summing on average to
+// the planar noise's impulse count (GaborModel::evaluate_surface): the paper's 60 (texton paper
+// section 6) for a planar MNI of 30.
+inline constexpr double kSurfaceMniReference = 60.0;
 // Variance per axis of a box of one pixel.
 inline constexpr double kPixelVariance = 1.0 / 12.0;
 
@@ -97,6 +102,13 @@ class GaborModel {
   void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                 std::uint32_t seed, ImageView<float> out) const noexcept;
 
+  // Surface Gabor noise (section 9.1; docs/surface.md) at each surface point: the impulse
+  // process of texton surface noise, surface_mni / kSurfaceMniReference times as dense as the
+  // planar one, each kernel in the point's tangent frame and filtered by the footprint projected
+  // on the tangent plane. Same mean and variance as evaluate(). noexcept, no allocation.
+  void evaluate_surface(std::span<const SurfacePoint> points, double surface_mni,
+                        std::uint32_t seed, ImageView<float> out) const noexcept;
+
   // One Poisson grid of the multi-grid evaluation (section 6.1): the Gaussians of one channel
   // and one bandwidth, with their alias table (section 6.2). Public for tests.
   struct Grid {
@@ -120,6 +132,9 @@ class GaborModel {
   std::span<const std::uint32_t> alias_index() const { return alias_index_; }
 
  private:
+  // colour = mean + mixing * noise for the first `count` pixels of `out`, in place.
+  void mix_to_colour(std::size_t count, ImageView<float> out) const noexcept;
+
   int channels_;
   double impulses_;
   int colour_space_;

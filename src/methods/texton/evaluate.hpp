@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "core/hash.hpp"
 #include "core/level_of_detail.hpp"
@@ -146,6 +147,63 @@ inline FilterSetup filter_setup(const Footprint& footprint, int top_level) noexc
   setup.probe_y = static_cast<float>(axis.y / setup.probes);
   return setup;
 }
+
+// The texton filtered for one footprint (section 5), summed at impact offsets: the pyramid
+// level(s) and probes that filter_setup chose. The planar evaluator and the surface evaluator
+// (docs/surface.md) sum the same filtered texton, only their impacts differ.
+template <int Order, int Channels>
+class FilteredTexton {
+ public:
+  FilteredTexton(const std::vector<PyramidLevel>& pyramid, const FilterSetup& filter) noexcept
+      : filter_(filter),
+        fine_(pyramid[static_cast<std::size_t>(filter.level)]),
+        coarse_(pyramid[static_cast<std::size_t>(
+            std::min(filter.level + 1, static_cast<int>(pyramid.size()) - 1))]),
+        probe_weight_(1.0f / static_cast<float>(filter.probes)) {}
+
+  // Half side of the square outside which an impact adds nothing: the kernel's support plus the
+  // spread of the probes.
+  double reach() const noexcept {
+    const float probe_extent = 0.5f * static_cast<float>(filter_.probes - 1) *
+                               std::max(std::abs(filter_.probe_x), std::abs(filter_.probe_y));
+    const float kernel_reach = filter_.level_blend > 0.0f
+                                   ? std::max(fine_.half_width, coarse_.half_width)
+                                   : fine_.half_width;
+    return static_cast<double>(kernel_reach + probe_extent);
+  }
+
+  // Adds weight * (filtered texton)(dx, dy) to acc, (dx, dy) = x - x_i in exemplar pixels.
+  void add(float dx, float dy, float weight, float (&acc)[Channels]) const noexcept {
+    if (filter_.probes == 1 && filter_.level_blend == 0.0f) {
+      accumulate_texton<Order, Channels>(fine_, dx, dy, weight, acc);
+      return;
+    }
+    const float probe_weight = weight * probe_weight_;
+    for (int k = 0; k < filter_.probes; ++k) {
+      const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(filter_.probes);
+      const float px = dx + shift * filter_.probe_x;
+      const float py = dy + shift * filter_.probe_y;
+      accumulate_texton<Order, Channels>(fine_, px, py, probe_weight * (1.0f - filter_.level_blend),
+                                         acc);
+      if (filter_.level_blend > 0.0f)
+        accumulate_texton<Order, Channels>(coarse_, px, py, probe_weight * filter_.level_blend,
+                                           acc);
+    }
+  }
+
+  // The noise's value from the sum: (acc - offset) * scale + mean, with constant = mean - offset
+  // * scale, and `fade` (filter_setup) scaling the fluctuation only.
+  float output(float acc, float scale, float constant, float mean) const noexcept {
+    const float noise = acc * scale + constant - mean;
+    return mean + filter_.fade * noise;
+  }
+
+ private:
+  FilterSetup filter_;
+  const PyramidLevel& fine_;
+  const PyramidLevel& coarse_;
+  float probe_weight_;
+};
 
 // The Poisson points of the grid cells (section 8): cell (x, y) holds a Poisson number of points,
 // uniform in the cell, all drawn from cell_key(x, y, seed, points) in a fixed order. The draws are

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/surface_process.hpp"
 #include "methods/texton/evaluate.hpp"
 #include "methods/texton/params.hpp"
 #include "model/value_range.hpp"
@@ -87,11 +88,13 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
   inverse_sqrt_intensity_ = static_cast<float>(1.0 / std::sqrt(intensity_));
   // E f = lambda * integral(h) = lambda * sum(alpha) since psi integrates to 1 (Proposition 1).
   constant_term_.resize(static_cast<std::size_t>(channels_));
+  coefficient_sum_.resize(static_cast<std::size_t>(channels_));
   for (int c = 0; c < channels_; ++c) {
     double sum = 0.0;
     for (std::size_t i = static_cast<std::size_t>(c); i < coefficients_.size();
          i += static_cast<std::size_t>(channels_))
       sum += coefficients_[i];
+    coefficient_sum_[c] = sum;
     constant_term_[c] = static_cast<float>(mean_[c] - intensity_ * sum / std::sqrt(intensity_));
   }
 }
@@ -135,18 +138,32 @@ ModelRecord TextonModel::to_record(const ParamValues& params) const {
 
 void TextonModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                            std::uint32_t seed, ImageView<float> out) const noexcept {
+  with_types([&]<int Order, int Channels>() {
+    evaluate_typed<Order, Channels>(positions, footprints, seed, out);
+  });
+}
+
+void TextonModel::evaluate_surface(std::span<const SurfacePoint> points, double surface_mni,
+                                   std::uint32_t seed, ImageView<float> out) const noexcept {
+  with_types([&]<int Order, int Channels>() {
+    evaluate_surface_typed<Order, Channels>(points, surface_mni, seed, out);
+  });
+}
+
+template <typename Call>
+void TextonModel::with_types(Call&& call) const noexcept {
   // One concrete loop per (order, channel count): the inner loops unroll and the accumulators
   // stay in registers. Dispatch happens once per batch.
   const auto with_order = [&]<int Order>() {
     switch (channels_) {
       case 1:
-        return evaluate_typed<Order, 1>(positions, footprints, seed, out);
+        return call.template operator()<Order, 1>();
       case 2:
-        return evaluate_typed<Order, 2>(positions, footprints, seed, out);
+        return call.template operator()<Order, 2>();
       case 3:
-        return evaluate_typed<Order, 3>(positions, footprints, seed, out);
+        return call.template operator()<Order, 3>();
       default:
-        return evaluate_typed<Order, 4>(positions, footprints, seed, out);
+        return call.template operator()<Order, 4>();
     }
   };
   switch (order_) {
@@ -170,24 +187,9 @@ void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
   CellCache cells(seed, cell_count_);
   for (std::size_t index = 0; index < positions.size(); ++index) {
     const Vec2d p = positions[index];
-
-    const FilterSetup filter =
-        footprints.empty() ? FilterSetup{} : filter_setup(footprints[index], top_level);
-    const int level0 = filter.level;
-    const float level_blend = filter.level_blend;
-    const int probes = filter.probes;
-    const float probe_x = filter.probe_x;
-    const float probe_y = filter.probe_y;
-    const float fade = filter.fade;
-    const PyramidLevel& fine = pyramid_[static_cast<std::size_t>(level0)];
-    const PyramidLevel& coarse =
-        pyramid_[static_cast<std::size_t>(std::min(level0 + 1, top_level))];
-    const float probe_extent =
-        0.5f * static_cast<float>(probes - 1) * std::max(std::abs(probe_x), std::abs(probe_y));
-    const float kernel_reach =
-        level_blend > 0.0f ? std::max(fine.half_width, coarse.half_width) : fine.half_width;
-    const double reach = static_cast<double>(kernel_reach + probe_extent);
-    const float probe_weight = 1.0f / static_cast<float>(probes);
+    const FilteredTexton<Order, Channels> texton(
+        pyramid_, footprints.empty() ? FilterSetup{} : filter_setup(footprints[index], top_level));
+    const double reach = texton.reach();
 
     float acc[Channels] = {};
     // The Poisson process is simulated on the grid cells that meet p + [-reach, reach]^2. Cell
@@ -202,31 +204,54 @@ void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
       for (std::int64_t cell_x = first_cell_x; cell_x <= last_cell_x; ++cell_x) {
         const float offset_x = static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size_);
         cells.for_each_point(cell_x, cell_y, [&](float u, float v) {
-          const float dx = offset_x - u * cell_size;
-          const float dy = offset_y - v * cell_size;
-          if (probes == 1 && level_blend == 0.0f) {
-            accumulate_texton<Order, Channels>(fine, dx, dy, 1.0f, acc);
-            return;
-          }
-          for (int k = 0; k < probes; ++k) {
-            const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(probes);
-            const float px = dx + shift * probe_x;
-            const float py = dy + shift * probe_y;
-            accumulate_texton<Order, Channels>(fine, px, py, probe_weight * (1.0f - level_blend),
-                                               acc);
-            if (level_blend > 0.0f)
-              accumulate_texton<Order, Channels>(coarse, px, py, probe_weight * level_blend, acc);
-          }
+          texton.add(offset_x - u * cell_size, offset_y - v * cell_size, 1.0f, acc);
         });
       }
     }
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-    for (int c = 0; c < Channels; ++c) {
-      // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2); `fade` scales the fluctuation only.
-      const float noise = acc[c] * inverse_sqrt_intensity_ + constant_term_[c] - mean_[c];
-      out.at(x, y, c) = mean_[c] + fade * noise;
-    }
+    // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2).
+    for (int c = 0; c < Channels; ++c)
+      out.at(x, y, c) = texton.output(acc[c], inverse_sqrt_intensity_, constant_term_[c], mean_[c]);
+  }
+}
+
+template <int Order, int Channels>
+void TextonModel::evaluate_surface_typed(std::span<const SurfacePoint> points, double surface_mni,
+                                         std::uint32_t seed, ImageView<float> out) const noexcept {
+  // Surface noise (section 6): a 3-D Poisson process of intensity lambda = MNI / r^3, impulses
+  // within r/2 of the tangent plane weighted by (1 - 2 |t| / r)+ and carrying the texton in the
+  // frame (u1, u2). Proposition 3: mean lambda r/2 sum(alpha), variance lambda r/3 integral(h^2),
+  // so g = (f - lambda r/2 sum(alpha)) / sqrt(lambda r/3) has the mean and variance of the planar
+  // normalised noise (eq. 2) whatever the MNI. Cells of side 0.6 r as in 2-D (section 8).
+  const double side = 2.0 * pyramid_.front().half_width;
+  const double intensity = surface_mni / (side * side * side);
+  const double cell_size = kCellSizeFactor * side;
+  const PoissonSampler count(intensity * cell_size * cell_size * cell_size);
+  const double scale = 1.0 / std::sqrt(intensity * side / 3.0);
+  const auto inverse_scale = static_cast<float>(scale);
+  float constant[Channels];
+  for (int c = 0; c < Channels; ++c)
+    constant[c] =
+        static_cast<float>(mean_[c] - intensity * 0.5 * side * coefficient_sum_[c] * scale);
+  const auto depth = static_cast<float>(0.5 * side);
+  const float inverse_depth = 1.0f / depth;
+  const int top_level = static_cast<int>(pyramid_.size()) - 1;
+  for (std::size_t index = 0; index < points.size(); ++index) {
+    const SurfacePoint& p = points[index];
+    const SurfaceFrame frame = surface_frame(p);
+    const FilteredTexton<Order, Channels> texton(
+        pyramid_, filter_setup(tangent_footprint(p, frame), top_level));
+    float acc[Channels] = {};
+    for_each_surface_impulse(p, frame, texton.reach(), 0.5 * side, cell_size, count, seed,
+                             [&](CounterRng&, float t, float z1, float z2) {
+                               const float weight = 1.0f - std::abs(t) * inverse_depth;
+                               if (weight > 0.0f) texton.add(z1, z2, weight, acc);
+                             });
+    const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
+    const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
+    for (int c = 0; c < Channels; ++c)
+      out.at(x, y, c) = texton.output(acc[c], inverse_scale, constant[c], mean_[c]);
   }
 }
 

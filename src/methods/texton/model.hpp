@@ -11,6 +11,7 @@
 #include "model/model_record.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
+#include "stochtex/surface.hpp"
 
 namespace stochtex::texton {
 
@@ -58,10 +59,23 @@ class TextonModel {
   void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                 std::uint32_t seed, ImageView<float> out) const noexcept;
 
+  // Normalised surface noise g^s (section 6, Proposition 3) + mean at each surface point
+  // (docs/surface.md): a 3-D Poisson process of surface_mni impulses per r^3 cube, the texton in
+  // each point's tangent frame, filtered by the footprint projected on the tangent plane.
+  // noexcept, no allocation.
+  void evaluate_surface(std::span<const SurfacePoint> points, double surface_mni,
+                        std::uint32_t seed, ImageView<float> out) const noexcept;
+
  private:
+  // Calls call.template operator()<Order, Channels>() for the model's order and channel count.
+  template <typename Call>
+  void with_types(Call&& call) const noexcept;
   template <int Order, int Channels>
   void evaluate_typed(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                       std::uint32_t seed, ImageView<float> out) const noexcept;
+  template <int Order, int Channels>
+  void evaluate_surface_typed(std::span<const SurfacePoint> points, double surface_mni,
+                              std::uint32_t seed, ImageView<float> out) const noexcept;
 
   int channels_;
   int support_;
@@ -76,7 +90,8 @@ class TextonModel {
   double cell_size_ = 0;  // a = 0.6 r (section 8)
   PoissonSampler cell_count_;
   float inverse_sqrt_intensity_ = 0;
-  std::vector<float> constant_term_;  // mean - lambda sum(alpha) / sqrt(lambda), per channel
+  std::vector<float> constant_term_;     // mean - lambda sum(alpha) / sqrt(lambda), per channel
+  std::vector<double> coefficient_sum_;  // sum(alpha), per channel
 };
 
 }  // namespace stochtex::texton

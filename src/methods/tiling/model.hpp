@@ -18,6 +18,7 @@
 #include "model/model_record.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
+#include "stochtex/surface.hpp"
 
 namespace stochtex::tiling {
 
@@ -58,12 +59,6 @@ TilingLayout tiling_layout(int channels, Transport transport, Blend blend);
 struct LevelOfDetail {
   int level = 0;
   float blend = 0.0f;
-};
-
-struct Vec3d {
-  double x = 0.0;
-  double y = 0.0;
-  double z = 0.0;
 };
 
 class TilingModel {
