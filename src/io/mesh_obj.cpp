@@ -4,12 +4,18 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <system_error>
 #include <tuple>
+#include <utility>
 
 #include "core/file_message.hpp"
 #include "stochtex/error.hpp"
@@ -25,6 +31,41 @@ std::string first_line(const std::string& text) {
   std::string line = text.substr(0, text.find('\n'));
   while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
   return line;
+}
+
+// tinyobjloader reads a number it cannot parse ("nan", "inf", "1x") as 0, so the v, vt and vn
+// lines are checked first: every value a finite number.
+void check_numbers(const std::string& text, const std::string& name) {
+  std::size_t line_number = 0;
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    ++line_number;
+    std::string_view line(text.data() + start, end - start);
+    line = line.substr(0, line.find('#'));
+    start = end + 1;
+    const auto word = [&] {
+      const std::size_t first = line.find_first_not_of(" \t\r");
+      if (first == std::string_view::npos) return std::string_view();
+      const std::size_t last = std::min(line.find_first_of(" \t\r", first), line.size());
+      const std::string_view token = line.substr(first, last - first);
+      line.remove_prefix(last);
+      return token;
+    };
+    const std::string_view keyword = word();
+    if (keyword != "v" && keyword != "vt" && keyword != "vn") continue;
+    for (std::string_view token = word(); !token.empty(); token = word()) {
+      if (token.front() == '+') token.remove_prefix(1);
+      double value = 0.0;
+      const auto [end_of_number, error] =
+          std::from_chars(token.data(), token.data() + token.size(), value);
+      if (error != std::errc() || end_of_number != token.data() + token.size() ||
+          !std::isfinite(value))
+        throw Error(ErrorCode::invalid_input,
+                    name + ": line " + std::to_string(line_number) + " has '" +
+                        std::string(token.substr(0, 32)) +
+                        "', which is not a finite number; repair the mesh");
+    }
+  }
 }
 
 // Splits the faces into fans and each position into one vertex per distinct (position, uv,
@@ -114,8 +155,11 @@ Mesh read_mesh(const fs::path& path) {
                 name + ": the mesh file has " + std::to_string(size) + " bytes, more than the " +
                     std::to_string(kMaxMeshFileBytes >> 20) +
                     " MiB that keep reading it within the memory budget; simplify the mesh");
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw Error(ErrorCode::io, name + ": cannot open the mesh for reading");
+  std::ifstream file(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  if (!file) throw Error(ErrorCode::io, name + ": cannot read the mesh");
+  check_numbers(text, name);
+  std::istringstream stream(std::move(text));
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
