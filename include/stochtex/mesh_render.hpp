@@ -27,9 +27,9 @@ struct Camera {
 
 // A camera on a sphere around the mesh's bounding box centre, looking at it, with +y up:
 // azimuth (degrees, about +y, 0 = looking along -z from +z), elevation (degrees, within (-90,
-// 90)), distance in multiples of the distance at which the bounding sphere just fits the picture
-// of `width` x `height` pixels (1: touching its shorter side). Throws std::invalid_argument when
-// an angle or the distance is out of range.
+// 90)), distance in multiples of the distance at which the mesh's bounding sphere (about the box's
+// centre) just fits the picture of `width` x `height` pixels (1: touching its shorter side). Throws
+// std::invalid_argument when an angle or the distance is out of range.
 Camera orbit_camera(const Mesh& mesh, double azimuth_degrees, double elevation_degrees,
                     double distance, int width, int height);
 

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/parallel.hpp"
@@ -287,7 +288,8 @@ Camera orbit_camera(const Mesh& mesh, double azimuth_degrees, double elevation_d
   Camera camera;
   const Box box = bounding_box(mesh.positions);
   const Vec3d centre = (box.min + box.max) * 0.5;
-  const double radius = 0.5 * length(box.max - box.min);
+  double radius = 0.0;
+  for (const Vec3d& p : mesh.positions) radius = std::max(radius, length(p - centre));
   const double half_vertical = radians(camera.vertical_fov_degrees) / 2.0;
   const double half_horizontal =
       std::atan(std::tan(half_vertical) * static_cast<double>(width) / height);
