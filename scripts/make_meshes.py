@@ -52,6 +52,14 @@ def uv_grid(columns, rows, point):
     return positions, normals, uvs
 
 
+def grid_cells(columns, rows):
+    """Each cell of uv_grid's grid: its row and its corners a (top left), b, c, d (bottom right)."""
+    for i in range(rows):
+        for j in range(columns):
+            a = i * (columns + 1) + j
+            yield i, a, a + 1, a + columns + 1, a + columns + 2
+
+
 def sphere(columns=48, rows=24):
     def point(j, i):
         theta = math.pi * i / rows
@@ -61,15 +69,12 @@ def sphere(columns=48, rows=24):
 
     positions, normals, uvs = uv_grid(columns, rows, point)
     faces = []
-    for i in range(rows):
-        for j in range(columns):
-            a = i * (columns + 1) + j
-            b, c, d = a + 1, a + columns + 1, a + columns + 2
-            # The first and last rows are fans around a pole: one triangle each, none degenerate.
-            if i != 0:
-                faces.append((a, c, b))
-            if i != rows - 1:
-                faces.append((b, c, d))
+    for i, a, b, c, d in grid_cells(columns, rows):
+        # The first and last rows are fans around a pole: one triangle each, none degenerate.
+        if i != 0:
+            faces.append((a, c, b))
+        if i != rows - 1:
+            faces.append((b, c, d))
     return positions, normals, uvs, faces
 
 
@@ -83,11 +88,8 @@ def torus(columns=64, rows=24, major=1.0, minor=0.35):
 
     positions, normals, uvs = uv_grid(columns, rows, point)
     faces = []
-    for i in range(rows):
-        for j in range(columns):
-            a = i * (columns + 1) + j
-            b, c, d = a + 1, a + columns + 1, a + columns + 2
-            faces += [(a, b, c), (b, d, c)]
+    for _, a, b, c, d in grid_cells(columns, rows):
+        faces += [(a, b, c), (b, d, c)]
     return positions, normals, uvs, faces
 
 
