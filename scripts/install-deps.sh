@@ -8,7 +8,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config ninja-build clang-format
   libfftw3-dev libpng-dev libopenexr-dev libeigen3-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   glslang-dev spirv-tools libspirv-cross-c-shared-dev

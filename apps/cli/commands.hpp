@@ -20,6 +20,7 @@ struct Command {
 
 Command add_analyze_command(CLI::App& app);
 Command add_render_command(CLI::App& app);
+Command add_render_mesh_command(CLI::App& app);
 Command add_synth_command(CLI::App& app);
 Command add_gaussian_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);

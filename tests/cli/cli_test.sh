@@ -200,7 +200,7 @@ methods=$(python3 -c 'import json, sys; print(" ".join(m["name"] for m in json.l
   <"$work/stdout")
 if [[ -z $methods ]]; then fail "methods --json lists methods" "no method names"; fi
 expect_ok "--help" "$stochtex" --help
-for command in analyze render synth gaussian compare info edit methods report; do
+for command in analyze render render-mesh synth gaussian compare info edit methods report; do
   expect_ok "$command --help" "$stochtex" "$command" --help
 done
 
@@ -897,6 +897,76 @@ for hostile in text_bomb.png huge_rgba16.png; do
   expect_error "gaussian of $hostile" 1 "$hostile" \
     "$stochtex" gaussian "$inputs/$hostile" -o "$out/x.png" --size 16x16
 done
+
+# --- meshes (docs/meshes.md) --------------------------------------------------------------------
+
+meshes=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../data/meshes" && pwd)
+tiling_model=$models/every_tiling.stx
+expect_ok "render-mesh --help" "$stochtex" render-mesh --help
+if ! grep -q "1024 / the bounding box" "$work/stdout"; then
+  fail "render-mesh --help" "does not state the default --texture-scale"
+fi
+for mesh in sphere torus scan; do
+  expect_ok "render-mesh $mesh" "$stochtex" render-mesh "$meshes/$mesh.obj" --model "$tiling_model" \
+    -o "$models/mesh_$mesh.png" --size 64x48 &&
+    expect_file "render-mesh $mesh writes the image" "$models/mesh_$mesh.png"
+done
+# Every method: linear triplanar mapping on the scan (no uvs), and the sphere's uvs.
+for method in $methods; do
+  expect_ok "render-mesh $method triplanar-linear" "$stochtex" render-mesh "$meshes/scan.obj" \
+    --model "$models/every_$method.stx" -o "$models/mesh_$method.png" --size 40x32 \
+    --mapping triplanar-linear --camera 120,-10,1.2
+  expect_ok "render-mesh $method uv" "$stochtex" render-mesh "$meshes/sphere.obj" \
+    --model "$models/every_$method.stx" -o "$models/mesh_${method}_uv.pfm" --size 40x32 \
+    --mapping uv --texture-scale 300
+done
+# A pure function of its arguments: threads change nothing, the seed and the camera do.
+for threads in 1 3; do
+  expect_ok "render-mesh, $threads threads" "$stochtex" render-mesh "$meshes/torus.obj" \
+    --model "$tiling_model" -o "$models/mesh_t$threads.pfm" --size 50x40 --seed 4 \
+    --threads "$threads" --camera 0.5,2,3,0,0,0
+done
+if cmp -s "$models/mesh_t1.pfm" "$models/mesh_t3.pfm"; then pass; else
+  fail "render-mesh, 1 and 3 threads" "the renders differ"
+fi
+
+# Bad meshes: one sentence naming the file, exit 1, no image.
+printf '# no faces\nv 0 0 0\n' >"$inputs/empty.obj"
+printf 'v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n' >"$inputs/nan.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n' >"$inputs/degenerate.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 2 5\n' \
+  >"$inputs/fin.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n' >"$inputs/range.obj"
+head -c 3000 /dev/urandom >"$inputs/noise.obj"
+for bad in empty nan degenerate fin range; do
+  expect_error "render-mesh $bad.obj" 1 "$bad.obj" \
+    "$stochtex" render-mesh "$inputs/$bad.obj" --model "$tiling_model" -o "$out/x.png"
+done
+capture "$stochtex" render-mesh "$inputs/noise.obj" --model "$tiling_model" -o "$out/x.png"
+if [[ $status -eq 0 ]]; then find "$out" -mindepth 1 -delete && pass; else
+  check_failure "render-mesh of random bytes" 1 "noise.obj"
+fi
+expect_error "render-mesh of a missing mesh" 1 "missing.obj" \
+  "$stochtex" render-mesh "$inputs/missing.obj" --model "$tiling_model" -o "$out/x.png"
+# Usage: refused before the mesh is read or anything rendered.
+expect_error "render-mesh --mapping surface for lrp" 2 "lrp models have no surface mapping" \
+  "$stochtex" render-mesh "$meshes/scan.obj" --model "$models/every_lrp.stx" -o "$out/x.png" \
+  --mapping surface
+expect_error "render-mesh --mapping uv without uvs" 2 "scan.obj" \
+  "$stochtex" render-mesh "$meshes/scan.obj" --model "$tiling_model" -o "$out/x.png" --mapping uv
+for bad_camera in 1 1,2,3,4 a,b 0,90 0,0,0 1,1,1,1,1,1; do
+  expect_error "render-mesh --camera $bad_camera" 2 "camera" \
+    "$stochtex" render-mesh "$meshes/sphere.obj" --model "$tiling_model" -o "$out/x.png" \
+    --camera "$bad_camera"
+done
+expect_error "render-mesh --size 0x5" 2 "--size" \
+  "$stochtex" render-mesh "$meshes/sphere.obj" --model "$tiling_model" -o "$out/x.png" --size 0x5
+expect_parse_error "render-mesh --mapping planar" "$stochtex" render-mesh "$meshes/sphere.obj" \
+  --model "$tiling_model" -o "$out/x.png" --mapping planar
+expect_parse_error "render-mesh without --model" "$stochtex" render-mesh "$meshes/sphere.obj" \
+  -o "$out/x.png"
+expect_error "render-mesh onto its mesh" 2 "" \
+  "$stochtex" render-mesh "$meshes/sphere.obj" --model "$tiling_model" -o "$meshes/sphere.obj"
 
 # --- summary ------------------------------------------------------------------------------------
 

@@ -1,0 +1,50 @@
+#pragma once
+// What a rasteriser of meshes needs besides visibility (docs/meshes.md): the camera's rays, the
+// tangent frame field, the footprints from ray differentials and the shading. The CPU rasteriser
+// (mesh_render.cpp) uses them; a GL rasteriser passes the same rays and light as uniforms.
+
+#include "render/mesh_geometry.hpp"
+#include "stochtex/mesh_render.hpp"
+
+namespace stochtex {
+
+// The ray through pixel (x, y) (its centre at x + 1/2, y + 1/2) leaves `eye` along
+//   forward + (x + 1/2 - width/2) step_x + (y + 1/2 - height/2) step_y,
+// with `forward` the unit view direction and |step_x| = |step_y| = 2 tan(fov/2) / height: one
+// pixel at unit distance along `forward`. Throws std::invalid_argument when the eye is at the
+// target, the up vector is along the view, or a value is not finite.
+struct PixelRays {
+  Vec3d eye;
+  Vec3d forward;
+  Vec3d step_x;  // right
+  Vec3d step_y;  // down
+  int width = 0;
+  int height = 0;
+
+  Vec3d direction(int x, int y) const {
+    return forward + step_x * (x + 0.5 - 0.5 * width) + step_y * (y + 0.5 - 0.5 * height);
+  }
+};
+PixelRays pixel_rays(const Camera& camera, int width, int height);
+
+// The tangent of the frame at a point of unit normal n: the "east" direction of a y-up globe,
+// normalise(Y x n); where n is within 1e-6 of +-Y (the poles of that field, where every
+// continuous tangent field on a closed surface of genus 0 must have a singularity), the
+// projection of X on the tangent plane instead.
+Vec3d surface_tangent(const Vec3d& normal);
+
+// A point where a pixel's ray of direction `d` meets the plane through `p` of normal `n`, and
+// the derivatives of that point along the picture's x and y (Igehy's ray differentials, exact
+// for a plane): dp/dx = t (step_x - (n.step_x / n.d) d), with t the ray parameter.
+struct PlaneHit {
+  Vec3d dpdx;
+  Vec3d dpdy;
+};
+PlaneHit plane_differentials(const PixelRays& rays, const Vec3d& d, double t, const Vec3d& n);
+
+// Lambert + ambient with a light fixed to the camera, above-left and behind it; `normal` is
+// turned towards the viewer first (both sides of a surface are lit, holes show the inside).
+inline constexpr double kAmbient = 0.3;
+double shading(const PixelRays& rays, const Vec3d& view_direction, const Vec3d& normal);
+
+}  // namespace stochtex

@@ -1,0 +1,215 @@
+// Meshes (stochtex/mesh.hpp) and their pictures (stochtex/mesh_render.hpp): the OBJ reader and the
+// checks of prepare_mesh on each kind of bad mesh, computed normals, the rasteriser's independence
+// of the thread count, ray differentials of a plane seen head-on, and the refusals before work.
+
+#include "stochtex/mesh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <string>
+
+#include "render/mesh_shading.hpp"
+#include "stochtex/mesh_render.hpp"
+#include "stochtex/stochtex.hpp"
+#include "test_support.hpp"
+
+namespace stochtex {
+namespace {
+
+using MeshTest = test_support::FolderTest;
+
+const std::string kMeshes = std::string(STOCHTEX_SOURCE_DIR) + "/data/meshes/";
+
+Model test_model(std::string_view method) {
+  std::mt19937 engine(8);
+  std::normal_distribution<float> normal(0.5f, 0.1f);
+  ImageF exemplar(32, 32, 3);
+  for (float& value : exemplar.pixels()) value = normal(engine);
+  return analyze(method, exemplar.view(), {}, 3);
+}
+
+const Model& tiling_model() {
+  static const Model model = test_model("tiling");
+  return model;
+}
+
+// read_mesh must refuse the OBJ text with a stochtex::Error naming the file and saying `problem`.
+void expect_refused(const std::filesystem::path& path, const std::string& text,
+                    const std::string& problem) {
+  std::ofstream(path) << text;
+  try {
+    read_mesh(path);
+    ADD_FAILURE() << problem << ": accepted";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_NE(message.find(problem), std::string::npos) << message;
+  }
+}
+
+TEST_F(MeshTest, ReadsTheShippedMeshes) {
+  const Mesh sphere = read_mesh(kMeshes + "sphere.obj");
+  EXPECT_EQ(sphere.triangles.size(), 2208u);
+  EXPECT_EQ(sphere.uvs.size(), sphere.positions.size());
+  EXPECT_EQ(sphere.normals.size(), sphere.positions.size());
+  const Mesh scan = read_mesh(kMeshes + "scan.obj");
+  EXPECT_TRUE(scan.uvs.empty());
+  ASSERT_EQ(scan.normals.size(), scan.positions.size());
+  for (const Vec3d& n : scan.normals) EXPECT_NEAR(length(n), 1.0, 1e-12);
+}
+
+TEST_F(MeshTest, ComputesAreaWeightedNormals) {
+  // A unit square in the z = 0 plane split in two, and a wide triangle folded up at x = 1: the
+  // shared vertices' normals lean towards the larger face.
+  std::ofstream(file("fold.obj")) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 0 1\n"
+                                     "f 1 2 3\nf 1 3 4\nf 2 3 5\n";
+  const Mesh mesh = read_mesh(file("fold.obj"));
+  EXPECT_NEAR(mesh.normals[0].z, 1.0, 1e-12);
+  EXPECT_NEAR(mesh.normals[3].z, 1.0, 1e-12);
+  // Vertex 2 (index 1): the z = 0 face (area 1/2, normal +z) and the x = 1 face (area 1/2,
+  // normal +x): equal weights.
+  EXPECT_NEAR(mesh.normals[1].x, std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(mesh.normals[1].z, std::sqrt(0.5), 1e-12);
+}
+
+TEST_F(MeshTest, RefusesBadMeshes) {
+  expect_refused(file("empty.obj"), "# nothing\n", "has no triangle");
+  expect_refused(file("points.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "has no triangle");
+  expect_refused(file("nan.obj"), "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n",
+                 "line 3 has 'nan', which is not a finite number");
+  expect_refused(file("range.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "out of range");
+  expect_refused(file("degenerate.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n",
+                 "triangle 1 is degenerate");
+  expect_refused(file("repeated.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 2\n",
+                 "degenerate");
+  // Three triangles on the edge (1, 2): a fin.
+  expect_refused(file("fin.obj"),
+                 "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 2 5\n",
+                 "not manifold");
+  // The same fin with the shared edge's vertices duplicated (as a uv seam would): still one edge.
+  expect_refused(file("fin_split.obj"),
+                 "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 0\nv 1 0 0\n"
+                 "f 1 2 3\nf 1 2 4\nf 6 7 5\n",
+                 "not manifold");
+}
+
+TEST(MeshChecks, RefusesValuesAndSizes) {
+  const Mesh good{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, {}, {{0, 1, 2}}};
+  const auto refused = [](Mesh mesh, const std::string& problem) {
+    try {
+      prepare_mesh(mesh, "'m.obj'");
+      ADD_FAILURE() << problem << ": accepted";
+    } catch (const Error& error) {
+      EXPECT_EQ(error.code(), ErrorCode::invalid_input);
+      EXPECT_NE(std::string(error.what()).find("'m.obj': "), std::string::npos);
+      EXPECT_NE(std::string(error.what()).find(problem), std::string::npos) << error.what();
+    }
+  };
+  Mesh nan = good;
+  nan.positions[1].y = std::numeric_limits<double>::quiet_NaN();
+  refused(nan, "not finite");
+  Mesh inf = good;
+  inf.positions[2].z = std::numeric_limits<double>::infinity();
+  refused(inf, "not finite");
+  Mesh zero_normal = good;
+  zero_normal.normals = {{0, 0, 1}, {0, 0, 0}, {0, 0, 1}};
+  refused(zero_normal, "normal");
+  Mesh bad_uv = good;
+  bad_uv.uvs = {{0, 0}, {1, std::nan("")}, {0, 1}};
+  refused(bad_uv, "texture coordinate");
+  Mesh range = good;
+  range.triangles[0][2] = 3;
+  refused(range, "vertex 3 of only 3");
+  Mesh huge = good;
+  huge.triangles.resize(kMaxMeshTriangles + 1, {0, 1, 2});
+  refused(huge, "more than the limits");
+  Mesh fine = good;
+  prepare_mesh(fine, "'m.obj'");
+  EXPECT_NEAR(std::abs(fine.normals[0].z), 1.0, 1e-12);
+}
+
+// The derivatives of a plane seen head-on are one pixel's size at its distance, at every pixel.
+TEST(MeshRender, HeadOnPlaneDerivativesArePixelSize) {
+  Camera camera;
+  camera.eye = {0.25, -0.5, 5.0};
+  camera.target = {0.25, -0.5, 0.0};
+  const PixelRays rays = pixel_rays(camera, 64, 48);
+  const double pixel = 5.0 * 2.0 * std::tan(20.0 * std::acos(-1.0) / 180.0) / 48.0;
+  for (const auto& [x, y] : {std::pair{0, 0}, {31, 23}, {63, 47}, {10, 40}}) {
+    const Vec3d d = rays.direction(x, y);
+    const double t = 5.0 / -d.z;  // the plane z = 0
+    const PlaneHit hit = plane_differentials(rays, d, t, {0.0, 0.0, 1.0});
+    EXPECT_NEAR(hit.dpdx.x, pixel, 1e-12);
+    EXPECT_NEAR(hit.dpdx.y, 0.0, 1e-12);
+    EXPECT_NEAR(hit.dpdx.z, 0.0, 1e-12);
+    EXPECT_NEAR(hit.dpdy.x, 0.0, 1e-12);
+    EXPECT_NEAR(hit.dpdy.y, -pixel, 1e-12);  // picture y runs down, world y up
+    EXPECT_NEAR(hit.dpdy.z, 0.0, 1e-12);
+  }
+  // Tilted by 60 degrees about x, the plane stretches dp/dy by 1 / cos(60) at the centre line.
+  const Vec3d n{0.0, std::sin(std::acos(-1.0) / 3.0), std::cos(std::acos(-1.0) / 3.0)};
+  const Vec3d d = rays.direction(32, 24) - (rays.step_x + rays.step_y) * 0.5;  // the centre
+  const PlaneHit tilted = plane_differentials(rays, d, 5.0, n);
+  EXPECT_NEAR(length(tilted.dpdy), pixel / std::cos(std::acos(-1.0) / 3.0), 1e-9);
+}
+
+TEST(MeshRender, TangentFieldIsOrthonormalEverywhere) {
+  for (const Vec3d n : {Vec3d{0, 1, 0}, Vec3d{0, -1, 0}, Vec3d{1, 0, 0}, Vec3d{0, 0, 1},
+                        normalized(Vec3d{1, 2, 3}), normalized(Vec3d{1e-9, 1, 0})}) {
+    const Vec3d t = surface_tangent(n);
+    EXPECT_NEAR(length(t), 1.0, 1e-12);
+    EXPECT_NEAR(dot(t, n), 0.0, 1e-12);
+  }
+}
+
+TEST(MeshRender, SameBytesWhateverTheThreadCount) {
+  for (const char* name : {"sphere.obj", "scan.obj"}) {
+    const Mesh mesh = read_mesh(kMeshes + name);
+    const Camera camera = orbit_camera(mesh, 30.0, 20.0, 1.0, 96, 80);
+    MeshRenderOptions options;
+    options.texture_scale = default_texture_scale(mesh) / 8.0;
+    ImageF reference(96, 80, 3);
+    options.threads = 1;
+    render_mesh(tiling_model(), mesh, camera, options, 5, reference.view());
+    int covered = 0;
+    for (int y = 0; y < 80; ++y)
+      for (int x = 0; x < 96; ++x) covered += reference.view().at(x, y, 0) != 0.2f;
+    EXPECT_GT(covered, 96 * 80 / 4) << name;  // the framed mesh fills much of the picture
+    EXPECT_LT(covered, 96 * 80) << name;      // and the background shows around it
+    for (const int threads : {2, 3, 8}) {
+      ImageF image(96, 80, 3);
+      options.threads = threads;
+      render_mesh(tiling_model(), mesh, camera, options, 5, image.view());
+      EXPECT_TRUE(test_support::same_bytes(reference, image)) << name << ", " << threads;
+    }
+  }
+}
+
+TEST(MeshRender, RefusesBeforeWork) {
+  const Mesh scan = read_mesh(kMeshes + "scan.obj");
+  const Camera camera = orbit_camera(scan, 0.0, 0.0, 1.0, 8, 8);
+  ImageF image(8, 8, 3);
+  image.view().at(0, 0, 0) = 42.0f;
+  MeshRenderOptions options;
+  options.mapping = SurfaceMapping::surface;
+  EXPECT_THROW(render_mesh(test_model("lrp"), scan, camera, options, 0, image.view()),
+               std::invalid_argument);
+  options.mapping = std::nullopt;  // uv, and the scan has none
+  EXPECT_THROW(render_mesh(tiling_model(), scan, camera, options, 0, image.view()),
+               std::invalid_argument);
+  options.mapping = SurfaceMapping::triplanar_linear;
+  options.texture_scale = 1e10;  // beyond 2^32 exemplar pixels
+  EXPECT_THROW(render_mesh(tiling_model(), scan, camera, options, 0, image.view()),
+               std::invalid_argument);
+  EXPECT_EQ(image.view().at(0, 0, 0), 42.0f);
+  EXPECT_THROW(orbit_camera(scan, 0.0, 90.0, 1.0, 8, 8), std::invalid_argument);
+  Camera degenerate;
+  EXPECT_THROW(pixel_rays(degenerate, 8, 8), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace stochtex
