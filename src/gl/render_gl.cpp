@@ -21,13 +21,13 @@ namespace stochtex {
 
 static_assert(gl::kEveryMethodHasTwin<MethodModel>,
               "every method of MethodModel needs a GPU twin: gl::Twin<Model> in "
-              "src/methods/<method>/gl_twin.hpp (see src/gl/twin.hpp)");
+              "src/methods/<method>/gl_twin.hpp (see src/gl/twin.hpp), or kCpuOnly");
 
-// Every method of the variant, as the static_assert above holds.
+// Every method of the variant that has a twin.
 bool gl_supports(std::string_view method) {
   return []<typename... MethodModels>(std::type_identity<std::variant<MethodModels...>>,
                                       std::string_view name) {
-    return ((name == MethodModels::kMethodName) || ...);
+    return ((gl::HasTwin<MethodModels> && name == MethodModels::kMethodName) || ...);
   }(std::type_identity<MethodModel>{}, method);
 }
 
@@ -41,8 +41,12 @@ struct GlRenderer::Impl {
   explicit Impl(const Model& m)
       : model(m),
         pass(std::visit(
-            [](const auto& method_model) {
-              return gl::Twin<std::decay_t<decltype(method_model)>>::pass(method_model);
+            [](const auto& method_model) -> std::unique_ptr<gl::Pass> {
+              using Method = std::decay_t<decltype(method_model)>;
+              if constexpr (gl::HasTwin<Method>)
+                return gl::Twin<Method>::pass(method_model);
+              else
+                gl::no_twin(Method::kMethodName);
             },
             model.data().model)) {
     glCreateQueries(GL_TIME_ELAPSED, 1, &timer);
@@ -57,13 +61,18 @@ namespace {
 
 const Model& checked_model(const Model& model) {
   if (model.empty()) throw std::invalid_argument("GlRenderer: the model is empty");
-  if (!gl_supports(model.method()))
-    throw Error(ErrorCode::invalid_input, "the gl backend has no GLSL evaluator for method '" +
-                                              std::string(model.method()) + "'; use --backend cpu");
+  if (!gl_supports(model.method())) gl::no_twin(model.method());
   return model;
 }
 
 }  // namespace
+
+void gl::no_twin(std::string_view method) {
+  throw Error(ErrorCode::invalid_input,
+              "method '" + std::string(method) +
+                  "' has no GLSL evaluator yet, so neither the gl backend nor export-shader can "
+                  "run it; render it with --backend cpu");
+}
 
 GlRenderer::GlRenderer(const Model& model) : impl_(new Impl(checked_model(model))) {}
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "core/hash.hpp"
 #include "core/level_of_detail.hpp"
@@ -207,5 +208,76 @@ class CellCache {
   const PoissonSampler& count_;
   std::array<Entry, kEntries> entries_{};
 };
+
+// One impulse of the shot noise: the pyramid of the texton it scatters and its weight (texton
+// noise: the one texton, weight 1; mixing, section 7: the texton of its region, a random sign).
+struct Impulse {
+  const PyramidLevel* pyramid;
+  float weight;
+};
+
+// The shot-noise sum at p (eq. 1), filtered as section 5 says: the impulses of the grid cells that
+// meet p + [-reach, reach]^2, each adding weight * h(p - x_j) at the filter's pyramid level(s) and
+// probes. `impulses` maps a point (cell, index in the cell, (u, v) in the cell) to its Impulse;
+// `shape` is any of the textons' pyramids (they share support and order, hence reach). The one
+// loop of texton noise and texton noise mixing.
+template <int Order, int Channels, typename Impulses>
+inline void sum_impulses(Vec2d p, const FilterSetup& filter, const std::vector<PyramidLevel>& shape,
+                         double cell_size_double, CellCache& cells, Impulses&& impulses,
+                         float (&acc)[Channels]) noexcept {
+  const float cell_size = static_cast<float>(cell_size_double);
+  const int top_level = static_cast<int>(shape.size()) - 1;
+  const int level0 = filter.level;
+  const int level1 = std::min(level0 + 1, top_level);
+  const float level_blend = filter.level_blend;
+  const int probes = filter.probes;
+  const float probe_x = filter.probe_x;
+  const float probe_y = filter.probe_y;
+  const PyramidLevel& fine = shape[static_cast<std::size_t>(level0)];
+  const PyramidLevel& coarse = shape[static_cast<std::size_t>(level1)];
+  const float probe_extent =
+      0.5f * static_cast<float>(probes - 1) * std::max(std::abs(probe_x), std::abs(probe_y));
+  const float kernel_reach =
+      level_blend > 0.0f ? std::max(fine.half_width, coarse.half_width) : fine.half_width;
+  const double reach = static_cast<double>(kernel_reach + probe_extent);
+  const float probe_weight = 1.0f / static_cast<float>(probes);
+
+  // The Poisson process is simulated on the grid cells that meet p + [-reach, reach]^2. Cell
+  // indices are 64-bit integers and offsets are taken relative to the cell corner in double
+  // before going to float, so p = 1e7 is as precise as p = 0 (docs/design.md §4).
+  const auto first_cell_x = static_cast<std::int64_t>(std::floor((p.x - reach) / cell_size_double));
+  const auto last_cell_x = static_cast<std::int64_t>(std::floor((p.x + reach) / cell_size_double));
+  const auto first_cell_y = static_cast<std::int64_t>(std::floor((p.y - reach) / cell_size_double));
+  const auto last_cell_y = static_cast<std::int64_t>(std::floor((p.y + reach) / cell_size_double));
+  for (std::int64_t cell_y = first_cell_y; cell_y <= last_cell_y; ++cell_y) {
+    const float offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * cell_size_double);
+    for (std::int64_t cell_x = first_cell_x; cell_x <= last_cell_x; ++cell_x) {
+      const float offset_x =
+          static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size_double);
+      std::uint32_t index = 0;
+      cells.for_each_point(cell_x, cell_y, [&](float u, float v) {
+        const Impulse impulse = impulses(cell_x, cell_y, index++, u, v);
+        const float dx = offset_x - u * cell_size;
+        const float dy = offset_y - v * cell_size;
+        const PyramidLevel& impulse_fine = impulse.pyramid[level0];
+        if (probes == 1 && level_blend == 0.0f) {
+          accumulate_texton<Order, Channels>(impulse_fine, dx, dy, impulse.weight, acc);
+          return;
+        }
+        const PyramidLevel& impulse_coarse = impulse.pyramid[level1];
+        for (int k = 0; k < probes; ++k) {
+          const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(probes);
+          const float px = dx + shift * probe_x;
+          const float py = dy + shift * probe_y;
+          accumulate_texton<Order, Channels>(
+              impulse_fine, px, py, impulse.weight * probe_weight * (1.0f - level_blend), acc);
+          if (level_blend > 0.0f)
+            accumulate_texton<Order, Channels>(impulse_coarse, px, py,
+                                               impulse.weight * probe_weight * level_blend, acc);
+        }
+      });
+    }
+  }
+}
 
 }  // namespace stochtex::texton

@@ -165,67 +165,23 @@ template <int Order, int Channels>
 void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
                                  std::span<const Footprint> footprints, std::uint32_t seed,
                                  ImageView<float> out) const noexcept {
-  const float cell_size = static_cast<float>(cell_size_);
   const int top_level = static_cast<int>(pyramid_.size()) - 1;
   CellCache cells(seed, cell_count_);
+  const auto one_texton = [this](std::int64_t, std::int64_t, std::uint32_t, float, float) {
+    return Impulse{pyramid_.data(), 1.0f};
+  };
   for (std::size_t index = 0; index < positions.size(); ++index) {
-    const Vec2d p = positions[index];
-
     const FilterSetup filter =
         footprints.empty() ? FilterSetup{} : filter_setup(footprints[index], top_level);
-    const int level0 = filter.level;
-    const float level_blend = filter.level_blend;
-    const int probes = filter.probes;
-    const float probe_x = filter.probe_x;
-    const float probe_y = filter.probe_y;
-    const float fade = filter.fade;
-    const PyramidLevel& fine = pyramid_[static_cast<std::size_t>(level0)];
-    const PyramidLevel& coarse =
-        pyramid_[static_cast<std::size_t>(std::min(level0 + 1, top_level))];
-    const float probe_extent =
-        0.5f * static_cast<float>(probes - 1) * std::max(std::abs(probe_x), std::abs(probe_y));
-    const float kernel_reach =
-        level_blend > 0.0f ? std::max(fine.half_width, coarse.half_width) : fine.half_width;
-    const double reach = static_cast<double>(kernel_reach + probe_extent);
-    const float probe_weight = 1.0f / static_cast<float>(probes);
-
     float acc[Channels] = {};
-    // The Poisson process is simulated on the grid cells that meet p + [-reach, reach]^2. Cell
-    // indices are 64-bit integers and offsets are taken relative to the cell corner in double
-    // before going to float, so p = 1e7 is as precise as p = 0 (docs/design.md §4).
-    const auto first_cell_x = static_cast<std::int64_t>(std::floor((p.x - reach) / cell_size_));
-    const auto last_cell_x = static_cast<std::int64_t>(std::floor((p.x + reach) / cell_size_));
-    const auto first_cell_y = static_cast<std::int64_t>(std::floor((p.y - reach) / cell_size_));
-    const auto last_cell_y = static_cast<std::int64_t>(std::floor((p.y + reach) / cell_size_));
-    for (std::int64_t cell_y = first_cell_y; cell_y <= last_cell_y; ++cell_y) {
-      const float offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * cell_size_);
-      for (std::int64_t cell_x = first_cell_x; cell_x <= last_cell_x; ++cell_x) {
-        const float offset_x = static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size_);
-        cells.for_each_point(cell_x, cell_y, [&](float u, float v) {
-          const float dx = offset_x - u * cell_size;
-          const float dy = offset_y - v * cell_size;
-          if (probes == 1 && level_blend == 0.0f) {
-            accumulate_texton<Order, Channels>(fine, dx, dy, 1.0f, acc);
-            return;
-          }
-          for (int k = 0; k < probes; ++k) {
-            const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(probes);
-            const float px = dx + shift * probe_x;
-            const float py = dy + shift * probe_y;
-            accumulate_texton<Order, Channels>(fine, px, py, probe_weight * (1.0f - level_blend),
-                                               acc);
-            if (level_blend > 0.0f)
-              accumulate_texton<Order, Channels>(coarse, px, py, probe_weight * level_blend, acc);
-          }
-        });
-      }
-    }
+    sum_impulses<Order, Channels>(positions[index], filter, pyramid_, cell_size_, cells, one_texton,
+                                  acc);
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
     for (int c = 0; c < Channels; ++c) {
       // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2); `fade` scales the fluctuation only.
       const float noise = acc[c] * inverse_sqrt_intensity_ + constant_term_[c] - mean_[c];
-      out.at(x, y, c) = mean_[c] + fade * noise;
+      out.at(x, y, c) = mean_[c] + filter.fade * noise;
     }
   }
 }
