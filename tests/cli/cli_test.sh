@@ -200,7 +200,7 @@ methods=$(python3 -c 'import json, sys; print(" ".join(m["name"] for m in json.l
   <"$work/stdout")
 if [[ -z $methods ]]; then fail "methods --json lists methods" "no method names"; fi
 expect_ok "--help" "$stochtex" --help
-for command in analyze render synth gaussian compare info edit methods report; do
+for command in analyze render synth gaussian compare info edit methods report mix; do
   expect_ok "$command --help" "$stochtex" "$command" --help
 done
 
@@ -897,6 +897,48 @@ for hostile in text_bomb.png huge_rgba16.png; do
   expect_error "gaussian of $hostile" 1 "$hostile" \
     "$stochtex" gaussian "$inputs/$hostile" -o "$out/x.png" --size 16x16
 done
+
+# --- mix: texton noise mixing (texton paper section 7) -------------------------------------------
+
+grey=$textures/metal_grey_256.png
+mixfast=(-p support=16 -p iterations=5 --steps 3)
+if expect_ok "mix" "$stochtex" mix "$exemplar" "$textures/wood_planks_256.png" "${mixfast[@]}" \
+  --ramp 0,64 --direction 1,1 -o "$models/mix.stx"; then
+  expect_file "mix writes the model" "$models/mix.stx"
+fi
+expect_ok "info of a mix" "$stochtex" info "$models/mix.stx" && if ! grep -q "texton_mix" \
+  "$work/stdout" || ! grep -q "steps = 3" "$work/stdout"; then
+  fail "info of a mix" "no method or steps line"
+fi
+expect_ok "render a mix, 1 thread" "$stochtex" render "$models/mix.stx" -o "$models/m1.pfm" \
+  --size 48x20 --seed 5 --threads 1
+expect_ok "render a mix, 2 threads" "$stochtex" render "$models/mix.stx" -o "$models/m2.pfm" \
+  --size 48x20 --seed 5 --threads 2 --tile 16
+if cmp -s "$models/m1.pfm" "$models/m2.pfm"; then pass; else
+  fail "a mix renders the same bytes whatever the threads" "m1.pfm and m2.pfm differ"
+fi
+expect_ok "mix with a mask" "$stochtex" mix "$grey" "$textures/nuts_grey_256.png" "${mixfast[@]}" \
+  --mask "$grey" --mask-scale 0.5 -o "$models/mask.stx"
+expect_error "mix of grey with colour" 1 "nuts_grey_256.png" "$stochtex" mix \
+  "$textures/nuts_grey_256.png" "$exemplar" "${mixfast[@]}" -o "$out/x.stx"
+expect_error "mix with a colour mask" 1 "grass_lawn_128.png" "$stochtex" mix "$grey" \
+  "$textures/nuts_grey_256.png" "${mixfast[@]}" --mask "$exemplar" -o "$out/x.stx"
+expect_error "mix --ramp nan" 2 "--ramp" "$stochtex" mix "$grey" "$grey" --ramp nan,4 \
+  -o "$out/x.stx"
+expect_error "mix --ramp inf" 2 "--ramp" "$stochtex" mix "$grey" "$grey" --ramp 0,1e999 \
+  -o "$out/x.stx"
+expect_error "mix --ramp of one point" 2 "ramp_end" "$stochtex" mix "$grey" "$grey" --ramp 3,3 \
+  -o "$out/x.stx"
+expect_error "mix --direction 0,0" 2 "direction" "$stochtex" mix "$grey" "$grey" \
+  --direction 0,0 -o "$out/x.stx"
+expect_error "mix --steps 1" 2 "steps" "$stochtex" mix "$grey" "$grey" --steps 1 -o "$out/x.stx"
+expect_error "mix -p mni=nan" 2 "mni" "$stochtex" mix "$grey" "$grey" -p mni=nan -o "$out/x.stx"
+expect_error "mix of a missing file" 1 "missing.png" "$stochtex" mix "$grey" \
+  "$inputs/missing.png" -o "$out/x.stx"
+expect_error "render a mix on the gl backend" 1 "texton_mix" "$stochtex" render "$models/mix.stx" \
+  -o "$out/x.png" --size 8x8 --backend gl
+expect_error "export-shader of a mix" 1 "texton_mix" "$stochtex" export-shader "$models/mix.stx" \
+  -o "$out/shader"
 
 # --- summary ------------------------------------------------------------------------------------
 
