@@ -22,13 +22,29 @@ ImageF noise_image(int width, int height, int channels, std::uint32_t seed, floa
   return image;
 }
 
+MixInputs pair(const ImageF& a, const ImageF& b, const std::string& a_name = "A",
+               const std::string& b_name = "B") {
+  MixInputs inputs;
+  inputs.a = a.view();
+  inputs.b = b.view();
+  inputs.a_name = a_name;
+  inputs.b_name = b_name;
+  return inputs;
+}
+
+MixInputs with_mask(MixInputs inputs, const ImageF& mask, const std::string& mask_name) {
+  inputs.mask = mask.view();
+  inputs.mask_name = mask_name;
+  return inputs;
+}
+
 const ParamValues kSmall = {
     {"support", 12}, {"iterations", 10}, {"steps", 5}, {"ramp_start", -20}, {"ramp_end", 40}};
 
 Model ramp_model() {
   const ImageF a = noise_image(40, 40, 3, 1, 0.1f);
   const ImageF b = noise_image(48, 36, 3, 2, 0.2f);
-  return mix({a.view(), b.view()}, kSmall, 5);
+  return mix(pair(a, b), kSmall, 5);
 }
 
 Model mask_model() {
@@ -37,8 +53,7 @@ Model mask_model() {
   ImageF mask(4, 3, 1);
   for (std::size_t i = 0; i < mask.pixels().size(); ++i)
     mask.pixels()[i] = static_cast<float>(i) / 11.0f;
-  return mix({a.view(), b.view(), "a", "b", mask.view(), "m"}, {{"support", 8}, {"mask_scale", 6}},
-             5);
+  return mix(with_mask(pair(a, b), mask, "m"), {{"support", 8}, {"mask_scale", 6}}, 5);
 }
 
 ImageF render_with(const Model& model, const Grid& grid, int threads, int tile) {
@@ -101,7 +116,7 @@ TEST(TextonMix, CorruptFilesAreRefused) {
 TEST(TextonMix, EndTextonsHaveThePowerOfEachExemplarsTexton) {
   const ImageF a = noise_image(40, 40, 1, 11, 0.1f);
   const ImageF b = noise_image(40, 40, 1, 12, 0.3f);
-  const Model model = mix({a.view(), b.view()}, {{"support", 12}, {"steps", 3}}, 2);
+  const Model model = mix(pair(a, b), {{"support", 12}, {"steps", 3}}, 2);
   const auto& mixed = std::get<texton_mix::TextonMixModel>(model.data().model);
   const auto power = [](std::span<const float> values) {
     double sum = 0.0;
@@ -124,18 +139,17 @@ TEST(TextonMix, BadInputIsRefusedWithOneSentence) {
   const ImageF grey = noise_image(32, 32, 1, 1, 0.1f);
   const ImageF colour = noise_image(32, 32, 3, 2, 0.1f);
   try {
-    mix({grey.view(), colour.view(), "g.png", "c.png"});
+    mix(pair(grey, colour, "g.png", "c.png"));
     ADD_FAILURE() << "different channel counts accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'g.png' (1 channels) with 'c.png' (3 channels)"),
               std::string::npos)
         << e.what();
   }
-  EXPECT_THROW(mix({grey.view(), grey.view(), "a", "b", colour.view(), "m.png"}), Error);
-  EXPECT_THROW(mix({grey.view(), grey.view()}, {{"ramp_start", 5}, {"ramp_end", 5}}),
-               std::invalid_argument);
-  EXPECT_THROW(mix({grey.view(), grey.view()}, {{"direction_x", 0}}), std::invalid_argument);
-  EXPECT_THROW(mix({grey.view(), grey.view()}, {{"steps", 1}}), std::invalid_argument);
+  EXPECT_THROW(mix(with_mask(pair(grey, grey), colour, "m.png")), Error);
+  EXPECT_THROW(mix(pair(grey, grey), {{"ramp_start", 5}, {"ramp_end", 5}}), std::invalid_argument);
+  EXPECT_THROW(mix(pair(grey, grey), {{"direction_x", 0}}), std::invalid_argument);
+  EXPECT_THROW(mix(pair(grey, grey), {{"steps", 1}}), std::invalid_argument);
 }
 
 }  // namespace
