@@ -209,6 +209,35 @@ class CellCache {
   std::array<Entry, kEntries> entries_{};
 };
 
+// Calls f.template operator()<Order, Channels>() for the texton's interpolation order (0, 1, 3, 5)
+// and channel count (1 to 4): one concrete loop per pair, so the inner loops unroll and the
+// accumulators stay in registers. Dispatch happens once per batch.
+template <typename F>
+inline void with_order_and_channels(int order, int channels, F&& f) noexcept {
+  const auto with_order = [&]<int Order>() {
+    switch (channels) {
+      case 1:
+        return f.template operator()<Order, 1>();
+      case 2:
+        return f.template operator()<Order, 2>();
+      case 3:
+        return f.template operator()<Order, 3>();
+      default:
+        return f.template operator()<Order, 4>();
+    }
+  };
+  switch (order) {
+    case 0:
+      return with_order.template operator()<0>();
+    case 1:
+      return with_order.template operator()<1>();
+    case 3:
+      return with_order.template operator()<3>();
+    default:
+      return with_order.template operator()<5>();
+  }
+}
+
 // One impulse of the shot noise: the pyramid of the texton it scatters and its weight (texton
 // noise: the one texton, weight 1; mixing, section 7: the texton of its region, a random sign).
 struct Impulse {

@@ -135,30 +135,9 @@ ModelRecord TextonModel::to_record(const ParamValues& params) const {
 
 void TextonModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                            std::uint32_t seed, ImageView<float> out) const noexcept {
-  // One concrete loop per (order, channel count): the inner loops unroll and the accumulators
-  // stay in registers. Dispatch happens once per batch.
-  const auto with_order = [&]<int Order>() {
-    switch (channels_) {
-      case 1:
-        return evaluate_typed<Order, 1>(positions, footprints, seed, out);
-      case 2:
-        return evaluate_typed<Order, 2>(positions, footprints, seed, out);
-      case 3:
-        return evaluate_typed<Order, 3>(positions, footprints, seed, out);
-      default:
-        return evaluate_typed<Order, 4>(positions, footprints, seed, out);
-    }
-  };
-  switch (order_) {
-    case 0:
-      return with_order.template operator()<0>();
-    case 1:
-      return with_order.template operator()<1>();
-    case 3:
-      return with_order.template operator()<3>();
-    default:
-      return with_order.template operator()<5>();
-  }
+  with_order_and_channels(order_, channels_, [&]<int Order, int Channels>() {
+    evaluate_typed<Order, Channels>(positions, footprints, seed, out);
+  });
 }
 
 template <int Order, int Channels>

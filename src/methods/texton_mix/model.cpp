@@ -142,28 +142,9 @@ ModelRecord TextonMixModel::to_record(const ParamValues& params) const {
 void TextonMixModel::evaluate(std::span<const Vec2d> positions,
                               std::span<const Footprint> footprints, std::uint32_t seed,
                               ImageView<float> out) const noexcept {
-  const auto with_order = [&]<int Order>() {
-    switch (channels_) {
-      case 1:
-        return evaluate_typed<Order, 1>(positions, footprints, seed, out);
-      case 2:
-        return evaluate_typed<Order, 2>(positions, footprints, seed, out);
-      case 3:
-        return evaluate_typed<Order, 3>(positions, footprints, seed, out);
-      default:
-        return evaluate_typed<Order, 4>(positions, footprints, seed, out);
-    }
-  };
-  switch (params_.texton.order) {
-    case 0:
-      return with_order.template operator()<0>();
-    case 1:
-      return with_order.template operator()<1>();
-    case 3:
-      return with_order.template operator()<3>();
-    default:
-      return with_order.template operator()<5>();
-  }
+  texton::with_order_and_channels(params_.texton.order, channels_, [&]<int Order, int Channels>() {
+    evaluate_typed<Order, Channels>(positions, footprints, seed, out);
+  });
 }
 
 template <int Order, int Channels>
