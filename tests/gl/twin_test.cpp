@@ -27,11 +27,17 @@ namespace {
 
 using namespace gl_test;
 
-// Every table of shared constants: random.glsl's streams and each method's Twin::kConstants.
+// Every table of shared constants: random.glsl's streams and the Twin::kConstants of each method
+// that has a twin (a CPU-only model has none).
 std::vector<std::span<const gl::GlslConstant>> shared_constant_tables() {
   std::vector<std::span<const gl::GlslConstant>> tables = {gl::random_constants()};
   [&]<typename... MethodModels>(std::type_identity<std::variant<MethodModels...>>) {
-    (tables.push_back(gl::Twin<MethodModels>::kConstants), ...);
+    (
+        [&] {
+          if constexpr (gl::HasTwin<MethodModels>)
+            tables.push_back(gl::Twin<MethodModels>::kConstants);
+        }(),
+        ...);
   }(std::type_identity<MethodModel>{});
   return tables;
 }
