@@ -49,9 +49,8 @@ void add_render_options(CLI::App* command, RenderSettings& settings, std::string
       ->capture_default_str()
       ->check(CLI::IsMember({8, 16}));
   command
-      ->add_option(
-          "--backend", settings.backend,
-          "cpu (the reference) or gl (OpenGL 4.5 compute, headless; every method but texton_mix)")
+      ->add_option("--backend", settings.backend,
+                   "cpu (the reference) or gl (OpenGL 4.5 compute, headless; every method)")
       ->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
   command

@@ -488,11 +488,8 @@ ShaderExport export_shader(const Model& model, const ShaderExportOptions& option
   return std::visit(
       [&](const auto& method_model) -> ShaderExport {
         using Method = std::decay_t<decltype(method_model)>;
-        if constexpr (gl::HasTwin<Method>)
-          return gl::assemble_export(gl::Twin<Method>::shader(method_model, options.variant),
-                                     options.language);
-        else
-          gl::no_twin(Method::kMethodName);
+        return gl::assemble_export(gl::Twin<Method>::shader(method_model, options.variant),
+                                   options.language);
       },
       model.data().model);
 }

@@ -13,7 +13,6 @@
 #include "gl/program.hpp"
 #include "gl/twin.hpp"
 #include "model/model_data.hpp"
-#include "stochtex/error.hpp"
 #include "stochtex/gpu.hpp"
 #include "stochtex_gl_twins.hpp"
 
@@ -21,7 +20,7 @@ namespace stochtex {
 
 static_assert(gl::kEveryMethodHasTwin<MethodModel>,
               "every method of MethodModel needs a GPU twin: gl::Twin<Model> in "
-              "src/methods/<method>/gl_twin.hpp (see src/gl/twin.hpp), or kCpuOnly");
+              "src/methods/<method>/gl_twin.hpp (see src/gl/twin.hpp)");
 
 // Every method of the variant that has a twin.
 bool gl_supports(std::string_view method) {
@@ -42,11 +41,7 @@ struct GlRenderer::Impl {
       : model(m),
         pass(std::visit(
             [](const auto& method_model) -> std::unique_ptr<gl::Pass> {
-              using Method = std::decay_t<decltype(method_model)>;
-              if constexpr (gl::HasTwin<Method>)
-                return gl::Twin<Method>::pass(method_model);
-              else
-                gl::no_twin(Method::kMethodName);
+              return gl::Twin<std::decay_t<decltype(method_model)>>::pass(method_model);
             },
             model.data().model)) {
     glCreateQueries(GL_TIME_ELAPSED, 1, &timer);
@@ -61,18 +56,10 @@ namespace {
 
 const Model& checked_model(const Model& model) {
   if (model.empty()) throw std::invalid_argument("GlRenderer: the model is empty");
-  if (!gl_supports(model.method())) gl::no_twin(model.method());
   return model;
 }
 
 }  // namespace
-
-void gl::no_twin(std::string_view method) {
-  throw Error(ErrorCode::invalid_input,
-              "method '" + std::string(method) +
-                  "' has no GLSL evaluator yet, so neither the gl backend nor export-shader can "
-                  "run it; render it with --backend cpu");
-}
 
 GlRenderer::GlRenderer(const Model& model) : impl_(new Impl(checked_model(model))) {}
 

@@ -65,20 +65,12 @@ concept HasTwin = requires(const MethodModel& model) {
   { Twin<MethodModel>::shader(model, ShaderVariant::exact) } -> std::same_as<ExportParts>;
 };
 
-// A model that says it has no twin yet (`static constexpr bool kCpuOnly = true`): the renderer
-// and the exporter refuse it with one sentence (no_twin) instead of failing to compile.
-template <typename MethodModel>
-concept CpuOnly = MethodModel::kCpuOnly;
-
-// Whether every alternative of a std::variant of method models has a twin or says it is CPU-only.
+// Whether every alternative of a std::variant of method models has a twin.
 template <typename Variant>
 inline constexpr bool kEveryMethodHasTwin = false;
 template <typename... MethodModels>
-inline constexpr bool kEveryMethodHasTwin<std::variant<MethodModels...>> =
-    ((HasTwin<MethodModels> || CpuOnly<MethodModels>)&&...);
-
-// The refusal of a CPU-only model by the GL renderer and the exporter.
-[[noreturn]] void no_twin(std::string_view method);
+inline constexpr bool kEveryMethodHasTwin<std::variant<MethodModels...>> = (HasTwin<MethodModels> &&
+                                                                            ...);
 
 // The low 32 bits of an integral cell index formed in double (a 64-bit cell in C++), as cell_key
 // takes them: the GLSL works relative to this cell, so far origins are as precise as near ones.

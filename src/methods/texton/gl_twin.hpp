@@ -18,13 +18,18 @@ namespace stochtex::gl {
 
 struct TextonGlsl {
   std::string constants;  // GLSL const declarations (exact: every float reads back unchanged)
-  ImageF atlas;           // 4 channels; level l's padded texels start at row level_rows[l]
+  ImageF atlas;           // 4 channels; level l's padded texels start at row TEXTON_LEVEL_ROW[l]
 };
 
+// The shot noise's constants (channels, order, cell size, Poisson counts, intensity, the pyramid
+// levels) and texel atlas: what impulses.glsl needs, shared with texton noise mixing
+// (texton_mix/gl_data.cpp, one texton model per step).
+TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model);
+// The shot noise's and texton noise's own constants (TEXTON_CONSTANT_TERM, TEXTON_MEAN).
 TextonGlsl texton_glsl(const texton::TextonModel& model);
 
 // The exact variant: random.glsl, kConstants, the model's constants, the atlas sampler and texton
-// evaluate.glsl, exact_fetch.glsl, noise.glsl and entry.glsl: all but `#version`.
+// evaluate.glsl, exact_fetch.glsl, impulses.glsl, noise.glsl and entry.glsl: all but `#version`.
 std::string texton_library_source(const TextonGlsl& glsl);
 
 // Whether the model has a fast variant: hardware bilinear reconstruction is the order-1 B-spline

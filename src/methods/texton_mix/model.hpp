@@ -31,6 +31,12 @@ class MixField {
   std::span<const float> mask() const { return mask_; }
   int mask_width() const { return mask_width_; }
   int mask_height() const { return mask_height_; }
+  // The ramp's and the mask's mapping, for the GLSL twin (texton_mix/gl_data.cpp).
+  double ramp_start() const { return start_; }
+  double inverse_length() const { return inverse_length_; }
+  double unit_x() const { return unit_x_; }
+  double unit_y() const { return unit_y_; }
+  double inverse_scale() const { return inverse_scale_; }
 
   double rho(double x, double y) const noexcept;
 
@@ -48,8 +54,6 @@ class MixField {
 class TextonMixModel {
  public:
   static constexpr std::string_view kMethodName = "texton_mix";
-  // The GPU twin is not written yet: the gl backend and export-shader refuse it (src/gl/twin.hpp).
-  static constexpr bool kCpuOnly = true;
 
   // `textons` is steps x support x support x channels (texton k for rho = k / (steps - 1));
   // `mean_a`, `mean_b` have `channels` values.
@@ -67,6 +71,8 @@ class TextonMixModel {
     return shapes_[static_cast<std::size_t>(step)];
   }
   const MixField& field() const { return field_; }
+  std::span<const float> mean_a() const { return mean_a_; }
+  std::span<const float> mean_b() const { return mean_b_; }
 
   // The mixed texton noise f / sqrt(lambda) + (1 - rho(x)) mean_a + rho(x) mean_b at each
   // position, filtered by the footprint as texton noise is. noexcept, no allocation.
