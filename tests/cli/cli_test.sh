@@ -935,10 +935,30 @@ expect_error "mix --steps 1" 2 "steps" "$stochtex" mix "$grey" "$grey" --steps 1
 expect_error "mix -p mni=nan" 2 "mni" "$stochtex" mix "$grey" "$grey" -p mni=nan -o "$out/x.stx"
 expect_error "mix of a missing file" 1 "missing.png" "$stochtex" mix "$grey" \
   "$inputs/missing.png" -o "$out/x.stx"
-expect_error "render a mix on the gl backend" 1 "texton_mix" "$stochtex" render "$models/mix.stx" \
-  -o "$out/x.png" --size 8x8 --backend gl
-expect_error "export-shader of a mix" 1 "texton_mix" "$stochtex" export-shader "$models/mix.stx" \
-  -o "$out/shader"
+# Beyond the memory budget (docs/design.md §9), refused before any work: 4096² colour exemplars
+# (about 2.8 GB), and 2048² ones into 256 textons of 1024² (about 23 GB of textons).
+expect_error "mix beyond the memory budget" 2 "ramp_4096.png" "$stochtex" mix \
+  "$inputs/ramp_4096.png" "$inputs/ramp_4096.png" -o "$out/x.stx"
+expect_error "mix into textons beyond the memory budget" 2 "--steps" "$stochtex" mix \
+  "$inputs/ramp_2048.png" "$inputs/ramp_2048.png" --steps 256 -p support=1024 -o "$out/x.stx"
+if [[ -e $out/x.stx ]]; then fail "a refused mix writes nothing" "x.stx exists"; else pass; fi
+# The GPU twin: both fields on the gl backend (both --gl-filter values run the exact path), and
+# the export in every language.
+for field in mix mask; do
+  expect_ok "render a $field model on the gl backend" "$stochtex" render "$models/$field.stx" \
+    -o "$models/$field-gl.png" --size 48x20 --seed 5 --backend gl --scale 2
+  expect_ok "render a $field model, --gl-filter hardware" "$stochtex" render "$models/$field.stx" \
+    -o "$models/$field-glh.png" --size 48x20 --seed 5 --backend gl --gl-filter hardware --scale 2
+  if cmp -s "$models/$field-gl.png" "$models/$field-glh.png"; then pass; else
+    fail "a $field model's hardware filter is its exact path" "$field-gl.png and $field-glh.png differ"
+  fi
+  for language in glsl essl hlsl msl; do
+    expect_ok "export-shader of a $field model, $language" "$stochtex" export-shader \
+      "$models/$field.stx" -o "$out/$field-$language" --language "$language"
+    expect_file "the $field export's README" "$out/$field-$language/README.md"
+  done
+done
+expect_file "the mask export's mask data" "$out/mask-glsl/texton_mix_mask.exr"
 
 # --- summary ------------------------------------------------------------------------------------
 

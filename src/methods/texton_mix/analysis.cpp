@@ -105,11 +105,11 @@ Model mix(const MixInputs& inputs, const ParamValues& params, std::uint32_t seed
   const texton_mix::Params typed = params_from_values(kFields, resolved);
   const ImageView<const float> a = inputs.a;
   const ImageView<const float> b = inputs.b;
-  // Two texton analyses' worth of spectra at the common size, then one step at a time.
-  check_memory_budget(2 * analysis_peak_bytes("texton", std::min(a.width, b.width),
-                                              std::min(a.height, b.height), a.channels),
-                      "mixing the exemplars '" + inputs.a_name + "' and '" + inputs.b_name + "'",
-                      "crop or downscale the exemplars");
+  check_memory_budget(mix_peak_bytes(std::min(a.width, b.width), std::min(a.height, b.height),
+                                     a.channels, typed.steps, typed.texton.support),
+                      "mixing the exemplars '" + inputs.a_name + "' and '" + inputs.b_name +
+                          "' into " + std::to_string(typed.steps) + " textons",
+                      "crop or downscale the exemplars, or lower --steps or -p support");
   validate_exemplar(a, inputs.a_name);
   validate_exemplar(b, inputs.b_name);
   if (a.channels != b.channels)
