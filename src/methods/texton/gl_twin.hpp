@@ -5,6 +5,7 @@
 // evaluate.glsl on the same data.
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -35,6 +36,13 @@ std::string texton_library_source(const TextonGlsl& glsl);
 // Whether the model has a fast variant: hardware bilinear reconstruction is the order-1 B-spline
 // only, so other orders export (and render with --gl-filter hardware) as exact.
 bool has_fast_variant(const texton::TextonModel& model);
+
+// The uniforms of texton render.glsl for a grid, shared by texton noise mixing's pass: the grid
+// origin as a cell (its low 32 bits) and a float offset from that cell's corner, the scale, the
+// seed and the filter that filter_setup chooses for the grid's footprint (in double, as the CPU
+// evaluator chooses it). `shape` gives the cell size and pyramid. Returns the origin cell.
+std::array<double, 2> set_render_uniforms(const Program& program, const texton::TextonModel& shape,
+                                          const Grid& grid, std::uint32_t seed, bool filter);
 
 template <>
 struct Twin<texton::TextonModel> {

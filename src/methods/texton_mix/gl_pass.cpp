@@ -3,14 +3,13 @@
 // for both --gl-filter values (gl_twin.hpp).
 
 #include <array>
-#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "gl/shaders.hpp"
 #include "gl/twin.hpp"
-#include "methods/texton/evaluate.hpp"
+#include "methods/texton/gl_twin.hpp"
 #include "methods/texton_mix/gl_twin.hpp"
 #include "stochtex/error.hpp"
 
@@ -58,30 +57,13 @@ class TextonMixPass final : public Pass {
   TextonMixPass& operator=(const TextonMixPass&) = delete;
 
   void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) override {
+    // As texton noise's pass, and the field at the origin cell's corner in double.
     const texton::TextonModel& shape = model_.texton(0);
-    const int top_level = static_cast<int>(shape.pyramid().size()) - 1;
-    const texton::FilterSetup setup =
-        options.filter
-            ? texton::filter_setup(Footprint{{grid.scale, 0.0}, {0.0, grid.scale}}, top_level)
-            : texton::FilterSetup{};
-    // As texton noise's pass: the grid origin as a cell (its low 32 bits) and a float offset, and
-    // the field at that cell's corner in double.
-    const double cell_size = shape.cell_size();
-    const double origin_cell_x = std::floor(grid.origin.x / cell_size);
-    const double origin_cell_y = std::floor(grid.origin.y / cell_size);
+    const std::array<double, 2> origin_cell =
+        set_render_uniforms(program_, shape, grid, seed, options.filter);
     const std::array<float, 2> field =
-        texton_mix_field_at(model_.field(), origin_cell_x, origin_cell_y, cell_size);
-    program_.set2("origin_cell", low_bits(origin_cell_x), low_bits(origin_cell_y));
-    program_.set2("origin_offset", static_cast<float>(grid.origin.x - origin_cell_x * cell_size),
-                  static_cast<float>(grid.origin.y - origin_cell_y * cell_size));
+        texton_mix_field_at(model_.field(), origin_cell[0], origin_cell[1], shape.cell_size());
     program_.set2("texton_mix_field", field[0], field[1]);
-    program_.set("scale", static_cast<float>(grid.scale));
-    program_.set("seed", static_cast<unsigned>(seed));
-    program_.set("filter_level", setup.level);
-    program_.set("filter_level_blend", setup.level_blend);
-    program_.set("filter_probes", setup.probes);
-    program_.set2("filter_probe_step", setup.probe_x, setup.probe_y);
-    program_.set("filter_fade", setup.fade);
     check_gl("setting the texton_mix uniforms");
   }
 
