@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "core/memory_budget.hpp"
@@ -40,16 +41,46 @@ MethodEntry entry_of() {
           row.analysis_memory};
 }
 
+// The models analysed from one exemplar (`stochtex analyze -m`) have a registry row; the others
+// are made by their own command (texton_mix: `stochtex mix A B`) and give their parameter
+// record as the ParamInfo table `kParams` of their namespace, found through their params_of().
+template <class Model>
+concept AnalysedFromOneExemplar = requires {
+  registry_row(std::type_identity<Model>{});
+};
+
 template <class... Models>
-std::array<MethodEntry, sizeof...(Models)> entries(std::type_identity<std::variant<Models...>>) {
-  return {entry_of<Models>()...};
+std::vector<MethodEntry> entries(std::type_identity<std::variant<Models...>>) {
+  std::vector<MethodEntry> list;
+  (
+      [&] {
+        if constexpr (AnalysedFromOneExemplar<Models>) list.push_back(entry_of<Models>());
+      }(),
+      ...);
+  return list;
 }
 
-// Every method, in the order of the closed variant of models (model/model_data.hpp); made on first
-// use, so that no other static initialiser can see it unmade.
-const std::array<MethodEntry, std::variant_size_v<MethodModel>>& method_entries() {
+// Every method analysed from one exemplar, in the order of the closed variant of models
+// (model/model_data.hpp); made on first use, so that no other static initialiser can see it
+// unmade.
+const std::vector<MethodEntry>& method_entries() {
   static const auto entries_of_every_method = entries(std::type_identity<MethodModel>{});
   return entries_of_every_method;
+}
+
+// The name and parameter record of `name`, whether or not it is analysed from one exemplar.
+MethodInfo any_method_info(std::string_view name) {
+  std::optional<MethodInfo> found;
+  [&]<typename... Models>(std::type_identity<std::variant<Models...>>) {
+    (
+        [&] {
+          if constexpr (!AnalysedFromOneExemplar<Models>)
+            if (name == Models::kMethodName)
+              found = MethodInfo{Models::kMethodName, "", params_of(std::type_identity<Models>{})};
+        }(),
+        ...);
+  }(std::type_identity<MethodModel>{});
+  return found ? *found : method_info(name);
 }
 
 const MethodEntry& find_entry(std::string_view name) {
@@ -108,7 +139,7 @@ std::string format_value(const ParamInfo& param, double value) {
 std::span<const MethodInfo> methods() {
   static const auto infos = [] {
     const auto& entries = method_entries();
-    std::array<MethodInfo, std::variant_size_v<MethodModel>> result;
+    std::vector<MethodInfo> result(entries.size());
     std::transform(entries.begin(), entries.end(), result.begin(),
                    [](const auto& e) { return e.info; });
     return result;
@@ -121,7 +152,7 @@ const MethodInfo& method_info(std::string_view name) {
 }
 
 ParamValues resolve_params(std::string_view method, const ParamValues& given) {
-  const MethodInfo& info = method_info(method);
+  const MethodInfo info = any_method_info(method);
   ParamValues resolved;
   for (const auto& param : info.params) resolved[std::string(param.name)] = param.default_value;
   for (const auto& [name, value] : given) {
@@ -146,7 +177,7 @@ ParamValues resolve_params(std::string_view method, const ParamValues& given) {
 
 ParamValues resolve_params(std::string_view method,
                            const std::map<std::string, std::string, std::less<>>& given) {
-  const MethodInfo& info = method_info(method);
+  const MethodInfo info = any_method_info(method);
   ParamValues numbers;
   for (const auto& [name, text] : given) {
     const ParamInfo& param = find_param(info, name);
@@ -167,7 +198,8 @@ ParamValues resolve_params(std::string_view method,
 }
 
 std::string format_param(std::string_view method, std::string_view name, double value) {
-  const auto& params = method_info(method).params;
+  const MethodInfo info = any_method_info(method);
+  const auto& params = info.params;
   const auto param = std::find_if(params.begin(), params.end(),
                                   [&](const ParamInfo& p) { return p.name == name; });
   return param == params.end() ? format_number(value) : format_value(*param, value);

@@ -16,22 +16,6 @@
 #include "target_option.hpp"
 
 namespace stochtex::cli {
-namespace {
-
-std::map<std::string, std::string, std::less<>> parse_params(
-    const std::vector<std::string>& items) {
-  std::map<std::string, std::string, std::less<>> params;
-  for (const auto& item : items) {
-    const auto equals = item.find('=');
-    if (equals == std::string::npos || equals == 0)
-      throw std::invalid_argument("-p expects key=value, e.g. -p mni=30, not '" + item + "'");
-    params[item.substr(0, equals)] = item.substr(equals + 1);
-  }
-  return params;
-}
-
-}  // namespace
-
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
   auto* input = command->add_option("INPUT", options.input, "exemplar image (PNG, EXR or PFM)");
   command->add_option("--target", options.target, std::string(kTargetHelp))->excludes(input);

@@ -50,6 +50,18 @@ std::optional<Vec2d> parse_number_pair(const std::string& text) {
   return std::nullopt;
 }
 
+std::map<std::string, std::string, std::less<>> parse_params(
+    const std::vector<std::string>& items) {
+  std::map<std::string, std::string, std::less<>> params;
+  for (const auto& item : items) {
+    const auto equals = item.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw std::invalid_argument("-p expects key=value, e.g. -p mni=30, not '" + item + "'");
+    params[item.substr(0, equals)] = item.substr(equals + 1);
+  }
+  return params;
+}
+
 ImageF load_exemplar(const std::string& path) {
   ImageF image = read_image(path);
   validate_exemplar(image.view(), path);

@@ -4,8 +4,10 @@
 // own error sentence around them; the ones here throw std::invalid_argument (a usage error) or,
 // for files, stochtex::Error.
 
+#include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "stochtex/stochtex.hpp"
 
@@ -27,6 +29,9 @@ Size output_size(const std::string& text);
 // The pair, or nothing when `text` is not two finite numbers separated by a comma (spaces
 // allowed around them).
 std::optional<Vec2d> parse_number_pair(const std::string& text);
+
+// The -p key=value items of analyze and mix, as text values for resolve_params.
+std::map<std::string, std::string, std::less<>> parse_params(const std::vector<std::string>& items);
 
 // The image at `path`, checked to be usable as an exemplar.
 ImageF load_exemplar(const std::string& path);

@@ -25,6 +25,7 @@ Command add_synth_command(CLI::App& app);
 Command add_gaussian_command(CLI::App& app);
 Command add_compare_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
+Command add_mix_command(CLI::App& app);
 Command add_export_shader_command(CLI::App& app);
 Command add_edit_command(CLI::App& app);
 Command add_report_command(CLI::App& app);

@@ -23,12 +23,12 @@ int run(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "stochtex 0.1.0");
   const std::vector<cli::Command> commands{
-      cli::add_analyze_command(app),     cli::add_render_command(app),
-      cli::add_render_mesh_command(app), cli::add_synth_command(app),
-      cli::add_gaussian_command(app),    cli::add_compare_command(app),
-      cli::add_info_command(app),        cli::add_export_shader_command(app),
-      cli::add_edit_command(app),        cli::add_report_command(app),
-      cli::add_methods_command(app)};
+      cli::add_analyze_command(app),       cli::add_mix_command(app),
+      cli::add_render_command(app),        cli::add_render_mesh_command(app),
+      cli::add_synth_command(app),         cli::add_gaussian_command(app),
+      cli::add_compare_command(app),       cli::add_info_command(app),
+      cli::add_export_shader_command(app), cli::add_edit_command(app),
+      cli::add_report_command(app),        cli::add_methods_command(app)};
 
   // CLI11's own usage errors follow the one-sentence rule too.
   app.failure_message([](const CLI::App*, const CLI::Error& error) {

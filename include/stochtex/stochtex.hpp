@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -66,6 +67,22 @@ std::uint64_t analysis_peak_bytes(std::string_view method, int width, int height
 Model analyze(std::string_view method, ImageView<const float> exemplar,
               const ParamValues& params = {}, std::uint32_t seed = 0,
               const std::string& source_name = "exemplar");
+
+// Texton noise mixing (Galerne, Leclaire, Moisan, "Texton Noise", CGF 2017, section 7): a model
+// whose texture goes from exemplar a's texton noise (rho = 0) to b's (rho = 1) along a ramp, or as
+// a grey mask (1 channel, values in [0, 1]) says. params: method texton_mix's (steps, the ramp,
+// mask_scale, and texton's support, order, iterations, mni). a and b must have the same channel
+// count; the larger is centre-cropped to the smaller's size. Throws Error(invalid_input) with a
+// sentence naming the file, std::invalid_argument for a bad parameter.
+struct MixInputs {
+  ImageView<const float> a;
+  ImageView<const float> b;
+  std::string a_name = "A";
+  std::string b_name = "B";
+  std::optional<ImageView<const float>> mask;
+  std::string mask_name = "mask";
+};
+Model mix(const MixInputs& inputs, const ParamValues& params = {}, std::uint32_t seed = 0);
 
 // The Gaussian version of the exemplar (ADSN), at any size: the ideal Gaussian texture that
 // texton, lrp and gabor noise approximate.

@@ -41,6 +41,7 @@ enum class Stream : std::uint32_t {
   offsets = 0x85ebca6bu,
   analysis = 0xc2b2ae35u,  // white noise of the analyses (ADSN, texton initialisation)
   kernels = 0x165667b1u,   // Gabor noise: per-grid seeds and kernel parameters (alias, phase)
+  signs = 0xd3a2646cu,     // texton noise mixing: the random sign of each impulse
 };
 
 // The key of lattice cell (x, y) for a seed and a stream. Cell coordinates are 64-bit signed

@@ -28,6 +28,13 @@ std::uint64_t compare_peak_bytes(std::uint64_t exemplar_pixels, std::uint64_t im
          (exemplar_pixels + image_pixels) * (56 + 12 * static_cast<std::uint64_t>(channels));
 }
 
+std::uint64_t mix_peak_bytes(int width, int height, int channels, int steps, int support) {
+  const auto count = [](int n) { return static_cast<std::uint64_t>(std::max(n, 0)); };
+  const std::uint64_t side = count(std::min({support, width, height}));
+  return kFixedPeakBytes + count(width) * count(height) * (24 + 46 * count(channels)) +
+         28 * count(steps) * side * side * count(channels);
+}
+
 void check_memory_budget(std::uint64_t bytes, const std::string& request,
                          const std::string& remedy) {
   if (bytes <= kMemoryBudgetBytes) return;

@@ -36,6 +36,15 @@ std::uint64_t gaussian_peak_bytes(int width, int height);
 std::uint64_t compare_peak_bytes(std::uint64_t exemplar_pixels, std::uint64_t image_pixels,
                                  int channels);
 
+// `stochtex mix` (texton noise mixing) of two exemplars whose common size (the centre crop) is
+// width x height with `channels` channels, into `steps` textons of support x support:
+// kFixedPeakBytes plus 24 + 46 x channels bytes a pixel of the common size (both exemplars read,
+// their spectra, tau_0 and one tau_rho, Algorithm 1) and 28 bytes a texton value (the model's
+// textons, each step's padded pyramid and the file being written). Measured peaks of `mix` of two
+// equal-size images: 20 + 38 c bytes a pixel between 512² and 1024² (grey 58, RGB 134), and 21
+// (grey) and 23 (RGB) bytes a texton value at 1024², 48 textons of 512²; the constants add 20 %.
+std::uint64_t mix_peak_bytes(int width, int height, int channels, int steps, int support);
+
 // Throws std::invalid_argument: "<request> needs about N GB of memory, more than the budget of
 // 2 GiB; <remedy>" when `bytes` exceed kMemoryBudgetBytes.
 void check_memory_budget(std::uint64_t bytes, const std::string& request,

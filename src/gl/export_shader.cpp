@@ -486,10 +486,10 @@ std::string ShaderTexture::file_name() const {
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options) {
   if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
   return std::visit(
-      [&](const auto& method_model) {
-        return gl::assemble_export(
-            gl::Twin<std::decay_t<decltype(method_model)>>::shader(method_model, options.variant),
-            options.language);
+      [&](const auto& method_model) -> ShaderExport {
+        using Method = std::decay_t<decltype(method_model)>;
+        return gl::assemble_export(gl::Twin<Method>::shader(method_model, options.variant),
+                                   options.language);
       },
       model.data().model);
 }

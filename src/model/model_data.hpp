@@ -10,13 +10,14 @@
 #include "methods/gabor/model.hpp"
 #include "methods/lrp/model.hpp"
 #include "methods/texton/model.hpp"
+#include "methods/texton_mix/model.hpp"
 #include "methods/tiling/model.hpp"
 #include "stochtex/model.hpp"
 
 namespace stochtex {
 
-using MethodModel =
-    std::variant<texton::TextonModel, tiling::TilingModel, lrp::LrpModel, gabor::GaborModel>;
+using MethodModel = std::variant<texton::TextonModel, tiling::TilingModel, lrp::LrpModel,
+                                 gabor::GaborModel, texton_mix::TextonMixModel>;
 
 struct ModelData {
   ParamValues params;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gl/program.hpp"
+#include "io/image_io.hpp"
 #include "stochtex/gpu.hpp"
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
@@ -40,16 +41,32 @@ inline ImageF render_gpu(const Model& model, const Grid& grid, std::uint32_t see
 using test_support::same_bytes;
 
 // A model to export (tests of export-shader): method, exemplar, parameters and the side of the
-// grid its renders are compared on.
+// grid its renders are compared on; texton_mix (`stochtex mix`) also the second exemplar and,
+// for a mask field, the mask image.
 struct ExportCase {
   const char* method;
   const char* exemplar;
   ParamValues params;
   int size;
+  const char* second = nullptr;
+  const char* mask = nullptr;
 };
 
+// The model of an export case: analysed from its exemplar, or mixed from its two.
+inline Model case_model(const ExportCase& c) {
+  const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
+  if (c.second == nullptr) return analyze(c.method, exemplar.view(), c.params, 0);
+  const ImageF second = read_image(kTextureDir + "/" + c.second);
+  const ImageF mask = c.mask != nullptr ? read_image(kTextureDir + "/" + c.mask) : ImageF();
+  MixInputs inputs;
+  inputs.a = exemplar.view();
+  inputs.b = second.view();
+  if (c.mask != nullptr) inputs.mask = mask.view();
+  return mix(inputs, c.params, 0);
+}
+
 // The export cases: every method of the registry at least once (checked), every lrp section 5
-// option, both tiling transports.
+// option, both tiling transports, texton_mix with a colour ramp and a grey mask.
 inline std::vector<ExportCase> export_cases() {
   std::vector<ExportCase> cases = {
       {"texton", "grass_lawn_128.png", {{"support", 48}}, 48},
@@ -62,6 +79,17 @@ inline std::vector<ExportCase> export_cases() {
        {{"cosines", 10}, {"ratio", 0.3}, {"turbulence", 2.0}, {"placement", 1}},
        32},
       {"gabor", "grass_lawn_128.png", {{"impulses", 256}}, 24},
+      {"texton_mix",
+       "grass_lawn_128.png",
+       {{"support", 16}, {"iterations", 5}, {"steps", 5}, {"ramp_start", -10}, {"ramp_end", 60}},
+       32,
+       "wood_planks_256.png"},
+      {"texton_mix",
+       "metal_grey_256.png",
+       {{"support", 16}, {"iterations", 5}, {"steps", 4}, {"mask_scale", 0.5}},
+       32,
+       "nuts_grey_256.png",
+       "metal_grey_256.png"},
   };
   for (const MethodInfo& method : methods())
     EXPECT_TRUE(std::any_of(cases.begin(), cases.end(),

@@ -199,8 +199,7 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
   const std::vector<ExportCase> cases = export_cases();
   const gl::Context context;
   for (const auto& c : cases) {
-    const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
-    const Model model = analyze(c.method, exemplar.view(), c.params, 0);
+    const Model model = case_model(c);
     const ShaderExport files = export_shader(model);
     ASSERT_EQ(files.shader.name, "stochtex_" + std::string(c.method) + ".glsl");
     EXPECT_NE(files.readme.find("stochtex_" + std::string(c.method) + "(vec2 p"),

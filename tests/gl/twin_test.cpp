@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -27,11 +28,17 @@ namespace {
 
 using namespace gl_test;
 
-// Every table of shared constants: random.glsl's streams and each method's Twin::kConstants.
+// Every table of shared constants: random.glsl's streams and the Twin::kConstants of each method
+// that has a twin (a CPU-only model has none).
 std::vector<std::span<const gl::GlslConstant>> shared_constant_tables() {
   std::vector<std::span<const gl::GlslConstant>> tables = {gl::random_constants()};
   [&]<typename... MethodModels>(std::type_identity<std::variant<MethodModels...>>) {
-    (tables.push_back(gl::Twin<MethodModels>::kConstants), ...);
+    (
+        [&] {
+          if constexpr (gl::HasTwin<MethodModels>)
+            tables.push_back(gl::Twin<MethodModels>::kConstants);
+        }(),
+        ...);
   }(std::type_identity<MethodModel>{});
   return tables;
 }
@@ -144,6 +151,41 @@ TEST(GlTwin, EveryRegisteredMethodRendersOnTheGlBackend) {
     std::cout << method.name << ": max |cpu - gl| = " << max_difference(cpu, gpu) << "\n";
     EXPECT_LT(max_difference(cpu, gpu), 1e-4f) << method.name;
     EXPECT_EQ(export_shader(model).shader.name, "stochtex_" + std::string(method.name) + ".glsl");
+  }
+}
+
+TEST(GlTwin, TextonMixMatchesTheCpuReference) {
+  // Texton noise mixing is made by `stochtex mix`, not by the registry's analysis: its twin on
+  // ramp and mask fields, grey and colour, point-sampled and filtered (scale 3: pyramid levels and
+  // probes), far from the origin (the field at the origin cell's corner formed in double), within
+  // texton noise's parity bound (Gl.TextonMatchesTheCpuReference); dispatch tiles change nothing.
+  const ParamValues ramp = {{"support", 16},     {"iterations", 5}, {"steps", 5},
+                            {"ramp_start", -30}, {"ramp_end", 90},  {"direction_y", 0.5}};
+  const ParamValues mask = {{"support", 16}, {"iterations", 5}, {"steps", 4}, {"mask_scale", 0.5}};
+  const std::vector<ExportCase> cases = {
+      {"texton_mix", "grass_lawn_128.png", ramp, 0, "wood_planks_256.png"},
+      {"texton_mix", "metal_grey_256.png", ramp, 0, "nuts_grey_256.png"},
+      {"texton_mix", "grass_lawn_128.png", mask, 0, "wood_planks_256.png", "metal_grey_256.png"},
+      {"texton_mix", "metal_grey_256.png", mask, 0, "nuts_grey_256.png", "metal_grey_256.png"},
+  };
+  const std::vector<std::pair<Grid, bool>> grids = {
+      {{{-20.0, 7.5}, 1.0, 48, 40}, true},
+      {{{-20.0, 7.5}, 3.0, 40, 32}, true},
+      {{{-20.0, 7.5}, 3.0, 40, 32}, false},
+      {{{1e7, -3e6}, 4.0, 24, 24}, true},
+  };
+  for (const ExportCase& c : cases) {
+    const Model model = case_model(c);
+    for (const auto& [grid, filter] : grids) {
+      const ImageF cpu = render_cpu(model, grid, 9, filter);
+      const ImageF gpu = render_gpu(model, grid, 9, 4096, filter);
+      std::cout << "texton_mix (" << c.exemplar << ", " << (c.mask ? "mask" : "ramp") << ", "
+                << model.channels() << " channels) scale " << grid.scale
+                << (filter ? "" : " unfiltered")
+                << ": max |cpu - gl| = " << max_difference(cpu, gpu) << "\n";
+      EXPECT_LT(max_difference(cpu, gpu), 1e-4f) << c.exemplar << " scale " << grid.scale;
+      EXPECT_TRUE(same_bytes(gpu, render_gpu(model, grid, 9, 16, filter)));
+    }
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include "methods/lrp/params.hpp"
 #include "methods/texton/params.hpp"
+#include "methods/texton_mix/params.hpp"
 #include "methods/tiling/params.hpp"
 #include "stochtex/stochtex.hpp"
 
@@ -176,6 +177,8 @@ TEST(Params, TypedRecordsRoundTripThroughValues) {
   expect_round_trip("lrp", lrp::kFields, lrp::Params{20, 2, false, false, 0.3, 4.5, false});
   expect_round_trip("gabor", gabor::kFields,
                     gabor::Params{1.0 / 64.0, 256, gabor::ColourSpace::rgb, 50});
+  expect_round_trip("texton_mix", texton_mix::kFields,
+                    texton_mix::Params{{64, 3, 10, 12.5}, 9, -5, 300, 0.5, -2, 4});
 }
 
 // The rows of the first table headed "| name | default | range | meaning |" of a docs page.
@@ -203,7 +206,10 @@ std::vector<std::vector<std::string>> parameter_table(const std::string& path) {
 }
 
 TEST(Params, DocsTablesFollowTheRecords) {
-  for (const auto& method : methods()) {
+  // The methods analysed from one exemplar, and texton_mix (`stochtex mix`).
+  std::vector<MethodInfo> records(methods().begin(), methods().end());
+  records.push_back({"texton_mix", "", texton_mix::kParams});
+  for (const auto& method : records) {
     const std::string page =
         std::string(STOCHTEX_SOURCE_DIR) + "/docs/methods/" + std::string(method.name) + ".md";
     const auto rows = parameter_table(page);

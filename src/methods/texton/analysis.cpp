@@ -77,34 +77,52 @@ Eigen::MatrixXd symmetric_power(const Eigen::MatrixXd& matrix, double power) {
 
 }  // namespace
 
-TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed) {
-  const int width = exemplar.width;
-  const int height = exemplar.height;
-  const int channels = exemplar.channels;
-  const int support = std::min({params.support, width, height});
-  const int order = params.order;
-  const int iterations = params.iterations;
-  const double mean_impacts = params.mni;
-
-  // Preprocess: the periodic component (section 4.2, [Moi11]), then the normalised kernel
-  // t_u = (p - mean(p)) / sqrt(|Omega|) of section 3.2.
-  const ImageF periodic = periodic_component(exemplar);
-  const std::size_t pixels = periodic.pixel_count();
-  std::vector<float> mean;
-  for (const double value : channel_means(periodic.view()))
-    mean.push_back(static_cast<float>(value));
-  const Fft2d fft(width, height);
-  const int spectrum_width = fft.spectrum_width();
-  const std::size_t spectrum_size = fft.spectrum_size();
+std::vector<std::vector<std::complex<float>>> normalised_kernel_spectrum(
+    const Fft2d& fft, ImageView<const float> periodic, std::span<const float> mean) {
+  const std::size_t pixels = static_cast<std::size_t>(periodic.width) * periodic.height;
+  const int channels = periodic.channels;
   const float normalisation = static_cast<float>(1.0 / std::sqrt(static_cast<double>(pixels)));
   std::vector<std::vector<Complex>> kernel_spectrum(static_cast<std::size_t>(channels));
   std::vector<float> plane(pixels);
   for (int c = 0; c < channels; ++c) {
     for (std::size_t i = 0; i < pixels; ++i)
-      plane[i] = (periodic.pixels()[i * channels + c] - mean[c]) * normalisation;
-    kernel_spectrum[c].resize(spectrum_size);
+      plane[i] = (periodic.data[i * channels + c] - mean[c]) * normalisation;
+    kernel_spectrum[c].resize(fft.spectrum_size());
     fft.forward(plane, kernel_spectrum[c]);
   }
+  return kernel_spectrum;
+}
+
+TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed) {
+  // Preprocess: the periodic component (section 4.2, [Moi11]), then the normalised kernel
+  // t_u = (p - mean(p)) / sqrt(|Omega|) of section 3.2.
+  const ImageF periodic = periodic_component(exemplar);
+  std::vector<float> mean;
+  for (const double value : channel_means(periodic.view()))
+    mean.push_back(static_cast<float>(value));
+  const Fft2d fft(exemplar.width, exemplar.height);
+  // The target of the colour correction: the exemplar's covariance about the float mean the
+  // kernel is centred on.
+  const std::vector<double> target = channel_covariance(periodic.view(), mean);
+  std::vector<float> coefficients = texton_coefficients(
+      fft, normalised_kernel_spectrum(fft, periodic.view(), mean), target, params, seed);
+  const int support = std::min({params.support, exemplar.width, exemplar.height});
+  return TextonModel(exemplar.channels, support, params.order, params.mni, std::move(coefficients),
+                     std::move(mean));
+}
+
+std::vector<float> texton_coefficients(
+    const Fft2d& fft, std::vector<std::vector<std::complex<float>>> kernel_spectrum,
+    std::span<const double> target, const Params& params, std::uint32_t seed) {
+  const int width = fft.width();
+  const int height = fft.height();
+  const int channels = static_cast<int>(kernel_spectrum.size());
+  const int support = std::min({params.support, width, height});
+  const int order = params.order;
+  const int iterations = params.iterations;
+  const std::size_t pixels = fft.image_size();
+  const int spectrum_width = fft.spectrum_width();
+  const std::size_t spectrum_size = fft.spectrum_size();
 
   // Spectral constraint of eq. (4): |alpha-hat| = |t-hat_u| / sqrt(b-hat), in colour as the
   // cross-spectrum projection of section 4.3. Divide t-hat by sqrt(b-hat) once.
@@ -187,8 +205,6 @@ TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::
         }
     }
   noise_covariance = 0.5 * (noise_covariance + noise_covariance.transpose());
-  // The target: the exemplar's covariance about the float mean the kernel is centred on.
-  const std::vector<double> target = channel_covariance(periodic.view(), mean);
   const Eigen::MatrixXd target_covariance =
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
           target.data(), channels, channels);
@@ -204,8 +220,7 @@ TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::
       coefficients[t * channels + c] = static_cast<float>(corrected[c]);
   }
 
-  return TextonModel(channels, support, order, mean_impacts, std::move(coefficients),
-                     std::move(mean));
+  return coefficients;
 }
 
 }  // namespace stochtex::texton

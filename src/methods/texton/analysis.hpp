@@ -1,10 +1,14 @@
 #pragma once
 
+#include <complex>
 #include <cstdint>
+#include <span>
 #include <type_traits>
+#include <vector>
 
 #include "methods/texton/model.hpp"
 #include "methods/texton/params.hpp"
+#include "spectral/fft.hpp"
 #include "stochtex/image.hpp"
 
 namespace stochtex::texton {
@@ -12,6 +16,20 @@ namespace stochtex::texton {
 // Algorithm 1 of the paper with the colour projection and colour covariance correction of
 // section 4.3.
 TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);
+
+// The DFT of each channel of t_u = (p - mean) / sqrt(|Omega|) (section 3.2), p a periodic image of
+// fft's size: the kernel whose Gaussian model Algorithm 1 approximates.
+std::vector<std::vector<std::complex<float>>> normalised_kernel_spectrum(
+    const Fft2d& fft, ImageView<const float> periodic, std::span<const float> mean);
+
+// Algorithm 1 for the kernel of DFT `kernel_spectrum` (one per channel, fft's half spectrum), then
+// the colour covariance correction towards `target` (channels x channels, row-major, the kernel's
+// lag-0 covariance): the texton coefficients, S x S x channels with S = min(support, width,
+// height). The white-noise initialisation depends on the seed and the size only, so kernels of
+// one size share it (texton noise mixing, section 7).
+std::vector<float> texton_coefficients(
+    const Fft2d& fft, std::vector<std::vector<std::complex<float>>> kernel_spectrum,
+    std::span<const double> target, const Params& params, std::uint32_t seed);
 
 // This method's row of the registry (src/registry.cpp).
 constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<TextonModel>) {

@@ -11,6 +11,14 @@
 vec4 texton_texture_fetch(float dx, float dy);  // hardware.glsl
 #endif
 
+// One impulse of the shot noise (Impulse in evaluate.hpp): the atlas texel where its texton's
+// pyramid starts (texton noise: the atlas corner) and its weight (texton noise: 1; mixing, texton
+// paper section 7: a random sign).
+struct TextonImpulse {
+  ivec2 atlas;
+  float weight;
+};
+
 struct TextonFilter {
   int level;
   float level_blend;

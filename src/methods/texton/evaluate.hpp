@@ -149,45 +149,51 @@ inline FilterSetup filter_setup(const Footprint& footprint, int top_level) noexc
 }
 
 // The texton filtered for one footprint (section 5), summed at impact offsets: the pyramid
-// level(s) and probes that filter_setup chose. The planar evaluator and the surface evaluator
-// (docs/surface.md) sum the same filtered texton, only their impacts differ.
+// level(s) and probes that filter_setup chose. The planar evaluator, the surface evaluator
+// (docs/surface.md) and texton noise mixing (each impulse its own texton, same support and order)
+// sum the same filtered textons; only their impulses differ.
 template <int Order, int Channels>
 class FilteredTexton {
  public:
-  FilteredTexton(const std::vector<PyramidLevel>& pyramid, const FilterSetup& filter) noexcept
+  // `shape`: any of the textons' pyramids (they share support and order, hence the reach).
+  FilteredTexton(const std::vector<PyramidLevel>& shape, const FilterSetup& filter) noexcept
       : filter_(filter),
-        fine_(pyramid[static_cast<std::size_t>(filter.level)]),
-        coarse_(pyramid[static_cast<std::size_t>(
-            std::min(filter.level + 1, static_cast<int>(pyramid.size()) - 1))]),
-        probe_weight_(1.0f / static_cast<float>(filter.probes)) {}
+        fine_level_(filter.level),
+        coarse_level_(std::min(filter.level + 1, static_cast<int>(shape.size()) - 1)),
+        probe_weight_(1.0f / static_cast<float>(filter.probes)) {
+    const PyramidLevel& fine = shape[static_cast<std::size_t>(fine_level_)];
+    const PyramidLevel& coarse = shape[static_cast<std::size_t>(coarse_level_)];
+    const float probe_extent = 0.5f * static_cast<float>(filter.probes - 1) *
+                               std::max(std::abs(filter.probe_x), std::abs(filter.probe_y));
+    const float kernel_reach =
+        filter.level_blend > 0.0f ? std::max(fine.half_width, coarse.half_width) : fine.half_width;
+    reach_ = static_cast<double>(kernel_reach + probe_extent);
+  }
 
   // Half side of the square outside which an impact adds nothing: the kernel's support plus the
   // spread of the probes.
-  double reach() const noexcept {
-    const float probe_extent = 0.5f * static_cast<float>(filter_.probes - 1) *
-                               std::max(std::abs(filter_.probe_x), std::abs(filter_.probe_y));
-    const float kernel_reach = filter_.level_blend > 0.0f
-                                   ? std::max(fine_.half_width, coarse_.half_width)
-                                   : fine_.half_width;
-    return static_cast<double>(kernel_reach + probe_extent);
-  }
+  double reach() const noexcept { return reach_; }
+  float fade() const noexcept { return filter_.fade; }
 
-  // Adds weight * (filtered texton)(dx, dy) to acc, (dx, dy) = x - x_i in exemplar pixels.
-  void add(float dx, float dy, float weight, float (&acc)[Channels]) const noexcept {
+  // Adds weight * (filtered texton)(dx, dy) to acc, (dx, dy) = x - x_i in exemplar pixels, for
+  // the texton whose pyramid starts at `pyramid`.
+  void add(const PyramidLevel* pyramid, float dx, float dy, float weight,
+           float (&acc)[Channels]) const noexcept {
+    const PyramidLevel& fine = pyramid[fine_level_];
     if (filter_.probes == 1 && filter_.level_blend == 0.0f) {
-      accumulate_texton<Order, Channels>(fine_, dx, dy, weight, acc);
+      accumulate_texton<Order, Channels>(fine, dx, dy, weight, acc);
       return;
     }
+    const PyramidLevel& coarse = pyramid[coarse_level_];
     const float probe_weight = weight * probe_weight_;
     for (int k = 0; k < filter_.probes; ++k) {
       const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(filter_.probes);
       const float px = dx + shift * filter_.probe_x;
       const float py = dy + shift * filter_.probe_y;
-      accumulate_texton<Order, Channels>(fine_, px, py, probe_weight * (1.0f - filter_.level_blend),
+      accumulate_texton<Order, Channels>(fine, px, py, probe_weight * (1.0f - filter_.level_blend),
                                          acc);
       if (filter_.level_blend > 0.0f)
-        accumulate_texton<Order, Channels>(coarse_, px, py, probe_weight * filter_.level_blend,
-                                           acc);
+        accumulate_texton<Order, Channels>(coarse, px, py, probe_weight * filter_.level_blend, acc);
     }
   }
 
@@ -200,9 +206,10 @@ class FilteredTexton {
 
  private:
   FilterSetup filter_;
-  const PyramidLevel& fine_;
-  const PyramidLevel& coarse_;
+  int fine_level_;
+  int coarse_level_;
   float probe_weight_;
+  double reach_ = 0.0;
 };
 
 // The Poisson points of the grid cells (section 8): cell (x, y) holds a Poisson number of points,
@@ -265,5 +272,73 @@ class CellCache {
   const PoissonSampler& count_;
   std::array<Entry, kEntries> entries_{};
 };
+
+// Calls f.template operator()<Order, Channels>() for the texton's interpolation order (0, 1, 3, 5)
+// and channel count (1 to 4): one concrete loop per pair, so the inner loops unroll and the
+// accumulators stay in registers. Dispatch happens once per batch.
+template <typename F>
+inline void with_order_and_channels(int order, int channels, F&& f) noexcept {
+  const auto with_order = [&]<int Order>() {
+    switch (channels) {
+      case 1:
+        return f.template operator()<Order, 1>();
+      case 2:
+        return f.template operator()<Order, 2>();
+      case 3:
+        return f.template operator()<Order, 3>();
+      default:
+        return f.template operator()<Order, 4>();
+    }
+  };
+  switch (order) {
+    case 0:
+      return with_order.template operator()<0>();
+    case 1:
+      return with_order.template operator()<1>();
+    case 3:
+      return with_order.template operator()<3>();
+    default:
+      return with_order.template operator()<5>();
+  }
+}
+
+// One impulse of the shot noise: the pyramid of the texton it scatters and its weight (texton
+// noise: the one texton, weight 1; mixing, section 7: the texton of its region, a random sign).
+struct Impulse {
+  const PyramidLevel* pyramid;
+  float weight;
+};
+
+// The shot-noise sum at p (eq. 1), filtered as section 5 says: the impulses of the grid cells that
+// meet p + [-reach, reach]^2, each adding weight * h(p - x_j) through `texton`. `impulses` maps a
+// point (cell, index in the cell, (u, v) in the cell) to its Impulse. The one loop of texton noise
+// and texton noise mixing.
+template <int Order, int Channels, typename Impulses>
+inline void sum_impulses(Vec2d p, const FilteredTexton<Order, Channels>& texton,
+                         double cell_size_double, CellCache& cells, Impulses&& impulses,
+                         float (&acc)[Channels]) noexcept {
+  const float cell_size = static_cast<float>(cell_size_double);
+  const double reach = texton.reach();
+  // The Poisson process is simulated on the grid cells that meet p + [-reach, reach]^2. Cell
+  // indices are 64-bit integers and offsets are taken relative to the cell corner in double
+  // before going to float, so p = 1e7 is as precise as p = 0 (docs/design.md §4).
+  const auto first_cell_x = static_cast<std::int64_t>(std::floor((p.x - reach) / cell_size_double));
+  const auto last_cell_x = static_cast<std::int64_t>(std::floor((p.x + reach) / cell_size_double));
+  const auto first_cell_y = static_cast<std::int64_t>(std::floor((p.y - reach) / cell_size_double));
+  const auto last_cell_y = static_cast<std::int64_t>(std::floor((p.y + reach) / cell_size_double));
+  for (std::int64_t cell_y = first_cell_y; cell_y <= last_cell_y; ++cell_y) {
+    const float offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * cell_size_double);
+    for (std::int64_t cell_x = first_cell_x; cell_x <= last_cell_x; ++cell_x) {
+      const float offset_x =
+          static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size_double);
+      std::uint32_t index = 0;
+      cells.for_each_point(cell_x, cell_y, [&](float u, float v) {
+        const Impulse impulse = impulses(cell_x, cell_y, index++, u, v);
+        texton.add(impulse.pyramid, offset_x - u * cell_size, offset_y - v * cell_size,
+                   impulse.weight, acc);
+      });
+    }
+  }
+}
 
 }  // namespace stochtex::texton

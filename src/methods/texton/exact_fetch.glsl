@@ -35,7 +35,9 @@ int texton_weights(float u, out float w[6]) {
   return first;
 }
 
-void texton_accumulate(int level, float dx, float dy, float weight, inout vec4 acc) {
+// Adds weight * h_level(d) to acc (accumulate_texton in evaluate.hpp) for the texton whose pyramid
+// starts at atlas texel `atlas`.
+void texton_accumulate(ivec2 atlas, int level, float dx, float dy, float weight, inout vec4 acc) {
   float half_width = TEXTON_LEVEL_HALF_WIDTH[level];
   if (abs(dx) >= half_width || abs(dy) >= half_width) return;
   float wx[6];
@@ -43,7 +45,8 @@ void texton_accumulate(int level, float dx, float dy, float weight, inout vec4 a
   float inverse_spacing = 1.0 / TEXTON_LEVEL_SPACING[level];
   int x0 = texton_weights((dx - TEXTON_LEVEL_FIRST_TEXEL[level]) * inverse_spacing, wx);
   int y0 = texton_weights((dy - TEXTON_LEVEL_FIRST_TEXEL[level]) * inverse_spacing, wy);
-  ivec2 base = ivec2(x0 + TEXTON_PADDING, TEXTON_LEVEL_ROW[level] + y0 + TEXTON_PADDING);
+  ivec2 base =
+      atlas + ivec2(x0 + TEXTON_PADDING, TEXTON_LEVEL_ROW[level] + y0 + TEXTON_PADDING);
   for (int j = 0; j <= TEXTON_ORDER; ++j)
     for (int i = 0; i <= TEXTON_ORDER; ++i)
       acc += (weight * wy[j] * wx[i]) * texelFetch(stochtex_texton_atlas, base + ivec2(i, j), 0);

@@ -12,7 +12,7 @@
 
 namespace stochtex::gl {
 
-TextonGlsl texton_glsl(const texton::TextonModel& model) {
+TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model) {
   const auto& pyramid = model.pyramid();
   const int channels = model.channels();
   std::vector<int> rows;
@@ -50,8 +50,6 @@ TextonGlsl texton_glsl(const texton::TextonModel& model) {
   text +=
       "const float TEXTON_INVERSE_SQRT_INTENSITY = " + glsl_float(model.inverse_sqrt_intensity()) +
       ";\n";
-  text += "const vec4 TEXTON_CONSTANT_TERM = " + glsl_vec4(model.constant_term()) + ";\n";
-  text += "const vec4 TEXTON_MEAN = " + glsl_vec4(model.mean()) + ";\n";
   text += "const int TEXTON_LEVELS = " + std::to_string(pyramid.size()) + ";\n";
   text += glsl_array("int", "TEXTON_LEVEL_ROW", std::span<const int>(rows), glsl_int);
   text += glsl_array("float", "TEXTON_LEVEL_SPACING", std::span<const float>(spacing), glsl_float);
@@ -61,11 +59,19 @@ TextonGlsl texton_glsl(const texton::TextonModel& model) {
   return glsl;
 }
 
+TextonGlsl texton_glsl(const texton::TextonModel& model) {
+  TextonGlsl glsl = texton_shot_noise_glsl(model);
+  glsl.constants += "const vec4 TEXTON_CONSTANT_TERM = " + glsl_vec4(model.constant_term()) + ";\n";
+  glsl.constants += "const vec4 TEXTON_MEAN = " + glsl_vec4(model.mean()) + ";\n";
+  return glsl;
+}
+
 std::string texton_library_source(const TextonGlsl& glsl) {
   return random_source() + glsl_constants(Twin<texton::TextonModel>::kConstants) + glsl.constants +
          "uniform sampler2D stochtex_texton_atlas;\n" +
          shader_source("methods/texton/evaluate.glsl") +
          shader_source("methods/texton/exact_fetch.glsl") +
+         shader_source("methods/texton/impulses.glsl") +
          shader_source("methods/texton/noise.glsl") + shader_source("methods/texton/entry.glsl");
 }
 
@@ -98,6 +104,7 @@ ExportParts fast_shader(const texton::TextonModel& model) {
               glsl_constants(Twin<texton::TextonModel>::kConstants) + glsl.constants +
               shader_source("methods/texton/evaluate.glsl") +
               shader_source("methods/texton/hardware.glsl") +
+              shader_source("methods/texton/impulses.glsl") +
               shader_source("methods/texton/noise.glsl") +
               "#define stochtex_texton texton_at_level_of_detail\n" +
               shader_source("methods/texton/entry.glsl") + "#undef stochtex_texton\n" +

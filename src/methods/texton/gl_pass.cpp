@@ -2,6 +2,7 @@
 // atlas; for --gl-filter hardware (order-1 models), the fast export's program and texture
 // (hardware.glsl, gl_data.cpp).
 
+#include <array>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -44,25 +45,7 @@ class TextonPass final : public Pass {
       active_ = &hardware_->program();
     }
     const Program& program = *active_;
-    const int top_level = static_cast<int>(model_.pyramid().size()) - 1;
-    const texton::FilterSetup setup =
-        filter ? texton::filter_setup(Footprint{{grid.scale, 0.0}, {0.0, grid.scale}}, top_level)
-               : texton::FilterSetup{};
-    // The grid origin splits into a cell (64-bit here, its low 32 bits in the shader, as
-    // cell_key uses them) and a small float offset: far origins are as precise as near ones.
-    const double cell_size = model_.cell_size();
-    const double origin_cell_x = std::floor(grid.origin.x / cell_size);
-    const double origin_cell_y = std::floor(grid.origin.y / cell_size);
-    program.set2("origin_cell", low_bits(origin_cell_x), low_bits(origin_cell_y));
-    program.set2("origin_offset", static_cast<float>(grid.origin.x - origin_cell_x * cell_size),
-                 static_cast<float>(grid.origin.y - origin_cell_y * cell_size));
-    program.set("scale", static_cast<float>(grid.scale));
-    program.set("seed", static_cast<unsigned>(seed));
-    program.set("filter_level", setup.level);
-    program.set("filter_level_blend", setup.level_blend);
-    program.set("filter_probes", setup.probes);
-    program.set2("filter_probe_step", setup.probe_x, setup.probe_y);
-    program.set("filter_fade", setup.fade);
+    set_render_uniforms(program, model_, grid, seed, filter);
     program.set("filter_scale", hardware_footprint(grid, filter));
     check_gl("setting the texton uniforms");
   }
@@ -86,6 +69,30 @@ class TextonPass final : public Pass {
 };
 
 }  // namespace
+
+std::array<double, 2> set_render_uniforms(const Program& program, const texton::TextonModel& shape,
+                                          const Grid& grid, std::uint32_t seed, bool filter) {
+  const int top_level = static_cast<int>(shape.pyramid().size()) - 1;
+  const texton::FilterSetup setup =
+      filter ? texton::filter_setup(Footprint{{grid.scale, 0.0}, {0.0, grid.scale}}, top_level)
+             : texton::FilterSetup{};
+  // The grid origin splits into a cell (64-bit here, its low 32 bits in the shader, as cell_key
+  // uses them) and a small float offset: far origins are as precise as near ones.
+  const double cell_size = shape.cell_size();
+  const double origin_cell_x = std::floor(grid.origin.x / cell_size);
+  const double origin_cell_y = std::floor(grid.origin.y / cell_size);
+  program.set2("origin_cell", low_bits(origin_cell_x), low_bits(origin_cell_y));
+  program.set2("origin_offset", static_cast<float>(grid.origin.x - origin_cell_x * cell_size),
+               static_cast<float>(grid.origin.y - origin_cell_y * cell_size));
+  program.set("scale", static_cast<float>(grid.scale));
+  program.set("seed", static_cast<unsigned>(seed));
+  program.set("filter_level", setup.level);
+  program.set("filter_level_blend", setup.level_blend);
+  program.set("filter_probes", setup.probes);
+  program.set2("filter_probe_step", setup.probe_x, setup.probe_y);
+  program.set("filter_fade", setup.fade);
+  return {origin_cell_x, origin_cell_y};
+}
 
 std::unique_ptr<Pass> Twin<texton::TextonModel>::pass(const texton::TextonModel& model) {
   return std::make_unique<TextonPass>(model);

@@ -5,6 +5,7 @@
 // evaluate.glsl on the same data.
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -18,18 +19,30 @@ namespace stochtex::gl {
 
 struct TextonGlsl {
   std::string constants;  // GLSL const declarations (exact: every float reads back unchanged)
-  ImageF atlas;           // 4 channels; level l's padded texels start at row level_rows[l]
+  ImageF atlas;           // 4 channels; level l's padded texels start at row TEXTON_LEVEL_ROW[l]
 };
 
+// The shot noise's constants (channels, order, cell size, Poisson counts, intensity, the pyramid
+// levels) and texel atlas: what impulses.glsl needs, shared with texton noise mixing
+// (texton_mix/gl_data.cpp, one texton model per step).
+TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model);
+// The shot noise's and texton noise's own constants (TEXTON_CONSTANT_TERM, TEXTON_MEAN).
 TextonGlsl texton_glsl(const texton::TextonModel& model);
 
 // The exact variant: random.glsl, kConstants, the model's constants, the atlas sampler and texton
-// evaluate.glsl, exact_fetch.glsl, noise.glsl and entry.glsl: all but `#version`.
+// evaluate.glsl, exact_fetch.glsl, impulses.glsl, noise.glsl and entry.glsl: all but `#version`.
 std::string texton_library_source(const TextonGlsl& glsl);
 
 // Whether the model has a fast variant: hardware bilinear reconstruction is the order-1 B-spline
 // only, so other orders export (and render with --gl-filter hardware) as exact.
 bool has_fast_variant(const texton::TextonModel& model);
+
+// The uniforms of texton render.glsl for a grid, shared by texton noise mixing's pass: the grid
+// origin as a cell (its low 32 bits) and a float offset from that cell's corner, the scale, the
+// seed and the filter that filter_setup chooses for the grid's footprint (in double, as the CPU
+// evaluator chooses it). `shape` gives the cell size and pyramid. Returns the origin cell.
+std::array<double, 2> set_render_uniforms(const Program& program, const texton::TextonModel& shape,
+                                          const Grid& grid, std::uint32_t seed, bool filter);
 
 template <>
 struct Twin<texton::TextonModel> {

@@ -4,8 +4,9 @@
 // paper (section 5) done by the texture units. The texture is level 0 of the pyramid (padded
 // texels, bilinear = the order-1 B-spline) with generated mip-maps, capped at the model's coarsest
 // level (beyond it texton_noise fades the fluctuation as the exact path does). Compiled after
-// texton evaluate.glsl, before noise.glsl, entry.glsl (whose stochtex_texton the library renames
-// texton_at_level_of_detail) and fast_entry.glsl, all with TEXTON_TEXTURE_FILTER defined.
+// texton evaluate.glsl, before impulses.glsl, noise.glsl, entry.glsl (whose stochtex_texton the
+// library renames texton_at_level_of_detail) and fast_entry.glsl, all with TEXTON_TEXTURE_FILTER
+// defined.
 
 uniform sampler2D stochtex_texton_texture;
 // The footprint in texture coordinates, divided by sqrt(3): the hardware's level of detail is

@@ -138,76 +138,32 @@ ModelRecord TextonModel::to_record(const ParamValues& params) const {
 
 void TextonModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                            std::uint32_t seed, ImageView<float> out) const noexcept {
-  with_types([&]<int Order, int Channels>() {
+  with_order_and_channels(order_, channels_, [&]<int Order, int Channels>() {
     evaluate_typed<Order, Channels>(positions, footprints, seed, out);
   });
 }
 
 void TextonModel::evaluate_surface(std::span<const SurfacePoint> points, double surface_mni,
                                    std::uint32_t seed, ImageView<float> out) const noexcept {
-  with_types([&]<int Order, int Channels>() {
+  with_order_and_channels(order_, channels_, [&]<int Order, int Channels>() {
     evaluate_surface_typed<Order, Channels>(points, surface_mni, seed, out);
   });
-}
-
-template <typename Call>
-void TextonModel::with_types(Call&& call) const noexcept {
-  // One concrete loop per (order, channel count): the inner loops unroll and the accumulators
-  // stay in registers. Dispatch happens once per batch.
-  const auto with_order = [&]<int Order>() {
-    switch (channels_) {
-      case 1:
-        return call.template operator()<Order, 1>();
-      case 2:
-        return call.template operator()<Order, 2>();
-      case 3:
-        return call.template operator()<Order, 3>();
-      default:
-        return call.template operator()<Order, 4>();
-    }
-  };
-  switch (order_) {
-    case 0:
-      return with_order.template operator()<0>();
-    case 1:
-      return with_order.template operator()<1>();
-    case 3:
-      return with_order.template operator()<3>();
-    default:
-      return with_order.template operator()<5>();
-  }
 }
 
 template <int Order, int Channels>
 void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
                                  std::span<const Footprint> footprints, std::uint32_t seed,
                                  ImageView<float> out) const noexcept {
-  const float cell_size = static_cast<float>(cell_size_);
   const int top_level = static_cast<int>(pyramid_.size()) - 1;
   CellCache cells(seed, cell_count_);
+  const auto one_texton = [this](std::int64_t, std::int64_t, std::uint32_t, float, float) {
+    return Impulse{pyramid_.data(), 1.0f};
+  };
   for (std::size_t index = 0; index < positions.size(); ++index) {
-    const Vec2d p = positions[index];
     const FilteredTexton<Order, Channels> texton(
         pyramid_, footprints.empty() ? FilterSetup{} : filter_setup(footprints[index], top_level));
-    const double reach = texton.reach();
-
     float acc[Channels] = {};
-    // The Poisson process is simulated on the grid cells that meet p + [-reach, reach]^2. Cell
-    // indices are 64-bit integers and offsets are taken relative to the cell corner in double
-    // before going to float, so p = 1e7 is as precise as p = 0 (docs/design.md §4).
-    const auto first_cell_x = static_cast<std::int64_t>(std::floor((p.x - reach) / cell_size_));
-    const auto last_cell_x = static_cast<std::int64_t>(std::floor((p.x + reach) / cell_size_));
-    const auto first_cell_y = static_cast<std::int64_t>(std::floor((p.y - reach) / cell_size_));
-    const auto last_cell_y = static_cast<std::int64_t>(std::floor((p.y + reach) / cell_size_));
-    for (std::int64_t cell_y = first_cell_y; cell_y <= last_cell_y; ++cell_y) {
-      const float offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * cell_size_);
-      for (std::int64_t cell_x = first_cell_x; cell_x <= last_cell_x; ++cell_x) {
-        const float offset_x = static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size_);
-        cells.for_each_point(cell_x, cell_y, [&](float u, float v) {
-          texton.add(offset_x - u * cell_size, offset_y - v * cell_size, 1.0f, acc);
-        });
-      }
-    }
+    sum_impulses<Order, Channels>(positions[index], texton, cell_size_, cells, one_texton, acc);
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
     // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2).
@@ -246,7 +202,7 @@ void TextonModel::evaluate_surface_typed(std::span<const SurfacePoint> points, d
     for_each_surface_impulse(p, frame, texton.reach(), 0.5 * side, cell_size, count, seed,
                              [&](CounterRng&, float t, float z1, float z2) {
                                const float weight = 1.0f - std::abs(t) * inverse_depth;
-                               if (weight > 0.0f) texton.add(z1, z2, weight, acc);
+                               if (weight > 0.0f) texton.add(pyramid_.data(), z1, z2, weight, acc);
                              });
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));

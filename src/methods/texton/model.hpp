@@ -67,9 +67,6 @@ class TextonModel {
                         std::uint32_t seed, ImageView<float> out) const noexcept;
 
  private:
-  // Calls call.template operator()<Order, Channels>() for the model's order and channel count.
-  template <typename Call>
-  void with_types(Call&& call) const noexcept;
   template <int Order, int Channels>
   void evaluate_typed(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                       std::uint32_t seed, ImageView<float> out) const noexcept;

@@ -1,5 +1,6 @@
 // The compute shader of `render --backend gl` for texton noise: one invocation per output pixel of
-// a regular grid. Requires random.glsl, the model's constants and texton evaluate.glsl.
+// a regular grid. Requires random.glsl, the model's constants and texton evaluate.glsl. Texton noise
+// mixing runs it too, with texton_noise defined as texton_mix_noise (texton_mix/gl_pass.cpp).
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 1) writeonly buffer Result { float result[]; };

@@ -1,0 +1,91 @@
+// `stochtex mix A B -o MODEL.stx`: texton noise mixing (texton paper section 7), a model going
+// from A's texton noise to B's along a ramp or as a grey mask says.
+
+#include <fmt/core.h>
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "arguments.hpp"
+#include "commands.hpp"
+#include "io/image_io.hpp"
+#include "progress.hpp"
+
+namespace stochtex::cli {
+
+Command add_mix_command(CLI::App& app) {
+  struct Options {
+    std::string a;
+    std::string b;
+    std::string output;
+    std::vector<std::string> params;
+    std::string steps;
+    std::string ramp;
+    std::string direction;
+    std::string mask;
+    std::string mask_scale;
+    std::uint32_t seed = 0;
+  };
+  auto options = std::make_shared<Options>();
+  auto* command = app.add_subcommand(
+      "mix", "two exemplars -> a texton noise mixing model (.stx), A where rho = 0, B where 1");
+  command->add_option("A", options->a, "first exemplar (rho = 0)")->required();
+  command->add_option("B", options->b, "second exemplar (rho = 1), same channel count as A")
+      ->required();
+  command->add_option("-o,--output", options->output, "model file to write (.stx)")->required();
+  command->add_option("--steps", options->steps, "number R of textons (default 21)");
+  auto* ramp =
+      command->add_option("--ramp", options->ramp,
+                          "X0,X1: rho goes from 0 to 1 between these positions (default 0,1024)");
+  auto* direction = command->add_option("--direction", options->direction,
+                                        "DX,DY: the ramp's direction in model space (default 1,0)");
+  auto* mask = command->add_option("--mask", options->mask,
+                                   "grey image giving rho (black = A, white = B) over model space");
+  command
+      ->add_option("--mask-scale", options->mask_scale,
+                   "model-space pixels per mask pixel (default 1)")
+      ->needs(mask);
+  mask->excludes(ramp)->excludes(direction);
+  command->add_option("-p,--param", options->params,
+                      "texton parameter key=value: support, order, iterations, mni (repeatable)");
+  command->add_option("--analysis-seed", options->seed, "seed of Algorithm 1's white-noise start")
+      ->capture_default_str();
+  return {command, [options] {
+            std::map<std::string, std::string, std::less<>> given = parse_params(options->params);
+            const auto pair = [](const std::string& text, const char* option, const char* first,
+                                 const char* second,
+                                 std::map<std::string, std::string, std::less<>>& into) {
+              if (text.empty()) return;
+              const std::optional<Vec2d> value = parse_number_pair(text);
+              if (!value)
+                throw std::invalid_argument(fmt::format(
+                    "{} must be two finite numbers separated by a comma, not '{}'", option, text));
+              into[first] = fmt::format("{}", value->x);
+              into[second] = fmt::format("{}", value->y);
+            };
+            pair(options->ramp, "--ramp", "ramp_start", "ramp_end", given);
+            pair(options->direction, "--direction", "direction_x", "direction_y", given);
+            if (!options->steps.empty()) given["steps"] = options->steps;
+            if (!options->mask_scale.empty()) given["mask_scale"] = options->mask_scale;
+            const ParamValues params = resolve_params("texton_mix", given);
+            check_output_path(options->output, false, options->a);
+            const ImageF a = load_exemplar(options->a);
+            const ImageF b = load_exemplar(options->b);
+            MixInputs inputs{a.view(), b.view(), options->a, options->b, std::nullopt, "mask"};
+            ImageF mask_image;
+            if (!options->mask.empty()) {
+              mask_image = read_image(options->mask);
+              inputs.mask = mask_image.view();
+              inputs.mask_name = options->mask;
+            }
+            Progress progress("mix");
+            progress.message(fmt::format("mixing {} and {}...", options->a, options->b));
+            save_model(mix(inputs, params, options->seed), options->output);
+            fmt::print(stderr, "wrote {}\n", options->output);
+            return 0;
+          }};
+}
+
+}  // namespace stochtex::cli

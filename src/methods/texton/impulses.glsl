@@ -1,0 +1,63 @@
+// The shot-noise sum at p (sum_impulses in evaluate.hpp), filtered as section 5 of the texton paper
+// says: the impulses of the grid cells that meet p's reach, each adding weight * h(p - x_j) at the
+// filter's pyramid level(s) and probes. p is in exemplar pixels relative to the corner of cell
+// `origin_cell` (whose index enters the hash as its low 32 bits, so callers may keep p small and
+// the cell far). The one loop of texton noise (noise.glsl) and texton noise mixing
+// (texton_mix/evaluate.glsl): each defines texton_impulse, which maps a point (the origin cell,
+// the point's cell relative to it, its index in the cell, (u, v) in the cell) to its TextonImpulse.
+TextonImpulse texton_impulse(uvec2 origin_cell, ivec2 cell, uint index, vec2 uv, uint seed);
+
+vec4 texton_sum_impulses(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
+  int top_level = TEXTON_LEVELS - 1;
+  int coarse = min(f.level + 1, top_level);
+  float probe_extent = 0.5 * float(f.probes - 1) * max(abs(f.probe_step.x), abs(f.probe_step.y));
+  float kernel_reach = f.level_blend > 0.0 ? max(TEXTON_LEVEL_HALF_WIDTH[f.level],
+                                                 TEXTON_LEVEL_HALF_WIDTH[coarse])
+                                           : TEXTON_LEVEL_HALF_WIDTH[f.level];
+  float reach = kernel_reach + probe_extent;
+  float probe_weight = 1.0 / float(f.probes);
+  vec4 acc = vec4(0.0);
+  int first_x = int(floor((p.x - reach) / TEXTON_CELL_SIZE));
+  int last_x = int(floor((p.x + reach) / TEXTON_CELL_SIZE));
+  int first_y = int(floor((p.y - reach) / TEXTON_CELL_SIZE));
+  int last_y = int(floor((p.y + reach) / TEXTON_CELL_SIZE));
+  for (int cell_y = first_y; cell_y <= last_y; ++cell_y) {
+    float offset_y = p.y - float(cell_y) * TEXTON_CELL_SIZE;
+    for (int cell_x = first_x; cell_x <= last_x; ++cell_x) {
+      float offset_x = p.x - float(cell_x) * TEXTON_CELL_SIZE;
+      CounterRng rng = CounterRng(cell_key(origin_cell.x + uint(cell_x),
+                                           origin_cell.y + uint(cell_y), seed, STREAM_POINTS),
+                                  0u);
+      uint impacts = texton_poisson_count(rng);
+      for (uint n = 0u; n < impacts; ++n) {
+        float u = rng_uniform(rng);
+        float v = rng_uniform(rng);
+        TextonImpulse impulse =
+            texton_impulse(origin_cell, ivec2(cell_x, cell_y), n, vec2(u, v), seed);
+        float dx = offset_x - u * TEXTON_CELL_SIZE;
+        float dy = offset_y - v * TEXTON_CELL_SIZE;
+#ifdef TEXTON_TEXTURE_FILTER
+        // `render --gl-filter hardware` (hardware.glsl, texton noise only): one mip-mapped,
+        // anisotropic texture fetch of the texton instead of the exact levels and probes.
+        acc += impulse.weight * texton_texture_fetch(dx, dy);
+#else
+        if (f.probes == 1 && f.level_blend == 0.0) {
+          texton_accumulate(impulse.atlas, f.level, dx, dy, impulse.weight, acc);
+          continue;
+        }
+        for (int k = 0; k < f.probes; ++k) {
+          float shift = float(k) + 0.5 - 0.5 * float(f.probes);
+          float px = dx + shift * f.probe_step.x;
+          float py = dy + shift * f.probe_step.y;
+          texton_accumulate(impulse.atlas, f.level, px, py,
+                            impulse.weight * probe_weight * (1.0 - f.level_blend), acc);
+          if (f.level_blend > 0.0)
+            texton_accumulate(impulse.atlas, coarse, px, py,
+                              impulse.weight * probe_weight * f.level_blend, acc);
+        }
+#endif
+      }
+    }
+  }
+  return acc;
+}
