@@ -423,8 +423,11 @@ void TilingModel::evaluate_triplanar(std::span<const SurfacePoint> points, doubl
     for (int c = 0; c < channels; ++c) g[c] = static_cast<float>(acc[c] * inverse_norm + mean[c]);
     // One T^-1 look-up, prefiltered for the w^2-weighted mean of the planes' levels: the blend's
     // variance is the w^2-weighted mean of the planes' (eq. 13), so is, to first order, the
-    // residual variance r^2 the prefiltered table assumes (see prefilter_kernel); the dominant
-    // plane's level alone ignores a coarser plane's loss (measured in docs/methods/tiling.md).
+    // residual variance r^2 the prefiltered table assumes (see prefilter_kernel). It is
+    // continuous where the dominant plane changes (the dominant plane's level jumps there).
+    // Measured (metal_grey_256, normal (1, 0.5, 0), footprint 8 x 2 pixels, mean against a 12 x 12
+    // supersampled reference): bias -0.0003 (w^2), -0.0003 (dominant plane), -0.0010 (w),
+    // -0.0144 (finest level: a coarse plane's values read through too sharp a table).
     lod /= weight_squares;
     const int level = std::min(static_cast<int>(lod), level_count() - 1);
     const LevelOfDetail look_up{level, static_cast<float>(lod - level)};
