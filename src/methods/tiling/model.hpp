@@ -118,8 +118,8 @@ class TilingModel {
   void evaluate_triplanar(std::span<const SurfacePoint> points, double sharpness,
                           std::uint32_t seed, ImageView<float> out) const noexcept;
   // The seed of plane k's patches: cell_key(k, 0, seed, Stream::offsets), a hash, so the three
-  // planes' streams are distinct from each other and from the planar seeds seed, seed + 1, ...
-  // (the linear baseline's planes use seed + k).
+  // planes' streams differ from each other and are unrelated to the planar seeds seed, seed + 1,
+  // ... (the linear baseline's planes use seed + k: plane 1 of seed s is plane 0 of seed s + 1).
   static std::uint32_t triplanar_seed(int plane, std::uint32_t seed) noexcept {
     return cell_key(plane, 0, seed, Stream::offsets);
   }
