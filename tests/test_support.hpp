@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "model/model_record.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/image.hpp"
+#include "stochtex/surface.hpp"
 
 namespace stochtex::test_support {
 
@@ -80,6 +83,39 @@ void expect_corruptions_rejected(
     expect_record_rejected<Method>(
         record, name + "[" + std::to_string(edit.first) + "] = " + std::to_string(edit.second));
   }
+}
+
+// `count` points of a sphere of radius `radius` centred on the origin, normals drawn from
+// std::mt19937(seed), each with a frame (tangent: the normal crossed with the axis it is least
+// aligned with) and a footprint of `along` pixels along the tangent and `across` along n x t.
+inline std::vector<SurfacePoint> sphere_points(int count, double radius, double along,
+                                               double across, unsigned seed) {
+  std::vector<SurfacePoint> points;
+  std::mt19937 engine(seed);
+  std::normal_distribution<double> normal;
+  const auto unit = [](Vec3d v) {
+    const double length = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    return Vec3d{v.x / length, v.y / length, v.z / length};
+  };
+  const auto cross = [](const Vec3d& a, const Vec3d& b) {
+    return Vec3d{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+  };
+  for (int i = 0; i < count; ++i) {
+    // One draw per statement: the order of the draws must not depend on evaluation order.
+    const double x = normal(engine);
+    const double y = normal(engine);
+    const double z = normal(engine);
+    const Vec3d n = unit({x, y, z});
+    const Vec3d t =
+        unit(cross(n, std::abs(n.x) < 0.9 ? Vec3d{1.0, 0.0, 0.0} : Vec3d{0.0, 1.0, 0.0}));
+    const Vec3d b = cross(n, t);
+    points.push_back({{radius * n.x, radius * n.y, radius * n.z},
+                      n,
+                      t,
+                      {along * t.x, along * t.y, along * t.z},
+                      {across * b.x, across * b.y, across * b.z}});
+  }
+  return points;
 }
 
 }  // namespace stochtex::test_support

@@ -7,12 +7,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
 #include "stochtex/render.hpp"
+#include "stochtex/surface.hpp"
 
 namespace stochtex {
 
@@ -64,6 +66,37 @@ class GlRenderer {
 // One render with a renderer made for it.
 void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
                const GpuRenderOptions& options = {});
+
+// Surface points (stochtex/surface.hpp) on the GPU: evaluate_surface() through the method's GLSL
+// surface function (today the triplanar mapping of tiling, stochtex_tiling_triplanar), the CPU's
+// output to float rounding (tested). Positions are floats on the GPU: keep them below ~1e4
+// exemplar pixels for full precision. Linear triplanar mapping and surface noise have no GLSL yet.
+bool gl_supports_mapping(const Model& model, SurfaceMapping mapping);
+
+// A model made ready for surface evaluation on the GPU (an OpenGL context and the model's data;
+// each mapping's program compiled on first use). Use it from one thread.
+class GlSurfaceEvaluator {
+ public:
+  // Throws stochtex::Error when no OpenGL 4.5 context can be made.
+  explicit GlSurfaceEvaluator(const Model& model);
+  ~GlSurfaceEvaluator();
+  GlSurfaceEvaluator(const GlSurfaceEvaluator&) = delete;
+  GlSurfaceEvaluator& operator=(const GlSurfaceEvaluator&) = delete;
+
+  // Checks its arguments as evaluate_surface() does (std::invalid_argument), then throws
+  // stochtex::Error when the mapping has no GLSL for this method (gl_supports_mapping).
+  void evaluate(std::span<const SurfacePoint> points, const SurfaceOptions& options,
+                std::uint32_t seed, ImageView<float> out);
+
+ private:
+  struct Compiled;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// One evaluation with an evaluator made for it.
+void evaluate_surface_gl(const Model& model, std::span<const SurfacePoint> points,
+                         const SurfaceOptions& options, std::uint32_t seed, ImageView<float> out);
 
 // Which GLSL `stochtex export-shader` writes (`--variant`):
 //   exact: the `--gl-filter exact` evaluator: float32 data read with texelFetch, the shader's own

@@ -17,6 +17,7 @@
 #include <concepts>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -27,6 +28,7 @@
 #include "gl/program.hpp"
 #include "stochtex/gpu.hpp"
 #include "stochtex/render.hpp"
+#include "stochtex/surface.hpp"
 
 namespace stochtex::gl {
 
@@ -63,6 +65,29 @@ concept HasTwin = requires(const MethodModel& model) {
   {std::span<const GlslConstant>(Twin<MethodModel>::kConstants)};
   { Twin<MethodModel>::pass(model) } -> std::same_as<std::unique_ptr<Pass>>;
   { Twin<MethodModel>::shader(model, ShaderVariant::exact) } -> std::same_as<ExportParts>;
+};
+
+// A method's GLSL surface function for one mapping (stochtex/surface.hpp), for the GL surface
+// evaluator (surface_gl.cpp, surface.glsl) and engines that call it on meshes. A twin opts in
+// with
+//   static std::optional<SurfaceShader> surface_shader(const m::MModel&, SurfaceMapping);
+// (std::nullopt: no GLSL for that mapping), found by HasSurfaceTwin.
+struct SurfaceShader {
+  // GLSL, all but `#version`: the method's library reading its data from the storage buffer at
+  // binding 0 (`data`), its constants and its surface function.
+  std::string library;
+  std::vector<float> data;
+  // A GLSL expression of the vec4 value at one point, from the vec3 `position`, `normal`,
+  // `tangent`, `dpdx`, `dpdy` (model space), the uint `seed` and the float `parameter`
+  // (SurfaceOptions::triplanar_sharpness for the triplanar mappings, surface_mni for surface).
+  std::string call;
+};
+
+template <typename MethodModel>
+concept HasSurfaceTwin = requires(const MethodModel& model) {
+  {
+    Twin<MethodModel>::surface_shader(model, SurfaceMapping::triplanar)
+    } -> std::same_as<std::optional<SurfaceShader>>;
 };
 
 // Whether every alternative of a std::variant of method models has a twin.

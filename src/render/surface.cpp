@@ -6,7 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/triplanar.hpp"
 #include "model/model_data.hpp"
+#include "render/surface_arguments.hpp"
 #include "stochtex/render.hpp"
 
 namespace stochtex {
@@ -54,22 +56,6 @@ bool valid_point(const SurfacePoint& p) {
          std::abs(dot(p.normal, p.normal) - 1.0) <= kTolerance &&
          std::abs(dot(p.tangent, p.tangent) - 1.0) <= kTolerance &&
          std::abs(dot(p.normal, p.tangent)) <= kTolerance;
-}
-
-// The weights of the projections on the axis planes (y,z), (z,x), (x,y): |n_k|^sharpness,
-// normalised to sum 1.
-std::array<double, 3> triplanar_weights(const Vec3d& normal, double sharpness) {
-  std::array<double, 3> w = {std::pow(std::abs(normal.x), sharpness),
-                             std::pow(std::abs(normal.y), sharpness),
-                             std::pow(std::abs(normal.z), sharpness)};
-  const double total = w[0] + w[1] + w[2];
-  for (double& v : w) v /= total;
-  return w;
-}
-
-// Position and footprint of a point projected on axis plane k.
-Vec2d on_plane(const Vec3d& v, int k) {
-  return k == 0 ? Vec2d{v.y, v.z} : k == 1 ? Vec2d{v.z, v.x} : Vec2d{v.x, v.y};
 }
 
 // Linear triplanar mapping for any method: each plane its own seed stream (seed + k), point
@@ -148,8 +134,8 @@ bool supports_mapping(const Model& model, SurfaceMapping mapping) {
       model.data().model);
 }
 
-void evaluate_surface(const Model& model, std::span<const SurfacePoint> points,
-                      const SurfaceOptions& options, std::uint32_t seed, ImageView<float> out) {
+void check_surface_arguments(const Model& model, std::span<const SurfacePoint> points,
+                             const SurfaceOptions& options, ImageView<float> out) {
   if (model.empty()) throw std::invalid_argument("evaluate_surface: the model is empty");
   if (!supports_mapping(model, options.mapping))
     throw std::invalid_argument("evaluate_surface: " + std::string(model.method()) +
@@ -167,6 +153,11 @@ void evaluate_surface(const Model& model, std::span<const SurfacePoint> points,
     throw std::invalid_argument(
         "evaluate_surface: a point is not finite, beyond +-2^32 exemplar pixels, or its normal "
         "and tangent are not orthonormal");
+}
+
+void evaluate_surface(const Model& model, std::span<const SurfacePoint> points,
+                      const SurfaceOptions& options, std::uint32_t seed, ImageView<float> out) {
+  check_surface_arguments(model, points, options, out);
   std::visit(
       [&](const auto& m) {
         using M = std::decay_t<decltype(m)>;

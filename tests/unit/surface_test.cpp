@@ -58,25 +58,7 @@ SurfacePoint with_frame(const Vec3d& position, Vec3d n) {
 
 // Points spread over a sphere of radius 40 with a frame each, and a footprint of 0.7 pixel.
 std::vector<SurfacePoint> sphere_points(int count) {
-  std::vector<SurfacePoint> points;
-  std::mt19937 engine(5);
-  std::normal_distribution<double> normal;
-  for (int i = 0; i < count; ++i) {
-    Vec3d n{normal(engine), normal(engine), normal(engine)};
-    const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-    n = {n.x / length, n.y / length, n.z / length};
-    // A tangent: the normal crossed with the axis it is least aligned with.
-    const Vec3d axis = std::abs(n.x) < 0.9 ? Vec3d{1.0, 0.0, 0.0} : Vec3d{0.0, 1.0, 0.0};
-    Vec3d t{n.y * axis.z - n.z * axis.y, n.z * axis.x - n.x * axis.z, n.x * axis.y - n.y * axis.x};
-    const double t_length = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
-    t = {t.x / t_length, t.y / t_length, t.z / t_length};
-    points.push_back({{40.0 * n.x, 40.0 * n.y, 40.0 * n.z},
-                      n,
-                      t,
-                      {0.7 * t.x, 0.7 * t.y, 0.7 * t.z},
-                      {0.0, 0.0, 0.0}});
-  }
-  return points;
+  return test_support::sphere_points(count, 40.0, 0.7, 0.0, 5);
 }
 
 ImageF evaluate_points(const Model& model, std::span<const SurfacePoint> points,

@@ -21,6 +21,7 @@
 #include "methods/tiling/params.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/stochtex.hpp"
+#include "stochtex/surface.hpp"
 #include "test_support.hpp"
 
 namespace stochtex::tiling {
@@ -612,21 +613,33 @@ TEST(TilingTriplanar, AnAxisNormalIsThePlanarNoiseAndABlendKeepsTheRange) {
   const Model model = analyse(structured_exemplar(48, 3, 13));
   const TilingModel& tiling = tiling_of(model);
   const std::uint32_t seed = 21;
+  std::vector<SurfacePoint> axis;
+  std::vector<SurfacePoint> blended;
   for (int k = 0; k < 50; ++k) {
     const Vec3d position{3.7 * k, -2.1 * k + 5.0, 0.9 * k};
-    float out[3];
-    triplanar(tiling, position, {0.0, 0.0, -1.0}, 4.0, seed, out);
+    // A footprint of 2.5 pixels along x: the (x, y) plane reads level 1 of the pyramid.
+    axis.push_back({position, {0.0, 0.0, -1.0}, {1.0, 0.0, 0.0}, {2.5, 0.0, 0.0}, {}});
+    blended.push_back({position, {0.5, 0.6, 0.6244998}, {0.0, 0.7211103, -0.6928203}, {}, {}});
+  }
+  SurfaceOptions options;
+  options.mapping = SurfaceMapping::triplanar;
+  ImageF out(50, 1, 3);
+  evaluate_surface(model, axis, options, seed, out.view());
+  for (int k = 0; k < 50; ++k) {
+    const Footprint footprint{{2.5, 0.0}, {0.0, 0.0}};
+    const LevelOfDetail lod = tiling.level_of_detail(&footprint);
     float g[3];
     float planar[3];
-    tiling.blended_gaussian({position.x, position.y}, {}, cell_key(2, 0, seed, Stream::offsets), g);
-    tiling.inverse_transform(g, {}, planar);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(out[c], planar[c], 1e-5);
-    triplanar(tiling, position, {0.5, 0.6, 0.62}, 4.0, seed, out);
-    for (int c = 0; c < 3; ++c) {
-      EXPECT_TRUE(std::isfinite(out[c]));
-      EXPECT_GE(out[c], -0.05f);
-      EXPECT_LE(out[c], 1.05f);
-    }
+    tiling.blended_gaussian({axis[k].position.x, axis[k].position.y}, lod,
+                            TilingModel::triplanar_seed(2, seed), g);
+    tiling.inverse_transform(g, lod, planar);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(out.at(k, 0, c), planar[c], 1e-5);
+  }
+  evaluate_surface(model, blended, options, seed, out.view());
+  for (const float value : out.pixels()) {
+    EXPECT_TRUE(std::isfinite(value));
+    EXPECT_GE(value, -0.05f);
+    EXPECT_LE(value, 1.05f);
   }
 }
 

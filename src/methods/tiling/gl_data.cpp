@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gl/shaders.hpp"
@@ -78,10 +80,19 @@ std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
   return random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
          reader + shader_source("methods/tiling/evaluate.glsl") +
          shader_source("methods/tiling/exact_fetch.glsl") +
-         shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/entry.glsl");
+         shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/entry.glsl") +
+         shader_source("methods/tiling/triplanar.glsl");
 }
 
 namespace {
+
+// The README's word on the triplanar entry point (triplanar.glsl, docs/shaders.md).
+constexpr std::string_view kTriplanarNote =
+    "The GLSL file also has `vec4 stochtex_tiling_triplanar(vec3 position, vec3 normal, vec3 "
+    "dpdx, vec3 dpdy,\nfloat sharpness, uint seed)`: triplanar histogram-preserving blending of a "
+    "surface point in exemplar\npixels (model space) with its unit normal, the screen derivatives "
+    "of the position and the weights'\nsharpness (4 by default); GLSL only (the other languages "
+    "keep what stochtex_tiling calls).";
 
 // An image of values in [0, 1] as a PNG of `bits` bits, or as float32 EXR where a value falls
 // outside (an HDR exemplar's table).
@@ -146,7 +157,8 @@ ExportParts fast_shader(const tiling::TilingModel& model) {
       shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/hardware.glsl") +
       "#define stochtex_tiling tiling_at_level_of_detail\n" +
       shader_source("methods/tiling/entry.glsl") + "#undef stochtex_tiling\n" +
-      shader_source("methods/tiling/fast_entry.glsl");
+      shader_source("methods/tiling/fast_entry.glsl") +
+      shader_source("methods/tiling/triplanar.glsl");
   std::string notes =
       "Equal to the CPU render in distribution (mean, variance; tested), not pixel for pixel.\n"
       "`tiling_exemplar` is the Gaussianised exemplar (histogram blend; the exemplar itself for "
@@ -155,7 +167,7 @@ ExportParts fast_shader(const tiling::TilingModel& model) {
     notes +=
         "; `tiling_tables.exr` holds the 1-D tables of T^-1, one float array packed four "
         "floats per\ntexel, 1024 texels per row, read with texelFetch";
-  notes += ". Keep |p| below ~1e4 for full float precision.";
+  notes += ". Keep |p| below ~1e4 for full float precision.\n" + std::string(kTriplanarNote);
   return {tiling::TilingModel::kMethodName,
           "histogram-preserving tiling",
           "Histogram-preserving tiling and blending, fast variant (" +
@@ -182,7 +194,16 @@ ExportParts Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model,
           std::move(images),
           "`tiling_data.exr` is one float array (the exemplar's pyramid and look-up tables) packed "
           "four floats\nper texel, 1024 texels per row. Keep |p| below ~1e4 for full float "
-          "precision."};
+          "precision.\n" +
+              std::string(kTriplanarNote)};
+}
+
+std::optional<SurfaceShader> Twin<tiling::TilingModel>::surface_shader(
+    const tiling::TilingModel& model, SurfaceMapping mapping) {
+  if (mapping != SurfaceMapping::triplanar) return std::nullopt;
+  TilingGlsl glsl = tiling_glsl(model);
+  return SurfaceShader{tiling_library_source(glsl), std::move(glsl.data),
+                       "stochtex_tiling_triplanar(position, normal, dpdx, dpdy, parameter, seed)"};
 }
 
 }  // namespace stochtex::gl

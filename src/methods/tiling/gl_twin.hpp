@@ -6,6 +6,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,8 +32,9 @@ inline constexpr int kExemplarBits = 16;
 inline constexpr int kLutBits = 16;
 
 // The exact variant: random.glsl, kConstants, the model's constants, tiling_data_at() and tiling
-// evaluate.glsl, exact_fetch.glsl, blend.glsl and entry.glsl: all but `#version`. The data is the
-// storage buffer at binding 0, or the texture `stochtex_tiling_data` of pack_rgba(data).
+// evaluate.glsl, exact_fetch.glsl, blend.glsl, entry.glsl and triplanar.glsl: all but `#version`.
+// The data is the storage buffer at binding 0, or the texture `stochtex_tiling_data` of
+// pack_rgba(data).
 std::string tiling_library_source(const TilingGlsl& glsl,
                                   DataSource source = DataSource::storage_buffers);
 
@@ -47,6 +49,9 @@ struct Twin<tiling::TilingModel> {
   static std::unique_ptr<Pass> pass(const tiling::TilingModel& model);
   // fast: the library and textures of --gl-filter hardware (TilingPass compiles and binds them).
   static ExportParts shader(const tiling::TilingModel& model, ShaderVariant variant);
+  // triplanar: the exact library and stochtex_tiling_triplanar (triplanar.glsl).
+  static std::optional<SurfaceShader> surface_shader(const tiling::TilingModel& model,
+                                                     SurfaceMapping mapping);
 };
 
 }  // namespace stochtex::gl

@@ -107,6 +107,23 @@ class TilingModel {
   // for the variance and linear blends.
   void inverse_transform(const float* g, LevelOfDetail lod, float* out) const noexcept;
 
+  // Triplanar histogram-preserving blending (figure 16; evaluate_surface with
+  // SurfaceMapping::triplanar, src/render/surface.cpp): the tiling noise projected on the three
+  // axis planes (y,z), (z,x), (x,y) (core/triplanar.hpp), each plane's steps 1-2 at the level of
+  // detail of the 3-D footprint projected on it, blended with the normal's weights |n_k|^sharpness
+  // / sum by the variance-preserving operator of eq. (13) in Gaussian space, then one T^-1
+  // look-up (step 3) per point. Plane k draws its patches from the seed triplanar_seed(k, seed).
+  // `out` holds points.size() pixels in row-major order. noexcept, no allocation. The GLSL twin
+  // is stochtex_tiling_triplanar (triplanar.glsl).
+  void evaluate_triplanar(std::span<const SurfacePoint> points, double sharpness,
+                          std::uint32_t seed, ImageView<float> out) const noexcept;
+  // The seed of plane k's patches: cell_key(k, 0, seed, Stream::offsets), a hash, so the three
+  // planes' streams differ from each other and are unrelated to the planar seeds seed, seed + 1,
+  // ... (the linear baseline's planes use seed + k: plane 1 of seed s is plane 0 of seed s + 1).
+  static std::uint32_t triplanar_seed(int plane, std::uint32_t seed) noexcept {
+    return cell_key(plane, 0, seed, Stream::offsets);
+  }
+
  private:
   void inverse_at_level(const float* g, int level, float* out) const noexcept;
 
@@ -123,12 +140,5 @@ class TilingModel {
   std::vector<std::vector<float>> level_luts_;    // per level: lut_size^3 x 3, or empty
   std::vector<std::vector<float>> level_tables_;  // per level: table_count x table_size, or empty
 };
-
-// Triplanar histogram-preserving blending (figure 16): the tiling noise projected on the three
-// axis planes (y,z), (z,x), (x,y), blended with weights |n_axis|^sharpness / sum by the same
-// variance-preserving operator in Gaussian space, then one T^-1 look-up. Each plane draws its own
-// patches (its own seed). `out` gets model.channels() values. noexcept, no allocation.
-void triplanar(const TilingModel& model, Vec3d position, Vec3d normal, double sharpness,
-               std::uint32_t seed, float* out) noexcept;
 
 }  // namespace stochtex::tiling
