@@ -32,6 +32,7 @@ struct Options {
   std::string size = "512x512";
   std::uint32_t seed = 0;
   double texture_scale = 0.0;
+  SurfaceOptions surface;
   int threads = 0;
 };
 
@@ -82,6 +83,11 @@ int run(const Options& o) {
         "--camera must be AZIMUTH,ELEVATION[,DISTANCE] (degrees, degrees, framings) or "
         "EX,EY,EZ,TX,TY,TZ (eye and target in mesh units), not '" +
         o.camera + "'");
+  // CLI11's range checks let NaN through.
+  if (!std::isfinite(o.surface.surface_mni) || !std::isfinite(o.surface.triplanar_sharpness))
+    throw std::invalid_argument(fmt::format("--surface-mni {} and --sharpness {} must be numbers",
+                                            o.surface.surface_mni,
+                                            o.surface.triplanar_sharpness));
   std::optional<SurfaceMapping> mapping;
   if (o.mapping != "uv") mapping = mapping_from_name(o.mapping);
   const int threads = resolve_thread_count(o.threads);
@@ -107,6 +113,7 @@ int run(const Options& o) {
 
   MeshRenderOptions options;
   options.mapping = mapping;
+  options.surface = o.surface;
   options.texture_scale =
       o.texture_scale > 0.0 ? o.texture_scale : (mapping ? default_texture_scale(mesh) : 1024.0);
   options.threads = threads;
@@ -151,6 +158,17 @@ Command add_render_mesh_command(CLI::App& app) {
                    "exemplar pixels per mesh unit (per uv unit with --mapping uv); default: "
                    "1024 / the bounding box's largest side (1024 with uv)")
       ->check(CLI::Range(1e-9, 1e9));
+  command
+      ->add_option("--surface-mni", options->surface.surface_mni,
+                   "surface noise: mean number of impulses per texton-sized cube, lambda r^3 "
+                   "(texton paper section 6)")
+      ->capture_default_str()
+      ->check(CLI::Range(kMinSurfaceMni, kMaxSurfaceMni));
+  command
+      ->add_option("--sharpness", options->surface.triplanar_sharpness,
+                   "triplanar mappings: the weight of axis k is |n_k|^sharpness, normalised")
+      ->capture_default_str()
+      ->check(CLI::Range(kMinTriplanarSharpness, kMaxTriplanarSharpness));
   command->add_option("--threads", options->threads, "worker threads (0 = all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, kMaxThreads));

@@ -47,6 +47,12 @@ enum class SurfaceMapping { surface, triplanar, triplanar_linear };
 std::string_view mapping_name(SurfaceMapping mapping);
 SurfaceMapping mapping_from_name(std::string_view name);
 
+// The accepted ranges of SurfaceOptions' numbers.
+inline constexpr double kMinSurfaceMni = 1.0;
+inline constexpr double kMaxSurfaceMni = 1000.0;
+inline constexpr double kMinTriplanarSharpness = 1.0;
+inline constexpr double kMaxTriplanarSharpness = 64.0;
+
 struct SurfaceOptions {
   SurfaceMapping mapping = SurfaceMapping::surface;
   // Surface noise: the mean number of impulses per texton-sized cube, lambda r^3 (texton paper

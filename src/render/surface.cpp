@@ -98,6 +98,12 @@ void evaluate_triplanar_linear(const MethodModel& m, std::span<const SurfacePoin
   }
 }
 
+// "[low, high]" for whole-number bounds.
+std::string range_text(double low, double high) {
+  return "[" + std::to_string(static_cast<int>(low)) + ", " +
+         std::to_string(static_cast<int>(high)) + "]";
+}
+
 }  // namespace
 
 std::string_view mapping_name(SurfaceMapping mapping) {
@@ -141,10 +147,13 @@ void check_surface_arguments(const Model& model, std::span<const SurfacePoint> p
     throw std::invalid_argument("evaluate_surface: " + std::string(model.method()) +
                                 " models have no " + std::string(mapping_name(options.mapping)) +
                                 " mapping");
-  if (!(options.surface_mni >= 1.0 && options.surface_mni <= 1000.0))
-    throw std::invalid_argument("evaluate_surface: surface_mni must be within [1, 1000]");
-  if (!(options.triplanar_sharpness >= 1.0 && options.triplanar_sharpness <= 64.0))
-    throw std::invalid_argument("evaluate_surface: triplanar_sharpness must be within [1, 64]");
+  if (!(options.surface_mni >= kMinSurfaceMni && options.surface_mni <= kMaxSurfaceMni))
+    throw std::invalid_argument("evaluate_surface: surface_mni must be within " +
+                                range_text(kMinSurfaceMni, kMaxSurfaceMni));
+  if (!(options.triplanar_sharpness >= kMinTriplanarSharpness &&
+        options.triplanar_sharpness <= kMaxTriplanarSharpness))
+    throw std::invalid_argument("evaluate_surface: triplanar_sharpness must be within " +
+                                range_text(kMinTriplanarSharpness, kMaxTriplanarSharpness));
   if (out.channels != model.channels() ||
       static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) < points.size())
     throw std::invalid_argument("evaluate_surface: the output view must hold one pixel of " +

@@ -920,6 +920,27 @@ for method in $methods; do
     --model "$models/every_$method.stx" -o "$models/mesh_${method}_uv.pfm" --size 40x32 \
     --mapping uv --texture-scale 300
 done
+# The mappings of their own: surface noise (texton, gabor) on the scan, which has no uvs, and
+# histogram-preserving triplanar blending (tiling); threads change nothing.
+for method in texton gabor; do
+  for threads in 1 2; do
+    expect_ok "render-mesh $method surface, $threads threads" "$stochtex" render-mesh \
+      "$meshes/scan.obj" --model "$models/every_$method.stx" -o "$models/surface_${method}_$threads.pfm" \
+      --size 40x32 --mapping surface --surface-mni 30 --threads "$threads"
+  done
+  if cmp -s "$models/surface_${method}_1.pfm" "$models/surface_${method}_2.pfm"; then pass; else
+    fail "render-mesh $method surface, 1 and 2 threads" "the renders differ"
+  fi
+done
+expect_ok "render-mesh tiling triplanar" "$stochtex" render-mesh "$meshes/torus.obj" \
+  --model "$tiling_model" -o "$models/triplanar.png" --size 40x32 --mapping triplanar --sharpness 8
+expect_error "render-mesh --mapping triplanar for texton" 2 "texton models have no triplanar" \
+  "$stochtex" render-mesh "$meshes/scan.obj" --model "$models/every_texton.stx" -o "$out/x.png" \
+  --mapping triplanar
+expect_error "render-mesh --surface-mni 0" 2 "--surface-mni" "$stochtex" render-mesh \
+  "$meshes/scan.obj" --model "$models/every_texton.stx" -o "$out/x.png" --surface-mni 0
+expect_error "render-mesh --sharpness nan" 2 "--sharpness" "$stochtex" render-mesh \
+  "$meshes/scan.obj" --model "$tiling_model" -o "$out/x.png" --sharpness nan
 # A pure function of its arguments: threads change nothing, the seed and the camera do.
 for threads in 1 3; do
   expect_ok "render-mesh, $threads threads" "$stochtex" render-mesh "$meshes/torus.obj" \

@@ -643,6 +643,26 @@ TEST(TilingTriplanar, AnAxisNormalIsThePlanarNoiseAndABlendKeepsTheRange) {
   }
 }
 
+// Footprints far wider than the exemplar (a mesh seen at a grazing angle): every plane reads the
+// top level, and so must the one look-up at their w^2-weighted mean level, which can round past
+// the top (this read beyond the pyramid: render-mesh crashed on a torus with sharpness 8).
+TEST(TilingTriplanar, FootprintsBeyondThePyramidReadTheTopLevel) {
+  const Model model = analyse(structured_exemplar(48, 3, 13));
+  const std::vector<SurfacePoint> points = test_support::sphere_points(3000, 50.0, 3e4, 2e4, 6);
+  SurfaceOptions options;
+  options.mapping = SurfaceMapping::triplanar;
+  ImageF out(3000, 1, 3);
+  for (const double sharpness : {1.0, 4.0, 8.0, 40.0}) {
+    options.triplanar_sharpness = sharpness;
+    evaluate_surface(model, points, options, 5, out.view());
+    for (const float value : out.pixels()) {
+      ASSERT_TRUE(std::isfinite(value));
+      ASSERT_GE(value, -0.05f);
+      ASSERT_LE(value, 1.05f);
+    }
+  }
+}
+
 TEST(TilingRender, OutputIsIndependentOfThreadsTilesAndRegions) {
   const Model model = analyse(structured_exemplar(40, 3, 14));
   const Grid grid{{-13.0, 4.0}, 0.75, 70, 50};

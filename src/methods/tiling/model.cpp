@@ -428,9 +428,14 @@ void TilingModel::evaluate_triplanar(std::span<const SurfacePoint> points, doubl
     // Measured (metal_grey_256, normal (1, 0.5, 0), footprint 8 x 2 pixels, mean against a 12 x 12
     // supersampled reference): bias -0.0003 (w^2), -0.0003 (dominant plane), -0.0010 (w),
     // -0.0144 (finest level: a coarse plane's values read through too sharp a table).
+    // Each plane's level is at most the top one, but their mean may round past it: clamped there
+    // with no blend, as level_of_detail does (a blend at the top would read beyond the pyramid).
     lod /= weight_squares;
-    const int level = std::min(static_cast<int>(lod), level_count() - 1);
-    const LevelOfDetail look_up{level, static_cast<float>(lod - level)};
+    const int top = level_count() - 1;
+    const LevelOfDetail look_up =
+        lod >= top
+            ? LevelOfDetail{top, 0.0f}
+            : LevelOfDetail{static_cast<int>(lod), static_cast<float>(lod - static_cast<int>(lod))};
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
     inverse_transform(g, look_up, &out.at(x, y, 0));

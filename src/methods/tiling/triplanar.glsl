@@ -40,7 +40,9 @@ vec4 stochtex_tiling_triplanar(vec3 position, vec3 normal, vec3 dpdx, vec3 dpdy,
   }
   float inverse_norm = TILING_BLEND == 2 ? 1.0 : 1.0 / sqrt(weight_squares);
   vec4 g = acc * inverse_norm + TILING_BLEND_MEAN;
+  // The mean may round past the top level: clamped there with no blend (model.cpp).
   lod /= weight_squares;
-  int level = min(int(lod), TILING_LEVELS - 1);
+  if (lod >= float(TILING_LEVELS - 1)) return tiling_inverse(g, TILING_LEVELS - 1, 0.0);
+  int level = int(lod);
   return tiling_inverse(g, level, lod - float(level));
 }
