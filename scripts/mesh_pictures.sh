@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The pictures of docs/meshes.md: each shipped mesh (data/meshes, scripts/make_meshes.py) rendered
-# by `stochtex render-mesh` on the CPU with a tiling model of a corpus exemplar, into
-# docs/images/meshes/. Usage: bash scripts/mesh_pictures.sh [build-dir]
+# by `stochtex render-mesh` on the CPU with models of corpus exemplars, through each mapping of the
+# papers, into docs/images/meshes/. Usage: bash scripts/mesh_pictures.sh [build-dir]
 set -euo pipefail
 gallery=meshes
 source "$(dirname "$0")/gallery_common.sh"
@@ -18,3 +18,17 @@ meshes="$root/data/meshes"
   --size 512x384 --seed 1 --mapping uv --texture-scale 1536
 "$stochtex" render-mesh "$meshes/torus.obj" --model "$work/bricks.stx" -o "$out/torus_uv.png" \
   --size 512x384 --seed 1 --mapping uv --texture-scale 1536 --camera 20,35
+# Surface noise on the scan, which has no texture coordinates (texton paper figure 4): texton noise
+# (MNI 60 as in the paper) and Gabor noise by example, both of a corpus photo.
+"$stochtex" analyze "$textures/rock_sandstone_512.png" --method texton -o "$work/rock_texton.stx"
+"$stochtex" analyze "$textures/rock_sandstone_512.png" --method gabor -o "$work/rock_gabor.stx"
+for method in texton gabor; do
+  "$stochtex" render-mesh "$meshes/scan.obj" --model "$work/rock_$method.stx" \
+    -o "$out/scan_surface_$method.png" --size 512x384 --seed 1 --mapping surface
+done
+# Triplanar mapping (tiling paper figure 16): histogram-preserving against linear blending, where
+# the three projections overlap on the torus.
+for mapping in triplanar triplanar-linear; do
+  "$stochtex" render-mesh "$meshes/torus.obj" --model "$work/bricks.stx" \
+    -o "$out/torus_bricks_${mapping/-/_}.png" --size 512x384 --seed 1 --camera 20,35 --mapping "$mapping"
+done

@@ -16,6 +16,7 @@
 #include "model/model_record.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/image.hpp"
+#include "stochtex/stochtex.hpp"
 #include "stochtex/surface.hpp"
 
 namespace stochtex::test_support {
@@ -83,6 +84,16 @@ void expect_corruptions_rejected(
     expect_record_rejected<Method>(
         record, name + "[" + std::to_string(edit.first) + "] = " + std::to_string(edit.second));
   }
+}
+
+// A model of `method` (default parameters, seed 3) analysed from a 32 x 32 colour exemplar of
+// Gaussian white noise (mean 0.5, sd 0.1): small and quick to make.
+inline Model white_noise_model(std::string_view method) {
+  std::mt19937 engine(8);
+  std::normal_distribution<float> normal(0.5f, 0.1f);
+  ImageF exemplar(32, 32, 3);
+  for (float& value : exemplar.pixels()) value = normal(engine);
+  return analyze(method, exemplar.view(), {}, 3);
 }
 
 // `count` points of a sphere of radius `radius` centred on the origin, normals drawn from

@@ -24,16 +24,10 @@ using MeshTest = test_support::FolderTest;
 
 const std::string kMeshes = std::string(STOCHTEX_SOURCE_DIR) + "/data/meshes/";
 
-Model test_model(std::string_view method) {
-  std::mt19937 engine(8);
-  std::normal_distribution<float> normal(0.5f, 0.1f);
-  ImageF exemplar(32, 32, 3);
-  for (float& value : exemplar.pixels()) value = normal(engine);
-  return analyze(method, exemplar.view(), {}, 3);
-}
+using test_support::white_noise_model;
 
 const Model& tiling_model() {
-  static const Model model = test_model("tiling");
+  static const Model model = white_noise_model("tiling");
   return model;
 }
 
@@ -196,7 +190,7 @@ TEST(MeshRender, RefusesBeforeWork) {
   image.view().at(0, 0, 0) = 42.0f;
   MeshRenderOptions options;
   options.mapping = SurfaceMapping::surface;
-  EXPECT_THROW(render_mesh(test_model("lrp"), scan, camera, options, 0, image.view()),
+  EXPECT_THROW(render_mesh(white_noise_model("lrp"), scan, camera, options, 0, image.view()),
                std::invalid_argument);
   options.mapping = std::nullopt;  // uv, and the scan has none
   EXPECT_THROW(render_mesh(tiling_model(), scan, camera, options, 0, image.view()),

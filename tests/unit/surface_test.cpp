@@ -19,16 +19,10 @@
 namespace stochtex {
 namespace {
 
-Model test_model(std::string_view method) {
-  std::mt19937 engine(8);
-  std::normal_distribution<float> normal(0.5f, 0.1f);
-  ImageF exemplar(32, 32, 3);
-  for (float& value : exemplar.pixels()) value = normal(engine);
-  return analyze(method, exemplar.view(), {}, 3);
-}
+using test_support::white_noise_model;
 
 const Model& tiling_model() {
-  static const Model model = test_model("tiling");
+  static const Model model = white_noise_model("tiling");
   return model;
 }
 
@@ -41,7 +35,7 @@ const Model& surface_model(std::string_view method) {
     for (float& value : exemplar.pixels()) value = normal(engine);
     return analyze("texton", exemplar.view(), {{"support", 12}}, 3);
   }();
-  static const Model gabor = test_model("gabor");
+  static const Model gabor = white_noise_model("gabor");
   return method == "texton" ? texton : gabor;
 }
 
@@ -137,7 +131,7 @@ TEST(Surface, BadArgumentsAreRefusedBeforeAnyWork) {
 }
 
 TEST(Surface, AModelWithoutTheMappingIsRefused) {
-  const Model model = test_model("lrp");
+  const Model model = white_noise_model("lrp");
   EXPECT_FALSE(supports_mapping(model, SurfaceMapping::surface));
   EXPECT_FALSE(supports_mapping(model, SurfaceMapping::triplanar));
   EXPECT_TRUE(supports_mapping(model, SurfaceMapping::triplanar_linear));

@@ -3,27 +3,19 @@
 // renders finite values with linear triplanar mapping and, when it has texture coordinates, with
 // them. Seeds: tests/fuzz/corpus/mesh. Built by scripts/sanitize.sh.
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "input_file.hpp"
 #include "stochtex/mesh_render.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace {
-
-// read_mesh takes a path: each input goes to one file of this process.
-const std::string& input_path() {
-  static const std::string path = "/tmp/stochtex-mesh-fuzzer-" + std::to_string(getpid()) + ".obj";
-  return path;
-}
 
 const stochtex::Model& model() {
   static const stochtex::Model tiling = [] {
@@ -38,12 +30,9 @@ const stochtex::Model& model() {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  std::FILE* file = std::fopen(input_path().c_str(), "wb");
-  if (file == nullptr) std::abort();
-  if (size > 0 && std::fwrite(data, 1, size, file) != size) std::abort();
-  std::fclose(file);
+  const std::string& input_path = write_input_file("mesh", ".obj", data, size);
   try {
-    const stochtex::Mesh mesh = stochtex::read_mesh(input_path());
+    const stochtex::Mesh mesh = stochtex::read_mesh(input_path);
     stochtex::ImageF image(5, 4, 3);
     stochtex::MeshRenderOptions options;
     options.threads = 1;
