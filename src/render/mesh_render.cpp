@@ -21,9 +21,6 @@ constexpr int kTile = 32;
 // A triangle whose screen box covers more tiles than this is tested by every tile instead of being
 // listed in each, so that the bins hold at most this many entries per triangle.
 constexpr std::size_t kMaxTilesPerTriangle = 64;
-// Footprint components are clamped to this length (exemplar pixels): a footprint wider than any
-// exemplar already filters to the mean, and grazing angles (the ray along the plane) stay finite.
-constexpr double kMaxFootprint = 65536.0;
 constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
 
 double radians(double degrees) {
@@ -212,8 +209,10 @@ Fragment make_fragment(const PixelRays& rays, const Mesh& mesh, const Hit& hit, 
   return f;
 }
 
-void check_arguments(const Model& model, const Mesh& mesh, const MeshRenderOptions& options,
-                     ImageView<float> out) {
+}  // namespace
+
+void check_mesh_render_arguments(const Model& model, const Mesh& mesh,
+                                 const MeshRenderOptions& options, ImageView<float> out) {
   if (model.empty()) throw std::invalid_argument("render_mesh: the model is empty");
   if (out.channels != model.channels() || out.width < 1 || out.height < 1)
     throw std::invalid_argument("render_mesh: the output must be an image of the model's " +
@@ -240,8 +239,6 @@ void check_arguments(const Model& model, const Mesh& mesh, const MeshRenderOptio
         "the texture scale puts the mesh beyond 2^32 exemplar pixels from the origin; use a "
         "smaller texture scale");
 }
-
-}  // namespace
 
 PixelRays pixel_rays(const Camera& camera, int width, int height) {
   const Vec3d view = camera.target - camera.eye;
@@ -273,9 +270,12 @@ PlaneHit plane_differentials(const PixelRays& rays, const Vec3d& d, double t, co
 
 double shading(const PixelRays& rays, const Vec3d& view_direction, const Vec3d& normal) {
   const Vec3d facing = dot(normal, view_direction) > 0.0 ? normal * -1.0 : normal;
-  const Vec3d light = normalized(rays.step_x * -0.5 + rays.step_y * -0.8 +
-                                 rays.forward * (-0.6 * length(rays.step_x)));
-  return kAmbient + (1.0 - kAmbient) * std::max(0.0, dot(facing, light));
+  return kAmbient + (1.0 - kAmbient) * std::max(0.0, dot(facing, light_direction(rays)));
+}
+
+Vec3d light_direction(const PixelRays& rays) {
+  return normalized(rays.step_x * -0.5 + rays.step_y * -0.8 +
+                    rays.forward * (-0.6 * length(rays.step_x)));
 }
 
 Camera orbit_camera(const Mesh& mesh, double azimuth_degrees, double elevation_degrees,
@@ -310,7 +310,7 @@ double default_texture_scale(const Mesh& mesh) {
 
 void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
                  const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out) {
-  check_arguments(model, mesh, options, out);
+  check_mesh_render_arguments(model, mesh, options, out);
   const PixelRays rays = pixel_rays(camera, out.width, out.height);
   SurfaceOptions surface = options.surface;
   if (options.mapping) surface.mapping = *options.mapping;

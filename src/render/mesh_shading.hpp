@@ -46,5 +46,18 @@ PlaneHit plane_differentials(const PixelRays& rays, const Vec3d& d, double t, co
 // turned towards the viewer first (both sides of a surface are lit, holes show the inside).
 inline constexpr double kAmbient = 0.3;
 double shading(const PixelRays& rays, const Vec3d& view_direction, const Vec3d& normal);
+// The light's unit direction of shading(): towards the light, in world space.
+Vec3d light_direction(const PixelRays& rays);
+
+// Footprint components are clamped to this length (exemplar pixels): a footprint wider than any
+// exemplar already filters to the mean, and grazing angles (the ray along the plane) stay finite.
+inline constexpr double kMaxFootprint = 65536.0;
+
+// render_mesh()'s checks of its arguments, shared by every backend (std::invalid_argument, one
+// sentence): an empty model, an output of other channels, a mapping the model lacks, the uv
+// mapping on a mesh without uvs, a texture scale that is not positive or puts the mesh beyond
+// kPositionLimit.
+void check_mesh_render_arguments(const Model& model, const Mesh& mesh,
+                                 const MeshRenderOptions& options, ImageView<float> out);
 
 }  // namespace stochtex
