@@ -1,21 +1,34 @@
 // The fragment shader of the GL mesh renderer (mesh_gl.cpp), the way an engine calls an exported
-// shader: the surface point from the interpolated position, normal and uv, its screen derivatives
-// from dFdx and dFdy, the method's GLSL function, and the CPU's shading (src/render/
-// mesh_shading.hpp, docs/meshes.md). Requires, before it, MESH_AMBIENT and MESH_MAX_FOOTPRINT
-// (from the C++ constants), the method's library, and either STOCHTEX_MESH_UV (the 2-D entry
-// stochtex_<method>, called at the mesh's uv) or STOCHTEX_SURFACE_CALL (a gl::SurfaceShader's
-// call expression, from position, normal, tangent, dpdx, dpdy, seed and parameter).
+// shader: the surface point from the interpolated position, normal and uv, its footprints from the
+// CPU renderer's exact ray differentials on the triangle's plane (src/render/mesh_shading.hpp,
+// docs/meshes.md), the method's GLSL function, and the CPU's shading. Requires, before it,
+// MESH_AMBIENT and MESH_MAX_FOOTPRINT (from the C++ constants), the method's library, and either
+// STOCHTEX_MESH_UV (the 2-D entry stochtex_<method>, called at the mesh's uv) or
+// STOCHTEX_SURFACE_CALL (a gl::SurfaceShader's call expression, from position, normal, tangent,
+// dpdx, dpdy, seed and parameter).
 
 in vec3 mesh_position;
 in vec3 mesh_normal;
 in vec2 mesh_uv;
 
 uniform vec3 mesh_eye;
+// The CPU's PixelRays: the ray through the picture's pixel (x, y) has the direction
+// forward + (x + 1/2 - width/2) step_x + (y + 1/2 - height/2) step_y; mesh_pixel_offset is the
+// tile's origin less half the picture (gl_FragCoord is the tile's pixel centre, rows unflipped).
+uniform vec3 mesh_forward;
+uniform vec3 mesh_step_x;
+uniform vec3 mesh_step_y;
+uniform vec2 mesh_pixel_offset;
 uniform vec3 mesh_light;  // unit, towards the light
 uniform float mesh_texture_scale;
 uniform int mesh_colours;  // channels shaded; the others (alpha) pass through
 uniform uint seed;
 uniform float parameter;
+
+// Per triangle (gl_PrimitiveID), computed in double by mesh_gl.cpp: the unit normal of its plane,
+// and the rows of the linear map from a displacement in its plane to the uv's displacement
+// (barycentric_gradients in mesh_shading.hpp through the corners' uvs; zero without uvs).
+layout(std430, binding = 7) readonly buffer MeshFaces { vec4 mesh_faces[]; };
 
 out vec4 colour;
 
@@ -34,22 +47,30 @@ vec3 mesh_clamp_length(vec3 v) {
 
 vec2 mesh_clamp_length(vec2 v) {
   float l = length(v);
-  return l > MESH_MAX_FOOTPRINT ? v * (MESH_MAX_FOOTPRINT / l) : v;
+  return l > MESH_MAX_FOOTPRINT ? v * MESH_MAX_FOOTPRINT / l : v;
 }
 
 void main() {
-  // Derivatives first, in uniform control flow.
+  vec3 face = mesh_faces[3 * gl_PrimitiveID].xyz;
+  // The pixel's ray and its parameter t at the fragment (d . forward = 1), and the ray
+  // differentials on the plane (plane_differentials): dp/dx = t (step_x - (n.step_x / n.d) d).
+  vec3 d = mesh_forward + mesh_step_x * (gl_FragCoord.x + mesh_pixel_offset.x) +
+           mesh_step_y * (gl_FragCoord.y + mesh_pixel_offset.y);
+  float t = dot(mesh_position - mesh_eye, mesh_forward);
+  float nd = dot(face, d);
+  vec3 plane_dpdx = (mesh_step_x - d * (dot(face, mesh_step_x) / nd)) * t;
+  vec3 plane_dpdy = (mesh_step_y - d * (dot(face, mesh_step_y) / nd)) * t;
   vec3 position = mesh_position * mesh_texture_scale;
-  vec3 dpdx = mesh_clamp_length(dFdx(position));
-  vec3 dpdy = mesh_clamp_length(dFdy(position));
-  vec2 uv = mesh_uv * mesh_texture_scale;
-  vec2 duvdx = mesh_clamp_length(dFdx(uv));
-  vec2 duvdy = mesh_clamp_length(dFdy(uv));
-  // The face's normal where the interpolated one cancels: both derivatives lie in its plane.
-  vec3 face = cross(dFdx(mesh_position), dFdy(mesh_position));
-  vec3 normal = length(mesh_normal) > 1e-6 ? normalize(mesh_normal) : normalize(face);
+  vec3 dpdx = mesh_clamp_length(plane_dpdx * mesh_texture_scale);
+  vec3 dpdy = mesh_clamp_length(plane_dpdy * mesh_texture_scale);
+  vec3 normal = length(mesh_normal) > 1e-6 ? normalize(mesh_normal) : face;
   vec3 tangent = mesh_surface_tangent(normal);
 #ifdef STOCHTEX_MESH_UV
+  mat2x3 uv_map = mat2x3(mesh_faces[3 * gl_PrimitiveID + 1].xyz,
+                         mesh_faces[3 * gl_PrimitiveID + 2].xyz);
+  vec2 uv = mesh_uv * mesh_texture_scale;
+  vec2 duvdx = mesh_clamp_length(plane_dpdx * uv_map * mesh_texture_scale);
+  vec2 duvdy = mesh_clamp_length(plane_dpdy * uv_map * mesh_texture_scale);
   vec4 value = STOCHTEX_MESH_UV(uv, duvdx, duvdy, seed);
 #else
   vec4 value = STOCHTEX_SURFACE_CALL;

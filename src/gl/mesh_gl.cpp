@@ -3,8 +3,8 @@
 // and each fragment textured the way an engine uses `export-shader`: the uv mapping calls the
 // exported GLSL's stochtex_<method>(p, dpdx, dpdy, seed) with its textures bound as the README
 // says, the surface mappings the twin's GLSL surface function (gl::Twin<M>::surface_shader);
-// screen derivatives from dFdx/dFdy (mesh_fragment.glsl). The image is drawn in tiles of at most
-// kTile pixels a side (even, so the 2x2 quads of dFdx, and the output, do not depend on it).
+// footprints from the CPU's ray differentials on each triangle's plane (mesh_fragment.glsl). The
+// image is drawn in tiles of at most kTile pixels a side.
 
 #include <algorithm>
 #include <array>
@@ -61,11 +61,35 @@ Texturing texturing(const Model& model, const MeshRenderOptions& options) {
           std::move(shader->data)};
 }
 
-// The mesh as one vertex buffer of (position, normal, uv) floats and one index buffer.
+// The mesh as one vertex buffer of (position, normal, uv) floats, one index buffer and the faces'
+// storage buffer of mesh_fragment.glsl: per triangle the unit normal and the two rows of the map
+// from a displacement in its plane to the uv's, each padded to a vec4, computed in double.
 struct MeshBuffers {
   gl::Buffer vertices;
   gl::Buffer indices;
+  gl::Buffer faces;
   GLuint vertex_array = 0;
+
+  static std::vector<float> face_data(const Mesh& mesh) {
+    std::vector<float> values;
+    values.reserve(mesh.triangles.size() * 12);
+    for (const auto& [a, b, c] : mesh.triangles) {
+      const Vec3d e1 = mesh.positions[b] - mesh.positions[a];
+      const Vec3d e2 = mesh.positions[c] - mesh.positions[a];
+      Vec3d row_u, row_v;
+      if (!mesh.uvs.empty()) {
+        const BarycentricGradients g = barycentric_gradients(e1, e2);
+        const Vec2d& t0 = mesh.uvs[a];
+        const Vec2d u1 = {mesh.uvs[b].x - t0.x, mesh.uvs[b].y - t0.y};
+        const Vec2d u2 = {mesh.uvs[c].x - t0.x, mesh.uvs[c].y - t0.y};
+        row_u = g.du * u1.x + g.dv * u2.x;
+        row_v = g.du * u1.y + g.dv * u2.y;
+      }
+      for (const Vec3d& v : {normalized(cross(e1, e2)), row_u, row_v})
+        for (const double x : {v.x, v.y, v.z, 0.0}) values.push_back(static_cast<float>(x));
+    }
+    return values;
+  }
 
   static std::vector<float> interleaved(const Mesh& mesh) {
     std::vector<float> values;
@@ -82,7 +106,8 @@ struct MeshBuffers {
 
   explicit MeshBuffers(const Mesh& mesh)
       : vertices(mesh.positions.size() * 8 * sizeof(float), interleaved(mesh).data()),
-        indices(mesh.triangles.size() * 3 * sizeof(std::uint32_t), mesh.triangles.data()) {
+        indices(mesh.triangles.size() * 3 * sizeof(std::uint32_t), mesh.triangles.data()),
+        faces(mesh.triangles.size() * 12 * sizeof(float), face_data(mesh).data()) {
     glCreateVertexArrays(1, &vertex_array);
     glVertexArrayVertexBuffer(vertex_array, 0, vertices.id(), 0, 8 * sizeof(float));
     glVertexArrayElementBuffer(vertex_array, indices.id());
@@ -183,11 +208,15 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
   const MeshBuffers buffers(mesh);
   const int channels = model.channels();
   const int colours = channels == 2 || channels == 4 ? channels - 1 : channels;
-  const Vec3d light = light_direction(rays);
-  glProgramUniform3f(program.id(), program.location("mesh_eye"), static_cast<float>(rays.eye.x),
-                     static_cast<float>(rays.eye.y), static_cast<float>(rays.eye.z));
-  glProgramUniform3f(program.id(), program.location("mesh_light"), static_cast<float>(light.x),
-                     static_cast<float>(light.y), static_cast<float>(light.z));
+  const auto set_vector = [&](const char* name, const Vec3d& v) {
+    glProgramUniform3f(program.id(), program.location(name), static_cast<float>(v.x),
+                       static_cast<float>(v.y), static_cast<float>(v.z));
+  };
+  set_vector("mesh_eye", rays.eye);
+  set_vector("mesh_forward", rays.forward);
+  set_vector("mesh_step_x", rays.step_x);
+  set_vector("mesh_step_y", rays.step_y);
+  set_vector("mesh_light", light_direction(rays));
   program.set("mesh_texture_scale", static_cast<float>(options.texture_scale));
   program.set("mesh_colours", colours);
   program.set("seed", static_cast<unsigned>(seed));
@@ -212,6 +241,7 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
   for (std::size_t unit = 0; unit < textures.size(); ++unit)
     glBindTextureUnit(static_cast<GLuint>(unit), textures[unit]);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffers.faces.id());
   std::array<float, 4> background{};
   for (int c = 0; c < colours; ++c) background[static_cast<std::size_t>(c)] = options.background;
   const float far_depth = 0.0f;
@@ -225,6 +255,8 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
       glClearNamedFramebufferfv(framebuffer.id, GL_DEPTH, 0, &far_depth);
       glUniformMatrix4fv(program.location("clip_from_eye"), 1, GL_FALSE,
                          clip_from_eye(rays, x0, y0, w, h, near).data());
+      glUniform2f(program.location("mesh_pixel_offset"), static_cast<float>(x0 - 0.5 * out.width),
+                  static_cast<float>(y0 - 0.5 * out.height));
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.triangles.size() * 3), GL_UNSIGNED_INT,
                      nullptr);
       glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, values.data());

@@ -185,17 +185,13 @@ Fragment make_fragment(const PixelRays& rays, const Mesh& mesh, const Hit& hit, 
   f.point.dpdx = clamp_length(differentials.dpdx * scale, kMaxFootprint);
   f.point.dpdy = clamp_length(differentials.dpdy * scale, kMaxFootprint);
   if (uv) {
-    // The barycentrics are linear on the plane: u = (q . (e2 x N)) / |N|^2 and v = (q . (N x e1))
-    // / |N|^2 for q = p - p0, so their derivatives are the same dot products with dp/dx, dp/dy.
-    const double n2 = dot(face, face);
-    const Vec3d du = cross(e2, face) * (1.0 / n2);
-    const Vec3d dv = cross(face, e1) * (1.0 / n2);
+    const BarycentricGradients gradients = barycentric_gradients(e1, e2);
     const Vec2d& t0 = mesh.uvs[corners[0]];
     const Vec2d& t1 = mesh.uvs[corners[1]];
     const Vec2d& t2 = mesh.uvs[corners[2]];
     const auto uv_derivative = [&](const Vec3d& dp) {
-      const double a = dot(du, dp);
-      const double b = dot(dv, dp);
+      const double a = dot(gradients.du, dp);
+      const double b = dot(gradients.dv, dp);
       const double dx = ((t1.x - t0.x) * a + (t2.x - t0.x) * b) * scale;
       const double dy = ((t1.y - t0.y) * a + (t2.y - t0.y) * b) * scale;
       const double l = std::hypot(dx, dy);
@@ -266,6 +262,12 @@ PlaneHit plane_differentials(const PixelRays& rays, const Vec3d& d, double t, co
   const double nd = dot(n, d);
   return {(rays.step_x - d * (dot(n, rays.step_x) / nd)) * t,
           (rays.step_y - d * (dot(n, rays.step_y) / nd)) * t};
+}
+
+BarycentricGradients barycentric_gradients(const Vec3d& e1, const Vec3d& e2) {
+  const Vec3d face = cross(e1, e2);
+  const double n2 = dot(face, face);
+  return {cross(e2, face) * (1.0 / n2), cross(face, e1) * (1.0 / n2)};
 }
 
 double shading(const PixelRays& rays, const Vec3d& view_direction, const Vec3d& normal) {

@@ -42,6 +42,15 @@ struct PlaneHit {
 };
 PlaneHit plane_differentials(const PixelRays& rays, const Vec3d& d, double t, const Vec3d& n);
 
+// The gradients of the barycentrics u and v of the triangle p0 + u e1 + v e2 within its plane:
+// u = (q . (e2 x N)) / |N|^2 and v = (q . (N x e1)) / |N|^2 for q = p - p0 and N = e1 x e2, so
+// du/dx = du . dp/dx. A texture coordinate's derivatives follow through the corners' values.
+struct BarycentricGradients {
+  Vec3d du;
+  Vec3d dv;
+};
+BarycentricGradients barycentric_gradients(const Vec3d& e1, const Vec3d& e2);
+
 // Lambert + ambient with a light fixed to the camera, above-left and behind it; `normal` is
 // turned towards the viewer first (both sides of a surface are lit, holes show the inside).
 inline constexpr double kAmbient = 0.3;
