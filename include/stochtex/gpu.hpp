@@ -103,9 +103,9 @@ void evaluate_surface_gl(const Model& model, std::span<const SurfacePoint> point
 // mesh rasterised with the same camera (pixel for pixel), each fragment calling the method's
 // GLSL: the uv mapping the exported stochtex_<method>(p, dpdx, dpdy, seed) (every method), the
 // surface mappings the method's GLSL surface function where gl_supports_mapping says so (tiling's
-// triplanar today); screen derivatives from dFdx/dFdy (per 2x2 pixels, where the CPU's ray
-// differentials are exact); the same shading. Positions are floats: the CPU's image to float
-// rounding inside the silhouettes (docs/meshes.md gives the measured differences). options.threads
+// triplanar today); the CPU's footprints (ray differentials on each triangle's plane, in float);
+// the same shading. Positions are floats: the CPU's image to float rounding inside the silhouettes
+// but at pixels on a triangle edge (docs/meshes.md gives the measured differences). options.threads
 // and options.progress are not used. Throws std::invalid_argument as render_mesh() does, and
 // stochtex::Error when no OpenGL 4.5 context can be made or the mapping has no GLSL for the
 // model's method.
