@@ -1,5 +1,5 @@
 // `stochtex render-mesh MESH -o IMAGE --model MODEL`: a picture of an OBJ mesh textured by a model
-// (docs/meshes.md), on the CPU reference.
+// (docs/meshes.md), on the CPU reference or the OpenGL backend.
 
 #include <fmt/core.h>
 
@@ -19,6 +19,9 @@
 #include "io/image_io.hpp"
 #include "progress.hpp"
 #include "stochtex/mesh_render.hpp"
+#ifdef STOCHTEX_WITH_GL
+#include "stochtex/gpu.hpp"
+#endif
 
 namespace stochtex::cli {
 namespace {
@@ -30,6 +33,7 @@ struct Options {
   std::string mapping = "triplanar-linear";
   std::string camera = "30,20";
   std::string size = "512x512";
+  std::string backend = "cpu";
   std::uint32_t seed = 0;
   double texture_scale = 0.0;
   SurfaceOptions surface;
@@ -86,10 +90,15 @@ int run(const Options& o) {
   // CLI11's range checks let NaN through.
   if (!std::isfinite(o.surface.surface_mni) || !std::isfinite(o.surface.triplanar_sharpness))
     throw std::invalid_argument(fmt::format("--surface-mni {} and --sharpness {} must be numbers",
-                                            o.surface.surface_mni,
-                                            o.surface.triplanar_sharpness));
+                                            o.surface.surface_mni, o.surface.triplanar_sharpness));
   std::optional<SurfaceMapping> mapping;
   if (o.mapping != "uv") mapping = mapping_from_name(o.mapping);
+#ifndef STOCHTEX_WITH_GL
+  if (o.backend == "gl")
+    throw Error(ErrorCode::io,
+                "this stochtex was built without the OpenGL backend "
+                "(STOCHTEX_BUILD_GL=OFF); use --backend cpu");
+#endif
   const int threads = resolve_thread_count(o.threads);
   check_memory_budget(render_peak_bytes(size.width, size.height, 32, 1, threads),
                       fmt::format("rendering {} pixels on {} threads", o.size, threads),
@@ -104,6 +113,13 @@ int run(const Options& o) {
         "{}: {} models have no {} mapping; use --mapping triplanar-linear or uv, which every "
         "method has",
         o.model, model.method(), o.mapping));
+#ifdef STOCHTEX_WITH_GL
+  if (o.backend == "gl" && mapping && !gl_supports_mapping(model, *mapping))
+    throw std::invalid_argument(fmt::format(
+        "{}: the gl backend has no GLSL {} mapping for {} models; use --backend cpu, or "
+        "--mapping uv, which every method has on the gl backend",
+        o.model, o.mapping, model.method()));
+#endif
   const Mesh mesh = read_mesh(o.mesh);
   if (!mapping && mesh.uvs.empty())
     throw std::invalid_argument(
@@ -117,10 +133,16 @@ int run(const Options& o) {
   options.texture_scale =
       o.texture_scale > 0.0 ? o.texture_scale : (mapping ? default_texture_scale(mesh) : 1024.0);
   options.threads = threads;
-  Progress progress("render-mesh ");
-  options.progress = [&](double fraction) { progress(fraction); };
   ImageF image(size.width, size.height, model.channels());
-  render_mesh(model, mesh, make_camera(camera, mesh, size), options, o.seed, image.view());
+  const Camera view = make_camera(camera, mesh, size);
+#ifdef STOCHTEX_WITH_GL
+  if (o.backend == "gl") render_mesh_gl(model, mesh, view, options, o.seed, image.view());
+#endif
+  if (o.backend == "cpu") {
+    Progress progress("render-mesh ");
+    options.progress = [&](double fraction) { progress(fraction); };
+    render_mesh(model, mesh, view, options, o.seed, image.view());
+  }
   write_image(o.output, image.view());
   fmt::print(stderr, "wrote {}\n", o.output);
   return 0;
@@ -172,6 +194,13 @@ Command add_render_mesh_command(CLI::App& app) {
   command->add_option("--threads", options->threads, "worker threads (0 = all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, kMaxThreads));
+  command
+      ->add_option("--backend", options->backend,
+                   "cpu (the reference) or gl (OpenGL 4.5, headless: the mesh rasterised, each "
+                   "fragment calling the method's GLSL; --mapping uv with every method, triplanar "
+                   "with tiling)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"cpu", "gl"}));
   return {command, [options] { return run(*options); }};
 }
 

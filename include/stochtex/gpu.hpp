@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stochtex/image.hpp"
+#include "stochtex/mesh_render.hpp"
 #include "stochtex/model.hpp"
 #include "stochtex/render.hpp"
 #include "stochtex/surface.hpp"
@@ -97,6 +98,19 @@ class GlSurfaceEvaluator {
 // One evaluation with an evaluator made for it.
 void evaluate_surface_gl(const Model& model, std::span<const SurfacePoint> points,
                          const SurfaceOptions& options, std::uint32_t seed, ImageView<float> out);
+
+// render_mesh() (mesh_render.hpp) on the GPU, the way an engine uses the exported shaders: the
+// mesh rasterised with the same camera (pixel for pixel), each fragment calling the method's
+// GLSL: the uv mapping the exported stochtex_<method>(p, dpdx, dpdy, seed) (every method), the
+// surface mappings the method's GLSL surface function where gl_supports_mapping says so (tiling's
+// triplanar today); the CPU's footprints (ray differentials on each triangle's plane, in float);
+// the same shading. Positions are floats: the CPU's image to float rounding inside the silhouettes
+// but at pixels on a triangle edge (docs/meshes.md gives the measured differences). options.threads
+// and options.progress are not used. Throws std::invalid_argument as render_mesh() does, and
+// stochtex::Error when no OpenGL 4.5 context can be made or the mapping has no GLSL for the
+// model's method.
+void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
+                    const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out);
 
 // Which GLSL `stochtex export-shader` writes (`--variant`):
 //   exact: the `--gl-filter exact` evaluator: float32 data read with texelFetch, the shader's own

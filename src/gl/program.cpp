@@ -1,6 +1,7 @@
 #include "gl/program.hpp"
 
 #include <algorithm>
+#include <initializer_list>
 
 #include "stochtex/error.hpp"
 
@@ -21,8 +22,10 @@ void check_gl(const char* step) {
     gl_failure(std::string(step) + " (GL error " + std::to_string(error) + ")");
 }
 
-Program::Program(const std::string& source) {
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+namespace {
+
+GLuint compile(GLenum stage, const char* name, const std::string& source) {
+  const GLuint shader = glCreateShader(stage);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
   glCompileShader(shader);
@@ -32,17 +35,41 @@ Program::Program(const std::string& source) {
     std::string log(4096, '\0');
     glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), nullptr, log.data());
     glDeleteShader(shader);
-    gl_failure("the compute shader does not compile: " + std::string(log.c_str()));
+    gl_failure("the " + std::string(name) + " shader does not compile: " + log.c_str());
   }
-  id_ = glCreateProgram();
-  glAttachShader(id_, shader);
-  glLinkProgram(id_);
-  glDeleteShader(shader);
-  glGetProgramiv(id_, GL_LINK_STATUS, &ok);
+  return shader;
+}
+
+// Links the compiled `shaders` into a program and deletes them.
+GLuint link(std::initializer_list<GLuint> shaders, const char* name) {
+  const GLuint id = glCreateProgram();
+  for (const GLuint shader : shaders) glAttachShader(id, shader);
+  glLinkProgram(id);
+  for (const GLuint shader : shaders) glDeleteShader(shader);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(id, GL_LINK_STATUS, &ok);
   if (!ok) {
-    glDeleteProgram(id_);
-    gl_failure("the compute shader does not link");
+    glDeleteProgram(id);
+    gl_failure("the " + std::string(name) + " shader does not link");
   }
+  return id;
+}
+
+}  // namespace
+
+Program::Program(const std::string& source)
+    : id_(link({compile(GL_COMPUTE_SHADER, "compute", source)}, "compute")) {}
+
+Program::Program(const std::string& vertex, const std::string& fragment) {
+  const GLuint vertex_shader = compile(GL_VERTEX_SHADER, "vertex", vertex);
+  GLuint fragment_shader = 0;
+  try {
+    fragment_shader = compile(GL_FRAGMENT_SHADER, "fragment", fragment);
+  } catch (...) {
+    glDeleteShader(vertex_shader);
+    throw;
+  }
+  id_ = link({vertex_shader, fragment_shader}, "vertex and fragment");
 }
 
 Program::~Program() {

@@ -1,6 +1,6 @@
 #pragma once
-// Small RAII pieces of OpenGL 4.5 compute: a compiled program with typed uniform setters and a
-// storage buffer. A GL context must be current (gl::Context).
+// Small RAII pieces of OpenGL 4.5: a compiled program (compute, or vertex + fragment) with typed
+// uniform setters and a storage buffer. A GL context must be current (gl::Context).
 
 #define GL_GLEXT_PROTOTYPES
 #include <GL/gl.h>
@@ -18,6 +18,8 @@ class Program {
  public:
   // Compiles and links one compute shader; throws stochtex::Error with the compiler's log.
   explicit Program(const std::string& source);
+  // Compiles and links a vertex and a fragment shader (drawing), likewise.
+  Program(const std::string& vertex, const std::string& fragment);
   ~Program();
   Program(const Program&) = delete;
   Program& operator=(const Program&) = delete;

@@ -14,6 +14,7 @@
 #include "gl/context.hpp"
 #include "gl/program.hpp"
 #include "gl/shaders.hpp"
+#include "gl/surface_shader.hpp"
 #include "gl/twin.hpp"
 #include "model/model_data.hpp"
 #include "render/surface_arguments.hpp"
@@ -22,9 +23,9 @@
 #include "stochtex_gl_twins.hpp"
 
 namespace stochtex {
-namespace {
 
-std::optional<gl::SurfaceShader> surface_shader(const Model& model, SurfaceMapping mapping) {
+std::optional<gl::SurfaceShader> gl::model_surface_shader(const Model& model,
+                                                          SurfaceMapping mapping) {
   if (model.empty()) return std::nullopt;
   return std::visit(
       [&](const auto& m) -> std::optional<gl::SurfaceShader> {
@@ -36,6 +37,8 @@ std::optional<gl::SurfaceShader> surface_shader(const Model& model, SurfaceMappi
       },
       model.data().model);
 }
+
+namespace {
 
 constexpr int kFloatsPerPoint = 15;
 // Points per dispatch: bounds the staging buffers (15 + 4 floats per point), never the output.
@@ -63,7 +66,7 @@ struct GlSurfaceEvaluator::Impl {
 };
 
 bool gl_supports_mapping(const Model& model, SurfaceMapping mapping) {
-  return surface_shader(model, mapping).has_value();
+  return gl::model_surface_shader(model, mapping).has_value();
 }
 
 GlSurfaceEvaluator::GlSurfaceEvaluator(const Model& model) : impl_(new Impl(model)) {}
@@ -77,7 +80,8 @@ void GlSurfaceEvaluator::evaluate(std::span<const SurfacePoint> points,
   check_surface_arguments(model, points, options, out);
   auto& compiled = impl_->compiled[static_cast<std::size_t>(options.mapping)];
   if (!compiled) {
-    const std::optional<gl::SurfaceShader> shader = surface_shader(model, options.mapping);
+    const std::optional<gl::SurfaceShader> shader =
+        gl::model_surface_shader(model, options.mapping);
     if (!shader)
       throw Error(ErrorCode::invalid_input,
                   "the gl backend has no GLSL " + std::string(mapping_name(options.mapping)) +

@@ -21,9 +21,6 @@ constexpr int kTile = 32;
 // A triangle whose screen box covers more tiles than this is tested by every tile instead of being
 // listed in each, so that the bins hold at most this many entries per triangle.
 constexpr std::size_t kMaxTilesPerTriangle = 64;
-// Footprint components are clamped to this length (exemplar pixels): a footprint wider than any
-// exemplar already filters to the mean, and grazing angles (the ray along the plane) stay finite.
-constexpr double kMaxFootprint = 65536.0;
 constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
 
 double radians(double degrees) {
@@ -188,17 +185,13 @@ Fragment make_fragment(const PixelRays& rays, const Mesh& mesh, const Hit& hit, 
   f.point.dpdx = clamp_length(differentials.dpdx * scale, kMaxFootprint);
   f.point.dpdy = clamp_length(differentials.dpdy * scale, kMaxFootprint);
   if (uv) {
-    // The barycentrics are linear on the plane: u = (q . (e2 x N)) / |N|^2 and v = (q . (N x e1))
-    // / |N|^2 for q = p - p0, so their derivatives are the same dot products with dp/dx, dp/dy.
-    const double n2 = dot(face, face);
-    const Vec3d du = cross(e2, face) * (1.0 / n2);
-    const Vec3d dv = cross(face, e1) * (1.0 / n2);
+    const BarycentricGradients gradients = barycentric_gradients(e1, e2);
     const Vec2d& t0 = mesh.uvs[corners[0]];
     const Vec2d& t1 = mesh.uvs[corners[1]];
     const Vec2d& t2 = mesh.uvs[corners[2]];
     const auto uv_derivative = [&](const Vec3d& dp) {
-      const double a = dot(du, dp);
-      const double b = dot(dv, dp);
+      const double a = dot(gradients.du, dp);
+      const double b = dot(gradients.dv, dp);
       const double dx = ((t1.x - t0.x) * a + (t2.x - t0.x) * b) * scale;
       const double dy = ((t1.y - t0.y) * a + (t2.y - t0.y) * b) * scale;
       const double l = std::hypot(dx, dy);
@@ -212,8 +205,10 @@ Fragment make_fragment(const PixelRays& rays, const Mesh& mesh, const Hit& hit, 
   return f;
 }
 
-void check_arguments(const Model& model, const Mesh& mesh, const MeshRenderOptions& options,
-                     ImageView<float> out) {
+}  // namespace
+
+void check_mesh_render_arguments(const Model& model, const Mesh& mesh,
+                                 const MeshRenderOptions& options, ImageView<float> out) {
   if (model.empty()) throw std::invalid_argument("render_mesh: the model is empty");
   if (out.channels != model.channels() || out.width < 1 || out.height < 1)
     throw std::invalid_argument("render_mesh: the output must be an image of the model's " +
@@ -240,8 +235,6 @@ void check_arguments(const Model& model, const Mesh& mesh, const MeshRenderOptio
         "the texture scale puts the mesh beyond 2^32 exemplar pixels from the origin; use a "
         "smaller texture scale");
 }
-
-}  // namespace
 
 PixelRays pixel_rays(const Camera& camera, int width, int height) {
   const Vec3d view = camera.target - camera.eye;
@@ -271,11 +264,20 @@ PlaneHit plane_differentials(const PixelRays& rays, const Vec3d& d, double t, co
           (rays.step_y - d * (dot(n, rays.step_y) / nd)) * t};
 }
 
+BarycentricGradients barycentric_gradients(const Vec3d& e1, const Vec3d& e2) {
+  const Vec3d face = cross(e1, e2);
+  const double n2 = dot(face, face);
+  return {cross(e2, face) * (1.0 / n2), cross(face, e1) * (1.0 / n2)};
+}
+
 double shading(const PixelRays& rays, const Vec3d& view_direction, const Vec3d& normal) {
   const Vec3d facing = dot(normal, view_direction) > 0.0 ? normal * -1.0 : normal;
-  const Vec3d light = normalized(rays.step_x * -0.5 + rays.step_y * -0.8 +
-                                 rays.forward * (-0.6 * length(rays.step_x)));
-  return kAmbient + (1.0 - kAmbient) * std::max(0.0, dot(facing, light));
+  return kAmbient + (1.0 - kAmbient) * std::max(0.0, dot(facing, light_direction(rays)));
+}
+
+Vec3d light_direction(const PixelRays& rays) {
+  return normalized(rays.step_x * -0.5 + rays.step_y * -0.8 +
+                    rays.forward * (-0.6 * length(rays.step_x)));
 }
 
 Camera orbit_camera(const Mesh& mesh, double azimuth_degrees, double elevation_degrees,
@@ -310,7 +312,7 @@ double default_texture_scale(const Mesh& mesh) {
 
 void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
                  const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out) {
-  check_arguments(model, mesh, options, out);
+  check_mesh_render_arguments(model, mesh, options, out);
   const PixelRays rays = pixel_rays(camera, out.width, out.height);
   SurfaceOptions surface = options.surface;
   if (options.mapping) surface.mapping = *options.mapping;

@@ -42,9 +42,31 @@ struct PlaneHit {
 };
 PlaneHit plane_differentials(const PixelRays& rays, const Vec3d& d, double t, const Vec3d& n);
 
+// The gradients of the barycentrics u and v of the triangle p0 + u e1 + v e2 within its plane:
+// u = (q . (e2 x N)) / |N|^2 and v = (q . (N x e1)) / |N|^2 for q = p - p0 and N = e1 x e2, so
+// du/dx = du . dp/dx. A texture coordinate's derivatives follow through the corners' values.
+struct BarycentricGradients {
+  Vec3d du;
+  Vec3d dv;
+};
+BarycentricGradients barycentric_gradients(const Vec3d& e1, const Vec3d& e2);
+
 // Lambert + ambient with a light fixed to the camera, above-left and behind it; `normal` is
 // turned towards the viewer first (both sides of a surface are lit, holes show the inside).
 inline constexpr double kAmbient = 0.3;
 double shading(const PixelRays& rays, const Vec3d& view_direction, const Vec3d& normal);
+// The light's unit direction of shading(): towards the light, in world space.
+Vec3d light_direction(const PixelRays& rays);
+
+// Footprint components are clamped to this length (exemplar pixels): a footprint wider than any
+// exemplar already filters to the mean, and grazing angles (the ray along the plane) stay finite.
+inline constexpr double kMaxFootprint = 65536.0;
+
+// render_mesh()'s checks of its arguments, shared by every backend (std::invalid_argument, one
+// sentence): an empty model, an output of other channels, a mapping the model lacks, the uv
+// mapping on a mesh without uvs, a texture scale that is not positive or puts the mesh beyond
+// kPositionLimit.
+void check_mesh_render_arguments(const Model& model, const Mesh& mesh,
+                                 const MeshRenderOptions& options, ImageView<float> out);
 
 }  // namespace stochtex

@@ -934,6 +934,24 @@ for method in texton gabor; do
 done
 expect_ok "render-mesh tiling triplanar" "$stochtex" render-mesh "$meshes/torus.obj" \
   --model "$tiling_model" -o "$models/triplanar.png" --size 40x32 --mapping triplanar --sharpness 8
+# --backend gl: every shipped mesh (histogram-preserving triplanar, tiling) and the sphere's uvs
+# with every method; a mapping without GLSL is refused before the mesh is read.
+for mesh in sphere torus scan; do
+  expect_ok "render-mesh $mesh --backend gl" "$stochtex" render-mesh "$meshes/$mesh.obj" \
+    --model "$tiling_model" -o "$models/mesh_gl_$mesh.png" --size 40x32 --mapping triplanar \
+    --backend gl && expect_file "render-mesh $mesh --backend gl writes the image" \
+    "$models/mesh_gl_$mesh.png"
+done
+for method in $methods; do
+  expect_ok "render-mesh $method uv --backend gl" "$stochtex" render-mesh "$meshes/sphere.obj" \
+    --model "$models/every_$method.stx" -o "$models/mesh_gl_${method}_uv.pfm" --size 40x32 \
+    --mapping uv --texture-scale 300 --backend gl
+done
+expect_error "render-mesh --backend gl, triplanar-linear" 2 "no GLSL triplanar-linear mapping" \
+  "$stochtex" render-mesh "$inputs/missing.obj" --model "$tiling_model" -o "$out/x.png" \
+  --backend gl
+expect_parse_error "render-mesh --backend vulkan" "$stochtex" render-mesh "$meshes/sphere.obj" \
+  --model "$tiling_model" -o "$out/x.png" --backend vulkan
 expect_error "render-mesh --mapping triplanar for texton" 2 "texton models have no triplanar" \
   "$stochtex" render-mesh "$meshes/scan.obj" --model "$models/every_texton.stx" -o "$out/x.png" \
   --mapping triplanar
