@@ -1,6 +1,7 @@
 // The GL surface evaluator (GlSurfaceEvaluator, src/gl/surface_gl.cpp) against the CPU reference
-// evaluate_surface(): tiling's triplanar mapping (stochtex_tiling_triplanar, triplanar.glsl) on
-// points of a sphere with footprints from a point sample to a few pyramid levels.
+// evaluate_surface(): tiling's triplanar mapping (stochtex_tiling_triplanar, triplanar.glsl) and
+// texton surface noise (stochtex_texton_surface) on points of a sphere with footprints from a
+// point sample to a few pyramid levels.
 
 #include <gtest/gtest.h>
 
@@ -46,6 +47,50 @@ TEST(GlSurface, TilingTriplanarMatchesTheCpuReference) {
       std::cout << c.exemplar << (c.params.empty() ? "" : " transport 1") << " footprint "
                 << footprint << ": max |cpu - gl| = " << worst << "\n";
       EXPECT_LT(worst, 1e-4f) << c.exemplar << " footprint " << footprint;
+    }
+  }
+}
+
+// Texton surface noise (stochtex_texton_surface, texton surface.glsl on surface_process.glsl):
+// the GPU walks the CPU's impulses (same cells, keys and draws) and sums the same filtered textons,
+// so they differ by float rounding, growing with |position| (float on the GPU, double on the CPU).
+// Measured maxima over 600 points, MNI 60 and 15, the footprints below: 3.4e-6 (radius 120),
+// 1.0e-5 (460), 6.5e-5 (3000 pixels from the origin); the bounds keep a 3x margin.
+TEST(GlSurface, TextonSurfaceNoiseMatchesTheCpuReference) {
+  struct Case {
+    const char* exemplar;
+    int order;
+    double radius;
+    float bound;
+  };
+  const std::vector<Case> cases = {{"metal_grey_256.png", 1, 120.0, 1e-5f},
+                                   {"grass_lawn_128.png", 3, 120.0, 1e-5f},
+                                   {"metal_grey_256.png", 1, 460.0, 3e-5f},
+                                   {"metal_grey_256.png", 1, 3000.0, 2e-4f}};
+  for (const Case& c : cases) {
+    const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
+    const Model model =
+        analyze("texton", exemplar.view(), {{"support", 24}, {"order", c.order}}, 0);
+    GlSurfaceEvaluator evaluator(model);
+    for (const double mni : {60.0, 15.0}) {
+      // Footprints off the filter's discontinuities, which float rounding could put either side:
+      // the point sample up to a major axis of 1 pixel, and the probe count
+      // ceil(major / max(minor, 1)) jumping at integer ratios (0.37 keeps it at 3).
+      for (const double footprint : {0.0, 1.5, 3.0, 20.0}) {
+        const std::vector<SurfacePoint> points =
+            test_support::sphere_points(600, c.radius, footprint, 0.37 * footprint, 17);
+        SurfaceOptions options;
+        options.surface_mni = mni;
+        ImageF cpu(60, 10, model.channels());
+        ImageF gpu(60, 10, model.channels());
+        evaluate_surface(model, points, options, 5, cpu.view());
+        evaluator.evaluate(points, options, 5, gpu.view());
+        const float worst = max_difference(cpu, gpu);
+        std::cout << c.exemplar << " order " << c.order << " radius " << c.radius << " mni " << mni
+                  << " footprint " << footprint << ": max |cpu - gl| = " << worst << "\n";
+        EXPECT_LT(worst, c.bound) << c.exemplar << " radius " << c.radius << " footprint "
+                                  << footprint;
+      }
     }
   }
 }

@@ -199,8 +199,8 @@ ExportParts Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model,
 }
 
 std::optional<SurfaceShader> Twin<tiling::TilingModel>::surface_shader(
-    const tiling::TilingModel& model, SurfaceMapping mapping) {
-  if (mapping != SurfaceMapping::triplanar) return std::nullopt;
+    const tiling::TilingModel& model, const SurfaceOptions& options) {
+  if (options.mapping != SurfaceMapping::triplanar) return std::nullopt;
   TilingGlsl glsl = tiling_glsl(model);
   return SurfaceShader{tiling_library_source(glsl), std::move(glsl.data),
                        "stochtex_tiling_triplanar(position, normal, dpdx, dpdy, parameter, seed)"};

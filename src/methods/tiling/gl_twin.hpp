@@ -51,7 +51,7 @@ struct Twin<tiling::TilingModel> {
   static ExportParts shader(const tiling::TilingModel& model, ShaderVariant variant);
   // triplanar: the exact library and stochtex_tiling_triplanar (triplanar.glsl).
   static std::optional<SurfaceShader> surface_shader(const tiling::TilingModel& model,
-                                                     SurfaceMapping mapping);
+                                                     const SurfaceOptions& options);
 };
 
 }  // namespace stochtex::gl
