@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "gl_support.hpp"
@@ -51,48 +52,63 @@ TEST(GlSurface, TilingTriplanarMatchesTheCpuReference) {
   }
 }
 
+// Surface noise on the GPU against the CPU on `count` points of a sphere of radius `radius`, at
+// MNI 60 and 15 and footprints from a point sample to a few pyramid levels: the largest
+// difference, below `bound`. The footprints stay off the texton filter's discontinuities, which
+// float rounding could put either side: the point sample up to a major axis of 1 pixel, and the
+// probe count ceil(major / max(minor, 1)) jumping at integer ratios (0.37 keeps it at 3).
+void expect_surface_parity(const Model& model, const std::string& label, int count, double radius,
+                           float bound) {
+  GlSurfaceEvaluator evaluator(model);
+  for (const double mni : {60.0, 15.0}) {
+    for (const double footprint : {0.0, 1.5, 3.0, 20.0}) {
+      const std::vector<SurfacePoint> points =
+          test_support::sphere_points(count, radius, footprint, 0.37 * footprint, 17);
+      SurfaceOptions options;
+      options.surface_mni = mni;
+      ImageF cpu(count / 10, 10, model.channels());
+      ImageF gpu(count / 10, 10, model.channels());
+      evaluate_surface(model, points, options, 5, cpu.view());
+      evaluator.evaluate(points, options, 5, gpu.view());
+      const float worst = max_difference(cpu, gpu);
+      std::cout << label << " radius " << radius << " mni " << mni << " footprint " << footprint
+                << ": max |cpu - gl| = " << worst << "\n";
+      EXPECT_LT(worst, bound) << label << " radius " << radius << " mni " << mni << " footprint "
+                              << footprint;
+    }
+  }
+}
+
 // Texton surface noise (stochtex_texton_surface, texton surface.glsl on surface_process.glsl):
 // the GPU walks the CPU's impulses (same cells, keys and draws) and sums the same filtered textons,
 // so they differ by float rounding, growing with |position| (float on the GPU, double on the CPU).
-// Measured maxima over 600 points, MNI 60 and 15, the footprints below: 3.4e-6 (radius 120),
-// 1.0e-5 (460), 6.5e-5 (3000 pixels from the origin); the bounds keep a 3x margin.
+// Measured maxima over 600 points: 3.4e-6 (radius 120), 1.0e-5 (460), 6.5e-5 (3000 pixels from
+// the origin); the bounds keep a 3x margin.
 TEST(GlSurface, TextonSurfaceNoiseMatchesTheCpuReference) {
-  struct Case {
-    const char* exemplar;
-    int order;
-    double radius;
-    float bound;
-  };
-  const std::vector<Case> cases = {{"metal_grey_256.png", 1, 120.0, 1e-5f},
-                                   {"grass_lawn_128.png", 3, 120.0, 1e-5f},
-                                   {"metal_grey_256.png", 1, 460.0, 3e-5f},
-                                   {"metal_grey_256.png", 1, 3000.0, 2e-4f}};
-  for (const Case& c : cases) {
-    const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
-    const Model model =
-        analyze("texton", exemplar.view(), {{"support", 24}, {"order", c.order}}, 0);
-    GlSurfaceEvaluator evaluator(model);
-    for (const double mni : {60.0, 15.0}) {
-      // Footprints off the filter's discontinuities, which float rounding could put either side:
-      // the point sample up to a major axis of 1 pixel, and the probe count
-      // ceil(major / max(minor, 1)) jumping at integer ratios (0.37 keeps it at 3).
-      for (const double footprint : {0.0, 1.5, 3.0, 20.0}) {
-        const std::vector<SurfacePoint> points =
-            test_support::sphere_points(600, c.radius, footprint, 0.37 * footprint, 17);
-        SurfaceOptions options;
-        options.surface_mni = mni;
-        ImageF cpu(60, 10, model.channels());
-        ImageF gpu(60, 10, model.channels());
-        evaluate_surface(model, points, options, 5, cpu.view());
-        evaluator.evaluate(points, options, 5, gpu.view());
-        const float worst = max_difference(cpu, gpu);
-        std::cout << c.exemplar << " order " << c.order << " radius " << c.radius << " mni " << mni
-                  << " footprint " << footprint << ": max |cpu - gl| = " << worst << "\n";
-        EXPECT_LT(worst, c.bound) << c.exemplar << " radius " << c.radius << " footprint "
-                                  << footprint;
-      }
-    }
-  }
+  const ImageF metal = read_image(kTextureDir + "/metal_grey_256.png");
+  const ImageF grass = read_image(kTextureDir + "/grass_lawn_128.png");
+  const Model grey = analyze("texton", metal.view(), {{"support", 24}, {"order", 1}}, 0);
+  const Model colour = analyze("texton", grass.view(), {{"support", 24}, {"order", 3}}, 0);
+  expect_surface_parity(grey, "texton grey", 600, 120.0, 1e-5f);
+  expect_surface_parity(colour, "texton colour", 600, 120.0, 1e-5f);
+  expect_surface_parity(grey, "texton grey", 600, 460.0, 3e-5f);
+  expect_surface_parity(grey, "texton grey", 600, 3000.0, 2e-4f);
+}
+
+// Surface Gabor noise (stochtex_gabor_surface, gabor surface.glsl on surface_process.glsl): the
+// same impulses and kernels, exp and cos in float on both sides. Measured maxima over 300 points:
+// 9.3e-6 (radius 120), 2.8e-5 (460), 5.4e-4 (3000: a float position's error moves each kernel's
+// phase); bounds with a 3x margin.
+TEST(GlSurface, GaborSurfaceNoiseMatchesTheCpuReference) {
+  const ImageF metal = read_image(kTextureDir + "/metal_grey_256.png");
+  const ImageF grass = read_image(kTextureDir + "/grass_lawn_128.png");
+  const ParamValues params = {{"impulses", 64}, {"iterations", 30}};
+  const Model grey = analyze("gabor", metal.view(), params, 0);
+  const Model colour = analyze("gabor", grass.view(), params, 0);
+  expect_surface_parity(grey, "gabor grey", 300, 120.0, 3e-5f);
+  expect_surface_parity(colour, "gabor colour", 300, 120.0, 3e-5f);
+  expect_surface_parity(grey, "gabor grey", 300, 460.0, 1e-4f);
+  expect_surface_parity(grey, "gabor grey", 300, 3000.0, 2e-3f);
 }
 
 TEST(GlSurface, AMappingWithoutGlslIsRefused) {
