@@ -85,6 +85,12 @@ struct SurfaceShader {
   std::string call;
 };
 
+// Linear triplanar mapping (SurfaceMapping::triplanar_linear, src/gl/triplanar_linear.glsl) for a
+// method whose planar library `library` reads its data from the storage buffer at binding 0 only:
+// its entry point stochtex_<method> called on the three axis planes.
+SurfaceShader triplanar_linear_shader(std::string_view method, std::string library,
+                                      std::vector<float> data);
+
 template <typename MethodModel>
 concept HasSurfaceTwin = requires(const MethodModel& model) {
   {

@@ -111,23 +111,56 @@ TEST(GlSurface, GaborSurfaceNoiseMatchesTheCpuReference) {
   expect_surface_parity(grey, "gabor grey", 300, 3000.0, 2e-3f);
 }
 
+// Linear triplanar mapping (triplanar_linear.glsl) calls each method's planar GLSL on the three
+// axis planes, as the CPU calls evaluate(). Measured maxima over 600 points of a sphere of radius
+// 120 at sharpness 4 and the footprints below: texton 6.0e-7, tiling 1.7e-6, gabor 1.4e-6 (float
+// positions and weights against double); bound 3x the largest.
+TEST(GlSurface, LinearTriplanarMatchesTheCpuReference) {
+  const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
+  const std::vector<Model> models = {
+      analyze("texton", exemplar.view(), {{"support", 24}}, 0),
+      analyze("tiling", exemplar.view(), {}, 0),
+      analyze("gabor", exemplar.view(), {{"impulses", 64}, {"iterations", 30}}, 0)};
+  for (const Model& model : models) {
+    GlSurfaceEvaluator evaluator(model);
+    // sphere_points' tangents lie in the (y,z) plane wherever |n_x| < 0.9, so there the projected
+    // footprint is exactly `footprint` long: 3.3, not 3, keeps texton's probe count off a jump.
+    for (const double footprint : {0.0, 1.5, 3.3, 20.0}) {
+      const std::vector<SurfacePoint> points =
+          test_support::sphere_points(600, 120.0, footprint, 0.37 * footprint, 17);
+      SurfaceOptions options;
+      options.mapping = SurfaceMapping::triplanar_linear;
+      ImageF cpu(60, 10, model.channels());
+      ImageF gpu(60, 10, model.channels());
+      evaluate_surface(model, points, options, 5, cpu.view());
+      evaluator.evaluate(points, options, 5, gpu.view());
+      const float worst = max_difference(cpu, gpu);
+      std::cout << model.method() << " triplanar-linear footprint " << footprint
+                << ": max |cpu - gl| = " << worst << "\n";
+      EXPECT_LT(worst, 5e-6f) << model.method() << " footprint " << footprint;
+    }
+  }
+}
+
 TEST(GlSurface, AMappingWithoutGlslIsRefused) {
   const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
   const Model tiling = analyze("tiling", exemplar.view(), {}, 0);
   const Model lrp = analyze("lrp", exemplar.view(), {{"cosines", 10}}, 0);
   EXPECT_TRUE(gl_supports_mapping(tiling, SurfaceMapping::triplanar));
-  EXPECT_FALSE(gl_supports_mapping(tiling, SurfaceMapping::triplanar_linear));
+  EXPECT_TRUE(gl_supports_mapping(tiling, SurfaceMapping::triplanar_linear));
+  EXPECT_FALSE(gl_supports_mapping(tiling, SurfaceMapping::surface));
   EXPECT_FALSE(gl_supports_mapping(lrp, SurfaceMapping::triplanar));
+  EXPECT_FALSE(gl_supports_mapping(lrp, SurfaceMapping::triplanar_linear));
   const std::vector<SurfacePoint> points = test_support::sphere_points(4, 10.0, 1.0, 0.5, 17);
   ImageF out(4, 1, 3);
   SurfaceOptions options;
   options.mapping = SurfaceMapping::triplanar_linear;
   try {
-    evaluate_surface_gl(tiling, points, options, 0, out.view());
+    evaluate_surface_gl(lrp, points, options, 0, out.view());
     ADD_FAILURE() << "accepted";
   } catch (const Error& error) {
     EXPECT_STREQ(error.what(),
-                 "the gl backend has no GLSL triplanar-linear mapping for tiling models; use "
+                 "the gl backend has no GLSL triplanar-linear mapping for lrp models; use "
                  "--backend cpu");
   }
   // The CPU's argument checks come first: lrp has no triplanar mapping at all.

@@ -113,10 +113,14 @@ std::string gabor_library_source(const GaborGlsl& glsl, DataSource source) {
 
 std::optional<SurfaceShader> Twin<gabor::GaborModel>::surface_shader(
     const gabor::GaborModel& model, const SurfaceOptions& options) {
-  if (options.mapping != SurfaceMapping::surface) return std::nullopt;
   GaborGlsl glsl = gabor_glsl(model);
   const auto texels = glsl.data.pixels();
   std::vector<float> data(texels.begin(), texels.end());
+  if (options.mapping == SurfaceMapping::triplanar_linear)
+    return triplanar_linear_shader(gabor::GaborModel::kMethodName,
+                                   gabor_library_source(glsl, DataSource::storage_buffers),
+                                   std::move(data));
+  if (options.mapping != SurfaceMapping::surface) return std::nullopt;
   // Each grid's 3-D process (GaborModel::surface_grid): its CDF appended to the data.
   std::vector<int> cdf_texel;
   std::vector<unsigned> chunks;

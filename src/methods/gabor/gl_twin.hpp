@@ -58,7 +58,8 @@ struct Twin<gabor::GaborModel> {
   static ExportParts shader(const gabor::GaborModel& model, ShaderVariant variant);
   // surface: the double-precision library (the data in the storage buffer, each grid's 3-D
   // Poisson CDF appended), surface_process.glsl and stochtex_gabor_surface (surface.glsl), with
-  // the constants of options.surface_mni.
+  // the constants of options.surface_mni; triplanar_linear: the double-precision library through
+  // triplanar_linear_shader (twin.hpp).
   static std::optional<SurfaceShader> surface_shader(const gabor::GaborModel& model,
                                                      const SurfaceOptions& options);
 };

@@ -149,8 +149,13 @@ ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model,
 
 std::optional<SurfaceShader> Twin<texton::TextonModel>::surface_shader(
     const texton::TextonModel& model, const SurfaceOptions& options) {
-  if (options.mapping != SurfaceMapping::surface) return std::nullopt;
   TextonGlsl glsl = texton_glsl(model);
+  const auto texels = glsl.atlas.pixels();
+  if (options.mapping == SurfaceMapping::triplanar_linear)
+    return triplanar_linear_shader(texton::TextonModel::kMethodName,
+                                   texton_library_source(glsl, DataSource::storage_buffers),
+                                   std::vector<float>(texels.begin(), texels.end()));
+  if (options.mapping != SurfaceMapping::surface) return std::nullopt;
   const texton::SurfaceConstants surface = model.surface_constants(options.surface_mni);
   const auto& cdf = surface.count.cdf();
   std::string& text = glsl.constants;
@@ -168,7 +173,6 @@ std::optional<SurfaceShader> Twin<texton::TextonModel>::surface_shader(
   std::string library = texton_library_source(glsl, DataSource::storage_buffers) +
                         shader_source("gl/surface_process.glsl") +
                         shader_source("methods/texton/surface.glsl");
-  const auto texels = glsl.atlas.pixels();
   return SurfaceShader{std::move(library), std::vector<float>(texels.begin(), texels.end()),
                        "stochtex_texton_surface(position, normal, tangent, dpdx, dpdy, seed)"};
 }

@@ -60,7 +60,8 @@ struct Twin<texton::TextonModel> {
   // fast: the library and texture of --gl-filter hardware (TextonPass compiles and binds them).
   static ExportParts shader(const texton::TextonModel& model, ShaderVariant variant);
   // surface: the exact library (the atlas in the storage buffer), surface_process.glsl and
-  // stochtex_texton_surface (surface.glsl), with the constants of options.surface_mni.
+  // stochtex_texton_surface (surface.glsl), with the constants of options.surface_mni;
+  // triplanar_linear: the exact library through triplanar_linear_shader (twin.hpp).
   static std::optional<SurfaceShader> surface_shader(const texton::TextonModel& model,
                                                      const SurfaceOptions& options);
 };
