@@ -21,6 +21,16 @@ namespace {
 using gl_test::kTextureDir;
 using gl_test::max_difference;
 
+// The largest difference between the CPU's evaluate_surface and `evaluator` on `points` (seed 5).
+float largest_difference(const Model& model, GlSurfaceEvaluator& evaluator,
+                         const std::vector<SurfacePoint>& points, const SurfaceOptions& options) {
+  ImageF cpu(static_cast<int>(points.size()), 1, model.channels());
+  ImageF gpu(static_cast<int>(points.size()), 1, model.channels());
+  evaluate_surface(model, points, options, 5, cpu.view());
+  evaluator.evaluate(points, options, 5, gpu.view());
+  return max_difference(cpu, gpu);
+}
+
 // The renderers' parity bound (TilingAndLrpMatchTheCpuReference: 1e-4, GLSL's erf polynomial
 // against std::erf; float positions and weights here against the CPU's double).
 TEST(GlSurface, TilingTriplanarMatchesTheCpuReference) {
@@ -40,11 +50,7 @@ TEST(GlSurface, TilingTriplanarMatchesTheCpuReference) {
           test_support::sphere_points(3000, 120.0, footprint, 0.5 * footprint, 17);
       SurfaceOptions options;
       options.mapping = SurfaceMapping::triplanar;
-      ImageF cpu(100, 30, model.channels());
-      ImageF gpu(100, 30, model.channels());
-      evaluate_surface(model, points, options, 5, cpu.view());
-      evaluator.evaluate(points, options, 5, gpu.view());
-      const float worst = max_difference(cpu, gpu);
+      const float worst = largest_difference(model, evaluator, points, options);
       std::cout << c.exemplar << (c.params.empty() ? "" : " transport 1") << " footprint "
                 << footprint << ": max |cpu - gl| = " << worst << "\n";
       EXPECT_LT(worst, 1e-4f) << c.exemplar << " footprint " << footprint;
@@ -66,11 +72,7 @@ void expect_surface_parity(const Model& model, const std::string& label, int cou
           test_support::sphere_points(count, radius, footprint, 0.37 * footprint, 17);
       SurfaceOptions options;
       options.surface_mni = mni;
-      ImageF cpu(count / 10, 10, model.channels());
-      ImageF gpu(count / 10, 10, model.channels());
-      evaluate_surface(model, points, options, 5, cpu.view());
-      evaluator.evaluate(points, options, 5, gpu.view());
-      const float worst = max_difference(cpu, gpu);
+      const float worst = largest_difference(model, evaluator, points, options);
       std::cout << label << " radius " << radius << " mni " << mni << " footprint " << footprint
                 << ": max |cpu - gl| = " << worst << "\n";
       EXPECT_LT(worst, bound) << label << " radius " << radius << " mni " << mni << " footprint "
@@ -130,11 +132,7 @@ TEST(GlSurface, LinearTriplanarMatchesTheCpuReference) {
           test_support::sphere_points(600, 120.0, footprint, 0.37 * footprint, 17);
       SurfaceOptions options;
       options.mapping = SurfaceMapping::triplanar_linear;
-      ImageF cpu(60, 10, model.channels());
-      ImageF gpu(60, 10, model.channels());
-      evaluate_surface(model, points, options, 5, cpu.view());
-      evaluator.evaluate(points, options, 5, gpu.view());
-      const float worst = max_difference(cpu, gpu);
+      const float worst = largest_difference(model, evaluator, points, options);
       std::cout << model.method() << " triplanar-linear footprint " << footprint
                 << ": max |cpu - gl| = " << worst << "\n";
       EXPECT_LT(worst, 5e-6f) << model.method() << " footprint " << footprint;
