@@ -1,15 +1,21 @@
 // The GL surface evaluator (GlSurfaceEvaluator, src/gl/surface_gl.cpp) against the CPU reference
-// evaluate_surface(): tiling's triplanar mapping (stochtex_tiling_triplanar, triplanar.glsl) and
-// texton surface noise (stochtex_texton_surface) on points of a sphere with footprints from a
-// point sample to a few pyramid levels.
+// evaluate_surface(): tiling's triplanar mapping (stochtex_tiling_triplanar, triplanar.glsl),
+// texton and Gabor surface noise (stochtex_texton_surface, stochtex_gabor_surface) and linear
+// triplanar mapping (stochtex_triplanar_linear) on points of a sphere with footprints from a point
+// sample to a few pyramid levels; and surface_process.glsl's 3-D cell key against core/hash.hpp.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <iostream>
 #include <string>
 #include <vector>
 
+#include "core/hash.hpp"
+#include "gl/context.hpp"
+#include "gl/program.hpp"
+#include "gl/shaders.hpp"
 #include "gl_support.hpp"
 #include "io/image_io.hpp"
 #include "stochtex/gpu.hpp"
@@ -20,6 +26,43 @@ namespace {
 
 using gl_test::kTextureDir;
 using gl_test::max_difference;
+
+TEST(GlSurface, CellKey3dGlslMatchesTheCppSpec) {
+  // surface_process.glsl's cell_key(x, y, z, seed, stream) run by a one-off compute shader, bit
+  // for bit against core/hash.hpp, negative cells included (their low 32 bits).
+  const gl::Context context;
+  const std::string source = "#version 450\n" + gl::random_source() +
+                             "#define SURFACE_CONTEXT int\n" +
+                             gl::shader_source("gl/surface_process.glsl") + R"glsl(
+// The walk's callbacks, which the linker wants defined.
+uint surface_impulse_count(inout CounterRng rng, int context) { return 0u; }
+void surface_impulse(inout CounterRng rng, float t, float z1, float z2, int context,
+                     inout vec4 acc) {}
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) writeonly buffer Out { uint values[]; };
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  values[i] = cell_key(i * 7919u, 0u - i, i * 31u - 500u, i ^ 0x5bd1e995u, STREAM_POINTS);
+}
+)glsl";
+  const gl::Program program(source);
+  constexpr std::uint32_t kCount = 1024;
+  const gl::Buffer buffer(kCount * sizeof(std::uint32_t));
+  glUseProgram(program.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
+  glDispatchCompute(kCount / 64, 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<std::uint32_t> values(kCount);
+  glGetNamedBufferSubData(buffer.id(), 0,
+                          static_cast<GLsizeiptr>(values.size() * sizeof(std::uint32_t)),
+                          values.data());
+  ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  for (std::uint32_t i = 0; i < kCount; ++i)
+    ASSERT_EQ(values[i],
+              cell_key(static_cast<std::int64_t>(i * 7919u), -static_cast<std::int64_t>(i),
+                       static_cast<std::int64_t>(i) * 31 - 500, i ^ 0x5bd1e995u, Stream::points))
+        << i;
+}
 
 // The largest difference between the CPU's evaluate_surface and `evaluator` on `points` (seed 5).
 float largest_difference(const Model& model, GlSurfaceEvaluator& evaluator,
