@@ -1,8 +1,8 @@
 // The 3-D Poisson impulse process of surface noise in GLSL: the twin of for_each_surface_impulse
 // (src/core/surface_process.hpp, docs/surface.md), same cells, same 3-D cell key, same draws in
 // the same order, so the GPU sees the CPU's impulses. Requires random.glsl, then SURFACE_CONTEXT
-// #defined as the method's type of per-point state (texton: TextonFilter), and after this file
-// the method's two callbacks:
+// #defined as the method's type of per-point state (texton: TextonFilter; gabor:
+// GaborSurfacePoint), and, before or after this file, the method's two callbacks:
 //   uint surface_impulse_count(inout CounterRng rng, SURFACE_CONTEXT context);
 //     a cell's impulse count (the method's PoissonSampler twin);
 //   void surface_impulse(inout CounterRng rng, float t, float z1, float z2,
