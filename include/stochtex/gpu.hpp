@@ -69,13 +69,16 @@ void render_gl(const Model& model, const Grid& grid, std::uint32_t seed, ImageVi
                const GpuRenderOptions& options = {});
 
 // Surface points (stochtex/surface.hpp) on the GPU: evaluate_surface() through the method's GLSL
-// surface function (today the triplanar mapping of tiling, stochtex_tiling_triplanar), the CPU's
-// output to float rounding (tested). Positions are floats on the GPU: keep them below ~1e4
-// exemplar pixels for full precision. Linear triplanar mapping and surface noise have no GLSL yet.
+// surface function (today the triplanar mapping of tiling, stochtex_tiling_triplanar, texton and
+// Gabor surface noise, stochtex_texton_surface and stochtex_gabor_surface, and linear triplanar
+// mapping for texton, tiling and gabor, stochtex_triplanar_linear), the CPU's output to float
+// rounding (tested). Positions are floats on the GPU: keep them below ~1e4 exemplar pixels for
+// full precision. lrp (several data buffers) and texton mixing have no GLSL surface function.
 bool gl_supports_mapping(const Model& model, SurfaceMapping mapping);
 
 // A model made ready for surface evaluation on the GPU (an OpenGL context and the model's data;
-// each mapping's program compiled on first use). Use it from one thread.
+// each mapping's program compiled on first use, and again when the options it depends on change).
+// Use it from one thread.
 class GlSurfaceEvaluator {
  public:
   // Throws stochtex::Error when no OpenGL 4.5 context can be made.

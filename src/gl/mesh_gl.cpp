@@ -51,7 +51,9 @@ Texturing texturing(const Model& model, const MeshRenderOptions& options) {
             std::move(files.textures),
             {}};
   }
-  std::optional<gl::SurfaceShader> shader = gl::model_surface_shader(model, *options.mapping);
+  SurfaceOptions surface = options.surface;
+  surface.mapping = *options.mapping;
+  std::optional<gl::SurfaceShader> shader = gl::model_surface_shader(model, surface);
   if (!shader)
     throw Error(ErrorCode::invalid_input,
                 "the gl backend has no GLSL " + std::string(mapping_name(*options.mapping)) +

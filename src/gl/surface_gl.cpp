@@ -25,13 +25,13 @@
 namespace stochtex {
 
 std::optional<gl::SurfaceShader> gl::model_surface_shader(const Model& model,
-                                                          SurfaceMapping mapping) {
+                                                          const SurfaceOptions& options) {
   if (model.empty()) return std::nullopt;
   return std::visit(
       [&](const auto& m) -> std::optional<gl::SurfaceShader> {
         using M = std::decay_t<decltype(m)>;
         if constexpr (gl::HasSurfaceTwin<M>)
-          return gl::Twin<M>::surface_shader(m, mapping);
+          return gl::Twin<M>::surface_shader(m, options);
         else
           return std::nullopt;
       },
@@ -46,12 +46,14 @@ constexpr int kBatch = 1 << 16;
 
 }  // namespace
 
-// One mapping's compiled surface function and its data.
+// One mapping's compiled surface function and its data, for the options it was made for.
 struct GlSurfaceEvaluator::Compiled {
+  SurfaceOptions options;
   gl::Program program;
   gl::Buffer data;
-  Compiled(const gl::SurfaceShader& shader, int channels)
-      : program("#version 450\n#define STOCHTEX_CHANNELS " + std::to_string(channels) +
+  Compiled(const SurfaceOptions& made_for, const gl::SurfaceShader& shader, int channels)
+      : options(made_for),
+        program("#version 450\n#define STOCHTEX_CHANNELS " + std::to_string(channels) +
                 "\n#define STOCHTEX_SURFACE_CALL " + shader.call + "\n" + shader.library +
                 gl::shader_source("gl/surface.glsl")),
         data(std::max<std::size_t>(shader.data.size(), 1) * sizeof(float), shader.data.data()) {}
@@ -66,7 +68,9 @@ struct GlSurfaceEvaluator::Impl {
 };
 
 bool gl_supports_mapping(const Model& model, SurfaceMapping mapping) {
-  return gl::model_surface_shader(model, mapping).has_value();
+  SurfaceOptions options;
+  options.mapping = mapping;
+  return gl::model_surface_shader(model, options).has_value();
 }
 
 GlSurfaceEvaluator::GlSurfaceEvaluator(const Model& model) : impl_(new Impl(model)) {}
@@ -79,14 +83,15 @@ void GlSurfaceEvaluator::evaluate(std::span<const SurfacePoint> points,
   const Model& model = impl_->model;
   check_surface_arguments(model, points, options, out);
   auto& compiled = impl_->compiled[static_cast<std::size_t>(options.mapping)];
-  if (!compiled) {
-    const std::optional<gl::SurfaceShader> shader =
-        gl::model_surface_shader(model, options.mapping);
+  // The library may depend on the options (the constants of texton surface noise's MNI).
+  if (!compiled || compiled->options.surface_mni != options.surface_mni ||
+      compiled->options.triplanar_sharpness != options.triplanar_sharpness) {
+    const std::optional<gl::SurfaceShader> shader = gl::model_surface_shader(model, options);
     if (!shader)
       throw Error(ErrorCode::invalid_input,
                   "the gl backend has no GLSL " + std::string(mapping_name(options.mapping)) +
                       " mapping for " + std::string(model.method()) + " models; use --backend cpu");
-    compiled = std::make_unique<Compiled>(*shader, model.channels());
+    compiled = std::make_unique<Compiled>(options, *shader, model.channels());
   }
   const gl::Program& program = compiled->program;
   const int channels = model.channels();

@@ -6,11 +6,14 @@
 
 #include "gl/twin.hpp"
 #include "stochtex/model.hpp"
+#include "stochtex/surface.hpp"
 
 namespace stochtex::gl {
 
 // std::nullopt when the model is empty, its method's twin has no surface_shader, or it has no
-// GLSL for `mapping`.
-std::optional<SurfaceShader> model_surface_shader(const Model& model, SurfaceMapping mapping);
+// GLSL for options.mapping (the library may depend on the other options: texton surface noise's
+// constants for its MNI).
+std::optional<SurfaceShader> model_surface_shader(const Model& model,
+                                                  const SurfaceOptions& options);
 
 }  // namespace stochtex::gl

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "gl/shaders.hpp"
 #include "io/png_sample.hpp"
 
 namespace stochtex::gl {
@@ -126,6 +128,14 @@ GLuint data_texture(const ImageF& image) {
   glTextureSubImage2D(texture, 0, 0, 0, image.width(), image.height(), GL_RGBA, GL_FLOAT,
                       image.pixels().data());
   return texture;
+}
+
+SurfaceShader triplanar_linear_shader(std::string_view method, std::string library,
+                                      std::vector<float> data) {
+  library += shader_source("gl/triplanar.glsl") + "#define STOCHTEX_PLANAR stochtex_" +
+             std::string(method) + "\n" + shader_source("gl/triplanar_linear.glsl");
+  return SurfaceShader{std::move(library), std::move(data),
+                       "stochtex_triplanar_linear(position, normal, dpdx, dpdy, parameter, seed)"};
 }
 
 }  // namespace stochtex::gl

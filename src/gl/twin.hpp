@@ -70,8 +70,10 @@ concept HasTwin = requires(const MethodModel& model) {
 // A method's GLSL surface function for one mapping (stochtex/surface.hpp), for the GL surface
 // evaluator (surface_gl.cpp, surface.glsl) and engines that call it on meshes. A twin opts in
 // with
-//   static std::optional<SurfaceShader> surface_shader(const m::MModel&, SurfaceMapping);
-// (std::nullopt: no GLSL for that mapping), found by HasSurfaceTwin.
+//   static std::optional<SurfaceShader> surface_shader(const m::MModel&, const SurfaceOptions&);
+// (std::nullopt: no GLSL for options.mapping), found by HasSurfaceTwin. The library may depend on
+// the options (texton surface noise writes the constants of options.surface_mni), so callers
+// ask again when the options change.
 struct SurfaceShader {
   // GLSL, all but `#version`: the method's library reading its data from the storage buffer at
   // binding 0 (`data`), its constants and its surface function.
@@ -83,10 +85,16 @@ struct SurfaceShader {
   std::string call;
 };
 
+// Linear triplanar mapping (SurfaceMapping::triplanar_linear, src/gl/triplanar_linear.glsl) for a
+// method whose planar library `library` reads its data from the storage buffer at binding 0 only:
+// its entry point stochtex_<method> called on the three axis planes.
+SurfaceShader triplanar_linear_shader(std::string_view method, std::string library,
+                                      std::vector<float> data);
+
 template <typename MethodModel>
 concept HasSurfaceTwin = requires(const MethodModel& model) {
   {
-    Twin<MethodModel>::surface_shader(model, SurfaceMapping::triplanar)
+    Twin<MethodModel>::surface_shader(model, SurfaceOptions{})
     } -> std::same_as<std::optional<SurfaceShader>>;
 };
 

@@ -947,8 +947,16 @@ for method in $methods; do
     --model "$models/every_$method.stx" -o "$models/mesh_gl_${method}_uv.pfm" --size 40x32 \
     --mapping uv --texture-scale 300 --backend gl
 done
-expect_error "render-mesh --backend gl, triplanar-linear" 2 "no GLSL triplanar-linear mapping" \
-  "$stochtex" render-mesh "$inputs/missing.obj" --model "$tiling_model" -o "$out/x.png" \
+for method in texton gabor; do
+  expect_ok "render-mesh $method surface --backend gl" "$stochtex" render-mesh "$meshes/scan.obj" \
+    --model "$models/every_$method.stx" -o "$models/mesh_gl_${method}_surface.png" --size 40x32 \
+    --mapping surface --backend gl
+  expect_ok "render-mesh $method triplanar-linear --backend gl" "$stochtex" render-mesh \
+    "$meshes/scan.obj" --model "$models/every_$method.stx" -o "$models/mesh_gl_${method}_tl.png" \
+    --size 40x32 --backend gl
+done
+expect_error "render-mesh --backend gl, lrp triplanar-linear" 2 "no GLSL triplanar-linear mapping" \
+  "$stochtex" render-mesh "$inputs/missing.obj" --model "$models/every_lrp.stx" -o "$out/x.png" \
   --backend gl
 expect_parse_error "render-mesh --backend vulkan" "$stochtex" render-mesh "$meshes/sphere.obj" \
   --model "$tiling_model" -o "$out/x.png" --backend vulkan

@@ -148,6 +148,36 @@ TEST(GlMesh, TriplanarMatchesTheCpuReference) {
   }
 }
 
+// Surface noise (texton, gabor) and linear triplanar mapping (texton, tiling, gabor) on the scan,
+// which has no texture coordinates, through the twins' GLSL surface functions.
+TEST(GlMesh, SurfaceNoiseAndLinearTriplanarMatchTheCpuReference) {
+  const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
+  const Mesh mesh = read_mesh(kMeshes + "scan.obj");
+  const std::pair<const char*, SurfaceMapping> cases[] = {
+      {"texton", SurfaceMapping::surface},
+      {"gabor", SurfaceMapping::surface},
+      {"texton", SurfaceMapping::triplanar_linear},
+      {"tiling", SurfaceMapping::triplanar_linear},
+      {"gabor", SurfaceMapping::triplanar_linear}};
+  for (const auto& [method, mapping] : cases) {
+    const Model model = analyze(method, exemplar.view(), {}, 0);
+    MeshRenderOptions options;
+    options.mapping = mapping;
+    options.texture_scale = 64.0;
+    const Parity fine = parity(render_both(model, mesh, options));
+    options.texture_scale = default_texture_scale(mesh);
+    const Parity filtered = parity(render_both(model, mesh, options));
+    const std::string name = std::string(method) + " " + std::string(mapping_name(mapping));
+    std::cout << name << ": scale 64: " << fine << "; default scale " << options.texture_scale
+              << ": " << filtered << "\n";
+    for (const Parity& p : {fine, filtered}) {
+      EXPECT_LE(p.coverage_differences, 20) << name;
+      EXPECT_GT(p.interior, 2000) << name;
+      EXPECT_LT(p.largest, 1.0f) << name;
+    }
+  }
+}
+
 TEST(GlMesh, AMappingWithoutGlslIsRefused) {
   const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
   const Model lrp = analyze("lrp", exemplar.view(), {{"cosines", 10}}, 0);

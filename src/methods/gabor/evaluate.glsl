@@ -6,7 +6,7 @@
 // arithmetic, so the CPU and GPU agree to about 1e-5 of the image's standard deviation rather than
 // to the rounding of exp and cos (tests/gl/gabor_gl_test.cpp, docs/methods/gabor.md). Requires random.glsl, then the model's constants (gabor_glsl() in gl_data.cpp:
 // GABOR_CHANNELS, GABOR_GRIDS, GABOR_GRID_ARRAY, GABOR_DATA_WIDTH, GABOR_MIXING, GABOR_MEAN and the
-// GABOR_GRID_* arrays, one entry per Poisson grid) and `uniform sampler2D stochtex_gabor_data`:
+// GABOR_GRID_* arrays, one entry per Poisson grid) and `vec4 gabor_texel(int index)`:
 // texel i < GABOR_GAUSSIANS is Gaussian i in grid order (frequency x, frequency y, alias
 // probability, alias index relative to its grid); grid g's Poisson CDF (96 floats) fills the 24
 // texels from GABOR_GRID_CDF[g]. Texels are read with texelFetch (exact floats).
@@ -21,7 +21,7 @@
 // same constants and the same arithmetic statement for statement, so the CPU and GPU agree to
 // the rounding of exp and cos. Requires random.glsl, then the model's constants (gabor_glsl() in
 // gl_data.cpp writes them: GABOR_CHANNELS, GABOR_GRIDS, GABOR_DATA_WIDTH, GABOR_MIXING, GABOR_MEAN and
-// the GABOR_GRID_* arrays, one entry per Poisson grid) and `uniform sampler2D stochtex_gabor_data`:
+// the GABOR_GRID_* arrays, one entry per Poisson grid) and `vec4 gabor_texel(int index)`:
 // texel i < GABOR_GAUSSIANS is Gaussian i in grid order (frequency x, frequency y, alias
 // probability, alias index relative to its grid); grid g's Poisson CDF (96 floats) fills the 24
 // texels from GABOR_GRID_CDF[g]. Texels are read with texelFetch (exact floats).
@@ -35,11 +35,6 @@
 // GABOR_PI, GABOR_PI_F, GABOR_TWO_PI_F, GABOR_PIXEL_VARIANCE, GABOR_NEGLIGIBLE_ATTENUATION and
 // GABOR_MAX_LEVEL_RATIO (2^kMaxLevels) are the C++ constants of model.hpp, declared before this
 // file from Twin::kConstants (gl_twin.hpp).
-
-vec4 gabor_texel(int index) {
-  return texelFetch(stochtex_gabor_data, ivec2(index % GABOR_DATA_WIDTH, index / GABOR_DATA_WIDTH),
-                    0);
-}
 
 // How one grid is evaluated for one footprint: the kernel envelope exp(-x^T E x), the frequency
 // map omega' = F omega and attenuation exp(-omega^T D omega), the amplitude, the thinning level
@@ -160,16 +155,22 @@ GaborGridFilter gabor_grid_filter(int g, dvec2 dpdx, dvec2 dpdy) {
   return f;
 }
 
-// A Poisson count by inversion of grid g's tabulated CDF (PoissonSampler in core/poisson.hpp).
-uint gabor_poisson_count(int g, inout CounterRng rng) {
+// A Poisson count by inversion of the tabulated CDF (96 floats) in the data from texel
+// `cdf_texel`, in `chunks` draws (PoissonSampler in core/poisson.hpp).
+uint gabor_poisson(int cdf_texel, uint chunks, inout CounterRng rng) {
   uint total = 0u;
-  for (uint c = 0u; c < GABOR_GRID_POISSON_CHUNKS[g]; ++c) {
+  for (uint c = 0u; c < chunks; ++c) {
     float u = rng_uniform(rng);
     int k = 0;
-    while (u >= gabor_texel(GABOR_GRID_CDF[g] + k / 4)[k % 4]) ++k;
+    while (u >= gabor_texel(cdf_texel + k / 4)[k % 4]) ++k;
     total += uint(k);
   }
   return total;
+}
+
+// Grid g's count per planar cell.
+uint gabor_poisson_count(int g, inout CounterRng rng) {
+  return gabor_poisson(GABOR_GRID_CDF[g], GABOR_GRID_POISSON_CHUNKS[g], rng);
 }
 
 // draw_alias (alias.hpp): a uniform column from the high word of word * count, then a coin; the
@@ -182,6 +183,27 @@ vec4 gabor_draw_alias(int g, inout CounterRng rng) {
   float coin = rng_uniform(rng);
   vec4 entry = gabor_texel(GABOR_GRID_FIRST[g] + int(column));
   return coin < entry.z ? entry : gabor_texel(GABOR_GRID_FIRST[g] + int(entry.w));
+}
+
+// The filtered kernel of Gaussian `gaussian` (its frequency in .xy) and phase at offset
+// (dx, dy) = x - x_i, into `value` (KernelShape::at in model.cpp); false where the envelope is
+// truncated (beyond e^-pi). The planar sum below and surface noise (surface_impulse.glsl) share it.
+bool gabor_kernel(GaborGridFilter f, vec4 gaussian, float phase, float dx, float dy,
+                  out float value) {
+  precise float envelope = f.ex * dx * dx + f.exy * dx * dy + f.ey * dy * dy;
+  if (envelope >= GABOR_PI_F) return false;
+  precise float wx = gaussian.x;
+  precise float wy = gaussian.y;
+  precise float attenuation = 0.0;
+  if (f.filtered) {
+    attenuation = f.dxx * wx * wx + f.dxy * wx * wy + f.dyy * wy * wy;
+    precise float mapped_x = f.fxx * wx + f.fxy * wy;
+    wy = f.fxy * wx + f.fyy * wy;
+    wx = mapped_x;
+  }
+  precise float argument = GABOR_TWO_PI_F * (wx * dx + wy * dy + phase);
+  value = exp(-envelope - attenuation) * cos(argument);
+  return true;
 }
 
 #ifdef STOCHTEX_FLOAT
@@ -258,23 +280,22 @@ float gabor_grid_sum(int g, dvec2 p, GaborGridFilter f, uint level_seed) {
         float phase = rng_uniform(kernel_rng);
         precise float dx = offset_x - u * cell_size_f;
         precise float dy = offset_y - v * cell_size_f;
-        precise float envelope = f.ex * dx * dx + f.exy * dx * dy + f.ey * dy * dy;
-        if (envelope >= GABOR_PI_F) continue;
-        precise float wx = gaussian.x;
-        precise float wy = gaussian.y;
-        precise float attenuation = 0.0;
-        if (f.filtered) {
-          attenuation = f.dxx * wx * wx + f.dxy * wx * wy + f.dyy * wy * wy;
-          precise float mapped_x = f.fxx * wx + f.fxy * wy;
-          wy = f.fxy * wx + f.fyy * wy;
-          wx = mapped_x;
-        }
-        precise float argument = GABOR_TWO_PI_F * (wx * dx + wy * dy + phase);
-        sum += exp(-envelope - attenuation) * cos(argument);
+        float value;
+        if (gabor_kernel(f, gaussian, phase, dx, dy, value)) sum += value;
       }
     }
   }
   return sum;
+}
+
+// colour = mean + mixing * noise (section 7; mix_to_colour in model.cpp): the planar noise's and
+// surface noise's (surface.glsl).
+vec4 gabor_colour(vec4 noise) {
+  precise vec4 colour = GABOR_MEAN;
+  for (int c = 0; c < GABOR_CHANNELS; ++c)
+    for (int k = 0; k < GABOR_CHANNELS; ++k)
+      colour[c] += GABOR_MIXING[c * GABOR_CHANNELS + k] * noise[k];
+  return colour;
 }
 
 #ifdef STOCHTEX_FLOAT
@@ -307,12 +328,7 @@ vec4 gabor_noise(dvec2 p, dvec2 dpdx, dvec2 dpdy, uint seed) {
 #endif
     noise[GABOR_GRID_CHANNEL[g]] += grid_noise;
   }
-  // colour = mean + mixing * noise (section 7).
-  precise vec4 colour = GABOR_MEAN;
-  for (int c = 0; c < GABOR_CHANNELS; ++c)
-    for (int k = 0; k < GABOR_CHANNELS; ++k)
-      colour[c] += GABOR_MIXING[c * GABOR_CHANNELS + k] * noise[k];
-  return colour;
+  return gabor_colour(noise);
 }
 
 #ifdef STOCHTEX_FLOAT

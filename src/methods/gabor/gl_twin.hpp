@@ -7,6 +7,7 @@
 #include <array>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "gl/twin.hpp"
@@ -35,10 +36,11 @@ struct GaborGlsl {
 GaborGlsl gabor_glsl(const gabor::GaborModel& model,
                      GlslPrecision precision = GlslPrecision::doubles);
 
-// random.glsl, kConstants, the model's constants, the data sampler and gabor evaluate.glsl, all in
+// random.glsl, kConstants, the model's constants, the data read (gabor_texel: the sampler
+// `stochtex_gabor_data`, or the storage buffer at binding 0) and gabor evaluate.glsl, all in
 // glsl.precision (the float one is the `--gl-filter hardware` library, without doubles): all but
 // `#version`.
-std::string gabor_library_source(const GaborGlsl& glsl);
+std::string gabor_library_source(const GaborGlsl& glsl, DataSource source = DataSource::textures);
 
 template <>
 struct Twin<gabor::GaborModel> {
@@ -54,6 +56,12 @@ struct Twin<gabor::GaborModel> {
   // fast: the float-only library of --gl-filter hardware (gabor_glsl with GlslPrecision::floats,
   // the same data image read with texelFetch), which GLSL ES, HLSL and Metal can express.
   static ExportParts shader(const gabor::GaborModel& model, ShaderVariant variant);
+  // surface: the double-precision library (the data in the storage buffer, each grid's 3-D
+  // Poisson CDF appended), surface_process.glsl and stochtex_gabor_surface (surface.glsl), with
+  // the constants of options.surface_mni; triplanar_linear: the double-precision library through
+  // triplanar_linear_shader (twin.hpp).
+  static std::optional<SurfaceShader> surface_shader(const gabor::GaborModel& model,
+                                                     const SurfaceOptions& options);
 };
 
 }  // namespace stochtex::gl

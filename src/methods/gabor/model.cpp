@@ -495,6 +495,26 @@ void GaborModel::mix_to_colour(std::size_t count, ImageView<float> out) const no
   }
 }
 
+GaborModel::SurfaceGrid GaborModel::surface_grid(const Grid& grid, double surface_mni) {
+  const double planar_intensity = grid.impulses / (kPi * grid.radius * grid.radius);
+  const double intensity = planar_intensity * surface_mni / (kSurfaceMniReference * grid.radius);
+  // Cubic cells holding about kPointsPerCell impulses, side within [r/4, 2r]. A footprint of
+  // thinning level l scales the whole process by 2^l (cells, depth; intensity / 8^l, so the
+  // count per cell stays), and the amplitude by 2^l keeps the variance, as in the plane.
+  SurfaceGrid surface;
+  surface.cell_size =
+      grid.radius *
+      std::clamp(std::cbrt(kPointsPerCell / (intensity * grid.radius * grid.radius * grid.radius)),
+                 0.25, 2.0);
+  surface.count =
+      PoissonSampler(intensity * surface.cell_size * surface.cell_size * surface.cell_size);
+  return surface;
+}
+
+double GaborModel::surface_amplitude_gain(double surface_mni) {
+  return std::sqrt(1.5 * kSurfaceMniReference / surface_mni);
+}
+
 void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double surface_mni,
                                   std::uint32_t seed, ImageView<float> out) const noexcept {
   const auto pixel = [&](std::size_t index, int c) -> float& { return batch_pixel(out, index, c); };
@@ -511,20 +531,11 @@ void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double s
   // against lambda_2 integral(h^2) in the plane: the amplitude gains
   // sqrt(lambda_2 / (lambda_3 2 r_b / 3)) = sqrt(1.5 kSurfaceMniReference / surface_mni), and the
   // noise keeps the planar noise's variance (and zero mean, the phases being uniform).
-  const double amplitude_gain = std::sqrt(1.5 * kSurfaceMniReference / surface_mni);
+  const double amplitude_gain = surface_amplitude_gain(surface_mni);
   for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
     const Grid& grid = grids_[grid_index];
     const GridKernels kernels = grid_kernels(*this, grid);
-    const double planar_intensity = grid.impulses / (kPi * grid.radius * grid.radius);
-    const double intensity = planar_intensity * surface_mni / (kSurfaceMniReference * grid.radius);
-    // Cubic cells holding about kPointsPerCell impulses, side within [r/4, 2r]. A footprint of
-    // thinning level l scales the whole process by 2^l (cells, depth; intensity / 8^l, so the
-    // count per cell stays), and the amplitude by 2^l keeps the variance, as in the plane.
-    const double cell_size =
-        grid.radius * std::clamp(std::cbrt(kPointsPerCell /
-                                           (intensity * grid.radius * grid.radius * grid.radius)),
-                                 0.25, 2.0);
-    const PoissonSampler count(intensity * cell_size * cell_size * cell_size);
+    const SurfaceGrid surface = surface_grid(grid, surface_mni);
     for (std::size_t index = 0; index < points.size(); ++index) {
       const SurfacePoint& p = points[index];
       const SurfaceFrame frame = surface_frame(p);
@@ -537,9 +548,9 @@ void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double s
       const std::uint32_t level_seed =
           cell_key(static_cast<std::int64_t>(grid_index), filter.level, seed, Stream::kernels);
       float sum = 0.0f;
-      for_each_surface_impulse(p, frame, filter.reach, depth, std::ldexp(cell_size, filter.level),
-                               count, level_seed,
-                               [&](CounterRng& rng, float t, float z1, float z2) {
+      for_each_surface_impulse(p, frame, filter.reach, depth,
+                               std::ldexp(surface.cell_size, filter.level), surface.count,
+                               level_seed, [&](CounterRng& rng, float t, float z1, float z2) {
                                  float wx, wy, phase;
                                  kernels.draw(rng, wx, wy, phase);
                                  const float weight = 1.0f - std::abs(t) * inverse_depth;

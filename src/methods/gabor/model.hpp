@@ -125,6 +125,15 @@ class GaborModel {
     PoissonSampler cell_count;
   };
   const std::vector<Grid>& grids() const { return grids_; }
+  // The 3-D process of one grid's surface noise at one MNI (evaluate_surface, and its GLSL twin in
+  // gl_data.cpp): the side of its cubic cells and their impulse count, at thinning level 0.
+  struct SurfaceGrid {
+    double cell_size = 0;
+    PoissonSampler count;
+  };
+  static SurfaceGrid surface_grid(const Grid& grid, double surface_mni);
+  // The amplitude gain of surface noise at this MNI: the planar noise's variance.
+  static double surface_amplitude_gain(double surface_mni);
   // The Gaussians' frequencies in grid order (grid.first + i), for the GLSL twin (gl_data.cpp).
   std::span<const float> frequency_x() const { return frequency_x_; }
   std::span<const float> frequency_y() const { return frequency_y_; }

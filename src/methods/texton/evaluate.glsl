@@ -4,8 +4,9 @@
 // TEXTON_LOD_BIAS: Twin::kConstants in gl_twin.hpp), the model's constants (texton_glsl() in
 // gl_data.cpp writes them: TEXTON_CHANNELS, TEXTON_ORDER, TEXTON_CELL_SIZE, TEXTON_POISSON_CDF, TEXTON_POISSON_CHUNKS,
 // TEXTON_INVERSE_SQRT_INTENSITY, TEXTON_CONSTANT_TERM, TEXTON_MEAN, TEXTON_LEVELS and the
-// TEXTON_LEVEL_* arrays) and `uniform sampler2D stochtex_texton_atlas`: every pyramid level's
-// padded texels (RGBA = up to 4 channels), level l in rows TEXTON_LEVEL_ROW[l] onwards.
+// TEXTON_LEVEL_* arrays) and `vec4 texton_atlas_texel(ivec2 texel)`, the atlas of every pyramid
+// level's padded texels (RGBA = up to 4 channels), level l in rows TEXTON_LEVEL_ROW[l] onwards
+// (texton_atlas_source() in gl_data.cpp: a sampler, or the surface evaluator's storage buffer).
 
 #ifdef TEXTON_TEXTURE_FILTER
 vec4 texton_texture_fetch(float dx, float dy);  // hardware.glsl
@@ -49,14 +50,20 @@ TextonFilter texton_filter(vec2 dpdx, vec2 dpdy) {
   return f;
 }
 
-uint texton_poisson_count(inout CounterRng rng) {
+// A Poisson count by inversion of a tabulated CDF in `chunks` draws (PoissonSampler in
+// core/poisson.hpp): the planar grid's, or surface noise's 3-D cells'.
+uint texton_poisson(inout CounterRng rng, float cdf[TEXTON_POISSON_CDF.length()], uint chunks) {
   uint total = 0u;
-  for (uint c = 0u; c < TEXTON_POISSON_CHUNKS; ++c) {
+  for (uint c = 0u; c < chunks; ++c) {
     float u = rng_uniform(rng);
     uint k = 0u;
-    while (u >= TEXTON_POISSON_CDF[k]) ++k;
+    while (u >= cdf[k]) ++k;
     total += k;
   }
   return total;
+}
+
+uint texton_poisson_count(inout CounterRng rng) {
+  return texton_poisson(rng, TEXTON_POISSON_CDF, TEXTON_POISSON_CHUNKS);
 }
 

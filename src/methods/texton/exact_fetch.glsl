@@ -49,6 +49,6 @@ void texton_accumulate(ivec2 atlas, int level, float dx, float dy, float weight,
       atlas + ivec2(x0 + TEXTON_PADDING, TEXTON_LEVEL_ROW[level] + y0 + TEXTON_PADDING);
   for (int j = 0; j <= TEXTON_ORDER; ++j)
     for (int i = 0; i <= TEXTON_ORDER; ++i)
-      acc += (weight * wy[j] * wx[i]) * texelFetch(stochtex_texton_atlas, base + ivec2(i, j), 0);
+      acc += (weight * wy[j] * wx[i]) * texton_atlas_texel(base + ivec2(i, j));
 }
 

@@ -66,10 +66,18 @@ TextonGlsl texton_glsl(const texton::TextonModel& model) {
   return glsl;
 }
 
-std::string texton_library_source(const TextonGlsl& glsl) {
+std::string texton_atlas_source(const ImageF& atlas, DataSource source) {
+  if (source == DataSource::textures)
+    return "uniform sampler2D stochtex_texton_atlas;\nvec4 texton_atlas_texel(ivec2 texel) {\n"
+           "  return texelFetch(stochtex_texton_atlas, texel, 0);\n}\n";
+  return "layout(std430, binding = 0) readonly buffer TextonAtlas { vec4 texton_atlas[]; };\n"
+         "vec4 texton_atlas_texel(ivec2 texel) {\n  return texton_atlas[texel.y * " +
+         std::to_string(atlas.width()) + " + texel.x];\n}\n";
+}
+
+std::string texton_library_source(const TextonGlsl& glsl, DataSource source) {
   return random_source() + glsl_constants(Twin<texton::TextonModel>::kConstants) + glsl.constants +
-         "uniform sampler2D stochtex_texton_atlas;\n" +
-         shader_source("methods/texton/evaluate.glsl") +
+         texton_atlas_source(glsl.atlas, source) + shader_source("methods/texton/evaluate.glsl") +
          shader_source("methods/texton/exact_fetch.glsl") +
          shader_source("methods/texton/impulses.glsl") +
          shader_source("methods/texton/noise.glsl") + shader_source("methods/texton/entry.glsl");
@@ -137,6 +145,36 @@ ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model,
           texton_library_source(glsl),
           std::move(images),
           "Keep |p| below ~1e4 for full float precision."};
+}
+
+std::optional<SurfaceShader> Twin<texton::TextonModel>::surface_shader(
+    const texton::TextonModel& model, const SurfaceOptions& options) {
+  TextonGlsl glsl = texton_glsl(model);
+  const auto texels = glsl.atlas.pixels();
+  if (options.mapping == SurfaceMapping::triplanar_linear)
+    return triplanar_linear_shader(texton::TextonModel::kMethodName,
+                                   texton_library_source(glsl, DataSource::storage_buffers),
+                                   std::vector<float>(texels.begin(), texels.end()));
+  if (options.mapping != SurfaceMapping::surface) return std::nullopt;
+  const texton::SurfaceConstants surface = model.surface_constants(options.surface_mni);
+  const auto& cdf = surface.count.cdf();
+  std::string& text = glsl.constants;
+  text += "const float TEXTON_SURFACE_CELL_SIZE = " +
+          glsl_float(static_cast<float>(surface.cell_size)) + ";\n";
+  text +=
+      glsl_array("float", "TEXTON_SURFACE_POISSON_CDF", std::span<const float>(cdf), glsl_float);
+  text += "const uint TEXTON_SURFACE_POISSON_CHUNKS = " + std::to_string(surface.count.chunks()) +
+          "u;\n";
+  text += "const float TEXTON_SURFACE_DEPTH = " + glsl_float(surface.depth) + ";\n";
+  text += "const float TEXTON_SURFACE_INVERSE_DEPTH = " + glsl_float(surface.inverse_depth) + ";\n";
+  text += "const float TEXTON_SURFACE_SCALE = " + glsl_float(surface.scale) + ";\n";
+  text += "const vec4 TEXTON_SURFACE_CONSTANT = " + glsl_vec4(surface.constant) + ";\n";
+  text += "#define SURFACE_CONTEXT TextonFilter\n";
+  std::string library = texton_library_source(glsl, DataSource::storage_buffers) +
+                        shader_source("gl/surface_process.glsl") +
+                        shader_source("methods/texton/surface.glsl");
+  return SurfaceShader{std::move(library), std::vector<float>(texels.begin(), texels.end()),
+                       "stochtex_texton_surface(position, normal, tangent, dpdx, dpdy, seed)"};
 }
 
 }  // namespace stochtex::gl

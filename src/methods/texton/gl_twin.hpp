@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/level_of_detail.hpp"
@@ -29,9 +30,13 @@ TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model);
 // The shot noise's and texton noise's own constants (TEXTON_CONSTANT_TERM, TEXTON_MEAN).
 TextonGlsl texton_glsl(const texton::TextonModel& model);
 
-// The exact variant: random.glsl, kConstants, the model's constants, the atlas sampler and texton
+// texton_atlas_texel(), the read of the atlas that exact_fetch.glsl makes: from the sampler
+// `stochtex_texton_atlas` (textures) or from the storage buffer at binding 0 holding its texels.
+std::string texton_atlas_source(const ImageF& atlas, DataSource source);
+
+// The exact variant: random.glsl, kConstants, the model's constants, the atlas read and texton
 // evaluate.glsl, exact_fetch.glsl, impulses.glsl, noise.glsl and entry.glsl: all but `#version`.
-std::string texton_library_source(const TextonGlsl& glsl);
+std::string texton_library_source(const TextonGlsl& glsl, DataSource source = DataSource::textures);
 
 // Whether the model has a fast variant: hardware bilinear reconstruction is the order-1 B-spline
 // only, so other orders export (and render with --gl-filter hardware) as exact.
@@ -54,6 +59,11 @@ struct Twin<texton::TextonModel> {
   static std::unique_ptr<Pass> pass(const texton::TextonModel& model);
   // fast: the library and texture of --gl-filter hardware (TextonPass compiles and binds them).
   static ExportParts shader(const texton::TextonModel& model, ShaderVariant variant);
+  // surface: the exact library (the atlas in the storage buffer), surface_process.glsl and
+  // stochtex_texton_surface (surface.glsl), with the constants of options.surface_mni;
+  // triplanar_linear: the exact library through triplanar_linear_shader (twin.hpp).
+  static std::optional<SurfaceShader> surface_shader(const texton::TextonModel& model,
+                                                     const SurfaceOptions& options);
 };
 
 }  // namespace stochtex::gl

@@ -7,15 +7,46 @@
 // the point's cell relative to it, its index in the cell, (u, v) in the cell) to its TextonImpulse.
 TextonImpulse texton_impulse(uvec2 origin_cell, ivec2 cell, uint index, vec2 uv, uint seed);
 
-vec4 texton_sum_impulses(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
-  int top_level = TEXTON_LEVELS - 1;
-  int coarse = min(f.level + 1, top_level);
+// Half side of the square outside which an impact adds nothing (FilteredTexton::reach in
+// evaluate.hpp): the kernel's support plus the spread of the probes.
+float texton_reach(TextonFilter f) {
+  int coarse = min(f.level + 1, TEXTON_LEVELS - 1);
   float probe_extent = 0.5 * float(f.probes - 1) * max(abs(f.probe_step.x), abs(f.probe_step.y));
   float kernel_reach = f.level_blend > 0.0 ? max(TEXTON_LEVEL_HALF_WIDTH[f.level],
                                                  TEXTON_LEVEL_HALF_WIDTH[coarse])
                                            : TEXTON_LEVEL_HALF_WIDTH[f.level];
-  float reach = kernel_reach + probe_extent;
+  return kernel_reach + probe_extent;
+}
+
+// Adds weight * (filtered texton)(dx, dy) to acc (FilteredTexton::add in evaluate.hpp), (dx, dy)
+// = x - x_i in exemplar pixels, for the texton whose pyramid starts at atlas texel `atlas`: the
+// filter's pyramid level(s) and probes. The planar shot noise below and surface noise
+// (surface.glsl) sum the same filtered textons.
+void texton_add(ivec2 atlas, TextonFilter f, float dx, float dy, float weight, inout vec4 acc) {
+#ifdef TEXTON_TEXTURE_FILTER
+  // `render --gl-filter hardware` (hardware.glsl, texton noise only): one mip-mapped,
+  // anisotropic texture fetch of the texton instead of the exact levels and probes.
+  acc += weight * texton_texture_fetch(dx, dy);
+#else
+  if (f.probes == 1 && f.level_blend == 0.0) {
+    texton_accumulate(atlas, f.level, dx, dy, weight, acc);
+    return;
+  }
+  int coarse = min(f.level + 1, TEXTON_LEVELS - 1);
   float probe_weight = 1.0 / float(f.probes);
+  for (int k = 0; k < f.probes; ++k) {
+    float shift = float(k) + 0.5 - 0.5 * float(f.probes);
+    float px = dx + shift * f.probe_step.x;
+    float py = dy + shift * f.probe_step.y;
+    texton_accumulate(atlas, f.level, px, py, weight * probe_weight * (1.0 - f.level_blend), acc);
+    if (f.level_blend > 0.0)
+      texton_accumulate(atlas, coarse, px, py, weight * probe_weight * f.level_blend, acc);
+  }
+#endif
+}
+
+vec4 texton_sum_impulses(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
+  float reach = texton_reach(f);
   vec4 acc = vec4(0.0);
   int first_x = int(floor((p.x - reach) / TEXTON_CELL_SIZE));
   int last_x = int(floor((p.x + reach) / TEXTON_CELL_SIZE));
@@ -34,28 +65,8 @@ vec4 texton_sum_impulses(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
         float v = rng_uniform(rng);
         TextonImpulse impulse =
             texton_impulse(origin_cell, ivec2(cell_x, cell_y), n, vec2(u, v), seed);
-        float dx = offset_x - u * TEXTON_CELL_SIZE;
-        float dy = offset_y - v * TEXTON_CELL_SIZE;
-#ifdef TEXTON_TEXTURE_FILTER
-        // `render --gl-filter hardware` (hardware.glsl, texton noise only): one mip-mapped,
-        // anisotropic texture fetch of the texton instead of the exact levels and probes.
-        acc += impulse.weight * texton_texture_fetch(dx, dy);
-#else
-        if (f.probes == 1 && f.level_blend == 0.0) {
-          texton_accumulate(impulse.atlas, f.level, dx, dy, impulse.weight, acc);
-          continue;
-        }
-        for (int k = 0; k < f.probes; ++k) {
-          float shift = float(k) + 0.5 - 0.5 * float(f.probes);
-          float px = dx + shift * f.probe_step.x;
-          float py = dy + shift * f.probe_step.y;
-          texton_accumulate(impulse.atlas, f.level, px, py,
-                            impulse.weight * probe_weight * (1.0 - f.level_blend), acc);
-          if (f.level_blend > 0.0)
-            texton_accumulate(impulse.atlas, coarse, px, py,
-                              impulse.weight * probe_weight * f.level_blend, acc);
-        }
-#endif
+        texton_add(impulse.atlas, f, offset_x - u * TEXTON_CELL_SIZE,
+                   offset_y - v * TEXTON_CELL_SIZE, impulse.weight, acc);
       }
     }
   }

@@ -172,9 +172,7 @@ void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
   }
 }
 
-template <int Order, int Channels>
-void TextonModel::evaluate_surface_typed(std::span<const SurfacePoint> points, double surface_mni,
-                                         std::uint32_t seed, ImageView<float> out) const noexcept {
+SurfaceConstants TextonModel::surface_constants(double surface_mni) const {
   // Surface noise (section 6): a 3-D Poisson process of intensity lambda = MNI / r^3, impulses
   // within r/2 of the tangent plane weighted by (1 - 2 |t| / r)+ and carrying the texton in the
   // frame (u1, u2). Proposition 3: mean lambda r/2 sum(alpha), variance lambda r/3 integral(h^2),
@@ -182,16 +180,24 @@ void TextonModel::evaluate_surface_typed(std::span<const SurfacePoint> points, d
   // normalised noise (eq. 2) whatever the MNI. Cells of side 0.6 r as in 2-D (section 8).
   const double side = 2.0 * pyramid_.front().half_width;
   const double intensity = surface_mni / (side * side * side);
-  const double cell_size = kCellSizeFactor * side;
-  const PoissonSampler count(intensity * cell_size * cell_size * cell_size);
+  SurfaceConstants constants;
+  constants.cell_size = kCellSizeFactor * side;
+  constants.count =
+      PoissonSampler(intensity * constants.cell_size * constants.cell_size * constants.cell_size);
   const double scale = 1.0 / std::sqrt(intensity * side / 3.0);
-  const auto inverse_scale = static_cast<float>(scale);
-  float constant[Channels];
-  for (int c = 0; c < Channels; ++c)
-    constant[c] =
+  constants.scale = static_cast<float>(scale);
+  for (int c = 0; c < channels_; ++c)
+    constants.constant[c] =
         static_cast<float>(mean_[c] - intensity * 0.5 * side * coefficient_sum_[c] * scale);
-  const auto depth = static_cast<float>(0.5 * side);
-  const float inverse_depth = 1.0f / depth;
+  constants.depth = static_cast<float>(0.5 * side);
+  constants.inverse_depth = 1.0f / constants.depth;
+  return constants;
+}
+
+template <int Order, int Channels>
+void TextonModel::evaluate_surface_typed(std::span<const SurfacePoint> points, double surface_mni,
+                                         std::uint32_t seed, ImageView<float> out) const noexcept {
+  const SurfaceConstants constants = surface_constants(surface_mni);
   const int top_level = static_cast<int>(pyramid_.size()) - 1;
   for (std::size_t index = 0; index < points.size(); ++index) {
     const SurfacePoint& p = points[index];
@@ -199,15 +205,15 @@ void TextonModel::evaluate_surface_typed(std::span<const SurfacePoint> points, d
     const FilteredTexton<Order, Channels> texton(
         pyramid_, filter_setup(tangent_footprint(p, frame), top_level));
     float acc[Channels] = {};
-    for_each_surface_impulse(p, frame, texton.reach(), 0.5 * side, cell_size, count, seed,
-                             [&](CounterRng&, float t, float z1, float z2) {
-                               const float weight = 1.0f - std::abs(t) * inverse_depth;
+    for_each_surface_impulse(p, frame, texton.reach(), constants.depth, constants.cell_size,
+                             constants.count, seed, [&](CounterRng&, float t, float z1, float z2) {
+                               const float weight = 1.0f - std::abs(t) * constants.inverse_depth;
                                if (weight > 0.0f) texton.add(pyramid_.data(), z1, z2, weight, acc);
                              });
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
     for (int c = 0; c < Channels; ++c)
-      out.at(x, y, c) = texton.output(acc[c], inverse_scale, constant[c], mean_[c]);
+      out.at(x, y, c) = texton.output(acc[c], constants.scale, constants.constant[c], mean_[c]);
   }
 }
 

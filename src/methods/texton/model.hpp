@@ -15,6 +15,19 @@
 
 namespace stochtex::texton {
 
+// The constants of texton surface noise at one MNI (section 6, Proposition 3), shared by the CPU
+// evaluator (evaluate_surface) and its GLSL twin (gl_data.cpp): the 3-D process's cell side,
+// impulse count per cell and tent half-depth r/2, and the normalisation
+// (f - lambda r/2 sum(alpha)) / sqrt(lambda r/3) + mean = f * scale + constant.
+struct SurfaceConstants {
+  double cell_size = 0;
+  PoissonSampler count;
+  float depth = 0;
+  float inverse_depth = 0;
+  float scale = 0;
+  float constant[4] = {};
+};
+
 // Texels of zero around each pyramid level: order k reads up to k + 1 texels outside a level near
 // the support border (k <= 5); with 8 the evaluator never tests bounds, even after float rounding.
 inline constexpr int kPadding = 8;
@@ -65,6 +78,8 @@ class TextonModel {
   // noexcept, no allocation.
   void evaluate_surface(std::span<const SurfacePoint> points, double surface_mni,
                         std::uint32_t seed, ImageView<float> out) const noexcept;
+  // The constants evaluate_surface uses at this MNI (its GLSL twin's too).
+  SurfaceConstants surface_constants(double surface_mni) const;
 
  private:
   template <int Order, int Channels>

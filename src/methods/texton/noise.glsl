@@ -5,9 +5,16 @@ TextonImpulse texton_impulse(uvec2 origin_cell, ivec2 cell, uint index, vec2 uv,
   return TextonImpulse(ivec2(0), 1.0);
 }
 
+// The noise's value from the sum (FilteredTexton::output), texton noise's and surface noise's
+// (surface.glsl): (acc - offset) * scale + mean, with constant = mean - offset * scale, `fade`
+// (texton_filter) scaling the fluctuation only.
+vec4 texton_output(vec4 acc, float scale, vec4 constant, TextonFilter f) {
+  vec4 noise = acc * scale + constant - TEXTON_MEAN;
+  return TEXTON_MEAN + f.fade * noise;
+}
+
 vec4 texton_noise(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
   vec4 acc = texton_sum_impulses(p, origin_cell, seed, f);
-  // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2); `fade` scales the fluctuation only.
-  vec4 noise = acc * TEXTON_INVERSE_SQRT_INTENSITY + TEXTON_CONSTANT_TERM - TEXTON_MEAN;
-  return TEXTON_MEAN + f.fade * noise;
+  // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2).
+  return texton_output(acc, TEXTON_INVERSE_SQRT_INTENSITY, TEXTON_CONSTANT_TERM, f);
 }

@@ -78,7 +78,7 @@ TextonMixGlsl texton_mix_glsl(const texton_mix::TextonMixModel& model) {
   }
   return {random_source() + glsl_constants(Twin<texton::TextonModel>::kConstants) +
               glsl_constants(Twin<texton_mix::TextonMixModel>::kConstants) + constants +
-              "uniform sampler2D stochtex_texton_atlas;\n" + mask_source +
+              texton_atlas_source(textures.front().image, DataSource::textures) + mask_source +
               shader_source("methods/texton/evaluate.glsl") +
               shader_source("methods/texton/exact_fetch.glsl") +
               shader_source("methods/texton/impulses.glsl") +

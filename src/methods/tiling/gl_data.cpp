@@ -81,7 +81,7 @@ std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
          reader + shader_source("methods/tiling/evaluate.glsl") +
          shader_source("methods/tiling/exact_fetch.glsl") +
          shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/entry.glsl") +
-         shader_source("methods/tiling/triplanar.glsl");
+         shader_source("gl/triplanar.glsl") + shader_source("methods/tiling/triplanar.glsl");
 }
 
 namespace {
@@ -157,7 +157,7 @@ ExportParts fast_shader(const tiling::TilingModel& model) {
       shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/hardware.glsl") +
       "#define stochtex_tiling tiling_at_level_of_detail\n" +
       shader_source("methods/tiling/entry.glsl") + "#undef stochtex_tiling\n" +
-      shader_source("methods/tiling/fast_entry.glsl") +
+      shader_source("methods/tiling/fast_entry.glsl") + shader_source("gl/triplanar.glsl") +
       shader_source("methods/tiling/triplanar.glsl");
   std::string notes =
       "Equal to the CPU render in distribution (mean, variance; tested), not pixel for pixel.\n"
@@ -199,9 +199,12 @@ ExportParts Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model,
 }
 
 std::optional<SurfaceShader> Twin<tiling::TilingModel>::surface_shader(
-    const tiling::TilingModel& model, SurfaceMapping mapping) {
-  if (mapping != SurfaceMapping::triplanar) return std::nullopt;
+    const tiling::TilingModel& model, const SurfaceOptions& options) {
   TilingGlsl glsl = tiling_glsl(model);
+  if (options.mapping == SurfaceMapping::triplanar_linear)
+    return triplanar_linear_shader(tiling::TilingModel::kMethodName, tiling_library_source(glsl),
+                                   std::move(glsl.data));
+  if (options.mapping != SurfaceMapping::triplanar) return std::nullopt;
   return SurfaceShader{tiling_library_source(glsl), std::move(glsl.data),
                        "stochtex_tiling_triplanar(position, normal, dpdx, dpdy, parameter, seed)"};
 }

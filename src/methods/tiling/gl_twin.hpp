@@ -49,9 +49,10 @@ struct Twin<tiling::TilingModel> {
   static std::unique_ptr<Pass> pass(const tiling::TilingModel& model);
   // fast: the library and textures of --gl-filter hardware (TilingPass compiles and binds them).
   static ExportParts shader(const tiling::TilingModel& model, ShaderVariant variant);
-  // triplanar: the exact library and stochtex_tiling_triplanar (triplanar.glsl).
+  // triplanar: the exact library and stochtex_tiling_triplanar (triplanar.glsl); triplanar_linear:
+  // the exact library through triplanar_linear_shader (twin.hpp).
   static std::optional<SurfaceShader> surface_shader(const tiling::TilingModel& model,
-                                                     SurfaceMapping mapping);
+                                                     const SurfaceOptions& options);
 };
 
 }  // namespace stochtex::gl

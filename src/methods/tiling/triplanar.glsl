@@ -1,12 +1,7 @@
 // Triplanar histogram-preserving blending (figure 16 of the tiling paper): the twin of
 // TilingModel::evaluate_triplanar (model.cpp). Compiled after tiling entry.glsl (and, in the fast
 // variant, hardware.glsl and fast_entry.glsl, TILING_TEXTURE_FILTER defined); requires
-// random.glsl's cell_key.
-
-// A position or footprint vector projected on axis plane k: (y,z), (z,x), (x,y) (on_plane).
-vec2 tiling_on_plane(vec3 v, int k) {
-  return k == 0 ? v.yz : (k == 1 ? v.zx : v.xy);
-}
+// random.glsl's cell_key and src/gl/triplanar.glsl.
 
 // The engine-facing triplanar entry point: a surface point in exemplar pixels (model space), its
 // unit normal, the screen derivatives of the position (dFdx(position), dFdy(position); zero = no
@@ -16,22 +11,21 @@ vec2 tiling_on_plane(vec3 v, int k) {
 // and T^-1 is looked up once, at the w^2-weighted mean of the planes' levels.
 vec4 stochtex_tiling_triplanar(vec3 position, vec3 normal, vec3 dpdx, vec3 dpdy, float sharpness,
                                uint seed) {
-  vec3 weights = pow(abs(normal), vec3(sharpness));
-  weights /= weights.x + weights.y + weights.z;
+  vec3 weights = stochtex_triplanar_weights(normal, sharpness);
   vec4 acc = vec4(0.0);
   float weight_squares = 0.0;
   float lod = 0.0;
   for (int k = 0; k < 3; ++k) {
     float w = weights[k];
     if (w == 0.0) continue;
-    vec2 plane_dpdx = tiling_on_plane(dpdx, k);
-    vec2 plane_dpdy = tiling_on_plane(dpdy, k);
+    vec2 plane_dpdx = stochtex_on_plane(dpdx, k);
+    vec2 plane_dpdy = stochtex_on_plane(dpdy, k);
     float plane_lod = tiling_level_of_detail(plane_dpdx, plane_dpdy);
     int level = int(plane_lod);
 #ifdef TILING_TEXTURE_FILTER
     tiling_set_gradients(plane_dpdx, plane_dpdy);
 #endif
-    vec4 g = tiling_blended_at(tiling_on_plane(position, k),
+    vec4 g = tiling_blended_at(stochtex_on_plane(position, k),
                                cell_key(uint(k), 0u, seed, STREAM_OFFSETS), level,
                                plane_lod - float(level));
     acc += w * (g - TILING_BLEND_MEAN);
