@@ -51,6 +51,14 @@ Texturing texturing(const Model& model, const MeshRenderOptions& options) {
             std::move(files.textures),
             {}};
   }
+  // Gabor's surface functions match the CPU in the compute evaluator (tests/gl/surface_gl_test.cpp)
+  // but not in this fragment shader: measured on the scan, mean |cpu - gl| 0.32 (triplanar-linear)
+  // and 0.014 (surface), the cause not found yet (docs/meshes.md). Refused rather than drawn wrong.
+  if (model.method() == "gabor")
+    throw Error(ErrorCode::invalid_input,
+                "the gl mesh renderer does not draw gabor's " +
+                    std::string(mapping_name(*options.mapping)) +
+                    " mapping correctly yet; use --backend cpu, or --mapping uv");
   SurfaceOptions surface = options.surface;
   surface.mapping = *options.mapping;
   std::optional<gl::SurfaceShader> shader = gl::model_surface_shader(model, surface);
