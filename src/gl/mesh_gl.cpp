@@ -51,14 +51,6 @@ Texturing texturing(const Model& model, const MeshRenderOptions& options) {
             std::move(files.textures),
             {}};
   }
-  // Gabor's surface functions match the CPU in the compute evaluator (tests/gl/surface_gl_test.cpp)
-  // but not in this fragment shader: measured on the scan, mean |cpu - gl| 0.32 (triplanar-linear)
-  // and 0.014 (surface), the cause not found yet (docs/meshes.md). Refused rather than drawn wrong.
-  if (model.method() == "gabor")
-    throw Error(ErrorCode::invalid_input,
-                "the gl mesh renderer does not draw gabor's " +
-                    std::string(mapping_name(*options.mapping)) +
-                    " mapping correctly yet; use --backend cpu, or --mapping uv");
   SurfaceOptions surface = options.surface;
   surface.mapping = *options.mapping;
   std::optional<gl::SurfaceShader> shader = gl::model_surface_shader(model, surface);
@@ -67,8 +59,7 @@ Texturing texturing(const Model& model, const MeshRenderOptions& options) {
                 "the gl backend has no GLSL " + std::string(mapping_name(*options.mapping)) +
                     " mapping for " + std::string(model.method()) + " models; use --backend cpu");
   return {"#define STOCHTEX_SURFACE_CALL " + shader->call + "\n" + shader->library + fragment,
-          {},
-          std::move(shader->data)};
+          std::move(shader->textures), std::move(shader->data)};
 }
 
 // The mesh as one vertex buffer of (position, normal, uv) floats, one index buffer and the faces'
@@ -208,11 +199,7 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
   const gl::Context context;
   const gl::Program program("#version 450\n" + gl::shader_source("gl/mesh_vertex.glsl"),
                             "#version 450\n" + gl::glsl_constants(kMeshConstants) + parts.fragment);
-  std::vector<GLuint> textures;
-  for (const ShaderTexture& texture : parts.textures) {
-    program.set(("stochtex_" + texture.name).c_str(), static_cast<int>(textures.size()));
-    textures.push_back(gl::texture_of(texture));
-  }
+  const gl::ProgramTextures textures(program, parts.textures);
   const gl::Buffer data(std::max<std::size_t>(parts.data.size(), 1) * sizeof(float),
                         parts.data.data());
   const MeshBuffers buffers(mesh);
@@ -248,8 +235,7 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
   glDisable(GL_CULL_FACE);
   glUseProgram(program.id());
   glBindVertexArray(buffers.vertex_array);
-  for (std::size_t unit = 0; unit < textures.size(); ++unit)
-    glBindTextureUnit(static_cast<GLuint>(unit), textures[unit]);
+  textures.bind();
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffers.faces.id());
   std::array<float, 4> background{};
@@ -277,7 +263,6 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
             out.at(x0 + x, y0 + y, c) =
                 values[(static_cast<std::size_t>(y) * w + x) * 4 + static_cast<std::size_t>(c)];
     }
-  glDeleteTextures(static_cast<GLsizei>(textures.size()), textures.data());
   glUseProgram(0);
 }
 

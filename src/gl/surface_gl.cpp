@@ -51,12 +51,14 @@ struct GlSurfaceEvaluator::Compiled {
   SurfaceOptions options;
   gl::Program program;
   gl::Buffer data;
+  gl::ProgramTextures textures;
   Compiled(const SurfaceOptions& made_for, const gl::SurfaceShader& shader, int channels)
       : options(made_for),
         program("#version 450\n#define STOCHTEX_CHANNELS " + std::to_string(channels) +
                 "\n#define STOCHTEX_SURFACE_CALL " + shader.call + "\n" + shader.library +
                 gl::shader_source("gl/surface.glsl")),
-        data(std::max<std::size_t>(shader.data.size(), 1) * sizeof(float), shader.data.data()) {}
+        data(std::max<std::size_t>(shader.data.size(), 1) * sizeof(float), shader.data.data()),
+        textures(program, shader.textures) {}
 };
 
 struct GlSurfaceEvaluator::Impl {
@@ -122,6 +124,7 @@ void GlSurfaceEvaluator::evaluate(std::span<const SurfacePoint> points,
     program.set("point_count", count);
     glUseProgram(program.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, compiled->data.id());
+    compiled->textures.bind();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, result.id());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, input.id());
     glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);

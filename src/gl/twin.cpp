@@ -103,23 +103,26 @@ GLuint texture_of(const ShaderTexture& texture) {
   return id;
 }
 
-ExportedProgram::ExportedProgram(const ExportParts& parts, const std::string& render_source)
-    : program_("#version 450\n" + parts.library + render_source) {
-  for (const ShaderTexture& texture : parts.textures) {
-    program_.set(("stochtex_" + texture.name).c_str(), static_cast<int>(textures_.size()));
-    textures_.push_back(texture_of(texture));
+ProgramTextures::ProgramTextures(const Program& program, std::span<const ShaderTexture> textures) {
+  for (const ShaderTexture& texture : textures) {
+    program.set(("stochtex_" + texture.name).c_str(), static_cast<int>(ids_.size()));
+    ids_.push_back(texture_of(texture));
   }
   check_gl("uploading the exported textures");
 }
 
-ExportedProgram::~ExportedProgram() {
-  glDeleteTextures(static_cast<GLsizei>(textures_.size()), textures_.data());
+ProgramTextures::~ProgramTextures() {
+  glDeleteTextures(static_cast<GLsizei>(ids_.size()), ids_.data());
 }
 
-void ExportedProgram::bind_textures() const {
-  for (std::size_t unit = 0; unit < textures_.size(); ++unit)
-    glBindTextureUnit(static_cast<GLuint>(unit), textures_[unit]);
+void ProgramTextures::bind() const {
+  for (std::size_t unit = 0; unit < ids_.size(); ++unit)
+    glBindTextureUnit(static_cast<GLuint>(unit), ids_[unit]);
 }
+
+ExportedProgram::ExportedProgram(const ExportParts& parts, const std::string& render_source)
+    : program_("#version 450\n" + parts.library + render_source),
+      textures_(program_, parts.textures) {}
 
 GLuint data_texture(const ImageF& image) {
   GLuint texture = 0;
@@ -134,8 +137,10 @@ SurfaceShader triplanar_linear_shader(std::string_view method, std::string libra
                                       std::vector<float> data) {
   library += shader_source("gl/triplanar.glsl") + "#define STOCHTEX_PLANAR stochtex_" +
              std::string(method) + "\n" + shader_source("gl/triplanar_linear.glsl");
-  return SurfaceShader{std::move(library), std::move(data),
-                       "stochtex_triplanar_linear(position, normal, dpdx, dpdy, parameter, seed)"};
+  return SurfaceShader{std::move(library),
+                       std::move(data),
+                       "stochtex_triplanar_linear(position, normal, dpdx, dpdy, parameter, seed)",
+                       {}};
 }
 
 }  // namespace stochtex::gl

@@ -76,18 +76,25 @@ concept HasTwin = requires(const MethodModel& model) {
 // ask again when the options change.
 struct SurfaceShader {
   // GLSL, all but `#version`: the method's library reading its data from the storage buffer at
-  // binding 0 (`data`), its constants and its surface function.
+  // binding 0 (`data`) or from `textures` (ProgramTextures), its constants and its surface
+  // function.
   std::string library;
   std::vector<float> data;
   // A GLSL expression of the vec4 value at one point, from the vec3 `position`, `normal`,
   // `tangent`, `dpdx`, `dpdy` (model space), the uint `seed` and the float `parameter`
   // (SurfaceOptions::triplanar_sharpness for the triplanar mappings, surface_mni for surface).
   std::string call;
+  // Gabor reads its data with texelFetch: on Mesa 22.3's llvmpipe a loop whose exit depends on a
+  // value read from a storage buffer, nested in another loop, ends the outer loop after one
+  // iteration in fragment shaders (and in compute shaders whose SIMD vectors start partly empty),
+  // which dropped nearly all of Gabor noise's impulses in the mesh renderer (docs/meshes.md).
+  std::vector<ShaderTexture> textures;
 };
 
 // Linear triplanar mapping (SurfaceMapping::triplanar_linear, src/gl/triplanar_linear.glsl) for a
-// method whose planar library `library` reads its data from the storage buffer at binding 0 only:
-// its entry point stochtex_<method> called on the three axis planes.
+// method whose planar library `library` reads its data from the storage buffer at binding 0 only
+// (or, with `data` empty, from textures the caller adds): its entry point stochtex_<method> called
+// on the three axis planes.
 SurfaceShader triplanar_linear_shader(std::string_view method, std::string library,
                                       std::vector<float> data);
 
@@ -132,18 +139,29 @@ GLuint texture_of(const ShaderTexture& texture);
 // export's GLSL library (what `export-shader --variant fast` ships, less its header comment)
 // followed by the method's render.glsl, and the export's textures on units 0, 1, ... in their
 // order, so the renderer runs and measures exactly what the export ships.
+// The textures of exported data images for one program: made by texture_of, texture i on unit i
+// and the program's sampler `stochtex_<name>` set to it; bind() binds them before drawing.
+class ProgramTextures {
+ public:
+  ProgramTextures(const Program& program, std::span<const ShaderTexture> textures);
+  ~ProgramTextures();
+  ProgramTextures(const ProgramTextures&) = delete;
+  ProgramTextures& operator=(const ProgramTextures&) = delete;
+  void bind() const;
+
+ private:
+  std::vector<GLuint> ids_;
+};
+
 class ExportedProgram {
  public:
   ExportedProgram(const ExportParts& parts, const std::string& render_source);
-  ~ExportedProgram();
-  ExportedProgram(const ExportedProgram&) = delete;
-  ExportedProgram& operator=(const ExportedProgram&) = delete;
   const Program& program() const { return program_; }
-  void bind_textures() const;
+  void bind_textures() const { textures_.bind(); }
 
  private:
   Program program_;
-  std::vector<GLuint> textures_;
+  ProgramTextures textures_;
 };
 
 // An RGBA32F texture of `image` (4 channels), read with texelFetch.

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "gl_support.hpp"
@@ -148,18 +149,20 @@ TEST(GlMesh, TriplanarMatchesTheCpuReference) {
   }
 }
 
-// Surface noise (texton) and linear triplanar mapping (texton, tiling) on the scan, which has no
-// texture coordinates, through the twins' GLSL surface functions. (Gabor's are refused by the
-// mesh renderer: see AMappingWithoutGlslIsRefused.)
+// Surface noise (texton, gabor) and linear triplanar mapping (texton, tiling, gabor) on the scan,
+// which has no texture coordinates, through the twins' GLSL surface functions.
 TEST(GlMesh, SurfaceNoiseAndLinearTriplanarMatchTheCpuReference) {
   const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
   const Mesh mesh = read_mesh(kMeshes + "scan.obj");
-  const std::pair<const char*, SurfaceMapping> cases[] = {
-      {"texton", SurfaceMapping::surface},
-      {"texton", SurfaceMapping::triplanar_linear},
-      {"tiling", SurfaceMapping::triplanar_linear}};
-  for (const auto& [method, mapping] : cases) {
-    const Model model = analyze(method, exemplar.view(), {}, 0);
+  const ParamValues gabor = {{"impulses", 64}, {"iterations", 30}};
+  const std::tuple<const char*, ParamValues, SurfaceMapping> cases[] = {
+      {"texton", {}, SurfaceMapping::surface},
+      {"texton", {}, SurfaceMapping::triplanar_linear},
+      {"tiling", {}, SurfaceMapping::triplanar_linear},
+      {"gabor", gabor, SurfaceMapping::surface},
+      {"gabor", gabor, SurfaceMapping::triplanar_linear}};
+  for (const auto& [method, params, mapping] : cases) {
+    const Model model = analyze(method, exemplar.view(), params, 0);
     MeshRenderOptions options;
     options.mapping = mapping;
     options.texture_scale = 64.0;
@@ -171,8 +174,9 @@ TEST(GlMesh, SurfaceNoiseAndLinearTriplanarMatchTheCpuReference) {
               << ": " << filtered << "\n";
     for (const Parity& p : {fine, filtered}) {
       // Measured: no coverage difference, 2709 interior pixels; largest difference 0.0116 (texton
-      // triplanar-linear, scale 64), means up to 5.5e-6 (texton surface, scale 64), at most 6
-      // pixels beyond float rounding (the scan's few pixels on triangle edges, as for triplanar).
+      // triplanar-linear, scale 64; gabor 0.0072), means up to 5.5e-6 (texton surface, scale 64;
+      // gabor 4.3e-6), at most 6 pixels beyond float rounding (the scan's few pixels on triangle
+      // edges, as for triplanar).
       EXPECT_LE(p.coverage_differences, 20) << name;
       EXPECT_GT(p.interior, 2000) << name;
       EXPECT_LT(p.largest, 0.025f) << name;
@@ -193,13 +197,6 @@ TEST(GlMesh, AMappingWithoutGlslIsRefused) {
   EXPECT_THROW(render_mesh_gl(lrp, mesh, camera, options, 1, out.view()), std::invalid_argument);
   options.mapping = SurfaceMapping::triplanar_linear;
   EXPECT_THROW(render_mesh_gl(lrp, mesh, camera, options, 1, out.view()), Error);
-  // Gabor's surface functions are refused by the mesh renderer until its fragment shader draws
-  // them as the CPU does (measured: mean |cpu - gl| 0.32 for triplanar-linear on the scan).
-  const Model gabor = analyze("gabor", exemplar.view(), {{"impulses", 64}, {"iterations", 30}}, 0);
-  for (const SurfaceMapping mapping : {SurfaceMapping::surface, SurfaceMapping::triplanar_linear}) {
-    options.mapping = mapping;
-    EXPECT_THROW(render_mesh_gl(gabor, mesh, camera, options, 1, out.view()), Error);
-  }
   // The uv mapping needs uvs, which the scan has not.
   options.mapping = std::nullopt;
   EXPECT_THROW(render_mesh_gl(lrp, mesh, camera, options, 1, out.view()), std::invalid_argument);

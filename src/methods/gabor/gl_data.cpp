@@ -98,14 +98,11 @@ GaborGlsl gabor_glsl(const gabor::GaborModel& model, GlslPrecision precision) {
   return glsl;
 }
 
-std::string gabor_library_source(const GaborGlsl& glsl, DataSource source) {
+std::string gabor_library_source(const GaborGlsl& glsl) {
   const std::string reader =
-      source == DataSource::textures
-          ? "uniform sampler2D stochtex_gabor_data;\nvec4 gabor_texel(int index) {\n  return "
-            "texelFetch(stochtex_gabor_data, ivec2(index % GABOR_DATA_WIDTH, index / "
-            "GABOR_DATA_WIDTH), 0);\n}\n"
-          : "layout(std430, binding = 0) readonly buffer GaborData { vec4 gabor_data[]; };\n"
-            "vec4 gabor_texel(int index) {\n  return gabor_data[index];\n}\n";
+      "uniform sampler2D stochtex_gabor_data;\nvec4 gabor_texel(int index) {\n  return "
+      "texelFetch(stochtex_gabor_data, ivec2(index % GABOR_DATA_WIDTH, index / "
+      "GABOR_DATA_WIDTH), 0);\n}\n";
   return random_source() + glsl_constants(Twin<gabor::GaborModel>::kConstants, glsl.precision) +
          glsl.constants + reader +
          glsl_precision_variant(shader_source("methods/gabor/evaluate.glsl"), glsl.precision);
@@ -113,15 +110,19 @@ std::string gabor_library_source(const GaborGlsl& glsl, DataSource source) {
 
 std::optional<SurfaceShader> Twin<gabor::GaborModel>::surface_shader(
     const gabor::GaborModel& model, const SurfaceOptions& options) {
+  // The data image, read with texelFetch rather than from a storage buffer (SurfaceShader).
   GaborGlsl glsl = gabor_glsl(model);
+  const auto shader = [&](SurfaceShader made) {
+    made.textures.push_back({"gabor_data", std::move(glsl.data)});
+    return made;
+  };
+  if (options.mapping == SurfaceMapping::triplanar_linear)
+    return shader(
+        triplanar_linear_shader(gabor::GaborModel::kMethodName, gabor_library_source(glsl), {}));
+  if (options.mapping != SurfaceMapping::surface) return std::nullopt;
+  // Each grid's 3-D process (GaborModel::surface_grid): its CDF appended to the data image.
   const auto texels = glsl.data.pixels();
   std::vector<float> data(texels.begin(), texels.end());
-  if (options.mapping == SurfaceMapping::triplanar_linear)
-    return triplanar_linear_shader(gabor::GaborModel::kMethodName,
-                                   gabor_library_source(glsl, DataSource::storage_buffers),
-                                   std::move(data));
-  if (options.mapping != SurfaceMapping::surface) return std::nullopt;
-  // Each grid's 3-D process (GaborModel::surface_grid): its CDF appended to the data.
   std::vector<int> cdf_texel;
   std::vector<unsigned> chunks;
   std::vector<double> cell_size;
@@ -133,6 +134,9 @@ std::optional<SurfaceShader> Twin<gabor::GaborModel>::surface_shader(
     cell_size.push_back(surface.cell_size);
     data.insert(data.end(), surface.count.cdf().begin(), surface.count.cdf().end());
   }
+  constexpr std::size_t kRow = std::size_t{GaborGlsl::kDataWidth} * 4;
+  glsl.data = ImageF(GaborGlsl::kDataWidth, static_cast<int>((data.size() + kRow - 1) / kRow), 4);
+  std::copy(data.begin(), data.end(), glsl.data.pixels().begin());
   std::string& text = glsl.constants;
   text += glsl_array("int", "GABOR_SURFACE_CDF", std::span<const int>(cdf_texel), glsl_int);
   text += glsl_array("uint", "GABOR_SURFACE_POISSON_CHUNKS", std::span<const unsigned>(chunks),
@@ -141,13 +145,14 @@ std::optional<SurfaceShader> Twin<gabor::GaborModel>::surface_shader(
                      glsl_double);
   text += "const double GABOR_SURFACE_AMPLITUDE_GAIN = " +
           glsl_double(gabor::GaborModel::surface_amplitude_gain(options.surface_mni)) + ";\n";
-  std::string library = gabor_library_source(glsl, DataSource::storage_buffers) +
-                        shader_source("methods/gabor/surface_impulse.glsl") +
-                        "#define SURFACE_CONTEXT GaborSurfacePoint\n" +
-                        shader_source("gl/surface_process.glsl") +
-                        shader_source("methods/gabor/surface.glsl");
-  return SurfaceShader{std::move(library), std::move(data),
-                       "stochtex_gabor_surface(position, normal, tangent, dpdx, dpdy, seed)"};
+  std::string library =
+      gabor_library_source(glsl) + shader_source("methods/gabor/surface_impulse.glsl") +
+      "#define SURFACE_CONTEXT GaborSurfacePoint\n" + shader_source("gl/surface_process.glsl") +
+      shader_source("methods/gabor/surface.glsl");
+  return shader(SurfaceShader{std::move(library),
+                              {},
+                              "stochtex_gabor_surface(position, normal, tangent, dpdx, dpdy, seed)",
+                              {}});
 }
 
 ExportParts Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model, ShaderVariant variant) {

@@ -36,11 +36,11 @@ struct GaborGlsl {
 GaborGlsl gabor_glsl(const gabor::GaborModel& model,
                      GlslPrecision precision = GlslPrecision::doubles);
 
-// random.glsl, kConstants, the model's constants, the data read (gabor_texel: the sampler
-// `stochtex_gabor_data`, or the storage buffer at binding 0) and gabor evaluate.glsl, all in
+// random.glsl, kConstants, the model's constants, the data read (gabor_texel: texelFetch from the
+// sampler `stochtex_gabor_data`) and gabor evaluate.glsl, all in
 // glsl.precision (the float one is the `--gl-filter hardware` library, without doubles): all but
 // `#version`.
-std::string gabor_library_source(const GaborGlsl& glsl, DataSource source = DataSource::textures);
+std::string gabor_library_source(const GaborGlsl& glsl);
 
 template <>
 struct Twin<gabor::GaborModel> {
@@ -56,10 +56,10 @@ struct Twin<gabor::GaborModel> {
   // fast: the float-only library of --gl-filter hardware (gabor_glsl with GlslPrecision::floats,
   // the same data image read with texelFetch), which GLSL ES, HLSL and Metal can express.
   static ExportParts shader(const gabor::GaborModel& model, ShaderVariant variant);
-  // surface: the double-precision library (the data in the storage buffer, each grid's 3-D
-  // Poisson CDF appended), surface_process.glsl and stochtex_gabor_surface (surface.glsl), with
-  // the constants of options.surface_mni; triplanar_linear: the double-precision library through
-  // triplanar_linear_shader (twin.hpp).
+  // surface: the double-precision library (the data image as SurfaceShader::textures, each
+  // grid's 3-D Poisson CDF appended), surface_process.glsl and stochtex_gabor_surface
+  // (surface.glsl), with the constants of options.surface_mni; triplanar_linear: the
+  // double-precision library through triplanar_linear_shader (twin.hpp), the data image likewise.
   static std::optional<SurfaceShader> surface_shader(const gabor::GaborModel& model,
                                                      const SurfaceOptions& options);
 };

@@ -173,8 +173,10 @@ std::optional<SurfaceShader> Twin<texton::TextonModel>::surface_shader(
   std::string library = texton_library_source(glsl, DataSource::storage_buffers) +
                         shader_source("gl/surface_process.glsl") +
                         shader_source("methods/texton/surface.glsl");
-  return SurfaceShader{std::move(library), std::vector<float>(texels.begin(), texels.end()),
-                       "stochtex_texton_surface(position, normal, tangent, dpdx, dpdy, seed)"};
+  return SurfaceShader{std::move(library),
+                       std::vector<float>(texels.begin(), texels.end()),
+                       "stochtex_texton_surface(position, normal, tangent, dpdx, dpdy, seed)",
+                       {}};
 }
 
 }  // namespace stochtex::gl

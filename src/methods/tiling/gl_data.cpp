@@ -205,8 +205,10 @@ std::optional<SurfaceShader> Twin<tiling::TilingModel>::surface_shader(
     return triplanar_linear_shader(tiling::TilingModel::kMethodName, tiling_library_source(glsl),
                                    std::move(glsl.data));
   if (options.mapping != SurfaceMapping::triplanar) return std::nullopt;
-  return SurfaceShader{tiling_library_source(glsl), std::move(glsl.data),
-                       "stochtex_tiling_triplanar(position, normal, dpdx, dpdy, parameter, seed)"};
+  return SurfaceShader{tiling_library_source(glsl),
+                       std::move(glsl.data),
+                       "stochtex_tiling_triplanar(position, normal, dpdx, dpdy, parameter, seed)",
+                       {}};
 }
 
 }  // namespace stochtex::gl
