@@ -135,10 +135,6 @@ ImageF quantized(ImageF image, int bits);
 // generated mip-maps, filter, wrap): the fast renderer binds what the export ships.
 GLuint texture_of(const ShaderTexture& texture);
 
-// The --gl-filter hardware program of a method with a fast variant (texton, tiling): the fast
-// export's GLSL library (what `export-shader --variant fast` ships, less its header comment)
-// followed by the method's render.glsl, and the export's textures on units 0, 1, ... in their
-// order, so the renderer runs and measures exactly what the export ships.
 // The textures of exported data images for one program: made by texture_of, texture i on unit i
 // and the program's sampler `stochtex_<name>` set to it; bind() binds them before drawing.
 class ProgramTextures {
@@ -153,6 +149,10 @@ class ProgramTextures {
   std::vector<GLuint> ids_;
 };
 
+// The --gl-filter hardware program of a method with a fast variant (texton, tiling): the fast
+// export's GLSL library (what `export-shader --variant fast` ships, less its header comment)
+// followed by the method's render.glsl, and the export's textures on units 0, 1, ... in their
+// order, so the renderer runs and measures exactly what the export ships.
 class ExportedProgram {
  public:
   ExportedProgram(const ExportParts& parts, const std::string& render_source);
