@@ -270,9 +270,9 @@ BarycentricGradients barycentric_gradients(const Vec3d& e1, const Vec3d& e2) {
   return {cross(e2, face) * (1.0 / n2), cross(face, e1) * (1.0 / n2)};
 }
 
-double shading(const PixelRays& rays, const Vec3d& view_direction, const Vec3d& normal) {
+double shading(const Vec3d& light, const Vec3d& view_direction, const Vec3d& normal) {
   const Vec3d facing = dot(normal, view_direction) > 0.0 ? normal * -1.0 : normal;
-  return kAmbient + (1.0 - kAmbient) * std::max(0.0, dot(facing, light_direction(rays)));
+  return kAmbient + (1.0 - kAmbient) * std::max(0.0, dot(facing, light));
 }
 
 Vec3d light_direction(const PixelRays& rays) {
@@ -314,6 +314,7 @@ void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
                  const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out) {
   check_mesh_render_arguments(model, mesh, options, out);
   const PixelRays rays = pixel_rays(camera, out.width, out.height);
+  const Vec3d light_towards = light_direction(rays);
   SurfaceOptions surface = options.surface;
   if (options.mapping) surface.mapping = *options.mapping;
   const Bins bins = bin_triangles(rays, mesh);
@@ -368,7 +369,7 @@ void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
     }
     for (int i = 0; i < count; ++i) {
       const Fragment& f = fragments[static_cast<std::size_t>(i)];
-      const auto light = static_cast<float>(shading(rays, f.direction, f.normal));
+      const auto light = static_cast<float>(shading(light_towards, f.direction, f.normal));
       for (int c = 0; c < channels; ++c)
         out.at(f.x, f.y, c) = c < colours ? view.at(i, 0, c) * light : view.at(i, 0, c);
     }

@@ -51,10 +51,11 @@ struct BarycentricGradients {
 };
 BarycentricGradients barycentric_gradients(const Vec3d& e1, const Vec3d& e2);
 
-// Lambert + ambient with a light fixed to the camera, above-left and behind it; `normal` is
-// turned towards the viewer first (both sides of a surface are lit, holes show the inside).
+// Lambert + ambient with a light fixed to the camera, above-left and behind it (`light`, from
+// light_direction once per render); `normal` is turned towards the viewer first (both sides of a
+// surface are lit, holes show the inside).
 inline constexpr double kAmbient = 0.3;
-double shading(const PixelRays& rays, const Vec3d& view_direction, const Vec3d& normal);
+double shading(const Vec3d& light, const Vec3d& view_direction, const Vec3d& normal);
 // The light's unit direction of shading(): towards the light, in world space.
 Vec3d light_direction(const PixelRays& rays);
 

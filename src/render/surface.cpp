@@ -8,6 +8,7 @@
 
 #include "core/triplanar.hpp"
 #include "model/model_data.hpp"
+#include "render/mesh_geometry.hpp"
 #include "render/surface_arguments.hpp"
 #include "stochtex/render.hpp"
 
@@ -45,9 +46,6 @@ bool in_range(const Vec3d& v) {
   return std::abs(v.x) <= kPositionLimit && std::abs(v.y) <= kPositionLimit &&
          std::abs(v.z) <= kPositionLimit;
 }
-double dot(const Vec3d& a, const Vec3d& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
 
 // Finite, within the precise range, and a frame orthonormal within 1e-3 (also false for NaN).
 bool valid_point(const SurfacePoint& p) {
@@ -68,6 +66,10 @@ void evaluate_triplanar_linear(const MethodModel& m, std::span<const SurfacePoin
   for (std::size_t first = 0; first < points.size(); first += kBatch) {
     const int count = static_cast<int>(std::min<std::size_t>(kBatch, points.size() - first));
     std::array<float, kBatch * 4> sum{};
+    std::array<std::array<double, 3>, kBatch> weights;
+    for (int i = 0; i < count; ++i)
+      weights[static_cast<std::size_t>(i)] =
+          triplanar_weights(points[first + static_cast<std::size_t>(i)].normal, sharpness);
     for (int k = 0; k < 3; ++k) {
       std::array<Vec2d, kBatch> positions;
       std::array<Footprint, kBatch> footprints;
@@ -82,8 +84,7 @@ void evaluate_triplanar_linear(const MethodModel& m, std::span<const SurfacePoin
                  seed + static_cast<std::uint32_t>(k),
                  ImageView<float>{values.data(), count, 1, channels, count * channels});
       for (int i = 0; i < count; ++i) {
-        const double w = triplanar_weights(points[first + static_cast<std::size_t>(i)].normal,
-                                           sharpness)[static_cast<std::size_t>(k)];
+        const double w = weights[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)];
         for (int c = 0; c < channels; ++c)
           sum[static_cast<std::size_t>(i * channels + c)] +=
               static_cast<float>(w) * values[static_cast<std::size_t>(i * channels + c)];
