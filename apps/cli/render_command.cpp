@@ -121,9 +121,9 @@ RenderPlan render_plan(const RenderSettings& settings, const std::string& output
         "the whole --size image with --mipmap");
   if (!plan.streamed && !in_memory)
     throw std::invalid_argument(fmt::format(
-        "{} is {}x{} = {} pixels; {} output is rendered in memory and holds at most {} pixels "
-        "and {} a side: write a .exr file, which is streamed tile by tile",
-        what, region.width, region.height, static_cast<std::int64_t>(region.width) * region.height,
+        "{} is {} pixels; {} output is rendered in memory and holds at most {} pixels and {} a "
+        "side: write a .exr file, which is streamed tile by tile",
+        what, static_cast<std::int64_t>(region.width) * region.height,
         std::filesystem::path(output).extension().string(), kMaxInMemoryPixels, kMaxInMemorySide));
   if (plan.streamed && settings.backend == "gl" && !in_memory)
     throw std::invalid_argument(fmt::format(

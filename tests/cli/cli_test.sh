@@ -1015,68 +1015,6 @@ expect_parse_error "render-mesh without --model" "$stochtex" render-mesh "$meshe
 expect_error "render-mesh onto its mesh" 2 "" \
   "$stochtex" render-mesh "$meshes/sphere.obj" --model "$tiling_model" -o "$meshes/sphere.obj"
 
-# --- mix: texton noise mixing (texton paper section 7) -------------------------------------------
-
-grey=$textures/metal_grey_256.png
-mixfast=(-p support=16 -p iterations=5 --steps 3)
-if expect_ok "mix" "$stochtex" mix "$exemplar" "$textures/wood_planks_256.png" "${mixfast[@]}" \
-  --ramp 0,64 --direction 1,1 -o "$models/mix.stx"; then
-  expect_file "mix writes the model" "$models/mix.stx"
-fi
-expect_ok "info of a mix" "$stochtex" info "$models/mix.stx" && if ! grep -q "texton_mix" \
-  "$work/stdout" || ! grep -q "steps = 3" "$work/stdout"; then
-  fail "info of a mix" "no method or steps line"
-fi
-expect_ok "render a mix, 1 thread" "$stochtex" render "$models/mix.stx" -o "$models/m1.pfm" \
-  --size 48x20 --seed 5 --threads 1
-expect_ok "render a mix, 2 threads" "$stochtex" render "$models/mix.stx" -o "$models/m2.pfm" \
-  --size 48x20 --seed 5 --threads 2 --tile 16
-if cmp -s "$models/m1.pfm" "$models/m2.pfm"; then pass; else
-  fail "a mix renders the same bytes whatever the threads" "m1.pfm and m2.pfm differ"
-fi
-expect_ok "mix with a mask" "$stochtex" mix "$grey" "$textures/nuts_grey_256.png" "${mixfast[@]}" \
-  --mask "$grey" --mask-scale 0.5 -o "$models/mask.stx"
-expect_error "mix of grey with colour" 1 "nuts_grey_256.png" "$stochtex" mix \
-  "$textures/nuts_grey_256.png" "$exemplar" "${mixfast[@]}" -o "$out/x.stx"
-expect_error "mix with a colour mask" 1 "grass_lawn_128.png" "$stochtex" mix "$grey" \
-  "$textures/nuts_grey_256.png" "${mixfast[@]}" --mask "$exemplar" -o "$out/x.stx"
-expect_error "mix --ramp nan" 2 "--ramp" "$stochtex" mix "$grey" "$grey" --ramp nan,4 \
-  -o "$out/x.stx"
-expect_error "mix --ramp inf" 2 "--ramp" "$stochtex" mix "$grey" "$grey" --ramp 0,1e999 \
-  -o "$out/x.stx"
-expect_error "mix --ramp of one point" 2 "ramp_end" "$stochtex" mix "$grey" "$grey" --ramp 3,3 \
-  -o "$out/x.stx"
-expect_error "mix --direction 0,0" 2 "direction" "$stochtex" mix "$grey" "$grey" \
-  --direction 0,0 -o "$out/x.stx"
-expect_error "mix --steps 1" 2 "steps" "$stochtex" mix "$grey" "$grey" --steps 1 -o "$out/x.stx"
-expect_error "mix -p mni=nan" 2 "mni" "$stochtex" mix "$grey" "$grey" -p mni=nan -o "$out/x.stx"
-expect_error "mix of a missing file" 1 "missing.png" "$stochtex" mix "$grey" \
-  "$inputs/missing.png" -o "$out/x.stx"
-# Beyond the memory budget (docs/design.md §9), refused before any work: 4096² colour exemplars
-# (about 2.8 GB), and 2048² ones into 256 textons of 1024² (about 23 GB of textons).
-expect_error "mix beyond the memory budget" 2 "ramp_4096.png" "$stochtex" mix \
-  "$inputs/ramp_4096.png" "$inputs/ramp_4096.png" -o "$out/x.stx"
-expect_error "mix into textons beyond the memory budget" 2 "--steps" "$stochtex" mix \
-  "$inputs/ramp_2048.png" "$inputs/ramp_2048.png" --steps 256 -p support=1024 -o "$out/x.stx"
-if [[ -e $out/x.stx ]]; then fail "a refused mix writes nothing" "x.stx exists"; else pass; fi
-# The GPU twin: both fields on the gl backend (both --gl-filter values run the exact path), and
-# the export in every language.
-for field in mix mask; do
-  expect_ok "render a $field model on the gl backend" "$stochtex" render "$models/$field.stx" \
-    -o "$models/$field-gl.png" --size 48x20 --seed 5 --backend gl --scale 2
-  expect_ok "render a $field model, --gl-filter hardware" "$stochtex" render "$models/$field.stx" \
-    -o "$models/$field-glh.png" --size 48x20 --seed 5 --backend gl --gl-filter hardware --scale 2
-  if cmp -s "$models/$field-gl.png" "$models/$field-glh.png"; then pass; else
-    fail "a $field model's hardware filter is its exact path" "$field-gl.png and $field-glh.png differ"
-  fi
-  for language in glsl essl hlsl msl; do
-    expect_ok "export-shader of a $field model, $language" "$stochtex" export-shader \
-      "$models/$field.stx" -o "$out/$field-$language" --language "$language"
-    expect_file "the $field export's README" "$out/$field-$language/README.md"
-  done
-done
-expect_file "the mask export's mask data" "$out/mask-glsl/texton_mix_mask.exr"
-
 # --- large renders (docs/large-renders.md) ------------------------------------------------------
 
 large=$work/large
@@ -1138,6 +1076,8 @@ if [[ $(stat -c %s "$large/half.exr") -lt $(stat -c %s "$large/mipmap.exr") ]]; 
   fail "--half writes a smaller file" "half.exr is not smaller than mipmap.exr"
 fi
 expect_ok "compare reads a tiled .exr" "$stochtex" compare "$exemplar" "$large/half.exr"
+expect_ok "render --backend gl --tiled" "$stochtex" render "$model" -o "$large/gl.exr" \
+  --size 100x70 --seed 9 --backend gl --tiled
 # A render beyond the in-memory limit (64 Mpixel) to .exr is streamed strip by strip: its peak
 # memory is a strip's, not the 816 MB of the image.
 if python3 - "$stochtex" "$tiling_model" "$large/wide.exr" <<'PY'; then
@@ -1171,6 +1111,68 @@ for region in 0,0,0,8 60,0,8,8 0,60,8,8 1,2,3 a,b,c,d -1,0,8,8; do
   expect_error "render --region $region" 2 "--region" \
     "$stochtex" render "$model" -o "$out/x.png" --size 64x64 --region "$region"
 done
+
+# --- mix: texton noise mixing (texton paper section 7) -------------------------------------------
+
+grey=$textures/metal_grey_256.png
+mixfast=(-p support=16 -p iterations=5 --steps 3)
+if expect_ok "mix" "$stochtex" mix "$exemplar" "$textures/wood_planks_256.png" "${mixfast[@]}" \
+  --ramp 0,64 --direction 1,1 -o "$models/mix.stx"; then
+  expect_file "mix writes the model" "$models/mix.stx"
+fi
+expect_ok "info of a mix" "$stochtex" info "$models/mix.stx" && if ! grep -q "texton_mix" \
+  "$work/stdout" || ! grep -q "steps = 3" "$work/stdout"; then
+  fail "info of a mix" "no method or steps line"
+fi
+expect_ok "render a mix, 1 thread" "$stochtex" render "$models/mix.stx" -o "$models/m1.pfm" \
+  --size 48x20 --seed 5 --threads 1
+expect_ok "render a mix, 2 threads" "$stochtex" render "$models/mix.stx" -o "$models/m2.pfm" \
+  --size 48x20 --seed 5 --threads 2 --tile 16
+if cmp -s "$models/m1.pfm" "$models/m2.pfm"; then pass; else
+  fail "a mix renders the same bytes whatever the threads" "m1.pfm and m2.pfm differ"
+fi
+expect_ok "mix with a mask" "$stochtex" mix "$grey" "$textures/nuts_grey_256.png" "${mixfast[@]}" \
+  --mask "$grey" --mask-scale 0.5 -o "$models/mask.stx"
+expect_error "mix of grey with colour" 1 "nuts_grey_256.png" "$stochtex" mix \
+  "$textures/nuts_grey_256.png" "$exemplar" "${mixfast[@]}" -o "$out/x.stx"
+expect_error "mix with a colour mask" 1 "grass_lawn_128.png" "$stochtex" mix "$grey" \
+  "$textures/nuts_grey_256.png" "${mixfast[@]}" --mask "$exemplar" -o "$out/x.stx"
+expect_error "mix --ramp nan" 2 "--ramp" "$stochtex" mix "$grey" "$grey" --ramp nan,4 \
+  -o "$out/x.stx"
+expect_error "mix --ramp inf" 2 "--ramp" "$stochtex" mix "$grey" "$grey" --ramp 0,1e999 \
+  -o "$out/x.stx"
+expect_error "mix --ramp of one point" 2 "ramp_end" "$stochtex" mix "$grey" "$grey" --ramp 3,3 \
+  -o "$out/x.stx"
+expect_error "mix --direction 0,0" 2 "direction" "$stochtex" mix "$grey" "$grey" \
+  --direction 0,0 -o "$out/x.stx"
+expect_error "mix --steps 1" 2 "steps" "$stochtex" mix "$grey" "$grey" --steps 1 -o "$out/x.stx"
+expect_error "mix -p mni=nan" 2 "mni" "$stochtex" mix "$grey" "$grey" -p mni=nan -o "$out/x.stx"
+expect_error "mix of a missing file" 1 "missing.png" "$stochtex" mix "$grey" \
+  "$inputs/missing.png" -o "$out/x.stx"
+# Beyond the memory budget (docs/design.md §9), refused before any work: 4096² colour exemplars
+# (about 2.8 GB), and 2048² ones into 256 textons of 1024² (about 23 GB of textons).
+expect_error "mix beyond the memory budget" 2 "ramp_4096.png" "$stochtex" mix \
+  "$inputs/ramp_4096.png" "$inputs/ramp_4096.png" -o "$out/x.stx"
+expect_error "mix into textons beyond the memory budget" 2 "--steps" "$stochtex" mix \
+  "$inputs/ramp_2048.png" "$inputs/ramp_2048.png" --steps 256 -p support=1024 -o "$out/x.stx"
+if [[ -e $out/x.stx ]]; then fail "a refused mix writes nothing" "x.stx exists"; else pass; fi
+# The GPU twin: both fields on the gl backend (both --gl-filter values run the exact path), and
+# the export in every language.
+for field in mix mask; do
+  expect_ok "render a $field model on the gl backend" "$stochtex" render "$models/$field.stx" \
+    -o "$models/$field-gl.png" --size 48x20 --seed 5 --backend gl --scale 2
+  expect_ok "render a $field model, --gl-filter hardware" "$stochtex" render "$models/$field.stx" \
+    -o "$models/$field-glh.png" --size 48x20 --seed 5 --backend gl --gl-filter hardware --scale 2
+  if cmp -s "$models/$field-gl.png" "$models/$field-glh.png"; then pass; else
+    fail "a $field model's hardware filter is its exact path" "$field-gl.png and $field-glh.png differ"
+  fi
+  for language in glsl essl hlsl msl; do
+    expect_ok "export-shader of a $field model, $language" "$stochtex" export-shader \
+      "$models/$field.stx" -o "$out/$field-$language" --language "$language"
+    expect_file "the $field export's README" "$out/$field-$language/README.md"
+  done
+done
+expect_file "the mask export's mask data" "$out/mask-glsl/texton_mix_mask.exr"
 
 # --- summary ------------------------------------------------------------------------------------
 
