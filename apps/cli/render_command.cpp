@@ -5,6 +5,9 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -14,6 +17,7 @@
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "io/image_io.hpp"
+#include "io/tiled_exr.hpp"
 #include "progress.hpp"
 #ifdef STOCHTEX_WITH_GL
 #include "stochtex/gpu.hpp"
@@ -22,8 +26,27 @@
 namespace stochtex::cli {
 
 void add_render_options(CLI::App* command, RenderSettings& settings, std::string& output) {
-  command->add_option("-o,--output", output, "image to write (.png, .exr or .pfm)")->required();
-  command->add_option("--size", settings.size, "output size WIDTHxHEIGHT in pixels")->required();
+  command
+      ->add_option("-o,--output", output,
+                   "image to write (.png, .exr or .pfm); .png and .pfm are rendered in memory "
+                   "(at most 64 Mpixel, 32768 a side), .exr beyond that or with --tiled, "
+                   "--mipmap or --half is a tiled OpenEXR file rendered and written strip by "
+                   "strip with bounded memory")
+      ->required();
+  command
+      ->add_option("--size", settings.size,
+                   "output size WIDTHxHEIGHT in pixels (sides up to 1048576)")
+      ->required();
+  command->add_option("--region", settings.region,
+                      "X,Y,WIDTH,HEIGHT: write only these pixels of the --size image, equal to "
+                      "the same pixels of the whole render (batch jobs render regions apart)");
+  command->add_flag("--tiled", settings.tiled,
+                    "write .exr as a tiled OpenEXR file (64x64 tiles), streamed strip by strip");
+  command->add_flag("--mipmap", settings.mipmap,
+                    "tiled .exr with mip levels (round down): level k is the render at --scale "
+                    "times 2^k, the texture zoomed out with the method's own filtering");
+  command->add_flag("--half", settings.half,
+                    "tiled .exr with 16-bit half floats (float32 otherwise)");
   command
       ->add_option("--origin", settings.origin, "model-space position X,Y of the top-left corner")
       ->capture_default_str();
@@ -65,26 +88,68 @@ void add_render_options(CLI::App* command, RenderSettings& settings, std::string
 
 namespace {
 
-Grid render_grid(const RenderSettings& settings) {
-  const Size size = output_size(settings.size);
+// What a render writes: the grid of its region of the --size image and, for a tiled OpenEXR
+// output, the file's options (streamed set).
+struct RenderPlan {
+  Grid grid;
+  bool streamed = false;
+  TiledExrOptions exr;
+};
+
+RenderPlan render_plan(const RenderSettings& settings, const std::string& output) {
+  const Size size = render_size(settings.size);
+  const Region region = settings.region.empty() ? Region{0, 0, size.width, size.height}
+                                                : parse_region(settings.region, size);
   const std::optional<Vec2d> origin = parse_number_pair(settings.origin);
   if (!origin)
     throw std::invalid_argument("--origin must be X,Y in exemplar pixels, e.g. 1000,-250.5, not '" +
                                 settings.origin + "'");
+  RenderPlan plan;
+  plan.grid = {*origin, settings.scale, region.width, region.height, region.x, region.y};
+  const std::string what = settings.region.empty() ? fmt::format("--size {}", settings.size)
+                                                   : fmt::format("--region {}", settings.region);
+  const bool exr = is_exr_output(output);
+  const bool in_memory = fits_in_memory(region.width, region.height);
+  plan.streamed = exr && (settings.tiled || settings.mipmap || settings.half || !in_memory);
+  if ((settings.tiled || settings.mipmap || settings.half) && !exr)
+    throw std::invalid_argument(
+        "--tiled, --mipmap and --half write a tiled OpenEXR file: name the output .exr, not '" +
+        output + "'");
+  if (settings.mipmap && !settings.region.empty())
+    throw std::invalid_argument(
+        "--mipmap cannot be combined with --region: a region has no mip levels of its own; render "
+        "the whole --size image with --mipmap");
+  if (!plan.streamed && !in_memory)
+    throw std::invalid_argument(fmt::format(
+        "{} is {} pixels; {} output is rendered in memory and holds at most {} pixels and {} a "
+        "side: write a .exr file, which is streamed tile by tile",
+        what, static_cast<std::int64_t>(region.width) * region.height,
+        std::filesystem::path(output).extension().string(), kMaxInMemoryPixels, kMaxInMemorySide));
+  if (plan.streamed && settings.backend == "gl" && !in_memory)
+    throw std::invalid_argument(fmt::format(
+        "{} is {}x{} pixels, more than --backend gl renders ({} pixels and {} a side); use "
+        "--backend cpu, which streams it tile by tile",
+        what, region.width, region.height, kMaxInMemoryPixels, kMaxInMemorySide));
+  plan.exr.mipmap = settings.mipmap;
+  plan.exr.half = settings.half;
   // CLI11's range check lets NaN through (every comparison with it is false): the grid check
-  // refuses it with the origin and positions beyond the precise range (render.hpp).
-  const Grid grid{*origin, settings.scale, size.width, size.height, 0, 0};
-  check_grid(grid, fmt::format("--origin {} with --scale {} and --size {}", settings.origin,
-                               settings.scale, settings.size));
-  return grid;
+  // refuses it with the origin and positions beyond the precise range (render.hpp); each mip
+  // level's grid too, since its last pixels may reach further than level 0's.
+  const std::string request =
+      fmt::format("--origin {} with --scale {} and {}", settings.origin, settings.scale, what);
+  for (const Grid& level : tiled_exr_levels(plan.grid, plan.streamed && settings.mipmap))
+    check_grid(level, request);
+  return plan;
 }
 
 // Each thread holds one tile's samples (docs/design.md §9): with --threads 0 as many cores work
 // as the memory budget allows; a request beyond it is refused before the model is loaded or
-// analysed.
-int render_threads(const RenderSettings& settings, const Grid& grid) {
+// analysed. A streamed render holds one strip of kExrTileSide rows, not the image.
+int render_threads(const RenderSettings& settings, const RenderPlan& plan) {
+  const int held_rows = plan.streamed ? std::min(kExrTileSide, plan.grid.height) : plan.grid.height;
   const auto peak = [&](int threads) {
-    return render_peak_bytes(grid.width, grid.height, settings.tile, settings.supersample, threads);
+    return render_peak_bytes(plan.grid.width, held_rows, settings.tile, settings.supersample,
+                             threads);
   };
   int threads = resolve_thread_count(settings.threads);
   if (settings.threads == 0)
@@ -93,51 +158,113 @@ int render_threads(const RenderSettings& settings, const Grid& grid) {
       peak(threads),
       fmt::format("rendering {}x{} pixels with --supersample {}, --tile {} and {} "
                   "threads",
-                  grid.width, grid.height, settings.supersample, settings.tile, threads),
+                  plan.grid.width, held_rows, settings.supersample, settings.tile, threads),
       "use fewer --threads or a smaller --supersample, --tile or --size");
   return threads;
 }
 
-void render_model(const Model& model, const Grid& grid, int threads, const RenderSettings& settings,
-                  const std::string& output) {
-  ImageF image(grid.width, grid.height, model.channels());
-  RenderOptions options;
-  options.threads = threads;
-  options.tile_size = settings.tile;
-  options.supersample = settings.supersample;
-  options.filter = !settings.no_filter;
-  if (settings.backend == "gl") {
+// A tiled file is refused before any work when its pixels, uncompressed, do not fit in the free
+// space of the output's folder: float pixels are written uncompressed, half ones compress by a
+// third (docs/large-renders.md).
+void check_disk_space(const RenderPlan& plan, int channels, const std::string& output) {
+  const std::filesystem::path folder = std::filesystem::absolute(output).parent_path();
+  std::error_code error;
+  const std::filesystem::space_info space = std::filesystem::space(folder, error);
+  const std::uint64_t bytes = tiled_exr_pixels(plan.grid, plan.exr.mipmap) *
+                              static_cast<std::uint64_t>(channels) * (plan.exr.half ? 2 : 4);
+  if (!error && bytes > space.available)
+    throw Error(
+        ErrorCode::io,
+        fmt::format("cannot write '{}': its {}x{} pixels{} take {:.1f} GB uncompressed, "
+                    "more than the {:.1f} GB free in '{}'; free disk space, add --half or "
+                    "render a smaller --size or --region",
+                    output, plan.grid.width, plan.grid.height,
+                    plan.exr.mipmap ? " and mip levels" : "", static_cast<double>(bytes) / 1e9,
+                    static_cast<double>(space.available) / 1e9, folder.string()));
+}
+
+// Renders grids (the whole image, or one strip after another of a tiled file) with the settings'
+// backend, one progress bar across all of them: `total_pixels` is the pixels of every grid.
+class GridRenderer {
+ public:
+  GridRenderer(const Model& model, const RenderSettings& settings, int threads,
+               std::uint64_t total_pixels)
+      : model_(model), seed_(settings.seed), total_(static_cast<double>(total_pixels)) {
+    options_.threads = threads;
+    options_.tile_size = settings.tile;
+    options_.supersample = settings.supersample;
+    options_.filter = !settings.no_filter;
+    if (settings.backend != "gl") return;
 #ifdef STOCHTEX_WITH_GL
-    GpuRenderOptions gpu_options;
-    gpu_options.filter = options.filter;
-    gpu_options.texture_filter =
+    gpu_options_.filter = options_.filter;
+    gpu_options_.texture_filter =
         settings.gl_filter == "hardware" ? GlFilter::hardware : GlFilter::exact;
-    if (options.supersample != 1)
+    if (options_.supersample != 1)
       throw std::invalid_argument("--supersample is a CPU reference: use it with --backend cpu");
-    render_gl(model, grid, settings.seed, image.view(), gpu_options);
+    gl_ = std::make_unique<GlRenderer>(model);
 #else
     throw Error(ErrorCode::io,
                 "this stochtex was built without the OpenGL backend "
                 "(STOCHTEX_BUILD_GL=OFF); use --backend cpu");
 #endif
-  } else {
-    Progress progress("render ");
-    options.progress = [&](double fraction) { progress(fraction); };
-    render(model, grid, settings.seed, image.view(), options);
   }
-  write_image(output, image.view(), settings.bit_depth);
+
+  void operator()(const Grid& grid, ImageView<float> out) {
+    const double pixels = static_cast<double>(grid.width) * grid.height;
+#ifdef STOCHTEX_WITH_GL
+    if (gl_) {
+      gl_->render(grid, seed_, out, gpu_options_);
+      done_ += pixels;
+      progress_(done_ / total_);
+      return;
+    }
+#endif
+    options_.progress = [&](double fraction) { progress_((done_ + fraction * pixels) / total_); };
+    render(model_, grid, seed_, out, options_);
+    done_ += pixels;
+  }
+
+ private:
+  const Model& model_;
+  std::uint32_t seed_;
+  double total_;
+  double done_ = 0.0;
+  RenderOptions options_;
+  Progress progress_{"render "};
+#ifdef STOCHTEX_WITH_GL
+  GpuRenderOptions gpu_options_;
+  std::unique_ptr<GlRenderer> gl_;
+#endif
+};
+
+void render_model(const Model& model, const RenderPlan& plan, int threads,
+                  const RenderSettings& settings, const std::string& output) {
+  const Grid& grid = plan.grid;
+  if (!plan.streamed) {
+    ImageF image(grid.width, grid.height, model.channels());
+    GridRenderer(model, settings, threads, static_cast<std::uint64_t>(grid.width) * grid.height)(
+        grid, image.view());
+    write_image(output, image.view(), settings.bit_depth);
+    return;
+  }
+  GridRenderer renderer(model, settings, threads, tiled_exr_pixels(grid, plan.exr.mipmap));
+  TiledExrOptions options = plan.exr;
+  options.threads = threads;
+  write_tiled_exr(output, grid, model.channels(), options,
+                  [&](const Grid& strip, ImageView<float> out) { renderer(strip, out); });
 }
 
 }  // namespace
 
 void render_to_file(const std::function<Model()>& make_model, const RenderSettings& settings,
                     const std::string& output, const std::string& input) {
-  const Grid grid = render_grid(settings);
-  const int threads = render_threads(settings, grid);
   check_output_path(output, true, input);
+  const RenderPlan plan = render_plan(settings, output);
+  const int threads = render_threads(settings, plan);
   const Model model = make_model();
   check_output_channels(output, model.channels());
-  render_model(model, grid, threads, settings, output);
+  if (plan.streamed) check_disk_space(plan, model.channels(), output);
+  render_model(model, plan, threads, settings, output);
   fmt::print(stderr, "wrote {}\n", output);
 }
 

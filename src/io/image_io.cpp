@@ -32,6 +32,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/file_message.hpp"
+#include "io/exr_file_stream.hpp"
 #include "io/png_sample.hpp"
 #include "stochtex/error.hpp"
 
@@ -475,37 +476,8 @@ ImageF read_exr(const fs::path& path, const ImageReadLimits& limits, std::uintma
   }
 }
 
-// Lets OpenEXR write into the temporary file opened (and checked) by write_image.
-class ExrFileStream final : public Imf::OStream {
- public:
-  ExrFileStream(std::FILE* file, const char* name) : Imf::OStream(name), file_(file) {}
-  void write(const char data[], int count) override {
-    if (std::fwrite(data, 1, static_cast<std::size_t>(count), file_) !=
-        static_cast<std::size_t>(count))
-      throw std::system_error(errno, std::generic_category());
-  }
-  std::uint64_t tellp() override {
-    const off_t position = ftello(file_);
-    if (position < 0) throw std::system_error(errno, std::generic_category());
-    return static_cast<std::uint64_t>(position);
-  }
-  void seekp(std::uint64_t position) override {
-    if (fseeko(file_, static_cast<off_t>(position), SEEK_SET) != 0)
-      throw std::system_error(errno, std::generic_category());
-  }
-
- private:
-  std::FILE* file_;
-};
-
 void write_exr(std::FILE* file, const fs::path& temporary, ImageView<const float> image) {
-  constexpr std::array<std::array<const char*, 4>, 4> channel_names = {{
-      {"Y"},
-      {"Y", "A"},
-      {"R", "G", "B"},
-      {"R", "G", "B", "A"},
-  }};
-  const auto& names = channel_names[image.channels - 1];
+  const auto& names = exr_written_channel_names(image.channels);
   Imf::Header header(image.width, image.height);
   header.compression() = Imf::ZIP_COMPRESSION;
   Imf::FrameBuffer frame_buffer;
@@ -705,6 +677,10 @@ void write_image(const fs::path& path, ImageView<const float> image, int png_bit
     throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": " + e.what());
   }
   file.commit();
+}
+
+bool is_exr_output(const fs::path& path) {
+  return output_format(path) == Format::exr;
 }
 
 void check_output_channels(const fs::path& path, int channels) {

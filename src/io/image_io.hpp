@@ -14,6 +14,10 @@ namespace stochtex {
 void check_output_path(const std::filesystem::path& path, bool image,
                        const std::filesystem::path& input = {});
 
+// Whether `path` names an OpenEXR output (extension .exr in any case); std::invalid_argument for
+// an extension write_image does not know.
+bool is_exr_output(const std::filesystem::path& path);
+
 // Checks that an image of `channels` channels can be written to `path` (PFM holds 1 or 3), so
 // that a render to a format that cannot hold it is refused before the render.
 void check_output_channels(const std::filesystem::path& path, int channels);
