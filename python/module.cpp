@@ -36,9 +36,12 @@ std::function<void(double)> progress_hook(const py::object& callback) {
   return [callback, stopped](double fraction) {
     if (*stopped) return;
     py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0 || (!callback.is_none() && !callback(fraction).ptr())) {
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!callback.is_none()) callback(fraction);
+    } catch (...) {
       *stopped = true;
-      throw py::error_already_set();
+      throw;
     }
   };
 }
