@@ -164,6 +164,12 @@ def test_progress_is_reported(exemplar, texton_model):
     texton_model.render(256, 256, threads=2, progress=fractions.append)
     assert len(fractions) > 2 and fractions == sorted(fractions) and fractions[-1] == 1.0
     fractions = []
+    stochtex.analyze(exemplar, "texton", progress=fractions.append, iterations=5)
+    assert fractions == [1 / 5, 2 / 5, 3 / 5, 4 / 5, 1.0, 1.0]  # each iteration, then the end
+    fractions = []
+    stochtex.analyze(exemplar, "tiling", progress=fractions.append)
+    assert fractions == [1.0]
+    fractions = []
     stochtex.analyze(exemplar, "gabor", progress=fractions.append, iterations=50)
     assert len(fractions) > 10 and fractions == sorted(fractions) and fractions[-1] == 1.0
 
