@@ -201,3 +201,16 @@ def test_ctrl_c_interrupts_a_long_render(exemplar):
     finally:
         timer.cancel()
     assert time.monotonic() - start < 5.0
+
+
+def test_ctrl_c_interrupts_a_long_analysis():
+    exemplar = smooth_noise(256, 256, 3, 5)  # about 6 s of gabor analysis to the end
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            stochtex.analyze(exemplar, "gabor")
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 3.0
