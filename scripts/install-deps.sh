@@ -12,7 +12,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   glslang-dev spirv-tools libspirv-cross-c-shared-dev
-  python3
+  python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-dask python3-distributed
+  python3-zarr
 )
 if [[ ${1:-} == --sanitize ]]; then
   packages+=(clang libclang-rt-14-dev llvm)

@@ -13,7 +13,8 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-po
 # Warnings are checked by the gcc build of scripts/test.sh; clang's differ, so no -Werror here.
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags -fsanitize=fuzzer-no-link" \
-  -DSTOCHTEX_LIBFUZZER=ON -DSTOCHTEX_BUILD_BENCH=OFF -DSTOCHTEX_TEST_TIMEOUT_SCALE=4
+  -DSTOCHTEX_LIBFUZZER=ON -DSTOCHTEX_BUILD_BENCH=OFF -DSTOCHTEX_BUILD_PYTHON=OFF \
+  -DSTOCHTEX_TEST_TIMEOUT_SCALE=4
 cmake --build "$build" --parallel
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"

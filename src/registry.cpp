@@ -6,6 +6,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -19,7 +20,8 @@
 namespace stochtex {
 namespace {
 
-using AnalyzeFunction = MethodModel (*)(ImageView<const float>, const ParamValues&, std::uint32_t);
+using AnalyzeFunction = MethodModel (*)(ImageView<const float>, const ParamValues&, std::uint32_t,
+                                        const std::function<void(double)>&);
 
 struct MethodEntry {
   MethodInfo info;
@@ -29,14 +31,26 @@ struct MethodEntry {
 
 // The entry of one alternative of MethodModel: its name, the summary and parameter record of its
 // registry row (`registry_row`, in the method's analysis.hpp), and its analysis from checked values
-// through the typed record (`analyze`, found by argument-dependent lookup on the method's Params).
+// through the typed record (`analyze`, found by argument-dependent lookup on the method's Params),
+// given the progress hook where the method's analysis reports progress.
+template <class Params>
+concept ReportsProgress = requires(ImageView<const float> exemplar, const Params& params,
+                                   const std::function<void(double)>& progress) {
+  analyze(exemplar, params, std::uint32_t{0}, progress);
+};
+
 template <class Model>
 MethodEntry entry_of() {
   static constexpr auto row = registry_row(std::type_identity<Model>{});
   static constexpr auto infos = param_infos(row.fields);
   return {{Model::kMethodName, row.summary, infos},
-          [](ImageView<const float> exemplar, const ParamValues& values, std::uint32_t seed) {
-            return MethodModel(analyze(exemplar, params_from_values(row.fields, values), seed));
+          [](ImageView<const float> exemplar, const ParamValues& values, std::uint32_t seed,
+             const std::function<void(double)>& progress) {
+            const auto params = params_from_values(row.fields, values);
+            if constexpr (ReportsProgress<decltype(params)>)
+              return MethodModel(analyze(exemplar, params, seed, progress));
+            else
+              return MethodModel(analyze(exemplar, params, seed));
           },
           row.analysis_memory};
 }
@@ -254,7 +268,8 @@ std::uint64_t analysis_peak_bytes(std::string_view method, int width, int height
 }
 
 Model analyze(std::string_view method, ImageView<const float> exemplar, const ParamValues& params,
-              std::uint32_t seed, const std::string& source_name) {
+              std::uint32_t seed, const std::string& source_name,
+              const std::function<void(double)>& progress) {
   const MethodEntry& entry = find_entry(method);
   ParamValues resolved = resolve_params(method, params);
   check_memory_budget(
@@ -266,11 +281,12 @@ Model analyze(std::string_view method, ImageView<const float> exemplar, const Pa
   // The methods' analyses do not know the file: their data errors are named here (§9).
   MethodModel model = [&] {
     try {
-      return entry.analyze(exemplar, resolved, seed);
+      return entry.analyze(exemplar, resolved, seed, progress);
     } catch (const Error& e) {
       throw Error(e.code(), "cannot analyse '" + source_name + "': " + e.what());
     }
   }();
+  if (progress) progress(1.0);
   return Model(std::make_shared<const ModelData>(ModelData{std::move(resolved), std::move(model)}));
 }
 

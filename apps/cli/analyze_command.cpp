@@ -38,7 +38,8 @@ Model run_analyze(const AnalyzeOptions& options) {
   const ImageF exemplar = load_exemplar(options.input);
   Progress progress("analyse");
   progress.message(fmt::format("analysing {} with {}...", options.input, options.method));
-  return analyze(options.method, exemplar.view(), params, options.seed, options.input);
+  return analyze(options.method, exemplar.view(), params, options.seed, options.input,
+                 [&](double fraction) { progress(fraction); });
 }
 
 Command add_analyze_command(CLI::App& app) {

@@ -4,8 +4,6 @@
 
 #include <fmt/core.h>
 
-#include <algorithm>
-#include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -13,6 +11,7 @@
 #include "commands.hpp"
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
+#include "report/compare.hpp"
 #include "report/measures.hpp"
 
 namespace stochtex::cli {
@@ -35,29 +34,9 @@ void print_text(const ComparisonReport& report) {
 
 nlohmann::ordered_json json(const ComparisonReport& report, const std::string& exemplar,
                             const std::string& image) {
-  nlohmann::ordered_json doc{{"exemplar", exemplar}, {"image", image}, {"welch_crop", report.crop}};
-  for (const Measure& measure : measures()) {
-    if (measure.compare_label.empty()) continue;
-    doc[std::string(measure.key)] = report.image.*measure.value;
-    if (!measure.adsn_key.empty()) doc[std::string(measure.adsn_key)] = report.adsn.*measure.value;
-    if (!measure.floor_key.empty())
-      doc[std::string(measure.floor_key)] = report.histogram_error_floor;
-  }
+  nlohmann::ordered_json doc{{"exemplar", exemplar}, {"image", image}};
+  doc.update(comparison_json(report));
   return doc;
-}
-
-// The measures need crops of at least 2x2 pixels and finite values (NaN measures would print as
-// JSON nulls): anything else is refused with a sentence naming the file (§9).
-void check_comparable(const ImageF& image, const std::string& path) {
-  if (image.width() < 2 || image.height() < 2)
-    throw Error(ErrorCode::invalid_input,
-                fmt::format("'{}' is {}x{} pixels; compare needs at least 2x2 pixels", path,
-                            image.width(), image.height()));
-  const auto pixels = image.pixels();
-  if (!std::all_of(pixels.begin(), pixels.end(), [](float v) { return std::isfinite(v); }))
-    throw Error(
-        ErrorCode::invalid_input,
-        fmt::format("'{}' contains NaN or infinite values; compare needs finite images", path));
 }
 
 }  // namespace
@@ -76,14 +55,8 @@ Command add_compare_command(CLI::App& app) {
   return {command, [options] {
             const ImageF exemplar = load_exemplar(options->exemplar);
             const ImageF image = read_image(options->image);
-            check_comparable(image, options->image);
-            if (image.channels() != exemplar.channels())
-              throw Error(ErrorCode::invalid_input,
-                          fmt::format("'{}' has {} channels but the exemplar '{}' has {}; "
-                                      "compare images of the same kind",
-                                      options->image, image.channels(), options->exemplar,
-                                      exemplar.channels()));
-            const ComparisonReport report = compare_images(exemplar.view(), image.view());
+            const ComparisonReport report =
+                compare_checked(exemplar.view(), options->exemplar, image.view(), options->image);
             if (options->json)
               fmt::print("{}\n", json(report, options->exemplar, options->image).dump(2));
             else

@@ -12,6 +12,7 @@
 // stochtex::analysis adds the functions below (FFTW, Eigen).
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <span>
@@ -63,10 +64,14 @@ std::uint64_t analysis_peak_bytes(std::string_view method, int width, int height
 
 // Builds a model of the exemplar with the named method. `params` may be partial (defaults fill it).
 // Throws std::invalid_argument, before any work, when analysis_peak_bytes exceeds the memory
-// budget of 2 GiB.
+// budget of 2 GiB. `progress`, when given, is called from the calling thread with the fraction
+// done (non-decreasing, 1 at the end): during the iterations of texton's and gabor's analyses,
+// at the end for the others. An exception it throws stops the analysis at the next iteration
+// and propagates out of analyze() (how a caller cancels it).
 Model analyze(std::string_view method, ImageView<const float> exemplar,
               const ParamValues& params = {}, std::uint32_t seed = 0,
-              const std::string& source_name = "exemplar");
+              const std::string& source_name = "exemplar",
+              const std::function<void(double)>& progress = {});
 
 // Texton noise mixing (Galerne, Leclaire, Moisan, "Texton Noise", CGF 2017, section 7): a model
 // whose texture goes from exemplar a's texton noise (rho = 0) to b's (rho = 1) along a ramp, or as

@@ -22,24 +22,35 @@ void parallel_for(std::size_t count, int threads, const std::function<void(std::
   std::atomic<std::size_t> done{0};
   std::exception_ptr failure;
   std::mutex failure_mutex;
+  // The first exception, from a task or from on_done, stops the work: no task starts after it.
+  const auto fail = [&] {
+    std::lock_guard lock(failure_mutex);
+    if (!failure) failure = std::current_exception();
+    next = count;
+  };
+  const auto report_done = [&](std::size_t finished) {
+    try {
+      on_done(finished);
+    } catch (...) {
+      fail();
+    }
+  };
   auto work = [&](bool report) {
     for (std::size_t i = next++; i < count; i = next++) {
       try {
         task(i);
       } catch (...) {
-        std::lock_guard lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-        next = count;
+        fail();
       }
       const std::size_t finished = ++done;
-      if (report && on_done) on_done(finished);
+      if (report && on_done) report_done(finished);
     }
   };
   std::vector<std::jthread> pool;
   for (std::size_t t = 1; t < worker_count; ++t) pool.emplace_back(work, false);
   work(true);
   pool.clear();
-  if (on_done) on_done(done.load());
+  if (on_done) report_done(done.load());
   if (failure) std::rethrow_exception(failure);
 }
 

@@ -2,9 +2,11 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <thread>
 
 #include "core/colour_statistics.hpp"
 #include "core/parallel.hpp"
@@ -315,7 +317,7 @@ DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const flo
 }
 
 SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const float> target,
-                         const FitOptions& options) {
+                         const FitOptions& options, const std::function<void(double)>& progress) {
   const auto bands = static_cast<std::size_t>(dictionary.band_count());
   const std::size_t plane = dictionary.plane_size();
   if (target.size() != plane)
@@ -357,6 +359,7 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
   for (double kappa = 0.5; kappa > options.kappa; kappa *= 0.5) kappas.push_back(kappa);
   kappas.push_back(options.kappa);
   for (const double kappa : kappas) {
+    const double steps_before = fit.steps;
     const double nu = kappa * fit.nu_max;
     fit.nu = nu;
     ++fit.steps;
@@ -401,6 +404,9 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
           break;
         }
       }
+      if (progress)
+        progress((steps_before + static_cast<double>(iteration) / options.max_iterations) /
+                 static_cast<double>(kappas.size()));
     }
   }
   dictionary.apply(fit.alpha, model);
@@ -551,7 +557,8 @@ double off_diagonality(const Matrix& transform, const std::vector<Matrix>& corre
 // ---------------------------------------------------------------------------------------------
 // The analysis
 
-GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t /*seed*/) {
+GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t /*seed*/,
+                   const std::function<void(double)>& progress) {
   const int width = exemplar.width;
   const int height = exemplar.height;
   const int channels = exemplar.channels;
@@ -613,14 +620,44 @@ GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::u
   }
   const GaussianDictionary dictionary(width, height);
   std::vector<SpectrumFit> fits(static_cast<std::size_t>(channels));
-  parallel_for(fits.size(), 0, [&](std::size_t k) {
-    if (k == 0) {
-      fits[k] = fit_spectrum(dictionary, targets[k], options);
-    } else {
-      const GaussianDictionary own(width, height);
-      fits[k] = fit_spectrum(own, targets[k], options);
-    }
-  });
+  // Progress: every fit records its fraction; the calling thread reports their mean. What the hook
+  // throws is kept, and the other fits stop at their next iteration.
+  std::vector<std::atomic<double>> fit_fraction(fits.size());
+  std::atomic<bool> cancelled{false};
+  std::exception_ptr cancellation;
+  const auto caller = std::this_thread::get_id();
+  const auto fit_progress = [&](std::size_t k) -> std::function<void(double)> {
+    if (!progress) return {};
+    return [&, k](double fraction) {
+      fit_fraction[k] = fraction;
+      if (std::this_thread::get_id() != caller) {
+        if (cancelled) throw Error(ErrorCode::numerical, "gabor: the analysis was cancelled");
+        return;
+      }
+      double sum = 0.0;
+      for (const auto& f : fit_fraction) sum += f;
+      try {
+        progress(sum / static_cast<double>(fit_fraction.size()));
+      } catch (...) {
+        cancellation = std::current_exception();
+        cancelled = true;
+        throw;
+      }
+    };
+  };
+  try {
+    parallel_for(fits.size(), 0, [&](std::size_t k) {
+      if (k == 0) {
+        fits[k] = fit_spectrum(dictionary, targets[k], options, fit_progress(k));
+      } else {
+        const GaussianDictionary own(width, height);
+        fits[k] = fit_spectrum(own, targets[k], options, fit_progress(k));
+      }
+    });
+  } catch (...) {
+    if (cancellation) std::rethrow_exception(cancellation);
+    throw;
+  }
   std::vector<GaussianComponent> gaussians;
   double residual_squared = 0.0;
   double target_squared = 0.0;

@@ -5,6 +5,7 @@
 
 #include <complex>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <type_traits>
@@ -110,9 +111,12 @@ struct SpectrumFit {
 
 // Non-negative basis pursuit denoising (eq. 8) by FISTA (Beck & Teboulle 2009) with the
 // duality-gap stop (Kim et al. 2007), over the homotopy kappa = 1/2, 1/4, ... down to
-// options.kappa, each step warm-started from the previous one (section 5.2).
+// options.kappa, each step warm-started from the previous one (section 5.2). `progress` (may be
+// empty) is called after each iteration with the fraction done; an exception it throws stops the
+// fit.
 SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const float> target,
-                         const FitOptions& options);
+                         const FitOptions& options,
+                         const std::function<void(double)>& progress = {});
 
 // Duality gap of eq. (8) at a non-negative alpha, and its primal objective.
 struct DualityGap {
@@ -145,8 +149,11 @@ Matrix principal_axes(const Matrix& covariance, int n);
 // makes J a fraction in [0, 1] that does not depend on the channels' scales).
 double off_diagonality(const Matrix& transform, const std::vector<Matrix>& correlations, int n);
 
-// The method's analysis.
-GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);
+// The method's analysis. `progress` (may be empty) is called from the calling thread with the
+// fraction done, at each iteration of the fit that thread runs; an exception it throws stops every
+// channel's fit at its next iteration and is rethrown.
+GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed,
+                   const std::function<void(double)>& progress = {});
 
 // This method's row of the registry (src/registry.cpp).
 constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<GaborModel>) {

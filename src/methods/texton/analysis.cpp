@@ -93,7 +93,8 @@ std::vector<std::vector<std::complex<float>>> normalised_kernel_spectrum(
   return kernel_spectrum;
 }
 
-TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed) {
+TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed,
+                    const std::function<void(double)>& progress) {
   // Preprocess: the periodic component (section 4.2, [Moi11]), then the normalised kernel
   // t_u = (p - mean(p)) / sqrt(|Omega|) of section 3.2.
   const ImageF periodic = periodic_component(exemplar);
@@ -105,7 +106,7 @@ TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::
   // kernel is centred on.
   const std::vector<double> target = channel_covariance(periodic.view(), mean);
   std::vector<float> coefficients = texton_coefficients(
-      fft, normalised_kernel_spectrum(fft, periodic.view(), mean), target, params, seed);
+      fft, normalised_kernel_spectrum(fft, periodic.view(), mean), target, params, seed, progress);
   const int support = std::min({params.support, exemplar.width, exemplar.height});
   return TextonModel(exemplar.channels, support, params.order, params.mni, std::move(coefficients),
                      std::move(mean));
@@ -113,7 +114,8 @@ TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::
 
 std::vector<float> texton_coefficients(
     const Fft2d& fft, std::vector<std::vector<std::complex<float>>> kernel_spectrum,
-    std::span<const double> target, const Params& params, std::uint32_t seed) {
+    std::span<const double> target, const Params& params, std::uint32_t seed,
+    const std::function<void(double)>& progress) {
   const int width = fft.width();
   const int height = fft.height();
   const int channels = static_cast<int>(kernel_spectrum.size());
@@ -174,6 +176,7 @@ std::vector<float> texton_coefficients(
       }
       if (iteration + 1 < iterations) pruned.forward(alpha[c], alpha_spectrum[c]);
     }
+    if (progress) progress(static_cast<double>(iteration + 1) / iterations);
   }
 
   std::vector<float> coefficients(static_cast<std::size_t>(support) * support * channels);

@@ -2,6 +2,7 @@
 
 #include <complex>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -14,8 +15,10 @@
 namespace stochtex::texton {
 
 // Algorithm 1 of the paper with the colour projection and colour covariance correction of
-// section 4.3.
-TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);
+// section 4.3. `progress` (may be empty) is called after each iteration with the fraction done; an
+// exception it throws stops the analysis (stochtex::analyze).
+TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed,
+                    const std::function<void(double)>& progress = {});
 
 // The DFT of each channel of t_u = (p - mean) / sqrt(|Omega|) (section 3.2), p a periodic image of
 // fft's size: the kernel whose Gaussian model Algorithm 1 approximates.
@@ -26,10 +29,11 @@ std::vector<std::vector<std::complex<float>>> normalised_kernel_spectrum(
 // the colour covariance correction towards `target` (channels x channels, row-major, the kernel's
 // lag-0 covariance): the texton coefficients, S x S x channels with S = min(support, width,
 // height). The white-noise initialisation depends on the seed and the size only, so kernels of
-// one size share it (texton noise mixing, section 7).
+// one size share it (texton noise mixing, section 7). `progress` as analyze's.
 std::vector<float> texton_coefficients(
     const Fft2d& fft, std::vector<std::vector<std::complex<float>>> kernel_spectrum,
-    std::span<const double> target, const Params& params, std::uint32_t seed);
+    std::span<const double> target, const Params& params, std::uint32_t seed,
+    const std::function<void(double)>& progress = {});
 
 // This method's row of the registry (src/registry.cpp).
 constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<TextonModel>) {

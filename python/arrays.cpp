@@ -1,0 +1,63 @@
+#include "arrays.hpp"
+
+#include <cstdint>
+
+namespace py = pybind11;
+
+namespace stochtex::python {
+namespace {
+
+// (The scales are those of the PNG reader, src/io/image_io.cpp, so an array read from a PNG
+// analyses like the file.)
+template <class T>
+void copy_pixels(const py::array& array, ImageF& image, float range) {
+  const auto* base = static_cast<const char*>(array.data());
+  const py::ssize_t row_stride = array.strides(0);
+  const py::ssize_t column_stride = array.strides(1);
+  const py::ssize_t channel_stride = array.ndim() == 3 ? array.strides(2) : 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      for (int c = 0; c < image.channels(); ++c) {
+        const char* element = base + y * row_stride + x * column_stride + c * channel_stride;
+        const float value = static_cast<float>(*reinterpret_cast<const T*>(element));
+        image.at(x, y, c) = range == 1.0f ? value : value / range;
+      }
+}
+
+}  // namespace
+
+ImageF image_from_array(const py::array& array, const std::string& what) {
+  if (array.ndim() != 2 && array.ndim() != 3)
+    throw py::value_error(what + " must be an HxW or HxWxC array, not one of " +
+                          std::to_string(array.ndim()) + " dimensions");
+  if (array.size() == 0) throw py::value_error(what + " is empty");
+  const auto height = static_cast<int>(array.shape(0));
+  const auto width = static_cast<int>(array.shape(1));
+  const auto channels = array.ndim() == 3 ? static_cast<int>(array.shape(2)) : 1;
+  if (array.ndim() == 3 && (channels < 1 || channels > 4))
+    throw py::value_error(what + " has " + std::to_string(channels) +
+                          " channels (its last axis); give 1 to 4");
+  if (array.shape(0) > (1 << 20) || array.shape(1) > (1 << 20))
+    throw py::value_error(what + " is larger than 2^20 pixels on a side");
+  ImageF image(width, height, channels);
+  if (py::isinstance<py::array_t<std::uint8_t>>(array))
+    copy_pixels<std::uint8_t>(array, image, 255.0f);
+  else if (py::isinstance<py::array_t<std::uint16_t>>(array))
+    copy_pixels<std::uint16_t>(array, image, 65535.0f);
+  else if (py::isinstance<py::array_t<float>>(array))
+    copy_pixels<float>(array, image, 1.0f);
+  else
+    throw py::type_error(what + " must be a uint8, uint16 or float32 array, not " +
+                         py::str(array.dtype()).cast<std::string>() +
+                         " (convert it with .astype(numpy.float32))");
+  return image;
+}
+
+OutputArray output_array(int width, int height, int channels) {
+  py::array_t<float> array({height, width, channels});
+  return {array,
+          {array.mutable_data(), width, height, channels,
+           static_cast<std::ptrdiff_t>(width) * channels}};
+}
+
+}  // namespace stochtex::python

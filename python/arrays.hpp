@@ -1,0 +1,25 @@
+#pragma once
+// numpy arrays to and from the library's images, with the checks a Python caller meets as
+// TypeError or ValueError (docs/python.md).
+
+#include <pybind11/numpy.h>
+
+#include <string>
+
+#include "stochtex/image.hpp"
+
+namespace stochtex::python {
+
+// An HxW or HxWxC array of uint8 (/255), uint16 (/65535) or float32, any strides, as an image;
+// `what` names it in the error sentences. Throws TypeError for another dtype, ValueError for
+// another number of dimensions or an empty array.
+ImageF image_from_array(const pybind11::array& array, const std::string& what);
+
+// A new float32 HxWxC array and the image view that writes into it.
+struct OutputArray {
+  pybind11::array_t<float> array;
+  ImageView<float> view;
+};
+OutputArray output_array(int width, int height, int channels);
+
+}  // namespace stochtex::python

@@ -1,0 +1,247 @@
+// The compiled half of the Python module (`stochtex._stochtex`, re-exported by
+// python/stochtex/__init__.py; docs/python.md). Every long call releases the GIL; its progress
+// hook takes the GIL back to check for Ctrl-C and call the user's callback.
+
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <array>
+#include <charconv>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "arrays.hpp"
+#include "report/compare.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace py = pybind11;
+
+namespace stochtex::python {
+namespace {
+
+py::object parse_json(const std::string& text) {
+  return py::module_::import("json").attr("loads")(text);
+}
+
+// A progress hook for a call that runs with the GIL released, from the calling thread: it takes
+// the GIL, raises KeyboardInterrupt (or what a signal handler raises) on Ctrl-C, calls `callback`
+// (None: none) and throws what either raises, which stops the call. After that it does nothing.
+std::function<void(double)> progress_hook(const py::object& callback) {
+  auto stopped = std::make_shared<bool>(false);
+  return [callback, stopped](double fraction) {
+    if (*stopped) return;
+    py::gil_scoped_acquire gil;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!callback.is_none()) callback(fraction);
+    } catch (...) {
+      *stopped = true;
+      throw;
+    }
+  };
+}
+
+// Keyword parameters as the CLI's -p values: numbers (written exactly, shortest round trip) or a
+// choice's name.
+std::map<std::string, std::string, std::less<>> text_params(const py::kwargs& params) {
+  std::map<std::string, std::string, std::less<>> text;
+  for (const auto& [key, value] : params) {
+    const auto name = key.cast<std::string>();
+    if (py::isinstance<py::str>(value)) {
+      text[name] = value.cast<std::string>();
+    } else if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) {
+      std::array<char, 32> buffer{};
+      const auto end =
+          std::to_chars(buffer.data(), buffer.data() + buffer.size(), value.cast<double>()).ptr;
+      text[name] = std::string(buffer.data(), end);
+    } else {
+      throw py::type_error("parameter " + name + " must be a number or a choice's name, not " +
+                           py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+    }
+  }
+  return text;
+}
+
+ImageF exemplar_from_array(const py::array& array, const std::string& what) {
+  ImageF image = image_from_array(array, what);
+  validate_exemplar(image.view(), what);
+  return image;
+}
+
+py::array_t<float> to_array(const ImageF& image) {
+  OutputArray output = output_array(image.width(), image.height(), image.channels());
+  std::copy(image.pixels().begin(), image.pixels().end(), output.view.data);
+  return output.array;
+}
+
+Model analyze_array(const py::array& array, const std::string& method, std::uint32_t seed,
+                    const py::object& progress, const py::kwargs& params) {
+  const ParamValues values = resolve_params(method, text_params(params));
+  const ImageF exemplar = image_from_array(array, "the exemplar array");
+  const auto hook = progress_hook(progress);
+  py::gil_scoped_release release;
+  return analyze(method, exemplar.view(), values, seed, "the exemplar array", hook);
+}
+
+py::array_t<float> render_model(const Model& model, int width, int height,
+                                std::array<double, 2> origin, double scale, std::uint32_t seed,
+                                int threads, std::array<std::int64_t, 2> offset,
+                                const py::object& progress) {
+  if (width < 1 || height < 1 || width > (1 << 16) || height > (1 << 16))
+    throw py::value_error("render's width and height must be between 1 and 65536, not " +
+                          std::to_string(width) + "x" + std::to_string(height));
+  if (threads < 0) throw py::value_error("threads must be 0 (all) or more");
+  const Grid grid{{origin[0], origin[1]}, scale, width, height, offset[0], offset[1]};
+  check_grid(grid, "render's grid");
+  OutputArray output = output_array(width, height, model.channels());
+  RenderOptions options;
+  options.threads = threads;
+  options.progress = progress_hook(progress);
+  py::gil_scoped_release release;
+  render(model, grid, seed, output.view, options);
+  return output.array;
+}
+
+py::array_t<float> evaluate_model(const Model& model, const py::array_t<double>& points,
+                                  const py::object& footprints, std::uint32_t seed) {
+  const auto rows = points.ndim() == 2 ? points.shape(0) : 0;
+  if (points.ndim() != 2 || points.shape(1) != 2)
+    throw py::value_error("points must be an Nx2 array of positions");
+  const auto count = static_cast<std::size_t>(rows);
+  std::vector<Vec2d> positions(count);
+  const auto p = points.unchecked<2>();
+  for (std::size_t i = 0; i < count; ++i) positions[i] = {p(i, 0), p(i, 1)};
+  std::vector<Footprint> areas;
+  if (!footprints.is_none()) {
+    const auto f = py::array_t<double, py::array::forcecast>::ensure(footprints);
+    if (!f || f.ndim() != 3 || f.shape(0) != rows || f.shape(1) != 2 || f.shape(2) != 2)
+      throw py::value_error("footprints must be an Nx2x2 array (dpdx, dpdy of each point)");
+    const auto v = f.unchecked<3>();
+    for (std::size_t i = 0; i < count; ++i)
+      areas.push_back({{v(i, 0, 0), v(i, 0, 1)}, {v(i, 1, 0), v(i, 1, 1)}});
+  }
+  const int channels = model.channels();
+  py::array_t<float> values({rows, static_cast<py::ssize_t>(channels)});
+  const ImageView<float> out{values.mutable_data(), 1, static_cast<int>(rows), channels, channels};
+  py::gil_scoped_release release;
+  evaluate(model, positions, areas, seed, out);
+  return values;
+}
+
+py::bytes model_bytes(const Model& model) {
+  const std::vector<std::uint8_t> bytes = serialize_model(model);
+  return {reinterpret_cast<const char*>(bytes.data()), bytes.size()};
+}
+
+Model model_from_bytes(const py::bytes& data) {
+  const std::string_view bytes = data;
+  return deserialize_model({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()},
+                           "the pickled model");
+}
+
+}  // namespace
+}  // namespace stochtex::python
+
+PYBIND11_MODULE(_stochtex, m) {
+  using namespace stochtex;
+  using namespace stochtex::python;
+  m.doc() = "Procedural texture synthesis by example (docs/python.md).";
+  // stochtex::Error: OSError for files that cannot be opened, read or written, ValueError for the
+  // rest (bad data, formats); std::invalid_argument is pybind11's ValueError already.
+  py::register_exception_translator([](std::exception_ptr failure) {
+    try {
+      if (failure) std::rethrow_exception(failure);
+    } catch (const Error& e) {
+      PyErr_SetString(e.code() == ErrorCode::io ? PyExc_OSError : PyExc_ValueError, e.what());
+    }
+  });
+
+  py::class_<Model>(m, "Model", "A texture model: analysed, loaded or unpickled.")
+      .def_property_readonly("method",
+                             [](const Model& model) { return std::string(model.method()); })
+      .def_property_readonly("channels", &Model::channels)
+      .def_property_readonly(
+          "info", [](const Model& model) { return parse_json(describe_model(model)); },
+          "The model's description (stochtex info --json): method, parameters, array sizes.")
+      .def("render", &render_model, py::arg("width"), py::arg("height"),
+           py::arg("origin") = std::array<double, 2>{0.0, 0.0}, py::arg("scale") = 1.0,
+           py::arg("seed") = 0, py::arg("threads") = 0,
+           py::arg("offset") = std::array<std::int64_t, 2>{0, 0}, py::arg("progress") = py::none(),
+           "A height x width x channels float32 image: pixel (i, j) samples origin + scale * "
+           "(offset + (i, j) + 1/2), so a chunk rendered with offset equals the same pixels of "
+           "the whole render, bit for bit.")
+      .def("evaluate", &evaluate_model, py::arg("points"), py::arg("footprints") = py::none(),
+           py::arg("seed") = 0,
+           "The model at N positions (Nx2, exemplar pixels), with optional Nx2x2 footprints "
+           "(dpdx, dpdy): an N x channels float32 array.")
+      .def(
+          "save",
+          [](const Model& model, const std::filesystem::path& path) { save_model(model, path); },
+          py::arg("path"))
+      .def("__repr__",
+           [](const Model& model) {
+             return "<stochtex.Model " + std::string(model.method()) + ", " +
+                    std::to_string(model.channels()) + " channels>";
+           })
+      .def(py::pickle(&model_bytes, &model_from_bytes));
+
+  m.def("analyze", &analyze_array, py::arg("array"), py::arg("method"), py::arg("seed") = 0,
+        py::arg("progress") = py::none(),
+        "Analyses an HxW or HxWxC exemplar (uint8, uint16 or float32) with a method; keyword "
+        "arguments are its parameters (numbers or a choice's name).");
+  m.def(
+      "load", [](const std::filesystem::path& path) { return load_model(path); }, py::arg("path"));
+  m.def(
+      "methods", [] { return parse_json(methods_json()); },
+      "Every method with its parameters: names, defaults, ranges, help, choices.");
+  m.def(
+      "compare",
+      [](const py::array& exemplar, const py::array& image) {
+        const ImageF reference = exemplar_from_array(exemplar, "the exemplar array");
+        const ImageF synthesis = image_from_array(image, "the image array");
+        const std::string json = [&] {
+          py::gil_scoped_release release;
+          return comparison_json(compare_checked(reference.view(), "the exemplar array",
+                                                 synthesis.view(), "the image array"))
+              .dump();
+        }();
+        return parse_json(json);
+      },
+      py::arg("exemplar"), py::arg("image"),
+      "The measures of `stochtex compare --json` for an image against its exemplar.");
+  m.def(
+      "gaussian",
+      [](const py::array& exemplar, int width, int height, std::uint32_t seed) {
+        if (width < 1 || height < 1 || width > (1 << 14) || height > (1 << 14))
+          throw py::value_error("gaussian's width and height must be between 1 and 16384");
+        const ImageF image = exemplar_from_array(exemplar, "the exemplar array");
+        const ImageF result = [&] {
+          py::gil_scoped_release release;
+          return gaussian_version(image.view(), width, height, seed);
+        }();
+        return to_array(result);
+      },
+      py::arg("exemplar"), py::arg("width"), py::arg("height"), py::arg("seed") = 0,
+      "The exemplar's Gaussian version (ADSN) at width x height, float32 HxWxC.");
+  m.def(
+      "mix",
+      [](const py::array& a, const py::array& b, const py::object& mask, std::uint32_t seed,
+         const py::kwargs& params) {
+        const ParamValues values = resolve_params("texton_mix", text_params(params));
+        const ImageF first = image_from_array(a, "array a");
+        const ImageF second = image_from_array(b, "array b");
+        const ImageF grey = mask.is_none() ? ImageF() : image_from_array(mask, "the mask array");
+        MixInputs inputs{first.view(), second.view(), "array a",
+                         "array b",    std::nullopt,  "the mask array"};
+        if (!grey.empty()) inputs.mask = grey.view();
+        py::gil_scoped_release release;
+        return mix(inputs, values, seed);
+      },
+      py::arg("a"), py::arg("b"), py::arg("mask") = py::none(), py::arg("seed") = 0,
+      "Texton noise mixing of two exemplars (stochtex mix): a texton_mix model.");
+}

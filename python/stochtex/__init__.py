@@ -1,0 +1,10 @@
+"""stochtex: procedural texture synthesis by example (docs/python.md).
+
+    import numpy, stochtex
+    model = stochtex.analyze(exemplar, "texton")        # HxWxC uint8, uint16 or float32
+    image = model.render(512, 512, seed=1)              # 512x512xC float32
+"""
+
+from ._stochtex import Model, analyze, compare, gaussian, load, methods, mix
+
+__all__ = ["Model", "analyze", "compare", "gaussian", "load", "methods", "mix"]

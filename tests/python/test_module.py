@@ -1,0 +1,216 @@
+"""The Python module as a user meets it (docs/python.md)."""
+
+import os
+import pickle
+import signal
+import subprocess
+import threading
+import time
+
+import numpy
+import pytest
+
+import stochtex
+from conftest import read_pfm, smooth_noise, write_pfm
+
+
+def test_dtypes_and_views_analyse_like_float32(exemplar):
+    as_uint8 = numpy.round(exemplar * 255).astype(numpy.uint8)
+    from_uint8 = stochtex.analyze(as_uint8, "tiling", seed=3)
+    from_float = stochtex.analyze(as_uint8.astype(numpy.float32) / numpy.float32(255), "tiling",
+                                  seed=3)
+    assert pickle.dumps(from_uint8) == pickle.dumps(from_float)
+    as_uint16 = numpy.round(exemplar * 65535).astype(numpy.uint16)
+    from_uint16 = stochtex.analyze(as_uint16, "tiling", seed=3)
+    assert from_uint16.channels == 3
+    # A non-contiguous view analyses like its contiguous copy.
+    view = exemplar[::2, ::-1]
+    assert not view.flags["C_CONTIGUOUS"]
+    assert pickle.dumps(stochtex.analyze(view, "tiling")) == pickle.dumps(
+        stochtex.analyze(numpy.ascontiguousarray(view), "tiling"))
+    grey = stochtex.analyze(exemplar[:, :, 0], "tiling")
+    assert grey.channels == 1
+
+
+@pytest.mark.parametrize("array, error, words", [
+    (numpy.zeros((8, 8), numpy.float64), TypeError, "float64"),
+    (numpy.zeros((8, 8), numpy.int32), TypeError, "uint8, uint16 or float32"),
+    (numpy.zeros(8, numpy.float32), ValueError, "1 dimensions"),
+    (numpy.zeros((4, 4, 4, 1), numpy.float32), ValueError, "4 dimensions"),
+    (numpy.zeros((8, 8, 5), numpy.float32), ValueError, "5 channels"),
+    (numpy.zeros((0, 8), numpy.float32), ValueError, "empty"),
+    (numpy.zeros((8, 8), numpy.float32), ValueError, "constant"),
+    (numpy.full((1, 8), 0.5, numpy.float32), ValueError, "1"),
+])
+def test_bad_arrays_are_clear_errors(array, error, words):
+    with pytest.raises(error, match=words):
+        stochtex.analyze(array, "texton")
+
+
+def test_nan_exemplar_is_refused(exemplar):
+    bad = exemplar.copy()
+    bad[3, 4, 1] = numpy.nan
+    with pytest.raises(ValueError, match="NaN"):
+        stochtex.analyze(bad, "texton")
+
+
+def test_parameters_are_keywords(exemplar):
+    with pytest.raises(ValueError, match="unknown method 'nope'"):
+        stochtex.analyze(exemplar, "nope")
+    with pytest.raises(ValueError, match="unknown parameter 'colour'"):
+        stochtex.analyze(exemplar, "texton", colour=1)
+    with pytest.raises(ValueError, match="iterations"):
+        stochtex.analyze(exemplar, "texton", iterations=-4)
+    with pytest.raises(TypeError, match="number or a choice"):
+        stochtex.analyze(exemplar, "texton", iterations=[1])
+    # A choice by its name or by its number.
+    by_name = stochtex.analyze(exemplar, "tiling", blend="variance")
+    by_number = stochtex.analyze(exemplar, "tiling", blend=1)
+    assert pickle.dumps(by_name) == pickle.dumps(by_number)
+    assert by_name.info["params"]["blend"] == 1.0
+
+
+def test_render_is_deterministic_whatever_the_threads(texton_model):
+    one = texton_model.render(64, 48, origin=(3.5, -2), scale=0.75, seed=9, threads=1)
+    two = texton_model.render(64, 48, origin=(3.5, -2), scale=0.75, seed=9, threads=2)
+    assert one.dtype == numpy.float32 and one.shape == (48, 64, 3)
+    assert numpy.array_equal(one, two)
+    assert not numpy.array_equal(one, texton_model.render(64, 48, origin=(3.5, -2), scale=0.75,
+                                                           seed=10))
+
+
+def test_offset_chunks_equal_the_whole_render(texton_model):
+    whole = texton_model.render(70, 50, origin=(1, 2), scale=1.5, seed=4)
+    chunk = texton_model.render(30, 20, origin=(1, 2), scale=1.5, seed=4, offset=(33, 17))
+    assert numpy.array_equal(chunk, whole[17:37, 33:63])
+
+
+def test_evaluate_matches_render(texton_model):
+    image = texton_model.render(16, 8, origin=(5, 6), scale=1.0, seed=2)
+    y, x = numpy.mgrid[0:8, 0:16]
+    points = numpy.stack([5 + x + 0.5, 6 + y + 0.5], axis=-1).reshape(-1, 2)
+    footprints = numpy.tile(numpy.array([[1.0, 0.0], [0.0, 1.0]]), (len(points), 1, 1))
+    values = texton_model.evaluate(points, footprints, seed=2)
+    assert values.shape == (128, 3) and values.dtype == numpy.float32
+    assert numpy.array_equal(values, image.reshape(-1, 3))
+    with pytest.raises(ValueError, match="Nx2"):
+        texton_model.evaluate(numpy.zeros((4, 3)))
+    with pytest.raises(ValueError, match="Nx2x2"):
+        texton_model.evaluate(points, numpy.zeros((3, 2, 2)))
+    with pytest.raises(ValueError, match="finite"):
+        texton_model.evaluate(numpy.array([[numpy.nan, 0.0]]))
+
+
+def test_render_arguments_are_checked(texton_model):
+    with pytest.raises(ValueError, match="width and height"):
+        texton_model.render(0, 4)
+    with pytest.raises(ValueError):
+        texton_model.render(4, 4, scale=float("nan"))
+
+
+def test_save_load_and_pickle(texton_model, tmp_path):
+    path = tmp_path / "model.stx"
+    texton_model.save(path)
+    loaded = stochtex.load(str(path))
+    assert loaded.method == "texton" and loaded.channels == 3
+    assert numpy.array_equal(loaded.render(20, 20, seed=1), texton_model.render(20, 20, seed=1))
+    copy = pickle.loads(pickle.dumps(texton_model))
+    assert numpy.array_equal(copy.render(20, 20, seed=1), texton_model.render(20, 20, seed=1))
+    with pytest.raises(OSError, match="missing.stx"):
+        stochtex.load(tmp_path / "missing.stx")
+    (tmp_path / "bad.stx").write_bytes(b"not a model")
+    with pytest.raises(ValueError, match="bad.stx"):
+        stochtex.load(tmp_path / "bad.stx")
+
+
+def test_info_methods_compare_gaussian(exemplar, texton_model):
+    info = texton_model.info
+    assert info["method"] == "texton"
+    assert repr(texton_model) == "<stochtex.Model texton, 3 channels>"
+    methods = {method["name"]: method for method in stochtex.methods()}
+    assert {"texton", "tiling", "lrp", "gabor"} <= set(methods)
+    blend = next(p for p in methods["tiling"]["params"] if p["name"] == "blend")
+    assert [c["name"] for c in blend["choices"]][:2] == ["histogram", "variance"]
+    gaussian = stochtex.gaussian(exemplar, 48, 40, seed=1)
+    assert gaussian.shape == (40, 48, 3) and gaussian.dtype == numpy.float32
+    numbers = stochtex.compare(exemplar, gaussian)
+    assert numbers["welch_crop"] == 16
+    assert {"spectral_error", "spectral_error_adsn", "histogram_error",
+            "histogram_error_floor"} <= set(numbers)
+    with pytest.raises(ValueError, match="channels"):
+        stochtex.compare(exemplar, gaussian[:, :, :1])
+    with pytest.raises(ValueError, match="NaN"):
+        stochtex.compare(exemplar, numpy.full((8, 8, 3), numpy.nan, numpy.float32))
+
+
+def test_mix(exemplar):
+    other = smooth_noise(32, 40, 3, 8)
+    model = stochtex.mix(exemplar, other, steps=2, iterations=3)
+    assert model.method == "texton_mix" and model.channels == 3
+
+
+def test_python_equals_the_cli(exemplar, texton_model, cli, tmp_path):
+    write_pfm(tmp_path / "exemplar.pfm", exemplar)
+    subprocess.run([cli, "analyze", str(tmp_path / "exemplar.pfm"), "-m", "texton", "-p",
+                    "iterations=5", "-o", str(tmp_path / "cli.stx")], check=True)
+    assert pickle.dumps(stochtex.load(tmp_path / "cli.stx")) == pickle.dumps(texton_model)
+    subprocess.run([cli, "render", str(tmp_path / "cli.stx"), "--size", "40x30", "--seed", "5",
+                    "-o", str(tmp_path / "render.pfm")], check=True)
+    assert numpy.array_equal(read_pfm(tmp_path / "render.pfm"), texton_model.render(40, 30, seed=5))
+
+
+def test_progress_is_reported(exemplar, texton_model):
+    fractions = []
+    texton_model.render(256, 256, threads=2, progress=fractions.append)
+    assert len(fractions) > 2 and fractions == sorted(fractions) and fractions[-1] == 1.0
+    fractions = []
+    stochtex.analyze(exemplar, "texton", progress=fractions.append, iterations=5)
+    assert fractions == [1 / 5, 2 / 5, 3 / 5, 4 / 5, 1.0, 1.0]  # each iteration, then the end
+    fractions = []
+    stochtex.analyze(exemplar, "tiling", progress=fractions.append)
+    assert fractions == [1.0]
+    fractions = []
+    stochtex.analyze(exemplar, "gabor", progress=fractions.append, iterations=50)
+    assert len(fractions) > 10 and fractions == sorted(fractions) and fractions[-1] == 1.0
+
+
+def test_progress_callback_can_stop_analysis(exemplar):
+    class Stop(Exception):
+        pass
+
+    calls = []
+
+    def stop_early(fraction):
+        calls.append(fraction)
+        if len(calls) == 3:
+            raise Stop()
+
+    with pytest.raises(Stop):
+        stochtex.analyze(exemplar, "gabor", progress=stop_early)
+    assert len(calls) == 3
+
+
+def test_ctrl_c_interrupts_a_long_render(exemplar):
+    model = stochtex.analyze(exemplar, "gabor", iterations=50)
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            model.render(2048, 2048, threads=2)  # about 150 s to the end
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 5.0
+
+
+def test_ctrl_c_interrupts_a_long_analysis():
+    exemplar = smooth_noise(256, 256, 3, 5)  # about 6 s of gabor analysis to the end
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            stochtex.analyze(exemplar, "gabor")
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 3.0
