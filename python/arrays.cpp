@@ -2,6 +2,8 @@
 
 #include <cstdint>
 
+#include "stochtex/io.hpp"
+
 namespace py = pybind11;
 
 namespace stochtex::python {
@@ -37,8 +39,12 @@ ImageF image_from_array(const py::array& array, const std::string& what) {
   if (array.ndim() == 3 && (channels < 1 || channels > 4))
     throw py::value_error(what + " has " + std::to_string(channels) +
                           " channels (its last axis); give 1 to 4");
-  if (array.shape(0) > (1 << 20) || array.shape(1) > (1 << 20))
-    throw py::value_error(what + " is larger than 2^20 pixels on a side");
+  // The image reader's limit (io.hpp): a broadcast view can claim any size without its memory.
+  const std::int64_t max_pixels = ImageReadLimits{}.max_pixels;
+  if (array.shape(0) > max_pixels || array.shape(1) > max_pixels / array.shape(0))
+    throw py::value_error(what + " is " + std::to_string(array.shape(1)) + "x" +
+                          std::to_string(array.shape(0)) + " pixels, more than the " +
+                          std::to_string(max_pixels) + " an image may have; use a smaller one");
   ImageF image(width, height, channels);
   if (py::isinstance<py::array_t<std::uint8_t>>(array))
     copy_pixels<std::uint8_t>(array, image, 255.0f);

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "arrays.hpp"
+#include "core/memory_budget.hpp"
+#include "core/parallel.hpp"
 #include "report/compare.hpp"
 #include "stochtex/stochtex.hpp"
 
@@ -95,9 +97,16 @@ py::array_t<float> render_model(const Model& model, int width, int height,
   if (width < 1 || height < 1 || width > (1 << 16) || height > (1 << 16))
     throw py::value_error("render's width and height must be between 1 and 65536, not " +
                           std::to_string(width) + "x" + std::to_string(height));
-  if (threads < 0) throw py::value_error("threads must be 0 (all) or more");
+  if (threads < 0 || threads > kMaxThreads)
+    throw py::value_error("threads must be 0 (all) to " + std::to_string(kMaxThreads));
   const Grid grid{{origin[0], origin[1]}, scale, width, height, offset[0], offset[1]};
   check_grid(grid, "render's grid");
+  // The CLI's budget (docs/design.md §9): a larger image is rendered in pieces (offset) or as a
+  // dask array, whose chunks each stay within it.
+  check_memory_budget(
+      render_peak_bytes(width, height, RenderOptions{}.tile_size, 1, resolve_thread_count(threads)),
+      "rendering " + std::to_string(width) + "x" + std::to_string(height) + " pixels",
+      "render it in pieces with offset, or with stochtex.dask.render");
   OutputArray output = output_array(width, height, model.channels());
   RenderOptions options;
   options.threads = threads;

@@ -41,6 +41,8 @@ def test_dtypes_and_views_analyse_like_float32(exemplar):
     (numpy.zeros((0, 8), numpy.float32), ValueError, "empty"),
     (numpy.zeros((8, 8), numpy.float32), ValueError, "constant"),
     (numpy.full((1, 8), 0.5, numpy.float32), ValueError, "1"),
+    # A broadcast view claims 10^12 pixels without their memory: refused before any copy.
+    (numpy.broadcast_to(numpy.float32(0.5), (10**6, 10**6)), ValueError, "more than the 67108864"),
 ])
 def test_bad_arrays_are_clear_errors(array, error, words):
     with pytest.raises(error, match=words):
@@ -106,6 +108,11 @@ def test_render_arguments_are_checked(texton_model):
         texton_model.render(0, 4)
     with pytest.raises(ValueError):
         texton_model.render(4, 4, scale=float("nan"))
+    with pytest.raises(ValueError, match="threads"):
+        texton_model.render(4, 4, threads=-1)
+    # 24 bytes a pixel: 40000x40000 needs about 38 GB, more than the 2 GiB budget.
+    with pytest.raises(ValueError, match="stochtex.dask.render"):
+        texton_model.render(40000, 40000)
 
 
 def test_save_load_and_pickle(texton_model, tmp_path):
