@@ -307,9 +307,9 @@ TEST(TilingFiltering, MinifiedRenderMatchesTheSupersampledReference) {
     const Footprint footprint{{kScale, 0.0}, {0.0, kScale}};
     for (int j = 0; j < kSize; ++j)
       for (int i = 0; i < kSize; ++i) {
-        const tiling::LevelOfDetail lod = tiling.level_of_detail(&footprint);
         float g[3];
-        tiling.blended_gaussian({kScale * (i + 0.5), kScale * (j + 0.5)}, lod, seed, g);
+        tiling.blended_gaussian({kScale * (i + 0.5), kScale * (j + 0.5)},
+                                tiling::TilingModel::footprint_width(&footprint), seed, g);
         tiling.inverse_transform(g, {}, &naive.at(i, j, 0));
       }
     const ImageF images[3] = {render_model(model, grid, seed), naive,

@@ -627,11 +627,11 @@ TEST(TilingTriplanar, AnAxisNormalIsThePlanarNoiseAndABlendKeepsTheRange) {
   evaluate_surface(model, axis, options, seed, out.view());
   for (int k = 0; k < 50; ++k) {
     const Footprint footprint{{2.5, 0.0}, {0.0, 0.0}};
-    const LevelOfDetail lod = tiling.level_of_detail(&footprint);
     float g[3];
     float planar[3];
-    tiling.blended_gaussian({axis[k].position.x, axis[k].position.y}, lod,
-                            TilingModel::triplanar_seed(2, seed), g);
+    const LevelOfDetail lod = tiling.blended_gaussian({axis[k].position.x, axis[k].position.y},
+                                                      TilingModel::footprint_width(&footprint),
+                                                      TilingModel::triplanar_seed(2, seed), g);
     tiling.inverse_transform(g, lod, planar);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(out.at(k, 0, c), planar[c], 1e-5);
   }
