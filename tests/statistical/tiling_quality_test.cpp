@@ -314,12 +314,20 @@ TEST(TilingControls, KeepTheHistogramAndHideTheLattice) {
               << " (se " << ratio.deviation << ")\n";
     if (label == "defaults") defaults = w2;
     // (a) At the level of the defaults: within 4 pooled deviations of theirs, and as close to
-    // the exemplar as the defaults' bound above (floor + 3 deviations).
+    // the exemplar as the defaults' bound above (floor + 3 deviations). Measured W2 (sd over
+    // seeds, floor 0.0145): 0.0110 (0.006) defaults, 0.0123 (0.009) rotation 180, 0.0119
+    // (0.007) scale_jitter 0.5, 0.0105 (0.006) sharpness 4.
     const Sample gap = pooled_gap(w2, defaults);
     EXPECT_LT(gap.mean, 4.0 * gap.deviation) << label;
     EXPECT_LE(w2.mean, floor + 3.0 * w2.deviation) << label;
-    // (b) Flat: within 4 standard errors of 1, as the defaults' bound above.
-    EXPECT_LT(std::abs(ratio.mean - 1.0), 4.0 * ratio.deviation) << label;
+    // (b) Flat: within 4 standard errors of 1, as the defaults' bound above. A rotated or scaled
+    // patch is read between texels (a bilinear average, whose variance is lower) except at its
+    // vertex: up to the 0.968 the defaults measured on texel corners (above) is that, not a
+    // visible lattice (linear blending: 0.42). Measured 0.977 (se 0.006) rotation 180, 0.979
+    // (se 0.006) scale_jitter 0.5, 0.994 (se 0.005) sharpness 4, 0.993 (se 0.004) defaults.
+    const bool between_texels = params.contains("rotation") || params.contains("scale_jitter");
+    EXPECT_LT(std::abs(ratio.mean - 1.0), 4.0 * ratio.deviation + (between_texels ? 0.035 : 0.0))
+        << label;
   }
 }
 
