@@ -31,6 +31,13 @@ done
 "$stochtex" synth "$textures/moss_ground_512.png" --method tiling -p transport=1 \
   -o "$out/moss_ground_512_tiling_per_channel.png" --size 256x256 --seed 1
 
+# The artist controls (docs/methods/tiling.md, "Artist controls"): defaults, each control alone,
+# same seed.
+for control in rotation=0 rotation=180 scale_jitter=0.5 sharpness=4; do
+  "$stochtex" synth "$textures/bricks_stone_wall_512.png" --method tiling -p "$control" \
+    -o "$out/controls_${control%%=*}_${control#*=}.png" --size 256x256 --seed 2
+done
+
 model="$work/water_caustics_256.stx"
 gallery_filtering_row "$model" 256x256
 echo "gallery written to $out"

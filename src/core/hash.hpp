@@ -39,9 +39,10 @@ enum class Stream : std::uint32_t {
   points = 0x9e3779b9u,
   phases = 0x7f4a7c15u,
   offsets = 0x85ebca6bu,
-  analysis = 0xc2b2ae35u,  // white noise of the analyses (ADSN, texton initialisation)
-  kernels = 0x165667b1u,   // Gabor noise: per-grid seeds and kernel parameters (alias, phase)
-  signs = 0xd3a2646cu,     // texton noise mixing: the random sign of each impulse
+  analysis = 0xc2b2ae35u,    // white noise of the analyses (ADSN, texton initialisation)
+  kernels = 0x165667b1u,     // Gabor noise: per-grid seeds and kernel parameters (alias, phase)
+  signs = 0xd3a2646cu,       // texton noise mixing: the random sign of each impulse
+  transforms = 0x27d4eb2fu,  // tiling's artist controls: each patch's rotation and scale
 };
 
 // The key of lattice cell (x, y) for a seed and a stream. Cell coordinates are 64-bit signed

@@ -398,6 +398,8 @@ TEST(TilingModelFile, RoundTripIsExactForEveryLayout) {
 
 constexpr auto expect_rejected = &test_support::expect_record_rejected<TilingModel>;
 
+void check_threads_tiles_and_regions(const Model& model);
+
 TEST(TilingModelFile, CorruptRecordsAreRejectedWithAFormatError) {
   const Model model = analyse(structured_exemplar(16, 4, 8), {{"lut_size", 4}});
   const ModelRecord good = tiling_of(model).to_record(model.params());
@@ -627,11 +629,11 @@ TEST(TilingTriplanar, AnAxisNormalIsThePlanarNoiseAndABlendKeepsTheRange) {
   evaluate_surface(model, axis, options, seed, out.view());
   for (int k = 0; k < 50; ++k) {
     const Footprint footprint{{2.5, 0.0}, {0.0, 0.0}};
-    const LevelOfDetail lod = tiling.level_of_detail(&footprint);
     float g[3];
     float planar[3];
-    tiling.blended_gaussian({axis[k].position.x, axis[k].position.y}, lod,
-                            TilingModel::triplanar_seed(2, seed), g);
+    const LevelOfDetail lod = tiling.blended_gaussian({axis[k].position.x, axis[k].position.y},
+                                                      TilingModel::footprint_width(&footprint),
+                                                      TilingModel::triplanar_seed(2, seed), g);
     tiling.inverse_transform(g, lod, planar);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(out.at(k, 0, c), planar[c], 1e-5);
   }
@@ -664,7 +666,77 @@ TEST(TilingTriplanar, FootprintsBeyondThePyramidReadTheTopLevel) {
 }
 
 TEST(TilingRender, OutputIsIndependentOfThreadsTilesAndRegions) {
-  const Model model = analyse(structured_exemplar(40, 3, 14));
+  // The paper's operator, and the artist controls (each patch rotated and scaled, at its own
+  // level of detail, sharpened weights).
+  for (const ParamValues& params :
+       {ParamValues{}, ParamValues{{"rotation", 180}, {"scale_jitter", 0.5}, {"sharpness", 4}}}) {
+    check_threads_tiles_and_regions(analyse(structured_exemplar(40, 3, 14), params));
+  }
+}
+
+TEST(TilingControls, DefaultsAreThePapersOperatorAndOldFilesLoad) {
+  const ImageF exemplar = structured_exemplar(32, 3, 21);
+  const Grid grid{{3.0, -7.0}, 1.5, 24, 20};
+  const Model model = analyse(exemplar);
+  const Model explicit_defaults =
+      analyse(exemplar, {{"rotation", 0}, {"scale_jitter", 0}, {"sharpness", 1}});
+  // A model with the defaults is the file of a model from before the controls: its file names
+  // none of them (so such an older file loads, with the defaults).
+  const std::vector<std::uint8_t> bytes = serialize_model(model);
+  EXPECT_EQ(bytes, serialize_model(explicit_defaults));
+  const std::string text(bytes.begin(), bytes.end());
+  for (std::size_t i = kFirstControl; i < kParams.size(); ++i)
+    EXPECT_EQ(text.find(std::string(kParams[i].name)), std::string::npos) << kParams[i].name;
+  const TilingData& loaded = tiling_of(deserialize_model(bytes, "old.stx")).data();
+  EXPECT_EQ(loaded.rotation, 0.0);
+  EXPECT_EQ(loaded.scale_jitter, 0.0);
+  EXPECT_EQ(loaded.sharpness, 1.0);
+  // Each control is stored, read back, and changes the render.
+  const ImageF reference = render_model(model, grid, 5);
+  for (std::size_t i = kFirstControl; i < kParams.size(); ++i) {
+    const std::string name(kParams[i].name);
+    const Model controlled = analyse(exemplar, {{name, kParams[i].max_value / 2}});
+    const Model round = deserialize_model(serialize_model(controlled), "round.stx");
+    EXPECT_EQ(round.params().at(name), kParams[i].max_value / 2) << name;
+    EXPECT_EQ(serialize_model(round), serialize_model(controlled)) << name;
+    const ImageF image = render_model(controlled, grid, 5);
+    EXPECT_TRUE(same_bytes(image, render_model(round, grid, 5))) << name;
+    EXPECT_FALSE(same_bytes(image, reference)) << name;
+  }
+}
+
+TEST(TilingControls, SharpenedWeightsSumToOneAndFavourTheNearestVertex) {
+  float weight[3] = {0.5f, 0.3f, 0.2f};
+  sharpen_weights(weight, 4.0f);
+  EXPECT_NEAR(weight[0] + weight[1] + weight[2], 1.0f, 1e-6f);
+  EXPECT_NEAR(weight[0], 0.0625f / (0.0625f + 0.0081f + 0.0016f), 1e-6f);
+  float unchanged[3] = {0.5f, 0.3f, 0.2f};
+  sharpen_weights(unchanged, 1.0f);
+  EXPECT_EQ(unchanged[1], 0.3f);
+}
+
+TEST(TilingControls, PatchTransformRotatesAboutTheVertexWithinTheRange) {
+  // On the vertex the shift is zero (rotation about the tile's centre); the matrix is a rotation
+  // by at most the range, scaled within 2^+-jitter.
+  const float max_angle = 0.5f;
+  for (std::int64_t v = 0; v < 200; ++v) {
+    const PatchTransform m = patch_transform(v, -v, 3, max_angle, 0.5f);
+    const double scale = std::hypot(m.xx, m.yx);
+    EXPECT_NEAR(scale, m.scale, 1e-5);
+    EXPECT_GE(m.scale, std::exp2(-0.5f) - 1e-6f);
+    EXPECT_LE(m.scale, std::exp2(0.5f) + 1e-6f);
+    EXPECT_LE(std::abs(std::atan2(m.yx, m.xx)), max_angle + 1e-5);
+    const Point2f on_vertex = patch_shift(m, 0.0f, 0.0f, 64.0f);
+    EXPECT_EQ(on_vertex.x, 0.0f);
+    EXPECT_EQ(on_vertex.y, 0.0f);
+  }
+  const PatchTransform identity = patch_transform(5, 7, 3, 0.0f, 0.0f);
+  const Point2f none = patch_shift(identity, 0.3f, -0.4f, 64.0f);
+  EXPECT_EQ(none.x, 0.0f);
+  EXPECT_EQ(none.y, 0.0f);
+}
+
+void check_threads_tiles_and_regions(const Model& model) {
   const Grid grid{{-13.0, 4.0}, 0.75, 70, 50};
   const ImageF reference = render_model(model, grid, 3, 1, 64);
   EXPECT_TRUE(same_bytes(reference, render_model(model, grid, 3, 2, 16)));

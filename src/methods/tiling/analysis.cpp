@@ -265,6 +265,9 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
   data.lut_size = params.lut_size;
   data.table_size = params.table_size;
   data.blend = params.blend;
+  data.rotation = params.rotation;
+  data.scale_jitter = params.scale_jitter;
+  data.sharpness = params.sharpness;
   const int iterations = params.iterations;
   const int channels = data.channels;
   const std::size_t pixels = static_cast<std::size_t>(data.width) * data.height;

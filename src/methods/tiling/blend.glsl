@@ -1,8 +1,12 @@
 // Steps 1-2 of Algorithm 1 (blended_gaussian). `skewed` is the position in skewed lattice units
 // relative to the lattice cell `origin_cell` (low 32 bits), `wrapped` the position modulo the
-// exemplar's period; both formed on the CPU in double for the far part.
-vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint seed, int level,
-                             float level_blend) {
+// exemplar's period; both formed on the CPU in double for the far part. `width` is the
+// footprint's (0: a point sample), `level`, `level_blend` its level of detail; with scale jitter
+// each patch reads its own level and they become T^-1's: the w^2-weighted mean of the patches'.
+// The artist controls (TILING_ROTATION, TILING_SCALE_JITTER, TILING_SHARPNESS) are the model's
+// constants: with their defaults the compiler removes their code.
+vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint seed, float width,
+                             inout int level, inout float level_blend) {
   vec2 cell = floor(skewed);
   vec2 f = skewed - cell;
   bool lower = f.x + f.y < 1.0;
@@ -10,9 +14,18 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
                         lower ? ivec2(0, 1) : ivec2(1, 0));
   float w[3] = lower ? float[3](1.0 - f.x - f.y, f.x, f.y)
                      : float[3](f.x + f.y - 1.0, 1.0 - f.x, 1.0 - f.y);
-  int coarse = min(level + 1, TILING_LEVELS - 1);
+  if (TILING_SHARPNESS != 1.0) {
+    // sharpen_weights (evaluate.hpp): Burley 2019's exponent, renormalised.
+    float sum = 0.0;
+    for (int v = 0; v < 3; ++v) {
+      w[v] = pow(w[v], TILING_SHARPNESS);
+      sum += w[v];
+    }
+    for (int v = 0; v < 3; ++v) w[v] /= sum;
+  }
   vec4 acc = vec4(0.0);
   float weight_squares = 0.0;
+  float weighted_lod = 0.0;
   for (int v = 0; v < 3; ++v) {
     weight_squares += w[v] * w[v];
     uvec2 vertex = origin_cell + uvec2(ivec2(cell) + d[v]);
@@ -27,14 +40,47 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
     float offset_y = float(high);
     float x = wrapped.x + offset_x;
     float y = wrapped.y + offset_y;
+    mat2 patch_matrix = mat2(1.0);
+    int patch_level = level;
+    float patch_blend = level_blend;
+    if (TILING_TRANSFORMED) {
+      // patch_transform and patch_shift (evaluate.hpp): rotation and scale about the vertex.
+      CounterRng draws =
+          CounterRng(cell_key(vertex.x, vertex.y, seed, TILING_STREAM_TRANSFORMS), 0u);
+      float angle_draw = rng_uniform(draws);
+      float scale_draw = rng_uniform(draws);
+      float angle = TILING_ROTATION * (2.0 * angle_draw - 1.0);
+      float patch_scale = exp2(TILING_SCALE_JITTER * (2.0 * scale_draw - 1.0));
+      float c = patch_scale * cos(angle);
+      float s = patch_scale * sin(angle);
+      patch_matrix = mat2(c, s, -s, c);
+      vec2 from_vertex = f - vec2(d[v]);
+      float local_x = TILING_EDGE * (from_vertex.x + 0.5 * from_vertex.y);
+      float local_y = TILING_EDGE * from_vertex.y * (1.5 * TILING_INVERSE_SQRT3);
+      x += (c - 1.0) * local_x - s * local_y;
+      y += s * local_x + (c - 1.0) * local_y;
+      if (TILING_SCALE_JITTER > 0.0) {
+        float lod = tiling_lod_of_width(width * patch_scale);
+        patch_level = int(lod);
+        patch_blend = lod - float(patch_level);
+        weighted_lod += w[v] * w[v] * lod;
+      }
+    }
 #ifdef TILING_TEXTURE_FILTER
     // `render --gl-filter hardware` (hardware.glsl): one mip-mapped, anisotropic
     // texture fetch of the patch instead of the exact trilinear reads of the pyramid.
-    acc += w[v] * tiling_texture_fetch(x, y);
+    acc += w[v] * tiling_texture_fetch(x, y, patch_matrix);
 #else
-    tiling_fetch(level, x, y, w[v] * (1.0 - level_blend), acc);
-    if (level_blend > 0.0) tiling_fetch(coarse, x, y, w[v] * level_blend, acc);
+    tiling_fetch(patch_level, x, y, w[v] * (1.0 - patch_blend), acc);
+    if (patch_blend > 0.0)
+      tiling_fetch(min(patch_level + 1, TILING_LEVELS - 1), x, y, w[v] * patch_blend, acc);
 #endif
+  }
+  if (TILING_SCALE_JITTER > 0.0) {
+    // TilingModel::split_level of the mean, clamped at the top level.
+    float lod = weighted_lod / weight_squares;
+    level = lod >= float(TILING_LEVELS - 1) ? TILING_LEVELS - 1 : int(lod);
+    level_blend = lod >= float(TILING_LEVELS - 1) ? 0.0 : lod - float(level);
   }
   float inverse_norm = TILING_BLEND == 2 ? 1.0 : 1.0 / sqrt(weight_squares);
   return (acc - TILING_BLEND_MEAN) * inverse_norm + TILING_BLEND_MEAN;

@@ -7,7 +7,7 @@
 
 #ifdef TILING_TEXTURE_FILTER
 // hardware.glsl
-vec4 tiling_texture_fetch(float x, float y);
+vec4 tiling_texture_fetch(float x, float y, mat2 patch_matrix);
 vec3 tiling_texture_lut(vec3 g, int level);
 #endif
 
@@ -28,3 +28,15 @@ float tiling_table_coordinate(float g, int size, out int first) {
   return x - float(first);
 }
 
+
+// TilingModel::footprint_width: the footprint's longer axis (isotropic).
+float tiling_footprint_width(vec2 dpdx, vec2 dpdy) {
+  return max(length(dpdx), length(dpdy));
+}
+
+// TilingModel::level_of_detail of a footprint's width as one value: level int(lod) blended with
+// the next by its fraction.
+float tiling_lod_of_width(float width) {
+  float lod = width > 1.0 ? log2(width) - TILING_LOD_BIAS : 0.0;
+  return clamp(lod, 0.0, float(TILING_LEVELS - 1));
+}

@@ -27,6 +27,10 @@ struct LatticePoint {
   std::int64_t vertex_x[3];  // skewed lattice coordinates of the vertices (64-bit: p = 1e7 is fine)
   std::int64_t vertex_y[3];
   float weight[3];  // >= 0, sum to 1
+  // The point minus vertex v in skewed lattice units (the tile's local position, for the patch
+  // transform of the artist controls).
+  float from_vertex_x[3];
+  float from_vertex_y[3];
 };
 
 inline constexpr double kInverseSqrt3 = 0.57735026918962576;
@@ -65,6 +69,8 @@ inline LatticePoint triangle_lattice(Vec2d p, double edge) noexcept {
   for (int v = 0; v < 3; ++v) {
     out.vertex_x[v] = base_x + dx[v];
     out.vertex_y[v] = base_y + dy[v];
+    out.from_vertex_x[v] = fx - static_cast<float>(dx[v]);
+    out.from_vertex_y[v] = fy - static_cast<float>(dy[v]);
   }
   return out;
 }
@@ -73,6 +79,51 @@ struct Point2f {
   float x;
   float y;
 };
+
+// Burley 2019 ("On Histogram-Preserving Blending for Randomized Texture Tiling", JCGT 8(4)): the
+// weights raised to `sharpness` and renormalised to sum 1; sharpness 1 leaves them as they are.
+inline void sharpen_weights(float* weight, float sharpness) noexcept {
+  if (sharpness == 1.0f) return;
+  float sum = 0.0f;
+  for (int v = 0; v < 3; ++v) {
+    weight[v] = std::pow(weight[v], sharpness);
+    sum += weight[v];
+  }
+  for (int v = 0; v < 3; ++v) weight[v] /= sum;
+}
+
+// The artist controls' transform of a vertex's patch: the point's position relative to the
+// vertex (model space) is rotated by a random angle uniform in [-max_angle, +max_angle] radians
+// and scaled by 2^(u jitter), u uniform in [-1, 1], both drawn from the vertex's own key in the
+// stream `transforms` (so the offsets' draws do not change). The patch is read at
+// offset + wrap(vertex) + M (p - vertex), M = scale * rotation: a rotation about the tile's
+// centre; a footprint (dpdx, dpdy) becomes (M dpdx, M dpdy).
+struct PatchTransform {
+  float xx, xy, yx, yy;  // M, row-major
+  float scale;
+};
+
+inline PatchTransform patch_transform(std::int64_t vertex_x, std::int64_t vertex_y,
+                                      std::uint32_t seed, float max_angle, float jitter) noexcept {
+  CounterRng rng(cell_key(vertex_x, vertex_y, seed, Stream::transforms));
+  const float angle_draw = rng.uniform();
+  const float scale_draw = rng.uniform();
+  const float angle = max_angle * (2.0f * angle_draw - 1.0f);
+  const float scale = std::exp2(jitter * (2.0f * scale_draw - 1.0f));
+  const float c = scale * std::cos(angle);
+  const float s = scale * std::sin(angle);
+  return {c, -s, s, c, scale};
+}
+
+// The shift M (p - vertex) - (p - vertex) that moves a patch's fetch from wrap(p) + offset (no
+// transform) to the transformed position; `from_x`, `from_y` are p - vertex in skewed lattice
+// units (LatticePoint), `edge` the lattice edge. Zero for the identity.
+inline Point2f patch_shift(const PatchTransform& m, float from_x, float from_y,
+                           float edge) noexcept {
+  const float local_x = edge * (from_x + 0.5f * from_y);
+  const float local_y = edge * from_y * (1.5f * static_cast<float>(kInverseSqrt3));
+  return {(m.xx - 1.0f) * local_x + m.xy * local_y, m.yx * local_x + (m.yy - 1.0f) * local_y};
+}
 
 // p wrapped into the exemplar's period [0, width) x [0, height), formed in double so that
 // p = 1e7 keeps its fraction (docs/design.md §4); offsets are then added in float.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <span>
 #include <string>
@@ -55,6 +56,11 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) 
   constant("bool", "TILING_HAS_ALPHA", flag(layout.has_alpha));
   constant("int", "TILING_COLOUR_CHANNELS", glsl_int(layout.colour_channels));
   constant("int", "TILING_FIRST_ALPHA_TABLE", glsl_int(layout.first_alpha_table));
+  constant("float", "TILING_ROTATION",
+           glsl_float(static_cast<float>(d.rotation * (std::numbers::pi / 180.0))));
+  constant("float", "TILING_SCALE_JITTER", glsl_float(static_cast<float>(d.scale_jitter)));
+  constant("float", "TILING_SHARPNESS", glsl_float(static_cast<float>(d.sharpness)));
+  constant("bool", "TILING_TRANSFORMED", flag(model.transformed()));
   constant("int", "TILING_LUT_SIZE", glsl_int(d.lut_size));
   constant("int", "TILING_TABLE_SIZE", glsl_int(d.table_size));
   text += glsl_array("float", "TILING_COLOUR_BASIS", std::span<const float>(d.colour_basis),

@@ -45,7 +45,8 @@ class TilingPass final : public Pass {
     }
     const Program& program = *active_;
     const Footprint footprint{{grid.scale, 0.0}, {0.0, grid.scale}};
-    const tiling::LevelOfDetail lod = model_.level_of_detail(filter ? &footprint : nullptr);
+    const double width = tiling::TilingModel::footprint_width(filter ? &footprint : nullptr);
+    const tiling::LevelOfDetail lod = model_.level_of_detail(width);
     // The origin's skewed lattice cell (low 32 bits, as cell_key takes them) and its fraction, and
     // the origin modulo the period, formed in double as triangle_lattice and wrap_position do.
     const Vec2d skewed = tiling::skewed_position(grid.origin, model_.lattice_edge());
@@ -61,6 +62,7 @@ class TilingPass final : public Pass {
     program.set("seed", static_cast<unsigned>(seed));
     program.set("lod_level", lod.level);
     program.set("lod_blend", lod.blend);
+    program.set("footprint_width", static_cast<float>(width));
     program.set("filter_scale", hardware_footprint(grid, filter));
     check_gl("setting the tiling uniforms");
   }

@@ -40,11 +40,12 @@ std::string tiling_library_source(const TilingGlsl& glsl,
 
 template <>
 struct Twin<tiling::TilingModel> {
-  static constexpr std::array<GlslConstant, 4> kConstants = {{
+  static constexpr std::array<GlslConstant, 5> kConstants = {{
       {"TILING_GAUSSIAN_MEAN", tiling::kGaussianMean},
       {"TILING_ERF_SCALE", tiling::kErfScale},
       {"TILING_INVERSE_SQRT3", static_cast<float>(tiling::kInverseSqrt3)},
       {"TILING_LOD_BIAS", static_cast<float>(kLodBias)},
+      {"TILING_STREAM_TRANSFORMS", static_cast<std::uint32_t>(Stream::transforms)},
   }};
   static std::unique_ptr<Pass> pass(const tiling::TilingModel& model);
   // fast: the library and textures of --gl-filter hardware (TilingPass compiles and binds them).

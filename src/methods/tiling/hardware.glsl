@@ -23,11 +23,17 @@ void tiling_set_gradients(vec2 dpdx, vec2 dpdy) {
 }
 
 // The texture holds (value - 1/2) / TILING_TEXTURE_SCALE + 1/2, which fits [0, 1] (gl_data.cpp):
-// an affine map, so it commutes with the hardware's filtering.
-vec4 tiling_texture_fetch(float x, float y) {
-  vec4 stored = textureGrad(stochtex_tiling_exemplar,
-                            vec2(x, y) / vec2(TILING_WIDTH, TILING_HEIGHT), tiling_duv_dx,
-                            tiling_duv_dy);
+// an affine map, so it commutes with the hardware's filtering. `patch_matrix` is the patch's
+// rotation and scale (the artist controls; the identity without them): the footprint turns with it.
+vec4 tiling_texture_fetch(float x, float y, mat2 patch_matrix) {
+  vec2 period = vec2(TILING_WIDTH, TILING_HEIGHT);
+  vec2 duv_dx = tiling_duv_dx;
+  vec2 duv_dy = tiling_duv_dy;
+  if (TILING_TRANSFORMED) {
+    duv_dx = patch_matrix * (duv_dx * period) / period;
+    duv_dy = patch_matrix * (duv_dy * period) / period;
+  }
+  vec4 stored = textureGrad(stochtex_tiling_exemplar, vec2(x, y) / period, duv_dx, duv_dy);
   return (stored - 0.5) * TILING_TEXTURE_SCALE + 0.5;
 }
 

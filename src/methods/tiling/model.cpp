@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "core/colour_statistics.hpp"
@@ -125,6 +126,12 @@ float table_lookup(const float* table, int size, float g) noexcept {
   return table[cell] + t * (table[cell + 1] - table[cell]);
 }
 
+// Artist control i of kParams (i >= kFirstControl) in the data.
+double control(const TilingData& data, std::size_t index) {
+  const double values[] = {data.rotation, data.scale_jitter, data.sharpness};
+  return values[index - kFirstControl];
+}
+
 }  // namespace
 
 TilingLayout tiling_layout(int channels, Transport transport, Blend blend) {
@@ -149,6 +156,11 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
     throw std::invalid_argument("tiling: tile_radius is out of range");
   if (d.lut_size < 2 || d.lut_size > 64 || d.table_size < 16 || d.table_size > 65536)
     throw std::invalid_argument("tiling: look-up table size out of range");
+  for (std::size_t i = kFirstControl; i < kParams.size(); ++i) {
+    const double value = control(d, i);
+    if (!(value >= kParams[i].min_value && value <= kParams[i].max_value))
+      throw std::invalid_argument("tiling: " + std::string(kParams[i].name) + " is out of range");
+  }
   layout_ = tiling_layout(d.channels, d.transport, d.blend);
   const auto n = static_cast<std::size_t>(d.lut_size);
   const auto cc = static_cast<std::size_t>(layout_.colour_channels);
@@ -228,6 +240,14 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
   data.lut_size = static_cast<int>(read_param("lut_size"));
   data.table_size = static_cast<int>(read_param("table_size"));
   data.blend = static_cast<Blend>(static_cast<int>(read_param("blend")));
+  // The artist controls: absent at their defaults (to_record).
+  const auto read_control = [&](std::size_t index) {
+    const ParamInfo& info = kParams[index];
+    return record.scalars.contains(info.name) ? read_param(info.name) : info.default_value;
+  };
+  data.rotation = read_control(kFirstControl);
+  data.scale_jitter = read_control(kFirstControl + 1);
+  data.sharpness = read_control(kFirstControl + 2);
   const TilingLayout layout = tiling_layout(data.channels, data.transport, data.blend);
   const std::int64_t n = data.lut_size;
   const std::int64_t cc = layout.colour_channels;
@@ -269,6 +289,13 @@ ModelRecord TilingModel::to_record(const ParamValues& params) const {
                     {"lut_size", d.lut_size},
                     {"table_size", d.table_size},
                     {"blend", static_cast<int>(d.blend)}};
+  for (std::size_t i = kFirstControl; i < kParams.size(); ++i) {
+    const std::string name(kParams[i].name);
+    if (control(d, i) == kParams[i].default_value)
+      record.params.erase(name);
+    else
+      record.scalars[name] = record.params[name] = control(d, i);
+  }
   const std::int64_t n = d.lut_size;
   const std::int64_t cc = layout_.colour_channels;
   record.arrays.push_back({"gaussian", {d.height, d.width, d.channels}, d.gaussian});
@@ -283,13 +310,17 @@ ModelRecord TilingModel::to_record(const ParamValues& params) const {
   return record;
 }
 
-LevelOfDetail TilingModel::level_of_detail(const Footprint* footprint) const noexcept {
-  if (footprint == nullptr) return {};
+double TilingModel::footprint_width(const Footprint* footprint) noexcept {
+  if (footprint == nullptr) return 0.0;
+  // Isotropic: the longer axis decides, as GPU trilinear filtering does without anisotropy.
+  return std::max(std::hypot(footprint->dpdx.x, footprint->dpdx.y),
+                  std::hypot(footprint->dpdy.x, footprint->dpdy.y));
+}
+
+LevelOfDetail TilingModel::level_of_detail(double width) const noexcept {
   // Section 5.4: the footprint is the derivative of the position *before* the random offsets (a
-  // translation does not change it), so the three patches read the same level. Isotropic: the
-  // longer axis decides, as GPU trilinear filtering does without anisotropy.
-  const double width = std::max(std::hypot(footprint->dpdx.x, footprint->dpdx.y),
-                                std::hypot(footprint->dpdy.x, footprint->dpdy.y));
+  // translation does not change it), so the three patches read the same level (unless scale
+  // jitter scales a patch's footprint; a rotation keeps its width).
   if (!(width > 1.0)) return {};
   const double lod = std::log2(width) - kLodBias;
   const int top = level_count() - 1;
@@ -299,29 +330,59 @@ LevelOfDetail TilingModel::level_of_detail(const Footprint* footprint) const noe
   return {level, static_cast<float>(lod - level)};
 }
 
-void TilingModel::blended_gaussian(Vec2d position, LevelOfDetail lod, std::uint32_t seed,
-                                   float* g) const noexcept {
+LevelOfDetail TilingModel::split_level(double lod) const noexcept {
+  // A mean of levels may round past the top one: clamped there with no blend, as
+  // level_of_detail does (a blend at the top would read beyond the pyramid).
+  const int top = level_count() - 1;
+  if (lod >= top) return {top, 0.0f};
+  return {static_cast<int>(lod), static_cast<float>(lod - static_cast<int>(lod))};
+}
+
+LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_width,
+                                            std::uint32_t seed, float* g) const noexcept {
   const int channels = data_.channels;
   const LatticePoint lattice = triangle_lattice(position, edge_);
-  const MipLevel fine = level(lod.level);
-  const MipLevel coarse = level(std::min(lod.level + 1, level_count() - 1));
+  const LevelOfDetail lod = level_of_detail(footprint_width);
   const Point2f wrapped = wrap_position(position, data_.width, data_.height);
+  const bool transformed = this->transformed();
+  const auto max_angle = static_cast<float>(data_.rotation * (std::numbers::pi / 180.0));
+  const auto jitter = static_cast<float>(data_.scale_jitter);
+  const auto edge = static_cast<float>(edge_);
+  float weight[3] = {lattice.weight[0], lattice.weight[1], lattice.weight[2]};
+  sharpen_weights(weight, static_cast<float>(data_.sharpness));
   float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   float weight_squares = 0.0f;
+  double weighted_lod = 0.0;
   for (int v = 0; v < 3; ++v) {
-    const float w = lattice.weight[v];
+    const float w = weight[v];
     weight_squares += w * w;
     const Point2f offset =
         vertex_offset(lattice.vertex_x[v], lattice.vertex_y[v], seed, data_.width, data_.height);
-    const float x = wrapped.x + offset.x;
-    const float y = wrapped.y + offset.y;
-    fetch_bilinear(fine, channels, x, y, w * (1.0f - lod.blend), acc);
-    if (lod.blend > 0.0f) fetch_bilinear(coarse, channels, x, y, w * lod.blend, acc);
+    float x = wrapped.x + offset.x;
+    float y = wrapped.y + offset.y;
+    LevelOfDetail patch_lod = lod;
+    if (transformed) {
+      const PatchTransform m =
+          patch_transform(lattice.vertex_x[v], lattice.vertex_y[v], seed, max_angle, jitter);
+      const Point2f shift =
+          patch_shift(m, lattice.from_vertex_x[v], lattice.from_vertex_y[v], edge);
+      x += shift.x;
+      y += shift.y;
+      patch_lod = level_of_detail(footprint_width * m.scale);
+      weighted_lod +=
+          static_cast<double>(w) * w * (patch_lod.level + static_cast<double>(patch_lod.blend));
+    }
+    const MipLevel fine = level(patch_lod.level);
+    fetch_bilinear(fine, channels, x, y, w * (1.0f - patch_lod.blend), acc);
+    if (patch_lod.blend > 0.0f)
+      fetch_bilinear(level(std::min(patch_lod.level + 1, level_count() - 1)), channels, x, y,
+                     w * patch_lod.blend, acc);
   }
   // Eq. (8)/(13): (sum w G - E[G]) / sqrt(sum w^2) + E[G], with sum w = 1; eq. (3) for linear.
   const float inverse_norm = data_.blend == Blend::linear ? 1.0f : 1.0f / std::sqrt(weight_squares);
   for (int c = 0; c < channels; ++c)
     g[c] = (acc[c] - data_.blend_mean[c]) * inverse_norm + data_.blend_mean[c];
+  return data_.scale_jitter > 0.0 ? split_level(weighted_lod / weight_squares) : lod;
 }
 
 void TilingModel::inverse_at_level(const float* g, int level, float* out) const noexcept {
@@ -385,9 +446,10 @@ void TilingModel::inverse_transform(const float* g, LevelOfDetail lod, float* ou
 void TilingModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                            std::uint32_t seed, ImageView<float> out) const noexcept {
   for (std::size_t index = 0; index < positions.size(); ++index) {
-    const LevelOfDetail lod = level_of_detail(footprints.empty() ? nullptr : &footprints[index]);
     float g[4];
-    blended_gaussian(positions[index], lod, seed, g);
+    const LevelOfDetail lod = blended_gaussian(
+        positions[index], footprint_width(footprints.empty() ? nullptr : &footprints[index]), seed,
+        g);
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
     inverse_transform(g, lod, &out.at(x, y, 0));
@@ -409,9 +471,9 @@ void TilingModel::evaluate_triplanar(std::span<const SurfacePoint> points, doubl
       if (w == 0.0) continue;
       // Plane k's footprint: the 3-D footprint projected on the plane, as a 2-D render's.
       const Footprint footprint{on_plane(p.dpdx, k), on_plane(p.dpdy, k)};
-      const LevelOfDetail plane_lod = level_of_detail(&footprint);
       float g[4];
-      blended_gaussian(on_plane(p.position, k), plane_lod, triplanar_seed(k, seed), g);
+      const LevelOfDetail plane_lod = blended_gaussian(
+          on_plane(p.position, k), footprint_width(&footprint), triplanar_seed(k, seed), g);
       for (int c = 0; c < channels; ++c) acc[c] += w * (g[c] - mean[c]);
       weight_squares += w * w;
       lod += w * w * (plane_lod.level + static_cast<double>(plane_lod.blend));
@@ -428,14 +490,7 @@ void TilingModel::evaluate_triplanar(std::span<const SurfacePoint> points, doubl
     // Measured (metal_grey_256, normal (1, 0.5, 0), footprint 8 x 2 pixels, mean against a 12 x 12
     // supersampled reference): bias -0.0003 (w^2), -0.0003 (dominant plane), -0.0010 (w),
     // -0.0144 (finest level: a coarse plane's values read through too sharp a table).
-    // Each plane's level is at most the top one, but their mean may round past it: clamped there
-    // with no blend, as level_of_detail does (a blend at the top would read beyond the pyramid).
-    lod /= weight_squares;
-    const int top = level_count() - 1;
-    const LevelOfDetail look_up =
-        lod >= top
-            ? LevelOfDetail{top, 0.0f}
-            : LevelOfDetail{static_cast<int>(lod), static_cast<float>(lod - static_cast<int>(lod))};
+    const LevelOfDetail look_up = split_level(lod / weight_squares);
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
     inverse_transform(g, look_up, &out.at(x, y, 0));

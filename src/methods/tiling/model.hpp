@@ -36,7 +36,12 @@ struct TilingData {
   Transport transport = Transport::sliced;
   int lut_size = 32;
   int table_size = 1024;
-  Blend blend = Blend::histogram;   // variance and linear: no T, no T^-1 (section 6.1)
+  Blend blend = Blend::histogram;  // variance and linear: no T, no T^-1 (section 6.1)
+  // The artist controls (params.hpp): each patch's random rotation (degrees) and scale jitter,
+  // and the blend weights' exponent (Burley 2019). The defaults are the paper's operator.
+  double rotation = 0.0;
+  double scale_jitter = 0.0;
+  double sharpness = 1.0;
   std::vector<float> gaussian;      // height x width x channels: T(X), or X itself without T
   std::vector<float> blend_mean;    // channels: E[G] in eq. (8)
   std::vector<float> lut;           // lut_size^3 x 3, T^-1 of the colour (3-D transport), or empty
@@ -97,12 +102,24 @@ class TilingModel {
   void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                 std::uint32_t seed, ImageView<float> out) const noexcept;
 
-  // The pyramid levels a footprint reads (footprint == nullptr: a point sample, level 0).
-  LevelOfDetail level_of_detail(const Footprint* footprint) const noexcept;
-  // Steps 1-2 of Algorithm 1: three patches of G, variance-preserving blend (eq. 13). `g` gets
-  // `channels()` values.
-  void blended_gaussian(Vec2d position, LevelOfDetail lod, std::uint32_t seed,
-                        float* g) const noexcept;
+  // The pyramid levels a footprint reads (footprint == nullptr: a point sample, level 0), from
+  // its width: the longer axis (footprint_width; 0 for nullptr).
+  LevelOfDetail level_of_detail(const Footprint* footprint) const noexcept {
+    return level_of_detail(footprint_width(footprint));
+  }
+  LevelOfDetail level_of_detail(double width) const noexcept;
+  static double footprint_width(const Footprint* footprint) noexcept;
+  // Level int(lod) blended with the next by the fraction, clamped to the top level.
+  LevelOfDetail split_level(double lod) const noexcept;
+  // Steps 1-2 of Algorithm 1: three patches of G, variance-preserving blend (eq. 13), for a
+  // footprint of width `footprint_width` (exemplar pixels; 0: a point sample). `g` gets
+  // `channels()` values. Returns the level of detail of T^-1 (step 3): the footprint's, or, with
+  // scale jitter (each patch at its own level), the w^2-weighted mean of the patches' levels, as
+  // evaluate_triplanar does for its planes.
+  LevelOfDetail blended_gaussian(Vec2d position, double footprint_width, std::uint32_t seed,
+                                 float* g) const noexcept;
+  // The rotation or the scale jitter is on.
+  bool transformed() const noexcept { return data_.rotation > 0.0 || data_.scale_jitter > 0.0; }
   // Step 3: T^-1 by the look-up tables prefiltered for `lod` (eq. 22, section 4.3); the identity
   // for the variance and linear blends.
   void inverse_transform(const float* g, LevelOfDetail lod, float* out) const noexcept;

@@ -19,6 +19,9 @@ struct Params {
   int table_size = 1024;
   Blend blend = Blend::histogram;
   bool stationarity = false;
+  double rotation = 0.0;
+  double scale_jitter = 0.0;
+  double sharpness = 1.0;
 
   bool operator==(const Params&) const = default;
 };
@@ -27,7 +30,7 @@ inline constexpr std::array<ParamChoice, 2> kTransports = {{{"sliced", 0}, {"pca
 inline constexpr std::array<ParamChoice, 3> kBlends = {
     {{"histogram", 0}, {"variance", 1}, {"linear", 2}}};
 
-inline constexpr std::array<ParamField<Params>, 7> kFields = {{
+inline constexpr std::array<ParamField<Params>, 10> kFields = {{
     number_field<&Params::tile_radius>(
         "tile_radius", 0.05, 4.0,
         "radius of the hexagonal tiles (the edge of the triangle lattice) as a fraction of the "
@@ -58,8 +61,25 @@ inline constexpr std::array<ParamField<Params>, 7> kFields = {{
         "about a tile (a periodic Gaussian high-pass of deviation tile edge / pi), the "
         "preprocessing of section 5.3 for exemplars with large-scale variations; the histogram "
         "kept is then the filtered exemplar's; off: the exemplar as is"),
+    number_field<&Params::rotation>(
+        "rotation", 0.0, 180.0,
+        "artist control: each tile's patch turns by a random angle uniform in [-rotation, "
+        "+rotation] degrees about the tile's centre (0: no rotation, 180: any angle)"),
+    number_field<&Params::scale_jitter>(
+        "scale_jitter", 0.0, 1.0,
+        "artist control: each tile's patch is read at a random scale 2^(u scale_jitter), u "
+        "uniform in [-1, 1] (0: the exemplar's scale everywhere)"),
+    number_field<&Params::sharpness>(
+        "sharpness", 1.0, 32.0,
+        "artist control: the blend weights raised to this power and renormalised before the "
+        "blend (Burley 2019), narrowing the transitions between tiles (1: the barycentric "
+        "weights of section 5.1)"),
 }};
 
 inline constexpr auto kParams = param_infos(kFields);
+// The artist controls are the last fields, from this index on. A model file stores them only when
+// they differ from their defaults (TilingModel::to_record): a model with the defaults is
+// byte-identical to one made before the controls existed, and such an older file loads with them.
+inline constexpr std::size_t kFirstControl = 7;
 
 }  // namespace stochtex::tiling

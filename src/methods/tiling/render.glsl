@@ -15,6 +15,7 @@ uniform uint seed;
 // The grid's footprint gives one level of detail for the render (level_of_detail in C++).
 uniform int lod_level;
 uniform float lod_blend;
+uniform float footprint_width;  // TilingModel::footprint_width (zero for point samples)
 // --gl-filter hardware: the footprint's side (zero for point samples).
 uniform float filter_scale;
 
@@ -27,9 +28,11 @@ void main() {
 #ifdef TILING_TEXTURE_FILTER
   tiling_set_gradients(vec2(filter_scale, 0.0), vec2(0.0, filter_scale));
 #endif
-  vec4 g = tiling_blended_gaussian(skewed, origin_cell, origin_wrapped + p, seed, lod_level,
-                                   lod_blend);
-  vec4 value = tiling_inverse(g, lod_level, lod_blend);
+  int level = lod_level;
+  float level_blend = lod_blend;
+  vec4 g = tiling_blended_gaussian(skewed, origin_cell, origin_wrapped + p, seed, footprint_width,
+                                   level, level_blend);
+  vec4 value = tiling_inverse(g, level, level_blend);
   int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * TILING_CHANNELS;
   for (int c = 0; c < TILING_CHANNELS; ++c) result[index + c] = value[c];
 }

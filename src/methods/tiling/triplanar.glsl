@@ -20,17 +20,19 @@ vec4 stochtex_tiling_triplanar(vec3 position, vec3 normal, vec3 dpdx, vec3 dpdy,
     if (w == 0.0) continue;
     vec2 plane_dpdx = stochtex_on_plane(dpdx, k);
     vec2 plane_dpdy = stochtex_on_plane(dpdy, k);
-    float plane_lod = tiling_level_of_detail(plane_dpdx, plane_dpdy);
+    float width = tiling_footprint_width(plane_dpdx, plane_dpdy);
+    float plane_lod = tiling_lod_of_width(width);
     int level = int(plane_lod);
+    float level_blend = plane_lod - float(level);
 #ifdef TILING_TEXTURE_FILTER
     tiling_set_gradients(plane_dpdx, plane_dpdy);
 #endif
     vec4 g = tiling_blended_at(stochtex_on_plane(position, k),
-                               cell_key(uint(k), 0u, seed, STREAM_OFFSETS), level,
-                               plane_lod - float(level));
+                               cell_key(uint(k), 0u, seed, STREAM_OFFSETS), width, level,
+                               level_blend);
     acc += w * (g - TILING_BLEND_MEAN);
     weight_squares += w * w;
-    lod += w * w * plane_lod;
+    lod += w * w * (float(level) + level_blend);
   }
   float inverse_norm = TILING_BLEND == 2 ? 1.0 : 1.0 / sqrt(weight_squares);
   vec4 g = acc * inverse_norm + TILING_BLEND_MEAN;
