@@ -687,7 +687,8 @@ TEST(TilingControls, DefaultsAreThePapersOperatorAndOldFilesLoad) {
   const std::string text(bytes.begin(), bytes.end());
   for (std::size_t i = kFirstControl; i < kParams.size(); ++i)
     EXPECT_EQ(text.find(std::string(kParams[i].name)), std::string::npos) << kParams[i].name;
-  const TilingData& loaded = tiling_of(deserialize_model(bytes, "old.stx")).data();
+  const Model old_file = deserialize_model(bytes, "old.stx");
+  const TilingData& loaded = tiling_of(old_file).data();
   EXPECT_EQ(loaded.rotation, 0.0);
   EXPECT_EQ(loaded.scale_jitter, 0.0);
   EXPECT_EQ(loaded.sharpness, 1.0);
