@@ -43,7 +43,7 @@ template <class Model>
 MethodEntry entry_of() {
   static constexpr auto row = registry_row(std::type_identity<Model>{});
   static constexpr auto infos = param_infos(row.fields);
-  return {{Model::kMethodName, row.summary, infos},
+  return {{Model::kMethodName, row.summary, infos, row.max_channels},
           [](ImageView<const float> exemplar, const ParamValues& values, std::uint32_t seed,
              const std::function<void(double)>& progress) {
             const auto params = params_from_values(row.fields, values);
@@ -252,7 +252,10 @@ std::string methods_json() {
       }
       params.push_back(param);
     }
-    list.push_back({{"name", method.name}, {"summary", method.summary}, {"params", params}});
+    list.push_back({{"name", method.name},
+                    {"summary", method.summary},
+                    {"max_channels", method.max_channels},
+                    {"params", params}});
   }
   return list.dump(2);
 }
@@ -272,12 +275,17 @@ Model analyze(std::string_view method, ImageView<const float> exemplar, const Pa
               const std::function<void(double)>& progress) {
   const MethodEntry& entry = find_entry(method);
   ParamValues resolved = resolve_params(method, params);
+  if (exemplar.channels > entry.info.max_channels)
+    throw Error(ErrorCode::invalid_input,
+                "method " + std::string(method) + " analyses 1 to " +
+                    std::to_string(entry.info.max_channels) + " channels, but '" + source_name +
+                    "' has " + std::to_string(exemplar.channels) + "; choose another method");
   check_memory_budget(
       analysis_peak_bytes(method, exemplar.width, exemplar.height, exemplar.channels),
       "analysing the " + std::to_string(exemplar.width) + "x" + std::to_string(exemplar.height) +
           " exemplar '" + source_name + "' with method " + std::string(method),
       "crop or downscale the exemplar");
-  validate_exemplar(exemplar, source_name);
+  validate_exemplar(exemplar, source_name, entry.info.max_channels);
   // The methods' analyses do not know the file: their data errors are named here (§9).
   MethodModel model = [&] {
     try {

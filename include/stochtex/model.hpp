@@ -52,6 +52,9 @@ struct MethodInfo {
   std::string_view name;
   std::string_view summary;
   std::span<const ParamInfo> params;
+  // The most channels its analysis takes (stochtex.hpp: kMaxImageChannels for one image, up to
+  // kMaxChannels for a material set).
+  int max_channels = 4;
 };
 
 struct ModelData;  // the closed variant of method models (src/model_data.hpp)

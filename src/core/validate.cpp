@@ -9,11 +9,13 @@
 
 namespace stochtex {
 
-void validate_exemplar(ImageView<const float> exemplar, const std::string& source_name) {
+void validate_exemplar(ImageView<const float> exemplar, const std::string& source_name,
+                       int max_channels) {
   const std::string name = "'" + source_name + "'";
-  if (exemplar.channels < 1 || exemplar.channels > 4)
+  if (exemplar.channels < 1 || exemplar.channels > max_channels)
     throw Error(ErrorCode::invalid_input, name + " has " + std::to_string(exemplar.channels) +
-                                              " channels; an exemplar needs 1 to 4");
+                                              " channels; an exemplar needs 1 to " +
+                                              std::to_string(max_channels));
   if (exemplar.width < 2 || exemplar.height < 2)
     throw Error(ErrorCode::invalid_input,
                 name + " is " + std::to_string(exemplar.width) + "x" +

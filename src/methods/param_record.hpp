@@ -124,15 +124,16 @@ struct AnalysisMemory {
   std::uint64_t per_channel = 0;
 };
 
-// A method's row of the registry (src/registry.cpp): its one-line summary, its parameter record
-// and its analysis's memory. Each method's analysis.hpp returns it from
-// `registry_row(std::type_identity<Model>)`, which the registry finds by argument-dependent lookup
-// for every alternative of MethodModel.
+// A method's row of the registry (src/registry.cpp): its one-line summary, its parameter record,
+// its analysis's memory and the most channels it analyses (MethodInfo::max_channels). Each method's
+// analysis.hpp returns it from `registry_row(std::type_identity<Model>)`, which the registry finds
+// by argument-dependent lookup for every alternative of MethodModel.
 template <class P, std::size_t N>
 struct RegistryRow {
   std::string_view summary;
   const std::array<ParamField<P>, N>& fields;
   AnalysisMemory analysis_memory;
+  int max_channels = 4;
 };
 
 }  // namespace stochtex

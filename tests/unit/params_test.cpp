@@ -64,6 +64,29 @@ TEST(Registry, ExemplarValidationNamesTheProblem) {
   }
 }
 
+TEST(Registry, ChannelsBeyondAMethodsLimitAreRefusedByName) {
+  for (const auto& method : methods()) {
+    EXPECT_GE(method.max_channels, kMaxImageChannels) << method.name;
+    EXPECT_LE(method.max_channels, kMaxChannels) << method.name;
+    ImageF too_many(16, 16, method.max_channels + 1, 0.25f);
+    too_many.at(1, 2, 0) = 0.5f;
+    try {
+      analyze(method.name, too_many.view(), {}, 0, "material");
+      ADD_FAILURE() << method.name << " took " << too_many.channels() << " channels";
+    } catch (const Error& error) {
+      const std::string what = error.what();
+      EXPECT_EQ(error.code(), ErrorCode::invalid_input);
+      EXPECT_NE(what.find("method " + std::string(method.name) + " analyses 1 to " +
+                          std::to_string(method.max_channels) + " channels"),
+                std::string::npos)
+          << what;
+      EXPECT_NE(what.find("'material' has " + std::to_string(too_many.channels())),
+                std::string::npos)
+          << what;
+    }
+  }
+}
+
 using Text = std::map<std::string, std::string, std::less<>>;
 
 // The one-sentence message of a rejected parameter, or "" when it was accepted.
