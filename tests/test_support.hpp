@@ -16,6 +16,7 @@
 #include "model/model_record.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/image.hpp"
+#include "stochtex/io.hpp"
 #include "stochtex/stochtex.hpp"
 #include "stochtex/surface.hpp"
 
@@ -41,6 +42,26 @@ class FolderTest : public testing::Test {
 
   std::filesystem::path folder_;
 };
+
+// The maps `names` of the shipped material set `set` (data/materials/<set>/<name>.png), their
+// channels side by side in one image in the order given: an exemplar of many channels.
+inline ImageF material_exemplar(const std::string& set, const std::vector<std::string>& names) {
+  std::vector<ImageF> maps;
+  int channels = 0;
+  for (const auto& name : names) {
+    maps.push_back(
+        read_image(std::string(STOCHTEX_MATERIAL_DIR) + "/" + set + "/" + name + ".png"));
+    channels += maps.back().channels();
+  }
+  ImageF stacked(maps.front().width(), maps.front().height(), channels);
+  for (int y = 0; y < stacked.height(); ++y)
+    for (int x = 0; x < stacked.width(); ++x) {
+      int c = 0;
+      for (const ImageF& map : maps)
+        for (int k = 0; k < map.channels(); ++k) stacked.at(x, y, c++) = map.at(x, y, k);
+    }
+  return stacked;
+}
 
 // The same size and the same bytes (determinism checks compare floats bit for bit).
 inline bool same_bytes(const ImageF& a, const ImageF& b) {
