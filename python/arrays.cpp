@@ -28,7 +28,7 @@ void copy_pixels(const py::array& array, ImageF& image, float range) {
 
 }  // namespace
 
-ImageF image_from_array(const py::array& array, const std::string& what) {
+ImageF image_from_array(const py::array& array, const std::string& what, int max_channels) {
   if (array.ndim() != 2 && array.ndim() != 3)
     throw py::value_error(what + " must be an HxW or HxWxC array, not one of " +
                           std::to_string(array.ndim()) + " dimensions");
@@ -36,9 +36,9 @@ ImageF image_from_array(const py::array& array, const std::string& what) {
   const auto height = static_cast<int>(array.shape(0));
   const auto width = static_cast<int>(array.shape(1));
   const auto channels = array.ndim() == 3 ? static_cast<int>(array.shape(2)) : 1;
-  if (array.ndim() == 3 && (channels < 1 || channels > 4))
+  if (array.ndim() == 3 && (channels < 1 || channels > max_channels))
     throw py::value_error(what + " has " + std::to_string(channels) +
-                          " channels (its last axis); give 1 to 4");
+                          " channels (its last axis); give 1 to " + std::to_string(max_channels));
   // The image reader's limit (io.hpp): a broadcast view can claim any size without its memory.
   const std::int64_t max_pixels = ImageReadLimits{}.max_pixels;
   if (array.shape(0) > max_pixels || array.shape(1) > max_pixels / array.shape(0))

@@ -7,13 +7,15 @@
 #include <string>
 
 #include "stochtex/image.hpp"
+#include "stochtex/model.hpp"
 
 namespace stochtex::python {
 
 // An HxW or HxWxC array of uint8 (/255), uint16 (/65535) or float32, any strides, as an image;
 // `what` names it in the error sentences. Throws TypeError for another dtype, ValueError for
-// another number of dimensions or an empty array.
-ImageF image_from_array(const pybind11::array& array, const std::string& what);
+// another number of dimensions, more than `max_channels` channels or an empty array.
+ImageF image_from_array(const pybind11::array& array, const std::string& what,
+                        int max_channels = kMaxImageChannels);
 
 // A new float32 HxWxC array and the image view that writes into it.
 struct OutputArray {

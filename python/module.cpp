@@ -18,7 +18,9 @@
 #include "arrays.hpp"
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
+#include "model/map_layout.hpp"
 #include "report/compare.hpp"
+#include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace py = pybind11;
@@ -88,6 +90,57 @@ Model analyze_array(const py::array& array, const std::string& method, std::uint
   const auto hook = progress_hook(progress);
   py::gil_scoped_release release;
   return analyze(method, exemplar.view(), values, seed, "the exemplar array", hook);
+}
+
+// analyze_material of a dict {name: array} (insertion order = channel order); `kinds` gives a
+// map's kind by name where its name does not imply it.
+Model analyze_maps(const py::dict& arrays, const std::string& method, std::uint32_t seed,
+                   const py::dict& kinds, const std::string& normal_y, const py::object& progress,
+                   const py::kwargs& params) {
+  const ParamValues values = resolve_params(method, text_params(params));
+  if (normal_y != "up" && normal_y != "down")
+    throw py::value_error("normal_y must be 'up' or 'down', not '" + normal_y + "'");
+  std::vector<std::string> names;
+  std::vector<ImageF> images;
+  for (const auto& [key, value] : arrays) {
+    names.push_back(key.cast<std::string>());
+    images.push_back(image_from_array(value.cast<py::array>(), "the map '" + names.back() + "'"));
+  }
+  std::vector<MaterialMap> maps;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    std::optional<MapKind> kind;
+    if (kinds.contains(names[i])) {
+      const auto kind_name = kinds[py::str(names[i])].cast<std::string>();
+      kind = map_kind_from_name(kind_name);
+      if (!kind)
+        throw py::value_error("the kind '" + kind_name + "' of map '" + names[i] +
+                              "' is not one of colour, normal, height, scalar");
+    }
+    maps.push_back({names[i], kind, images[i].view(), names[i] + " array"});
+  }
+  const auto hook = progress_hook(progress);
+  py::gil_scoped_release release;
+  return analyze_material(method, maps, values, seed, {.normal_y_down = normal_y == "down"}, hook);
+}
+
+py::list map_list(const Model& model) {
+  py::list maps;
+  for (const MapInfo& map : model.maps())
+    maps.append(py::dict(py::arg("name") = map.name,
+                         py::arg("kind") = std::string(map_kind_name(map.kind)),
+                         py::arg("channels") = map.channels));
+  return maps;
+}
+
+py::dict split_image(const Model& model, const py::array& image) {
+  const ImageF rendered = image_from_array(image, "the image array", kMaxChannels);
+  if (rendered.channels() != model.channels())
+    throw py::value_error("the image has " + std::to_string(rendered.channels()) +
+                          " channels and the model " + std::to_string(model.channels()));
+  py::dict maps;
+  for (const auto& [name, map] : split_maps(model, rendered.view()))
+    maps[py::str(name)] = to_array(map);
+  return maps;
 }
 
 py::array_t<float> render_model(const Model& model, int width, int height,
@@ -174,6 +227,12 @@ PYBIND11_MODULE(_stochtex, m) {
       .def_property_readonly("method",
                              [](const Model& model) { return std::string(model.method()); })
       .def_property_readonly("channels", &Model::channels)
+      .def_property_readonly("maps", &map_list,
+                             "A material's maps in channel order, each {name, kind, channels}; "
+                             "empty for a model of one image.")
+      .def("split", &split_image, py::arg("image"),
+           "A render of a material cut into its maps: {name: HxWxC array}, a normal map as "
+           "unit normals encoded 0.5 + 0.5 n (stochtex.split_maps).")
       .def_property_readonly(
           "info", [](const Model& model) { return parse_json(describe_model(model)); },
           "The model's description (stochtex info --json): method, parameters, array sizes.")
@@ -203,6 +262,11 @@ PYBIND11_MODULE(_stochtex, m) {
         py::arg("progress") = py::none(),
         "Analyses an HxW or HxWxC exemplar (uint8, uint16 or float32) with a method; keyword "
         "arguments are its parameters (numbers or a choice's name).");
+  m.def("analyze_material", &analyze_maps, py::arg("maps"), py::arg("method"), py::arg("seed") = 0,
+        py::arg("kinds") = py::dict(), py::arg("normal_y") = "up", py::arg("progress") = py::none(),
+        "Analyses a material: maps is a dict {name: HxW or HxWxC array} of aligned maps, in "
+        "channel order (docs/materials.md); kinds {name: 'colour' | 'normal' | 'height' | "
+        "'scalar'} where the name does not imply it; normal_y 'down' for DirectX normal maps.");
   m.def(
       "load", [](const std::filesystem::path& path) { return load_model(path); }, py::arg("path"));
   m.def(

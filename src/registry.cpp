@@ -2,6 +2,8 @@
 // variant of models in model/model_data.hpp, the one list of methods: evaluation, model files and
 // the GPU backend dispatch through the same variant.
 
+#include "registry.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -270,21 +272,27 @@ std::uint64_t analysis_peak_bytes(std::string_view method, int width, int height
                    memory.per_channel * static_cast<std::uint64_t>(std::max(channels, 0)));
 }
 
-Model analyze(std::string_view method, ImageView<const float> exemplar, const ParamValues& params,
-              std::uint32_t seed, const std::string& source_name,
-              const std::function<void(double)>& progress) {
+void check_analysis_request(std::string_view method, int width, int height, int channels,
+                            const std::string& source_name) {
+  const MethodEntry& entry = find_entry(method);
+  if (channels > entry.info.max_channels)
+    throw Error(ErrorCode::invalid_input, "method " + std::string(method) + " analyses 1 to " +
+                                              std::to_string(entry.info.max_channels) +
+                                              " channels, but '" + source_name + "' has " +
+                                              std::to_string(channels) + "; choose another method");
+  check_memory_budget(analysis_peak_bytes(method, width, height, channels),
+                      "analysing the " + std::to_string(width) + "x" + std::to_string(height) +
+                          " exemplar '" + source_name + "' with method " + std::string(method),
+                      "crop or downscale the exemplar");
+}
+
+Model analyze_exemplar(std::string_view method, ImageView<const float> exemplar,
+                       const ParamValues& params, std::uint32_t seed,
+                       const std::string& source_name, const std::function<void(double)>& progress,
+                       std::vector<MapInfo> maps) {
   const MethodEntry& entry = find_entry(method);
   ParamValues resolved = resolve_params(method, params);
-  if (exemplar.channels > entry.info.max_channels)
-    throw Error(ErrorCode::invalid_input,
-                "method " + std::string(method) + " analyses 1 to " +
-                    std::to_string(entry.info.max_channels) + " channels, but '" + source_name +
-                    "' has " + std::to_string(exemplar.channels) + "; choose another method");
-  check_memory_budget(
-      analysis_peak_bytes(method, exemplar.width, exemplar.height, exemplar.channels),
-      "analysing the " + std::to_string(exemplar.width) + "x" + std::to_string(exemplar.height) +
-          " exemplar '" + source_name + "' with method " + std::string(method),
-      "crop or downscale the exemplar");
+  check_analysis_request(method, exemplar.width, exemplar.height, exemplar.channels, source_name);
   validate_exemplar(exemplar, source_name, entry.info.max_channels);
   // The methods' analyses do not know the file: their data errors are named here (§9).
   MethodModel model = [&] {
@@ -295,7 +303,14 @@ Model analyze(std::string_view method, ImageView<const float> exemplar, const Pa
     }
   }();
   if (progress) progress(1.0);
-  return Model(std::make_shared<const ModelData>(ModelData{std::move(resolved), std::move(model)}));
+  return Model(std::make_shared<const ModelData>(
+      ModelData{std::move(resolved), std::move(model), std::move(maps)}));
+}
+
+Model analyze(std::string_view method, ImageView<const float> exemplar, const ParamValues& params,
+              std::uint32_t seed, const std::string& source_name,
+              const std::function<void(double)>& progress) {
+  return analyze_exemplar(method, exemplar, params, seed, source_name, progress, {});
 }
 
 ImageF gaussian_version(ImageView<const float> exemplar, int width, int height,

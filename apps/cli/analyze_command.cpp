@@ -13,12 +13,29 @@
 #include "commands.hpp"
 #include "io/image_io.hpp"
 #include "progress.hpp"
+#include "stochtex/material.hpp"
 #include "target_option.hpp"
 
 namespace stochtex::cli {
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
   auto* input = command->add_option("INPUT", options.input, "exemplar image (PNG, EXR or PFM)");
-  command->add_option("--target", options.target, std::string(kTargetHelp))->excludes(input);
+  auto* target =
+      command->add_option("--target", options.target, std::string(kTargetHelp))->excludes(input);
+  command
+      ->add_option("--map", options.maps,
+                   "a material's map NAME[:KIND]=FILE instead of INPUT, repeatable: the maps of "
+                   "one surface, aligned, analysed together (docs/materials.md). KIND is colour, "
+                   "normal, height or scalar; by default normal for normal, height for height, "
+                   "displacement or bump, scalar for roughness, metallic, ao, opacity and the "
+                   "like, else colour")
+      ->excludes(input)
+      ->excludes(target);
+  command
+      ->add_option("--normal-y", options.normal_y,
+                   "which way the green channel of a --map normal map points: up (OpenGL) or "
+                   "down (DirectX)")
+      ->check(CLI::IsMember({"up", "down"}))
+      ->capture_default_str();
   command->add_option("--method,-m", options.method, "texture method (see `stochtex methods`)")
       ->required();
   command->add_option("-p,--param", options.params,
@@ -29,12 +46,34 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
       ->capture_default_str();
 }
 
+namespace {
+
+Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params) {
+  std::vector<MapArgument> arguments;
+  for (const auto& text : options.maps) arguments.push_back(parse_map_argument(text));
+  std::vector<ImageF> images;
+  for (const auto& argument : arguments) images.push_back(read_image(argument.file));
+  std::vector<MaterialMap> maps;
+  for (std::size_t i = 0; i < arguments.size(); ++i)
+    maps.push_back({arguments[i].name, arguments[i].kind, images[i].view(), arguments[i].file});
+  Progress progress("analyse");
+  progress.message(
+      fmt::format("analysing a material of {} maps with {}...", maps.size(), options.method));
+  return analyze_material(options.method, maps, params, options.seed,
+                          {.normal_y_down = options.normal_y == "down"},
+                          [&](double fraction) { progress(fraction); });
+}
+
+}  // namespace
+
 Model run_analyze(const AnalyzeOptions& options) {
   const ParamValues params = resolve_params(options.method, parse_params(options.params));
   if (!options.target.empty())
     return target_model(options.target, options.method, params, options.seed);
+  if (!options.maps.empty()) return analyze_maps(options, params);
   if (options.input.empty())
-    throw std::invalid_argument("give an exemplar INPUT or, for lrp, a --target spectrum");
+    throw std::invalid_argument(
+        "give an exemplar INPUT, a material's --map NAME=FILE or, for lrp, a --target spectrum");
   const ImageF exemplar = load_exemplar(options.input);
   Progress progress("analyse");
   progress.message(fmt::format("analysing {} with {}...", options.input, options.method));

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "io/image_io.hpp"
+#include "model/map_layout.hpp"
 
 namespace stochtex::cli {
 
@@ -100,6 +101,24 @@ std::map<std::string, std::string, std::less<>> parse_params(
     params[item.substr(0, equals)] = item.substr(equals + 1);
   }
   return params;
+}
+
+MapArgument parse_map_argument(const std::string& text) {
+  static const std::regex pattern(R"(([a-z0-9_]{1,32})(:([a-z]+))?=(.+))");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern))
+    throw std::invalid_argument(
+        "--map expects NAME=FILE or NAME:KIND=FILE with a name of 1 to 32 of a-z, 0-9 and _, "
+        "e.g. --map albedo=rock_albedo.png, not '" +
+        text + "'");
+  MapArgument map{match[1], std::nullopt, match[4]};
+  if (match[3].matched) {
+    map.kind = map_kind_from_name(match[3].str());
+    if (!map.kind)
+      throw std::invalid_argument("--map " + text + ": the kind '" + match[3].str() +
+                                  "' is not one of colour, normal, height, scalar");
+  }
+  return map;
 }
 
 ImageF load_exemplar(const std::string& path) {

@@ -55,6 +55,15 @@ std::optional<Vec2d> parse_number_pair(const std::string& text);
 // The -p key=value items of analyze and mix, as text values for resolve_params.
 std::map<std::string, std::string, std::less<>> parse_params(const std::vector<std::string>& items);
 
+// One --map NAME[:KIND]=FILE of analyze: a material map's name, its kind when given (colour,
+// normal, height, scalar) and its file.
+struct MapArgument {
+  std::string name;
+  std::optional<MapKind> kind;
+  std::string file;
+};
+MapArgument parse_map_argument(const std::string& text);
+
 // The image at `path`, checked to be usable as an exemplar.
 ImageF load_exemplar(const std::string& path);
 

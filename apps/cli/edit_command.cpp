@@ -187,7 +187,8 @@ void run_edit(const EditOptions& options) {
       selected[i] = gabor::component_name(labels[i]) == options.group;
   gabor::GaborModel edited = gabor::edit_gaussians(gabor, selected, edit);
   const std::size_t dropped = gabor.gaussians().size() - edited.gaussians().size();
-  save_model(Model(std::make_shared<const ModelData>(ModelData{model.params(), std::move(edited)})),
+  save_model(Model(std::make_shared<const ModelData>(
+                 ModelData{model.params(), std::move(edited), model.data().maps})),
              options.output);
   fmt::print(
       stderr, "wrote {} ({} group: {} Gaussians edited{})\n", options.output, options.group,

@@ -1,5 +1,5 @@
-// `stochtex info MODEL`: what a model file holds (method, parameters, arrays), and with --export
-// its image arrays as pictures.
+// `stochtex info MODEL`: what a model file holds (method, parameters, a material's maps, arrays),
+// and with --export its image arrays as pictures.
 
 #include <fmt/core.h>
 
@@ -35,6 +35,9 @@ void print_text(const Model& model, const std::string& path, const std::string& 
   fmt::print("model     {}\nmethod    {}\nchannels  {}\n", path, model.method(), model.channels());
   for (const auto& [name, value] : doc["params"].items())
     fmt::print("  {} = {}\n", name, format_param(model.method(), name, value.get<double>()));
+  for (const MapInfo& map : model.maps())
+    fmt::print("map       {} ({}, {} channel{})\n", map.name, map_kind_name(map.kind), map.channels,
+               map.channels == 1 ? "" : "s");
   for (const auto& array : doc["arrays"])
     fmt::print("array     {} {}\n", array["name"].get<std::string>(), array["shape"].dump());
   fmt::print("data      {} bytes\n", doc["array_bytes"].get<std::size_t>());

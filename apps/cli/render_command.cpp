@@ -19,6 +19,7 @@
 #include "io/image_io.hpp"
 #include "io/tiled_exr.hpp"
 #include "progress.hpp"
+#include "stochtex/material.hpp"
 #ifdef STOCHTEX_WITH_GL
 #include "stochtex/gpu.hpp"
 #endif
@@ -31,7 +32,8 @@ void add_render_options(CLI::App* command, RenderSettings& settings, std::string
                    "image to write (.png, .exr or .pfm); .png and .pfm are rendered in memory "
                    "(at most 64 Mpixel, 32768 a side), .exr beyond that or with --tiled, "
                    "--mipmap or --half is a tiled OpenEXR file rendered and written strip by "
-                   "strip with bounded memory")
+                   "strip with bounded memory; a material's maps go to one file each, named "
+                   "with {map} (e.g. out_{map}.png)")
       ->required();
   command
       ->add_option("--size", settings.size,
@@ -237,9 +239,70 @@ class GridRenderer {
 #endif
 };
 
+// A material's maps, each written to the output named with {map} replaced by the map's name,
+// after all are rendered (docs/materials.md).
+constexpr std::string_view kMapField = "{map}";
+
+std::string map_output(std::string output, std::string_view name) {
+  for (auto at = output.find(kMapField); at != std::string::npos;
+       at = output.find(kMapField, at + name.size()))
+    output.replace(at, kMapField.size(), name);
+  return output;
+}
+
+// The channels of each map's image as split_maps writes it.
+int written_channels(const MapInfo& map) {
+  return map.kind == MapKind::normal ? 3 : map.channels;
+}
+
+// Checks a material's outputs before the render: {map} in the name exactly when the model has
+// maps, every map's file writable, in memory and within the memory budget (the render, the maps
+// cut from it and one map's encoded copy).
+void check_map_outputs(const Model& model, const RenderPlan& plan, const std::string& output,
+                       const std::string& input) {
+  const bool per_map = output.find(kMapField) != std::string::npos;
+  if (model.maps().empty()) {
+    if (per_map)
+      throw std::invalid_argument("'" + output + "' names a file per map with {map}, but '" +
+                                  input + "' is a model of one image; remove {map}");
+    return;
+  }
+  std::string names;
+  for (const MapInfo& map : model.maps()) names += (names.empty() ? "" : ", ") + map.name;
+  if (!per_map)
+    throw std::invalid_argument("'" + input + "' is a material of maps " + names +
+                                ": name the output with {map}, one file per map, e.g. -o "
+                                "out_{map}.png");
+  if (plan.streamed)
+    throw std::invalid_argument(
+        "materials are rendered in memory: --tiled, --mipmap, --half and .exr outputs beyond 64 "
+        "Mpixel are for models of one image; render the maps in --region pieces");
+  std::uint64_t bytes_per_pixel = 4 * static_cast<std::uint64_t>(model.channels());
+  for (const MapInfo& map : model.maps()) {
+    const std::string path = map_output(output, map.name);
+    check_output_path(path, true, input);
+    check_output_channels(path, written_channels(map));
+    bytes_per_pixel += 6 * static_cast<std::uint64_t>(written_channels(map));
+  }
+  check_memory_budget(bytes_per_pixel * static_cast<std::uint64_t>(plan.grid.width) *
+                          static_cast<std::uint64_t>(plan.grid.height),
+                      fmt::format("rendering the {} maps of a {}x{} material", model.maps().size(),
+                                  plan.grid.width, plan.grid.height),
+                      "render a smaller --size, or --region pieces");
+}
+
 void render_model(const Model& model, const RenderPlan& plan, int threads,
                   const RenderSettings& settings, const std::string& output) {
   const Grid& grid = plan.grid;
+  if (!model.maps().empty()) {
+    ImageF image(grid.width, grid.height, model.channels());
+    GridRenderer(model, settings, threads, static_cast<std::uint64_t>(grid.width) * grid.height)(
+        grid, image.view());
+    const std::vector<NamedImage> maps = split_maps(model, image.view());
+    for (const auto& [name, map] : maps)
+      write_image(map_output(output, name), map.view(), settings.bit_depth);
+    return;
+  }
   if (!plan.streamed) {
     ImageF image(grid.width, grid.height, model.channels());
     GridRenderer(model, settings, threads, static_cast<std::uint64_t>(grid.width) * grid.height)(
@@ -258,14 +321,20 @@ void render_model(const Model& model, const RenderPlan& plan, int threads,
 
 void render_to_file(const std::function<Model()>& make_model, const RenderSettings& settings,
                     const std::string& output, const std::string& input) {
-  check_output_path(output, true, input);
+  check_output_path(map_output(output, "map"), true, input);
   const RenderPlan plan = render_plan(settings, output);
   const int threads = render_threads(settings, plan);
   const Model model = make_model();
-  check_output_channels(output, model.channels());
+  check_map_outputs(model, plan, output, input);
+  if (model.maps().empty()) check_output_channels(output, model.channels());
   if (plan.streamed) check_disk_space(plan, model.channels(), output);
   render_model(model, plan, threads, settings, output);
-  fmt::print(stderr, "wrote {}\n", output);
+  if (model.maps().empty()) {
+    fmt::print(stderr, "wrote {}\n", output);
+    return;
+  }
+  for (const MapInfo& map : model.maps())
+    fmt::print(stderr, "wrote {}\n", map_output(output, map.name));
 }
 
 Command add_render_command(CLI::App& app) {

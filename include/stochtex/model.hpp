@@ -16,6 +16,12 @@
 
 namespace stochtex {
 
+// The most channels of an exemplar: one image has 1 to 4, a material (several aligned maps side
+// by side, MapInfo) up to kMaxChannels. A method's registry row says how many it analyses
+// (MethodInfo::max_channels).
+inline constexpr int kMaxImageChannels = 4;
+inline constexpr int kMaxChannels = 16;
+
 struct Vec2d {
   double x = 0.0;
   double y = 0.0;
@@ -57,6 +63,22 @@ struct MethodInfo {
   int max_channels = 4;
 };
 
+// A material model (stochtex/material.hpp) is analysed from several aligned maps whose channels
+// sit side by side; each map's kind says how its channels are read and written.
+enum class MapKind {
+  colour,  // 1 or 3 channels of plain values (albedo, emission)
+  normal,  // a tangent-space normal map, stored as 2 channels: the height's gradient
+           // (-n_x / n_z, -n_y / n_z), x right, y up (OpenGL's convention)
+  height,  // 1 channel, higher is brighter (displacement, bump)
+  scalar,  // 1 channel of plain values (roughness, metallic, ambient occlusion)
+};
+struct MapInfo {
+  std::string name;  // 1 to 32 of a-z, 0-9 and _, unique in a model
+  MapKind kind = MapKind::colour;
+  int channels = 1;  // the channels this map holds in the model (2 for a normal map)
+};
+std::string_view map_kind_name(MapKind kind);
+
 struct ModelData;  // the closed variant of method models (src/model_data.hpp)
 
 class Model {
@@ -68,6 +90,8 @@ class Model {
   std::string_view method() const;
   int channels() const;
   const ParamValues& params() const;
+  // The maps of a material model in channel order; empty for a model of one image.
+  std::span<const MapInfo> maps() const;
   const ModelData& data() const { return *data_; }
 
  private:
@@ -81,7 +105,7 @@ Model load_model(const std::filesystem::path& path);
 std::vector<std::uint8_t> serialize_model(const Model& model);
 Model deserialize_model(std::span<const std::uint8_t> bytes, const std::string& source_name);
 
-// A JSON description of a model: method, parameters, array sizes (`stochtex info`).
+// A JSON description of a model: method, parameters, maps, array sizes (`stochtex info`).
 std::string describe_model(const Model& model);
 
 // The model's image-shaped arrays (height x width x channels), by name: e.g. the texton of a

@@ -53,12 +53,6 @@ std::string methods_json();
 // larger values are refused rather than rendered as NaN.
 inline constexpr float kMaxExemplarValue = 1e6f;
 
-// The most channels of an exemplar: one image has 1 to 4, a material set (several aligned maps
-// interleaved) up to kMaxChannels. A method's registry row says how many it analyses
-// (MethodInfo::max_channels).
-inline constexpr int kMaxImageChannels = 4;
-inline constexpr int kMaxChannels = 16;
-
 // Checks an exemplar: at least 2x2 pixels, 1 to `max_channels` channels, finite values within
 // +-kMaxExemplarValue, not constant. Throws Error(invalid_input) with a sentence naming
 // `source_name`.

@@ -17,6 +17,7 @@
 #include "gl/cross_compile.hpp"
 #include "gl/twin.hpp"
 #include "model/model_data.hpp"
+#include "stochtex/error.hpp"
 #include "stochtex/gpu.hpp"
 #include "stochtex_gl_twins.hpp"
 
@@ -485,6 +486,12 @@ std::string ShaderTexture::file_name() const {
 
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options) {
   if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
+  if (model.channels() > kMaxImageChannels)
+    throw Error(ErrorCode::invalid_input,
+                "export-shader writes a vec4 function and this material model has " +
+                    std::to_string(model.channels()) +
+                    " channels; export a material of at most 4 channels (e.g. albedo and "
+                    "roughness), or render its maps with `stochtex render`");
   return std::visit(
       [&](const auto& method_model) -> ShaderExport {
         using Method = std::decay_t<decltype(method_model)>;

@@ -26,7 +26,8 @@ namespace stochtex {
 
 std::optional<gl::SurfaceShader> gl::model_surface_shader(const Model& model,
                                                           const SurfaceOptions& options) {
-  if (model.empty()) return std::nullopt;
+  // The surface functions return a vec4 (gl/surface.glsl).
+  if (model.empty() || model.channels() > kMaxImageChannels) return std::nullopt;
   return std::visit(
       [&](const auto& m) -> std::optional<gl::SurfaceShader> {
         using M = std::decay_t<decltype(m)>;

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
+#include "model/map_layout.hpp"
 #include "model/model_data.hpp"
 #include "model/model_file.hpp"
 #include "stochtex/error.hpp"
@@ -26,7 +27,10 @@ MethodModel model_from_record(const ModelRecord& record, const std::string& sour
 }
 
 ModelRecord record_of(const Model& model) {
-  return std::visit([&](const auto& m) { return m.to_record(model.params()); }, model.data().model);
+  ModelRecord record =
+      std::visit([&](const auto& m) { return m.to_record(model.params()); }, model.data().model);
+  record.maps = model.data().maps;
+  return record;
 }
 
 }  // namespace
@@ -44,6 +48,10 @@ const ParamValues& Model::params() const {
   return data_->params;
 }
 
+std::span<const MapInfo> Model::maps() const {
+  return data_->maps;
+}
+
 std::vector<std::uint8_t> serialize_model(const Model& model) {
   return write_model_record(record_of(model));
 }
@@ -51,8 +59,14 @@ std::vector<std::uint8_t> serialize_model(const Model& model) {
 Model deserialize_model(std::span<const std::uint8_t> bytes, const std::string& source_name) {
   ModelRecord record = read_model_record(bytes, source_name);
   MethodModel method_model = model_from_record(record, source_name);
+  const int channels = std::visit([](const auto& m) { return m.channels(); }, method_model);
+  if (!record.maps.empty() && map_channels(record.maps) != channels)
+    throw Error(ErrorCode::format, "'" + source_name + "' declares maps of " +
+                                       std::to_string(map_channels(record.maps)) +
+                                       " channels for a model of " + std::to_string(channels) +
+                                       "; the file is corrupt");
   return Model(std::make_shared<const ModelData>(
-      ModelData{std::move(record.params), std::move(method_model)}));
+      ModelData{std::move(record.params), std::move(method_model), std::move(record.maps)}));
 }
 
 void save_model(const Model& model, const std::filesystem::path& path) {
@@ -83,6 +97,13 @@ std::string describe_model(const Model& model) {
   json["method"] = record.method;
   json["channels"] = model.channels();
   json["params"] = record.params;
+  if (!record.maps.empty()) {
+    auto maps = nlohmann::ordered_json::array();
+    for (const MapInfo& map : record.maps)
+      maps.push_back(
+          {{"name", map.name}, {"kind", map_kind_name(map.kind)}, {"channels", map.channels}});
+    json["maps"] = maps;
+  }
   json["scalars"] = record.scalars;
   auto arrays = nlohmann::ordered_json::array();
   std::size_t bytes = 0;

@@ -6,6 +6,7 @@
 
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "methods/gabor/model.hpp"
 #include "methods/lrp/model.hpp"
@@ -22,6 +23,7 @@ using MethodModel = std::variant<texton::TextonModel, tiling::TilingModel, lrp::
 struct ModelData {
   ParamValues params;
   MethodModel model;
+  std::vector<MapInfo> maps;  // a material's maps in channel order; empty for one image
 };
 
 }  // namespace stochtex

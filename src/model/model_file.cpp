@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "model/map_layout.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
@@ -83,7 +84,7 @@ class Reader {
     if (version > kModelFormatVersion)
       fail("uses model format version " + std::to_string(version) + ", newer than this stochtex (" +
            std::to_string(kModelFormatVersion) + "); upgrade stochtex to read it");
-    if (version < kModelFormatVersion)
+    if (version < kSingleImageModelFormatVersion)
       fail("uses the old model format version " + std::to_string(version) +
            "; re-run `stochtex analyze` to write version " + std::to_string(kModelFormatVersion));
     const std::uint32_t header_length = get_u32(bytes_.data() + 12);
@@ -110,6 +111,12 @@ class Reader {
     record.method = method->get<std::string>();
     record.params = numbers(json, "params");
     record.scalars = numbers(json, "scalars");
+    const auto maps = json.find("maps");
+    if ((maps != json.end()) != (version == kModelFormatVersion))
+      fail(version == kModelFormatVersion
+               ? "is a version-2 model file without its list of maps; the file is corrupt"
+               : "has a list of maps in a version-1 model file; the file is corrupt");
+    if (maps != json.end()) record.maps = read_maps(*maps);
 
     const auto arrays = json.find("arrays");
     if (arrays == json.end() || !arrays->is_array() || arrays->size() > kMaxArrays)
@@ -183,6 +190,28 @@ class Reader {
     return values;
   }
 
+  std::vector<MapInfo> read_maps(const nlohmann::json& list) const {
+    if (!list.is_array() || list.size() > static_cast<std::size_t>(kMaxChannels))
+      fail("has a malformed list of maps in its header; the file is corrupt");
+    std::vector<MapInfo> maps;
+    for (const auto& entry : list) {
+      const auto name = entry.is_object() ? entry.find("name") : entry.end();
+      const auto kind = entry.is_object() ? entry.find("kind") : entry.end();
+      const auto channels = entry.is_object() ? entry.find("channels") : entry.end();
+      if (!entry.is_object() || name == entry.end() || !name->is_string() || kind == entry.end() ||
+          !kind->is_string() || channels == entry.end() || !channels->is_number_integer() ||
+          !map_kind_from_name(kind->get<std::string>()).has_value())
+        fail("has a malformed map declaration in its header; the file is corrupt");
+      const auto count = channels->get<std::int64_t>();
+      if (count < 1 || count > kMaxChannels)
+        fail("declares a map of " + std::to_string(count) + " channels; the file is corrupt");
+      maps.push_back({name->get<std::string>(), *map_kind_from_name(kind->get<std::string>()),
+                      static_cast<int>(count)});
+    }
+    if (const auto problem = map_layout_problem(maps)) fail(*problem + "; the file is corrupt");
+    return maps;
+  }
+
   std::span<const std::uint8_t> bytes_;
   const std::string& source_;
 };
@@ -206,10 +235,16 @@ std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
   header["arrays"] = nlohmann::ordered_json::array();
   for (const auto& array : record.arrays)
     header["arrays"].push_back({{"name", array.name}, {"shape", array.shape}});
+  if (!record.maps.empty()) {
+    header["maps"] = nlohmann::ordered_json::array();
+    for (const MapInfo& map : record.maps)
+      header["maps"].push_back(
+          {{"name", map.name}, {"kind", map_kind_name(map.kind)}, {"channels", map.channels}});
+  }
   const std::string text = header.dump();
 
   std::vector<std::uint8_t> out(std::begin(kMagic), std::end(kMagic));
-  put_u32(out, kModelFormatVersion);
+  put_u32(out, record.maps.empty() ? kSingleImageModelFormatVersion : kModelFormatVersion);
   put_u32(out, static_cast<std::uint32_t>(text.size()));
   out.insert(out.end(), text.begin(), text.end());
   for (const auto& array : record.arrays)

@@ -4,7 +4,10 @@
 //   | array data: each declared array's float32 values, in header order | FNV-1a 64 checksum u64
 //     of every preceding byte.
 // The header JSON is {"method": str, "params": {name: number}, "scalars": {name: number},
-//   "arrays": [{"name": str, "shape": [int, ...]}, ...]}.
+//   "arrays": [{"name": str, "shape": [int, ...]}, ...]}, and for a material (format version 2
+//   only) "maps": [{"name": str, "kind": str, "channels": int}, ...]. A model of one image is
+//   written as version 1, byte for byte what stochtex wrote before materials; version 2 holds a
+//   material, so that a stochtex without materials refuses it ("upgrade") rather than render it.
 // Reading validates magic, version, sizes (against the byte count actually present and against
 // hard limits) and the checksum before allocating any array; every failure throws
 // stochtex::Error(ErrorCode::format) with one sentence naming `source_name` and the problem.
@@ -19,7 +22,8 @@
 
 namespace stochtex {
 
-inline constexpr std::uint32_t kModelFormatVersion = 1;
+inline constexpr std::uint32_t kModelFormatVersion = 2;             // the newest, materials
+inline constexpr std::uint32_t kSingleImageModelFormatVersion = 1;  // a model of one image
 inline constexpr std::uint32_t kMaxModelHeaderBytes = 1u << 20;
 // Loading a model peaks at about five times its file size (measured: the file's bytes, the
 // decoded record, the method's model and what it derives), 20 bytes a value: the memory budget

@@ -24,6 +24,7 @@ struct ModelRecord {
   ParamValues params;   // the analysis parameters, as described by the method's ParamInfo table
   ParamValues scalars;  // derived scalar values the evaluator needs (e.g. channel count)
   std::vector<NamedArray> arrays;
+  std::vector<MapInfo> maps;  // a material's maps (file format version 2); empty for one image
 
   // Throws Error(format) naming `source` when the array is missing or its shape differs.
   const NamedArray& array(const std::string& name, const std::vector<std::int64_t>& shape,

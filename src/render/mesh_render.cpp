@@ -12,6 +12,7 @@
 
 #include "core/parallel.hpp"
 #include "render/mesh_shading.hpp"
+#include "stochtex/error.hpp"
 #include "stochtex/render.hpp"
 
 namespace stochtex {
@@ -210,6 +211,12 @@ Fragment make_fragment(const PixelRays& rays, const Mesh& mesh, const Hit& hit, 
 void check_mesh_render_arguments(const Model& model, const Mesh& mesh,
                                  const MeshRenderOptions& options, ImageView<float> out) {
   if (model.empty()) throw std::invalid_argument("render_mesh: the model is empty");
+  if (!model.maps().empty())
+    throw Error(ErrorCode::invalid_input,
+                "render-mesh shades a model of one image, and this is a material of " +
+                    std::to_string(model.maps().size()) +
+                    " maps; render its maps with `stochtex render -o out_{map}.png` and texture "
+                    "the mesh with them");
   if (out.channels != model.channels() || out.width < 1 || out.height < 1)
     throw std::invalid_argument("render_mesh: the output must be an image of the model's " +
                                 std::to_string(model.channels()) + " channels");

@@ -1177,6 +1177,70 @@ for field in mix mask; do
 done
 expect_file "the mask export's mask data" "$out/mask-glsl/texton_mix_mask.exr"
 
+# --- materials (docs/materials.md) ---------------------------------------------------------------
+
+rock=$textures/../materials/rock_sandstone
+find "$out" -mindepth 1 -delete
+expect_ok "analyze a material" "$stochtex" analyze --map albedo="$rock/albedo.png" \
+  --map roughness="$rock/roughness.png" -m tiling -o "$models/material.stx" &&
+  expect_file "the material model" "$models/material.stx"
+expect_ok "info lists a material's maps" "$stochtex" info "$models/material.stx" &&
+  if grep -q '^map       albedo (colour, 3 channels)' "$work/stdout" &&
+    grep -q '^map       roughness (scalar, 1 channel)' "$work/stdout"; then pass; else
+    fail "info lists a material's maps" "no map lines in: $(cat "$work/stdout")"
+  fi
+expect_json "info --json of a material" "$stochtex" info "$models/material.stx" --json &&
+  if python3 -c 'import json,sys; d=json.load(sys.stdin); assert [m["name"] for m in d["maps"]] == ["albedo", "roughness"]' \
+    <"$work/stdout"; then pass; else fail "info --json lists the maps" "no maps"; fi
+expect_ok "render a material's maps" "$stochtex" render "$models/material.stx" \
+  -o "$models/mat_{map}.png" --size 40x24 --seed 3 &&
+  expect_file "the albedo map" "$models/mat_albedo.png" &&
+  expect_file "the roughness map" "$models/mat_roughness.png"
+expect_ok "a normal map in a material" "$stochtex" analyze --map normal="$rock/normal.png" \
+  --map height="$rock/height.png" -m tiling -o "$models/relief.stx" &&
+  expect_ok "render a normal map" "$stochtex" render "$models/relief.stx" \
+    -o "$models/relief_{map}.pfm" --size 32x32 &&
+  if python3 - "$models/relief_normal.pfm" <<'PY'; then pass; else
+import math, struct, sys
+# A PFM of 0.5 + 0.5 n: every decoded normal is unit length and faces out.
+data = open(sys.argv[1], "rb").read()
+lines = data.split(b"\n", 3)
+assert lines[0] == b"PF", lines[0]
+width, height = map(int, lines[1].split())
+values = struct.unpack("<%df" % (width * height * 3), lines[3][: width * height * 12])
+for i in range(0, len(values), 3):
+    n = [2.0 * v - 1.0 for v in values[i : i + 3]]
+    assert abs(math.sqrt(sum(c * c for c in n)) - 1.0) < 1e-5 and n[2] > 0.0, n
+PY
+    fail "rendered normals are unit length" "see the assertion above"
+  fi
+expect_error "a material rendered into one file" 2 "{map}" "$stochtex" render \
+  "$models/material.stx" -o "$out/x.png" --size 8x8
+expect_error "{map} for a model of one image" 2 "{map}" "$stochtex" render "$model" \
+  -o "$out/x_{map}.png" --size 8x8
+expect_error "a material beyond memory outputs" 2 "--region" "$stochtex" render \
+  "$models/material.stx" -o "$out/x_{map}.exr" --size 16x16 --tiled
+expect_error "maps of different sizes" 1 "the same size" "$stochtex" analyze \
+  --map albedo="$rock/albedo.png" --map roughness="$exemplar" -m tiling -o "$out/x.stx"
+expect_error "a normal map that is not one" 1 "not a tangent-space normal map" "$stochtex" \
+  analyze --map normal="$rock/albedo.png" -m tiling -o "$out/x.stx"
+expect_error "more channels than a method takes" 1 "this material has 5" "$stochtex" analyze \
+  --map albedo="$rock/albedo.png" --map normal="$rock/normal.png" -m tiling -o "$out/x.stx"
+expect_error "a map named twice" 1 "twice" "$stochtex" analyze --map albedo="$rock/albedo.png" \
+  --map albedo="$rock/albedo.png" -m tiling -o "$out/x.stx"
+expect_error "a colour roughness map" 1 "one channel" "$stochtex" analyze \
+  --map roughness="$rock/albedo.png" -m tiling -o "$out/x.stx"
+expect_error "a malformed --map" 2 "--map expects" "$stochtex" analyze --map "Albedo=$rock/albedo.png" \
+  -m tiling -o "$out/x.stx"
+expect_error "an unknown map kind" 2 "colour, normal, height, scalar" "$stochtex" analyze \
+  --map "albedo:rgb=$rock/albedo.png" -m tiling -o "$out/x.stx"
+expect_error "a missing map file" 1 "missing.png" "$stochtex" analyze \
+  --map "albedo=$inputs/missing.png" -m tiling -o "$out/x.stx"
+expect_parse_error "--map with INPUT" "$stochtex" analyze "$exemplar" \
+  --map "albedo=$rock/albedo.png" -m tiling -o "$out/x.stx"
+expect_error "render-mesh of a material" 1 "material" "$stochtex" render-mesh \
+  "$textures/../meshes/sphere.obj" --model "$models/material.stx" -o "$out/x.png" --size 16x16
+
 # --- summary ------------------------------------------------------------------------------------
 
 echo "cli_test: ${passed} passed, ${#failed[@]} failed"

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "model/model_file.hpp"
+#include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex {
@@ -159,6 +160,23 @@ TEST(ModelFuzz, EveryMethodMutantsLoadOrFailCleanly) {
     }
     SCOPED_TRACE(std::string(method.name));
     fuzz_models(seeds, 2000, engine_seed++);
+  }
+}
+
+// A material's model (a version-2 file with its list of maps) of every method: a colour map and
+// a scalar map of random values.
+TEST(ModelFuzz, MaterialMutantsLoadOrFailCleanly) {
+  std::mt19937 engine(20261125);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  ImageF albedo(16, 16, 3), roughness(16, 16, 1);
+  for (ImageF* image : {&albedo, &roughness})
+    for (float& value : image->pixels()) value = uniform(engine);
+  const std::vector<MaterialMap> maps{{"albedo", {}, albedo.view(), "a"},
+                                      {"roughness", {}, roughness.view(), "r"}};
+  std::uint32_t engine_seed = 20261126;
+  for (const MethodInfo& method : methods()) {
+    SCOPED_TRACE(std::string(method.name));
+    fuzz_models({serialize_model(analyze_material(method.name, maps))}, 1000, engine_seed++);
   }
 }
 

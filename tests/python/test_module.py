@@ -221,3 +221,40 @@ def test_ctrl_c_interrupts_a_long_analysis():
     finally:
         timer.cancel()
     assert time.monotonic() - start < 3.0
+
+
+def test_material_maps_analyse_render_and_split(exemplar):
+    roughness = smooth_noise(32, 40, 1, 11)[:, :, 0]
+    model = stochtex.analyze_material({"albedo": exemplar, "roughness": roughness}, "tiling")
+    assert model.maps == [{"name": "albedo", "kind": "colour", "channels": 3},
+                          {"name": "roughness", "kind": "scalar", "channels": 1}]
+    assert model.channels == 4
+    image = model.render(24, 16, seed=3)
+    maps = model.split(image)
+    assert list(maps) == ["albedo", "roughness"]
+    assert numpy.array_equal(maps["albedo"], image[:, :, :3])
+    assert numpy.array_equal(maps["roughness"], image[:, :, 3:])
+    assert pickle.loads(pickle.dumps(model)).maps == model.maps
+
+
+def test_material_normal_maps_come_back_unit_length(exemplar):
+    # A normal map of the gradient of a smooth height, encoded 0.5 + 0.5 n.
+    height = smooth_noise(32, 40, 1, 5)[:, :, 0] * 8.0
+    gy, gx = numpy.gradient(height)
+    n = numpy.stack([-gx, gy, numpy.ones_like(gx)], axis=2)
+    n /= numpy.linalg.norm(n, axis=2, keepdims=True)
+    model = stochtex.analyze_material({"normal": (0.5 + 0.5 * n).astype(numpy.float32)}, "tiling")
+    assert model.maps == [{"name": "normal", "kind": "normal", "channels": 2}]
+    normal = model.split(model.render(32, 32))["normal"] * 2.0 - 1.0
+    assert numpy.allclose(numpy.linalg.norm(normal, axis=2), 1.0, atol=1e-5)
+
+
+@pytest.mark.parametrize("maps, kinds, words", [
+    ({"albedo": smooth_noise(32, 40, 3, 1), "roughness": smooth_noise(16, 40, 1, 2)}, {},
+     "the same size"),
+    ({"normal": smooth_noise(32, 40, 3, 1)}, {}, "not a tangent-space normal map"),
+    ({"albedo": smooth_noise(32, 40, 3, 1)}, {"albedo": "rgb"}, "colour, normal, height, scalar"),
+])
+def test_bad_materials_are_clear_errors(maps, kinds, words):
+    with pytest.raises(ValueError, match=words):
+        stochtex.analyze_material(maps, "tiling", kinds=kinds)

@@ -35,7 +35,7 @@ std::vector<std::uint8_t> with_checksum(std::vector<std::uint8_t> bytes) {
 
 // A file made of a given header and `float_count` zero floats, with a valid checksum.
 std::vector<std::uint8_t> file_with_header(const std::string& header, std::size_t float_count,
-                                           std::uint32_t version = kModelFormatVersion) {
+                                           std::uint32_t version = kSingleImageModelFormatVersion) {
   std::vector<std::uint8_t> bytes = {'S', 'T', 'O', 'C', 'H', 'T', 'E', 'X'};
   for (int i = 0; i < 4; ++i) bytes.push_back(static_cast<std::uint8_t>(version >> (8 * i)));
   const auto length = static_cast<std::uint32_t>(header.size());

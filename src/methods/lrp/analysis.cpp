@@ -668,7 +668,7 @@ Model spectrum_model(const SpectrumTarget& target, const ParamValues& params, st
   ParamValues resolved = resolve_params(LrpModel::kMethodName, params);
   LrpModel model = analyze_spectrum(target, params_from_values(kFields, resolved), seed);
   return Model(std::make_shared<const ModelData>(
-      ModelData{std::move(resolved), MethodModel(std::move(model))}));
+      ModelData{std::move(resolved), MethodModel(std::move(model)), {}}));
 }
 
 }  // namespace stochtex::lrp
