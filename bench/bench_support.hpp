@@ -37,6 +37,19 @@ inline const ImageF& grey_exemplar() {
   return corpus_image(kGreyExemplar);
 }
 
+// An exemplar of `channels` channels (a material's maps, issue 18) from the colour exemplar:
+// side x side, channel c its colour channel c % 3 shifted by 17 (c / 3) pixels, so the channels
+// are distinct maps (only their count matters for the costs measured).
+inline ImageF stacked_exemplar(int channels, int side) {
+  const ImageF& source = colour_exemplar();
+  ImageF exemplar(side, side, channels);
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      for (int c = 0; c < channels; ++c)
+        exemplar.at(x, y, c) = source.at((x + 17 * (c / 3)) % side, y, c % 3);
+  return exemplar;
+}
+
 inline ImageF crop_top_left(const ImageF& image, int side) {
   ImageF result(side, side, image.channels());
   for (int y = 0; y < side; ++y)

@@ -79,6 +79,21 @@ BENCHMARK(BM_GlTextonFrame)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+// Materials (issue 18): N channels render in chunks of 4 (texton gl_pass.cpp), each chunk drawing
+// the same impulses: 256x256 frames of a support-64 texton of a 256x256 stacked_exemplar.
+void BM_GlTextonChannels(benchmark::State& state) {
+  frame_benchmark(state, "texton", {{"support", 64}}, 256, 256,
+                  bench::stacked_exemplar(static_cast<int>(state.range(0)), 256));
+}
+BENCHMARK(BM_GlTextonChannels)
+    ->ArgName("channels")
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(16)
+    ->Iterations(4)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 // blend 0: histogram-preserving (3 fetches + T^-1); 1: the Gaussian fast path (3 fetches).
 void BM_GlTilingFrame(benchmark::State& state) {
   frame_benchmark(state, "tiling", {{"blend", static_cast<double>(state.range(0))}},

@@ -89,12 +89,27 @@ BENCHMARK(BM_TextonRender)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+// Materials (issue 18): the cost per sample of N channels analysed jointly, point samples of a
+// 256x256 grid on one thread, on a 256x256 stacked_exemplar. Lanes (texton_lanes): 1-4 channels
+// their own count, then 8, 12, 16.
+const Model& material_model(int channels) {
+  static std::map<int, Model> cache;
+  auto found = cache.find(channels);
+  if (found == cache.end())
+    found =
+        cache.emplace(channels, analyze("texton", stacked_exemplar(channels, 256).view(), {}, 0))
+            .first;
+  return found->second;
+}
+
 // The batch API on one thread, with the positions of a 256x256 grid at `scale`: scale 1 without
-// footprints (point samples), scale 8 with the footprints of the grid (prefiltered textons).
-void evaluate_batch(benchmark::State& state, double scale, bool filtered) {
+// footprints (point samples), scale 8 with the footprints of the grid (prefiltered textons). The
+// model: model_of(the benchmark's argument).
+void evaluate_batch(benchmark::State& state, double scale, bool filtered,
+                    const Model& (*model_of)(int) = texton_model) {
   const Model* model = nullptr;
   try {
-    model = &texton_model(static_cast<int>(state.range(0)));
+    model = &model_of(static_cast<int>(state.range(0)));
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
     return;
@@ -132,6 +147,19 @@ BENCHMARK(BM_TextonEvaluateFiltered8)
     ->Arg(64)
     ->Arg(128)
     ->Arg(256)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+void BM_TextonEvaluateChannels(benchmark::State& state) {
+  evaluate_batch(state, 1.0, false, material_model);
+}
+BENCHMARK(BM_TextonEvaluateChannels)
+    ->ArgName("channels")
+    ->Arg(3)
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(9)
+    ->Arg(16)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -11,6 +11,7 @@
 #include "render/mesh_geometry.hpp"
 #include "render/surface_arguments.hpp"
 #include "stochtex/render.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex {
 namespace {
@@ -65,7 +66,7 @@ void evaluate_triplanar_linear(const MethodModel& m, std::span<const SurfacePoin
   const int channels = out.channels;
   for (std::size_t first = 0; first < points.size(); first += kBatch) {
     const int count = static_cast<int>(std::min<std::size_t>(kBatch, points.size() - first));
-    std::array<float, kBatch * 4> sum{};
+    std::array<float, kBatch * kMaxChannels> sum{};
     std::array<std::array<double, 3>, kBatch> weights;
     for (int i = 0; i < count; ++i)
       weights[static_cast<std::size_t>(i)] =
@@ -78,7 +79,7 @@ void evaluate_triplanar_linear(const MethodModel& m, std::span<const SurfacePoin
         positions[static_cast<std::size_t>(i)] = on_plane(p.position, k);
         footprints[static_cast<std::size_t>(i)] = {on_plane(p.dpdx, k), on_plane(p.dpdy, k)};
       }
-      std::array<float, kBatch * 4> values;
+      std::array<float, kBatch * kMaxChannels> values;
       m.evaluate(std::span(positions.data(), static_cast<std::size_t>(count)),
                  std::span(footprints.data(), static_cast<std::size_t>(count)),
                  seed + static_cast<std::uint32_t>(k),

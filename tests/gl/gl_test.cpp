@@ -117,6 +117,53 @@ TEST(Gl, TextonMatchesTheCpuReference) {
   }
 }
 
+TEST(Gl, TextonMaterialMatchesTheCpuReference) {
+  // A whole material (issue 18): rock_sandstone's 5 maps, 9 channels, render in chunks of 4
+  // channels (texton gl_pass.cpp) that draw the same impulses. Tolerance and grids as
+  // TextonMatchesTheCpuReference: every channel of every chunk must match the CPU's.
+  const ImageF exemplar = test_support::material_exemplar(
+      "rock_sandstone", {"albedo", "normal", "roughness", "height", "ao"});
+  ASSERT_EQ(exemplar.channels(), 9);
+  for (const int order : {1, 3}) {
+    const Model model =
+        analyze("texton", exemplar.view(), {{"support", 48}, {"order", order}}, 0, "rock");
+    for (const ParityCase& c :
+         std::vector<ParityCase>{{"rock", order, {{0.0, 0.0}, 1.0, 96, 80}, true},
+                                 {"rock", order, {{1e7, -3e6}, 4.0, 70, 50}, true},
+                                 {"rock", order, {{12.0, -4.0}, 3.0, 50, 50}, false}}) {
+      const ImageF cpu = render_cpu(model, c.grid, 9, c.filter);
+      const ImageF gpu = render_gpu(model, c.grid, 9, 64, c.filter);
+      std::vector<float> worst(9, 0.0f);
+      for (std::size_t i = 0; i < cpu.pixels().size(); ++i)
+        worst[i % 9] = std::max(worst[i % 9], std::abs(cpu.pixels()[i] - gpu.pixels()[i]));
+      std::cout << "rock, 9 channels, order " << order << " scale " << c.grid.scale
+                << ": max |cpu - gl| = " << *std::max_element(worst.begin(), worst.end()) << "\n";
+      for (int channel = 0; channel < 9; ++channel)
+        EXPECT_LT(worst[channel], 1e-4f)
+            << "order " << order << " scale " << c.grid.scale << " channel " << channel;
+    }
+  }
+}
+
+TEST(Gl, TextonHardwareFilterRefusesMoreThanFourChannels) {
+  const ImageF exemplar =
+      test_support::material_exemplar("sand_pebbles", {"albedo", "normal", "roughness"});
+  const Model model = analyze("texton", exemplar.view(), {{"support", 16}}, 0, "sand");
+  ImageF out(8, 8, model.channels());
+  GpuRenderOptions options;
+  options.texture_filter = GlFilter::hardware;
+  try {
+    render_gl(model, Grid{{0.0, 0.0}, 2.0, 8, 8}, 1, out.view(), options);
+    ADD_FAILURE() << "the hardware filter took 7 channels";
+  } catch (const Error& error) {
+    const std::string what = error.what();
+    EXPECT_NE(what.find("--gl-filter hardware takes 1 to 4 channels and this model has 7"),
+              std::string::npos)
+        << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
 struct MethodCase {
   const char* method;
   const char* exemplar;

@@ -58,7 +58,8 @@ void expect_rejected(const std::vector<std::uint8_t>& bytes, const std::string& 
 }
 
 TEST(ModelFile, RoundTripIsExact) {
-  for (const int channels : {1, 3, 4}) {
+  // 9 and kMaxChannels: a material's maps (issue 18), which texton noise analyses jointly.
+  for (const int channels : {1, 3, 4, 9, kMaxChannels}) {
     const Model model = small_model(channels);
     const std::vector<std::uint8_t> bytes = serialize_model(model);
     const Model loaded = deserialize_model(bytes, "memory");

@@ -111,6 +111,44 @@ TEST(TextonMix, CorruptFilesAreRefused) {
       good_mask, {{"mask_width", 5}, {"mask_scale", 0}}, {{"mask", {2, 1.5f}}});
 }
 
+TEST(TextonMix, ModelFilesOfMoreThanFourChannelsAreRefused) {
+  // Texton noise mixing stays at 1 to 4 channels while texton noise takes kMaxChannels (a
+  // material's maps, issue 18): a 5-channel file whose arrays have that shape is refused with a
+  // sentence naming the file, and so are 5-channel exemplars.
+  const ImageF five = noise_image(16, 16, 5, 7, 0.1f);
+  try {
+    mix(pair(five, five, "material_a", "material_b"), kSmall, 1);
+    ADD_FAILURE() << "mix took 5 channels";
+  } catch (const Error& error) {
+    const std::string what = error.what();
+    EXPECT_EQ(error.code(), ErrorCode::invalid_input) << what;
+    EXPECT_NE(what.find("'material_a' has 5 channels"), std::string::npos) << what;
+  }
+  const Model model = ramp_model();
+  ModelRecord record =
+      std::get<texton_mix::TextonMixModel>(model.data().model).to_record(model.params());
+  record.scalars["channels"] = 5;
+  for (NamedArray& array : record.arrays) {
+    ASSERT_EQ(array.shape.back(), 3) << array.name;
+    array.shape.back() = 5;
+    std::vector<float> values;
+    for (std::size_t i = 0; i < array.values.size(); i += 3)
+      values.insert(values.end(), {array.values[i], array.values[i + 1], array.values[i + 2],
+                                   array.values[i], array.values[i + 1]});
+    array.values = values;
+  }
+  try {
+    texton_mix::TextonMixModel::from_record(record, "mix.stx");
+    ADD_FAILURE() << "texton_mix took 5 channels";
+  } catch (const Error& error) {
+    const std::string what = error.what();
+    EXPECT_EQ(error.code(), ErrorCode::format) << what;
+    EXPECT_NE(what.find("'mix.stx'"), std::string::npos) << what;
+    EXPECT_NE(what.find("channels"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
 // At rho = 0 and rho = 1 the kernels are A's (phase-aligned, same spectrum) and B's: the textons
 // have the power of plain texton noise's of each exemplar (same initialisation, same Algorithm 1).
 TEST(TextonMix, EndTextonsHaveThePowerOfEachExemplarsTexton) {

@@ -14,6 +14,7 @@
 #include "spectral/fft.hpp"
 #include "spectral/periodic.hpp"
 #include "spectral/white_noise.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex::texton {
 namespace {
@@ -37,15 +38,20 @@ std::vector<double> sampled_bspline_spectrum(int order, int length, int frequenc
 // Step 1.b of Algorithm 1 in colour (section 4.3): alpha-hat <- (t-hat* alpha-hat /
 // |t-hat* alpha-hat|) t-hat / sqrt(b-hat), the phase of the projection of alpha-hat on the line
 // spanned by t-hat (grey: the phase of alpha-hat). `kernel` already holds t-hat / sqrt(b-hat).
+// One phase per frequency for all channels keeps the joint cross-spectrum t-hat t-hat^*, whatever
+// the channel count (a material's maps too: issue 18).
 // This is the hottest loop of the analysis: the channel count is a template parameter so the
-// channel loops unroll, and complex products are written out because std::complex's operator*
-// checks for NaN operands (C99 Annex G) and is several times slower.
+// channel loops unroll (Channels = 0: any count up to kMaxChannels, read from `kernel`), and
+// complex products are written out because std::complex's operator* checks for NaN operands (C99
+// Annex G) and is several times slower.
 template <int Channels>
 void project_spectrum(const std::vector<std::vector<Complex>>& kernel,
                       std::vector<std::vector<Complex>>& alpha) {
-  std::array<const Complex*, Channels> t;
-  std::array<Complex*, Channels> a;
-  for (int c = 0; c < Channels; ++c) {
+  constexpr int kSlots = Channels > 0 ? Channels : kMaxChannels;
+  const int channels = Channels > 0 ? Channels : static_cast<int>(kernel.size());
+  std::array<const Complex*, kSlots> t;
+  std::array<Complex*, kSlots> a;
+  for (int c = 0; c < channels; ++c) {
     t[c] = kernel[c].data();
     a[c] = alpha[c].data();
   }
@@ -53,7 +59,7 @@ void project_spectrum(const std::vector<std::vector<Complex>>& kernel,
   for (std::size_t i = 0; i < size; ++i) {
     float inner_re = 0.0f;
     float inner_im = 0.0f;
-    for (int c = 0; c < Channels; ++c) {
+    for (int c = 0; c < channels; ++c) {
       inner_re += t[c][i].real() * a[c][i].real() + t[c][i].imag() * a[c][i].imag();
       inner_im += t[c][i].real() * a[c][i].imag() - t[c][i].imag() * a[c][i].real();
     }
@@ -61,7 +67,7 @@ void project_spectrum(const std::vector<std::vector<Complex>>& kernel,
     const float inverse = magnitude_squared > 0.0f ? 1.0f / std::sqrt(magnitude_squared) : 0.0f;
     const float phase_re = magnitude_squared > 0.0f ? inner_re * inverse : 1.0f;
     const float phase_im = inner_im * inverse;
-    for (int c = 0; c < Channels; ++c)
+    for (int c = 0; c < channels; ++c)
       a[c][i] = Complex(phase_re * t[c][i].real() - phase_im * t[c][i].imag(),
                         phase_re * t[c][i].imag() + phase_im * t[c][i].real());
   }
@@ -163,8 +169,11 @@ std::vector<float> texton_coefficients(
       case 3:
         project_spectrum<3>(kernel_spectrum, alpha_spectrum);
         break;
-      default:
+      case 4:
         project_spectrum<4>(kernel_spectrum, alpha_spectrum);
+        break;
+      default:
+        project_spectrum<0>(kernel_spectrum, alpha_spectrum);
         break;
     }
     // 2. Impose the support: keep the top-left support x support square.

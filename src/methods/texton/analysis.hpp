@@ -11,6 +11,7 @@
 #include "methods/texton/params.hpp"
 #include "spectral/fft.hpp"
 #include "stochtex/image.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex::texton {
 
@@ -41,7 +42,8 @@ constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<Te
       "texton noise (Galerne, Leclaire, Moisan 2017): a small texton summarising the "
       "spectrum, ~30 fetches per sample",
       kFields,
-      {.per_pixel = 28, .per_channel = 20}};
+      {.per_pixel = 28, .per_channel = 20},
+      kMaxChannels};
 }
 
 }  // namespace stochtex::texton

@@ -274,12 +274,20 @@ class CellCache {
 };
 
 // Calls f.template operator()<Order, Channels>() for the texton's interpolation order (0, 1, 3, 5)
-// and channel count (1 to 4): one concrete loop per pair, so the inner loops unroll and the
-// accumulators stay in registers. Dispatch happens once per batch.
-template <typename F>
+// and channel count: Channels is the lane count texton_lanes(channels) (1 to 4, then 8, 12, 16 up
+// to MaxChannels; the pyramid holds that many values per texel). One concrete loop per pair, so
+// the inner loops unroll and the accumulators stay in registers. Dispatch happens once per batch.
+template <int MaxChannels = kMaxChannels, typename F>
 inline void with_order_and_channels(int order, int channels, F&& f) noexcept {
+  static_assert(MaxChannels == 4 || MaxChannels == kMaxChannels);
   const auto with_order = [&]<int Order>() {
-    switch (channels) {
+    const int lanes = texton_lanes(std::min(channels, MaxChannels));
+    if constexpr (MaxChannels > 4) {
+      if (lanes == 8) return f.template operator()<Order, 8>();
+      if (lanes == 12) return f.template operator()<Order, 12>();
+      if (lanes == 16) return f.template operator()<Order, 16>();
+    }
+    switch (lanes) {
       case 1:
         return f.template operator()<Order, 1>();
       case 2:

@@ -9,12 +9,14 @@
 #include "gl/glsl_text.hpp"
 #include "gl/shaders.hpp"
 #include "methods/texton/gl_twin.hpp"
+#include "stochtex/error.hpp"
 
 namespace stochtex::gl {
 
-TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model) {
+TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model, int first_channel) {
   const auto& pyramid = model.pyramid();
-  const int channels = model.channels();
+  const int lanes = model.lanes();
+  const int channels = std::min(4, model.channels() - first_channel);
   std::vector<int> rows;
   std::vector<float> spacing;
   std::vector<float> first;
@@ -35,8 +37,8 @@ TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model) {
         for (int c = 0; c < channels; ++c)
           glsl.atlas.at(x, rows[l] + y, c) =
               pyramid[l].coefficients[(static_cast<std::size_t>(y) * pyramid[l].stride + x) *
-                                          static_cast<std::size_t>(channels) +
-                                      static_cast<std::size_t>(c)];
+                                          static_cast<std::size_t>(lanes) +
+                                      static_cast<std::size_t>(first_channel + c)];
 
   const auto& cdf = model.cell_count().cdf();
   std::string& text = glsl.constants;
@@ -59,11 +61,22 @@ TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model) {
   return glsl;
 }
 
-TextonGlsl texton_glsl(const texton::TextonModel& model) {
-  TextonGlsl glsl = texton_shot_noise_glsl(model);
-  glsl.constants += "const vec4 TEXTON_CONSTANT_TERM = " + glsl_vec4(model.constant_term()) + ";\n";
-  glsl.constants += "const vec4 TEXTON_MEAN = " + glsl_vec4(model.mean()) + ";\n";
+TextonGlsl texton_glsl(const texton::TextonModel& model, int first_channel) {
+  TextonGlsl glsl = texton_shot_noise_glsl(model, first_channel);
+  const auto first = static_cast<std::size_t>(first_channel);
+  glsl.constants +=
+      "const vec4 TEXTON_CONSTANT_TERM = " + glsl_vec4(model.constant_term().subspan(first)) +
+      ";\n";
+  glsl.constants += "const vec4 TEXTON_MEAN = " + glsl_vec4(model.mean().subspan(first)) + ";\n";
   return glsl;
+}
+
+void refuse_beyond_four_channels(const texton::TextonModel& model, const std::string& what) {
+  if (model.channels() > 4)
+    throw Error(ErrorCode::invalid_input,
+                "texton: " + what + " takes 1 to 4 channels and this model has " +
+                    std::to_string(model.channels()) +
+                    "; `render --backend gl --gl-filter exact` and the CPU backend render it");
 }
 
 std::string texton_atlas_source(const ImageF& atlas, DataSource source) {
@@ -132,6 +145,7 @@ bool has_fast_variant(const texton::TextonModel& model) {
 
 ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model,
                                               ShaderVariant variant) {
+  refuse_beyond_four_channels(model, "export-shader");
   if (variant == ShaderVariant::fast && has_fast_variant(model)) return fast_shader(model);
   TextonGlsl glsl = texton_glsl(model);
   std::ostringstream what;
@@ -149,6 +163,7 @@ ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model,
 
 std::optional<SurfaceShader> Twin<texton::TextonModel>::surface_shader(
     const texton::TextonModel& model, const SurfaceOptions& options) {
+  refuse_beyond_four_channels(model, "the GLSL surface and triplanar noise");
   TextonGlsl glsl = texton_glsl(model);
   const auto texels = glsl.atlas.pixels();
   if (options.mapping == SurfaceMapping::triplanar_linear)

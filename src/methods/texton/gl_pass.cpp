@@ -1,11 +1,12 @@
 // Texton noise on the GL renderer: the program (compiled with the model's constants) and the texel
-// atlas; for --gl-filter hardware (order-1 models), the fast export's program and texture
-// (hardware.glsl, gl_data.cpp).
+// atlas, per chunk of 4 channels; for --gl-filter hardware (order-1 models), the fast export's
+// program and texture (hardware.glsl, gl_data.cpp).
 
 #include <array>
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "gl/shaders.hpp"
 #include "gl/twin.hpp"
@@ -15,57 +16,91 @@
 namespace stochtex::gl {
 namespace {
 
-// The texton evaluator's GPU state: the program (compiled with the model's constants) and the
-// texel atlas; for --gl-filter hardware (order-1 models), the program and texture of
-// `export-shader --variant fast` (level 0 of the pyramid as a mip-mapped texture), made on first
-// use.
-class TextonPass final : public Pass {
+// One chunk of up to 4 channels of the exact evaluator: the program, compiled with the chunk's
+// constants (texton_glsl), and its texel atlas. A model of 1 to 4 channels is one chunk; a wider
+// one (a material, issue 18) renders chunk after chunk into the same result, each chunk drawing
+// the same impulses (same cells, seed and draws) and writing its channels of every pixel
+// (TEXTON_RESULT_STRIDE, TEXTON_RESULT_FIRST in render.glsl).
+class TextonChunk {
  public:
-  explicit TextonPass(const texton::TextonModel& model)
-      : model_(model),
-        glsl_(texton_glsl(model)),
-        exact_(std::string("#version 450\n") + texton_library_source(glsl_) +
-               shader_source("methods/texton/render.glsl")) {
-    atlas_ = data_texture(glsl_.atlas);
-    exact_.set("stochtex_texton_atlas", 0);
+  TextonChunk(const texton::TextonModel& model, int first_channel)
+      : TextonChunk(texton_glsl(model, first_channel), result_layout(model, first_channel)) {}
+  ~TextonChunk() { glDeleteTextures(1, &atlas_); }
+  TextonChunk(const TextonChunk&) = delete;
+  TextonChunk& operator=(const TextonChunk&) = delete;
+
+  const Program& program() const { return program_; }
+  GLuint atlas() const { return atlas_; }
+
+ private:
+  static std::string result_layout(const texton::TextonModel& model, int first_channel) {
+    if (model.channels() <= 4) return {};
+    return "#define TEXTON_RESULT_STRIDE " + std::to_string(model.channels()) +
+           "\n#define TEXTON_RESULT_FIRST " + std::to_string(first_channel) + "\n";
+  }
+
+  TextonChunk(const TextonGlsl& glsl, const std::string& layout)
+      : program_(std::string("#version 450\n") + layout + texton_library_source(glsl) +
+                 shader_source("methods/texton/render.glsl")),
+        atlas_(data_texture(glsl.atlas)) {
+    program_.set("stochtex_texton_atlas", 0);
     check_gl("uploading the texton");
   }
-  ~TextonPass() { glDeleteTextures(1, &atlas_); }
-  TextonPass(const TextonPass&) = delete;
-  TextonPass& operator=(const TextonPass&) = delete;
+
+  Program program_;
+  GLuint atlas_ = 0;
+};
+
+// The texton evaluator's GPU state: the exact evaluator's chunks; for --gl-filter hardware
+// (order-1 models of 1 to 4 channels), the program and texture of `export-shader --variant fast`
+// (level 0 of the pyramid as a mip-mapped texture), made on first use.
+class TextonPass final : public Pass {
+ public:
+  explicit TextonPass(const texton::TextonModel& model) : model_(model) {
+    for (int first = 0; first < model.channels(); first += 4)
+      chunks_.push_back(std::make_unique<TextonChunk>(model, first));
+  }
 
   void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) override {
     const bool filter = options.filter;
-    active_ = &exact_;
+    hardware_active_ = false;
     if (options.texture_filter == GlFilter::hardware && has_fast_variant(model_)) {
+      refuse_beyond_four_channels(model_, "--gl-filter hardware");
       if (!hardware_)
         hardware_ = std::make_unique<ExportedProgram>(
             Twin<texton::TextonModel>::shader(model_, ShaderVariant::fast),
             shader_source("methods/texton/render.glsl"));
-      active_ = &hardware_->program();
+      hardware_active_ = true;
+      const Program& program = hardware_->program();
+      set_render_uniforms(program, model_, grid, seed, filter);
+      program.set("filter_scale", hardware_footprint(grid, filter));
+    } else {
+      for (const auto& chunk : chunks_) {
+        set_render_uniforms(chunk->program(), model_, grid, seed, filter);
+        chunk->program().set("filter_scale", hardware_footprint(grid, filter));
+      }
     }
-    const Program& program = *active_;
-    set_render_uniforms(program, model_, grid, seed, filter);
-    program.set("filter_scale", hardware_footprint(grid, filter));
     check_gl("setting the texton uniforms");
   }
 
   void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
                 const Buffer& result) const override {
-    if (active_ == &exact_)
-      glBindTextureUnit(0, atlas_);
-    else
+    if (hardware_active_) {
       hardware_->bind_textures();
-    run_tile(*active_, first_x, first_y, width, height, result);
+      run_tile(hardware_->program(), first_x, first_y, width, height, result);
+      return;
+    }
+    for (const auto& chunk : chunks_) {
+      glBindTextureUnit(0, chunk->atlas());
+      run_tile(chunk->program(), first_x, first_y, width, height, result);
+    }
   }
 
  private:
   const texton::TextonModel& model_;
-  TextonGlsl glsl_;
-  Program exact_;
-  GLuint atlas_ = 0;
+  std::vector<std::unique_ptr<TextonChunk>> chunks_;
   std::unique_ptr<ExportedProgram> hardware_;
-  const Program* active_ = &exact_;
+  bool hardware_active_ = false;
 };
 
 }  // namespace

@@ -25,10 +25,14 @@ struct TextonGlsl {
 
 // The shot noise's constants (channels, order, cell size, Poisson counts, intensity, the pyramid
 // levels) and texel atlas: what impulses.glsl needs, shared with texton noise mixing
-// (texton_mix/gl_data.cpp, one texton model per step).
-TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model);
+// (texton_mix/gl_data.cpp, one texton model per step). A model of more than 4 channels renders
+// in chunks of 4 (gl_pass.cpp): `first_channel` picks the chunk (TEXTON_CHANNELS = its width, the
+// atlas its channels); every chunk has the same impulses.
+TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model, int first_channel = 0);
 // The shot noise's and texton noise's own constants (TEXTON_CONSTANT_TERM, TEXTON_MEAN).
-TextonGlsl texton_glsl(const texton::TextonModel& model);
+TextonGlsl texton_glsl(const texton::TextonModel& model, int first_channel = 0);
+// Throws a sentence naming `what` (a GPU path that takes 1 to 4 channels) for a wider model.
+void refuse_beyond_four_channels(const texton::TextonModel& model, const std::string& what);
 
 // texton_atlas_texel(), the read of the atlas that exact_fetch.glsl makes: from the sampler
 // `stochtex_texton_atlas` (textures) or from the storage buffer at binding 0 holding its texels.

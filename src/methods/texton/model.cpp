@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "core/surface_process.hpp"
 #include "methods/texton/evaluate.hpp"
@@ -18,9 +19,11 @@ constexpr double kCellSizeFactor = 0.6;
 
 // Level l+1 averages 2x2 texels of level l (zero beyond the border), so sum(alpha_l) * 4^l stays
 // sum(alpha): the filtered noise keeps the exemplar mean, and h_l approximates h convolved with a
-// box of width 2^l (section 5: filtering the noise = filtering the texton, by linearity).
+// box of width 2^l (section 5: filtering the noise = filtering the texton, by linearity). Texels
+// hold texton_lanes(channels) values, zero beyond `channels`.
 std::vector<PyramidLevel> build_pyramid(std::span<const float> coefficients, int support,
                                         int channels, int order) {
+  const int lanes = texton_lanes(channels);
   std::vector<PyramidLevel> levels;
   std::vector<float> current(coefficients.begin(), coefficients.end());
   int size = support;
@@ -34,12 +37,12 @@ std::vector<PyramidLevel> build_pyramid(std::span<const float> coefficients, int
     const float last_texel = out.first_texel + static_cast<float>(size - 1) * out.spacing;
     out.half_width = std::max(std::abs(out.first_texel), std::abs(last_texel)) +
                      0.5f * out.spacing * static_cast<float>(order + 1);
-    out.coefficients.assign(static_cast<std::size_t>(out.stride) * out.stride * channels, 0.0f);
+    out.coefficients.assign(static_cast<std::size_t>(out.stride) * out.stride * lanes, 0.0f);
     for (int y = 0; y < size; ++y)
       for (int x = 0; x < size; ++x)
         for (int c = 0; c < channels; ++c)
           out.coefficients[(static_cast<std::size_t>(y + kPadding) * out.stride + x + kPadding) *
-                               channels +
+                               lanes +
                            c] = current[(static_cast<std::size_t>(y) * size + x) * channels + c];
     levels.push_back(std::move(out));
     if (size == 1) break;
@@ -66,8 +69,8 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
       mean_impacts_(mean_impacts),
       coefficients_(std::move(coefficients)),
       mean_(std::move(mean)) {
-  if (channels_ < 1 || channels_ > 4)
-    throw std::invalid_argument("texton: channels must be 1 to 4");
+  if (channels_ < 1 || channels_ > kMaxChannels)
+    throw std::invalid_argument("texton: channels must be 1 to " + std::to_string(kMaxChannels));
   if (support_ < 1) throw std::invalid_argument("texton: support must be positive");
   if (std::none_of(kOrders.begin(), kOrders.end(),
                    [&](const ParamChoice& choice) { return choice.value == order_; }))
@@ -107,7 +110,7 @@ TextonModel TextonModel::from_record(const ModelRecord& record, const std::strin
   const auto read_param = [&](std::string_view name) {
     return record.param_scalar(name, kParams, source);
   };
-  const int channels = static_cast<int>(read("channels", 1, 4, true));
+  const int channels = static_cast<int>(read("channels", 1, kMaxChannels, true));
   const int support = static_cast<int>(read_param("support"));
   const int order = static_cast<int>(read_param("order"));
   const double mean_impacts = read_param("mni");
@@ -166,8 +169,9 @@ void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
     sum_impulses<Order, Channels>(positions[index], texton, cell_size_, cells, one_texton, acc);
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-    // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2).
-    for (int c = 0; c < Channels; ++c)
+    // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2). Channels is the lane count
+    // (texton_lanes): the channels beyond the model's are zero padding.
+    for (int c = 0; c < channels_; ++c)
       out.at(x, y, c) = texton.output(acc[c], inverse_sqrt_intensity_, constant_term_[c], mean_[c]);
   }
 }
@@ -212,7 +216,7 @@ void TextonModel::evaluate_surface_typed(std::span<const SurfacePoint> points, d
                              });
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-    for (int c = 0; c < Channels; ++c)
+    for (int c = 0; c < channels_; ++c)
       out.at(x, y, c) = texton.output(acc[c], constants.scale, constants.constant[c], mean_[c]);
   }
 }

@@ -2,6 +2,7 @@
 // Texton noise model: the texton interpolation coefficients alpha (eq. 3), their prefiltered
 // pyramid (section 5), the exemplar mean and the shot-noise constants (sections 3.3, 8).
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -11,6 +12,7 @@
 #include "model/model_record.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
+#include "stochtex/stochtex.hpp"
 #include "stochtex/surface.hpp"
 
 namespace stochtex::texton {
@@ -25,8 +27,15 @@ struct SurfaceConstants {
   float depth = 0;
   float inverse_depth = 0;
   float scale = 0;
-  float constant[4] = {};
+  std::array<float, kMaxChannels> constant = {};  // per channel, zero beyond the model's
 };
+
+// The evaluator's accumulator width for `channels` channels: the count itself up to 4, then the
+// next multiple of 4 (8, 12, 16), so that 1 to kMaxChannels channels take 7 unrolled loops. The
+// pyramid stores this many values per texel, zero beyond the model's channels.
+constexpr int texton_lanes(int channels) {
+  return channels <= 4 ? channels : (channels + 3) / 4 * 4;
+}
 
 // Texels of zero around each pyramid level: order k reads up to k + 1 texels outside a level near
 // the support border (k <= 5); with 8 the evaluator never tests bounds, even after float rounding.
@@ -38,7 +47,7 @@ struct PyramidLevel {
   float spacing = 1.0f;   // 2^level: distance between texels in exemplar pixels
   float first_texel = 0;  // position of texel 0 relative to the texton centre, exemplar pixels
   float half_width = 0;   // the kernel h_level vanishes where |y|_inf >= half_width
-  std::vector<float> coefficients;  // padded, (stride x stride x channels)
+  std::vector<float> coefficients;  // padded, (stride x stride x texton_lanes(channels))
 };
 
 class TextonModel {
@@ -54,6 +63,8 @@ class TextonModel {
   ModelRecord to_record(const ParamValues& params) const;
 
   int channels() const { return channels_; }
+  // Values per texel of the pyramid: texton_lanes(channels()).
+  int lanes() const { return texton_lanes(channels_); }
   int support() const { return support_; }
   int order() const { return order_; }
   double mean_impacts() const { return mean_impacts_; }

@@ -21,6 +21,13 @@ uniform float filter_fade;
 // --gl-filter hardware: the footprint's side (zero for point samples).
 uniform float filter_scale;
 
+// A model of more than 4 channels renders in chunks of 4 (gl_pass.cpp): each writes its
+// TEXTON_CHANNELS channels from channel TEXTON_RESULT_FIRST of pixels of TEXTON_RESULT_STRIDE.
+#ifndef TEXTON_RESULT_STRIDE
+#define TEXTON_RESULT_STRIDE TEXTON_CHANNELS
+#define TEXTON_RESULT_FIRST 0
+#endif
+
 void main() {
   ivec2 local_pixel = ivec2(gl_GlobalInvocationID.xy);
   if (local_pixel.x >= dispatch_size.x || local_pixel.y >= dispatch_size.y) return;
@@ -31,6 +38,7 @@ void main() {
   texton_set_gradients(vec2(filter_scale, 0.0), vec2(0.0, filter_scale));
 #endif
   vec4 value = texton_noise(p, origin_cell, seed, f);
-  int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * TEXTON_CHANNELS;
+  int index =
+      (local_pixel.y * dispatch_size.x + local_pixel.x) * TEXTON_RESULT_STRIDE + TEXTON_RESULT_FIRST;
   for (int c = 0; c < TEXTON_CHANNELS; ++c) result[index + c] = value[c];
 }

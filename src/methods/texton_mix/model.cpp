@@ -142,9 +142,11 @@ ModelRecord TextonMixModel::to_record(const ParamValues& params) const {
 void TextonMixModel::evaluate(std::span<const Vec2d> positions,
                               std::span<const Footprint> footprints, std::uint32_t seed,
                               ImageView<float> out) const noexcept {
-  texton::with_order_and_channels(params_.texton.order, channels_, [&]<int Order, int Channels>() {
-    evaluate_typed<Order, Channels>(positions, footprints, seed, out);
-  });
+  // Texton noise mixing takes 1 to 4 channels (its registry row's default): no wider loops.
+  texton::with_order_and_channels<4>(
+      params_.texton.order, channels_, [&]<int Order, int Channels>() {
+        evaluate_typed<Order, Channels>(positions, footprints, seed, out);
+      });
 }
 
 template <int Order, int Channels>

@@ -1,0 +1,150 @@
+// Texton noise of many channels (a material's maps, issue 18): the evaluator's padded lane widths
+// (texton_lanes: 8, 12, 16) give each channel exactly what a 3-channel model of that channel's
+// texton gives, on every CPU path; the model file takes 1 to kMaxChannels channels and refuses
+// any other count before allocating.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "methods/texton/evaluate.hpp"
+#include "methods/texton/model.hpp"
+#include "model/model_data.hpp"
+#include "stochtex/stochtex.hpp"
+#include "stochtex/surface.hpp"
+#include "test_support.hpp"
+
+namespace stochtex {
+namespace {
+
+// A 3-channel model of a random exemplar, for its texton and mean.
+const texton::TextonModel& three_channel_texton() {
+  static const Model model = [] {
+    ImageF exemplar(40, 40, 3);
+    std::uint32_t state = 17;
+    for (float& value : exemplar.pixels()) {
+      state = state * 1664525u + 1013904223u;
+      value = static_cast<float>(state >> 8) / 16777216.0f;
+    }
+    return analyze("texton", exemplar.view(), {{"support", 16}, {"iterations", 5}}, 3);
+  }();
+  return std::get<texton::TextonModel>(model.data().model);
+}
+
+// A model of `channels` channels whose channel c has the texton and mean of channel c % 3 of
+// `three` (same support, order and MNI, hence the same impulses).
+texton::TextonModel widened(const texton::TextonModel& three, int channels) {
+  const auto texels = static_cast<std::size_t>(three.support()) * three.support();
+  std::vector<float> coefficients(texels * static_cast<std::size_t>(channels));
+  std::vector<float> mean(static_cast<std::size_t>(channels));
+  for (std::size_t t = 0; t < texels; ++t)
+    for (int c = 0; c < channels; ++c)
+      coefficients[t * channels + c] = three.coefficients()[t * 3 + c % 3];
+  for (int c = 0; c < channels; ++c) mean[c] = three.mean()[c % 3];
+  return texton::TextonModel(channels, three.support(), three.order(), three.mean_impacts(),
+                             coefficients, mean);
+}
+
+// Channel c of `wide` equals channel c % 3 of `three`, bit for bit.
+void expect_channels_match(const ImageF& three, const ImageF& wide, const std::string& what) {
+  int mismatches = 0;
+  for (int y = 0; y < wide.height(); ++y)
+    for (int x = 0; x < wide.width(); ++x)
+      for (int c = 0; c < wide.channels(); ++c)
+        mismatches += three.at(x, y, c % 3) != wide.at(x, y, c);
+  EXPECT_EQ(mismatches, 0) << what;
+  // The comparison is not vacuous: the noise varies.
+  EXPECT_NE(three.at(0, 0, 0), three.at(1, 0, 0)) << what;
+}
+
+TEST(TextonChannels, LaneWidthsAreTexelForTexelTheModelsChannels) {
+  EXPECT_EQ(texton::texton_lanes(1), 1);
+  EXPECT_EQ(texton::texton_lanes(4), 4);
+  EXPECT_EQ(texton::texton_lanes(5), 8);
+  EXPECT_EQ(texton::texton_lanes(9), 12);
+  EXPECT_EQ(texton::texton_lanes(kMaxChannels), 16);
+  const texton::TextonModel wide = widened(three_channel_texton(), 9);
+  EXPECT_EQ(wide.lanes(), 12);
+  for (const texton::PyramidLevel& level : wide.pyramid()) {
+    ASSERT_EQ(level.coefficients.size(),
+              static_cast<std::size_t>(level.stride) * level.stride * wide.lanes());
+    // The padding lanes are zero.
+    for (std::size_t i = 9; i < level.coefficients.size(); i += (i % 12 == 11) ? 10 : 1)
+      ASSERT_EQ(level.coefficients[i], 0.0f) << i;
+  }
+}
+
+TEST(TextonChannels, EveryChannelCountEvaluatesEachChannelAsAThreeChannelModel) {
+  // Point and filtered samples, and surface noise: for 5 to 16 channels (lane widths 8, 12, 16)
+  // every channel is bit for bit what the 3-channel evaluator gives for its texton.
+  const texton::TextonModel& three = three_channel_texton();
+  constexpr int kPoints = 24;
+  std::vector<Vec2d> positions;
+  std::vector<Footprint> footprints;
+  std::vector<SurfacePoint> surface;
+  for (int i = 0; i < kPoints; ++i) {
+    const double t = 0.37 * i;
+    positions.push_back({13.0 * t - 40.0, 7.5 * t + 1e5});
+    const double scale = i % 3 == 0 ? 0.5 : 1.5 * i;
+    footprints.push_back({{scale, 0.25 * scale}, {0.0, 0.5 * scale}});
+    SurfacePoint point;
+    point.position = {5.0 * t, -3.0 * t, 2.0 * t + 1.0};
+    point.normal = {0.0, 0.0, 1.0};
+    point.tangent = {1.0, 0.0, 0.0};
+    point.dpdx = {0.5 * i, 0.0, 0.0};
+    point.dpdy = {0.0, 0.25 * i, 0.0};
+    surface.push_back(point);
+  }
+  ImageF point3(kPoints, 1, 3), filtered3(kPoints, 1, 3), surface3(kPoints, 1, 3);
+  three.evaluate(positions, {}, 11, point3.view());
+  three.evaluate(positions, footprints, 11, filtered3.view());
+  three.evaluate_surface(surface, 20.0, 11, surface3.view());
+  for (const int channels : {5, 8, 9, 12, 13, kMaxChannels}) {
+    const texton::TextonModel wide = widened(three, channels);
+    ImageF point(kPoints, 1, channels), filtered(kPoints, 1, channels),
+        on_surface(kPoints, 1, channels);
+    wide.evaluate(positions, {}, 11, point.view());
+    wide.evaluate(positions, footprints, 11, filtered.view());
+    wide.evaluate_surface(surface, 20.0, 11, on_surface.view());
+    const std::string what = std::to_string(channels) + " channels";
+    expect_channels_match(point3, point, what + ", point samples");
+    expect_channels_match(filtered3, filtered, what + ", filtered samples");
+    expect_channels_match(surface3, on_surface, what + ", surface noise");
+    const texton::SurfaceConstants constants = wide.surface_constants(20.0);
+    for (int c = channels; c < kMaxChannels; ++c) EXPECT_EQ(constants.constant[c], 0.0f);
+  }
+}
+
+TEST(TextonChannels, HostileChannelCountsAreRefused) {
+  const texton::TextonModel& three = three_channel_texton();
+  const ModelRecord good = three.to_record({});
+  EXPECT_NO_THROW(texton::TextonModel::from_record(good, "good.stx"));
+  for (const double channels : {0.0, -1.0, 17.0, 1e9, 2.5, std::numeric_limits<double>::infinity(),
+                                std::numeric_limits<double>::quiet_NaN()}) {
+    ModelRecord record = good;
+    record.scalars["channels"] = channels;
+    test_support::expect_record_rejected<texton::TextonModel>(
+        record, "channels = " + std::to_string(channels));
+  }
+  // Sixteen channels with arrays of that shape load.
+  const texton::TextonModel sixteen = widened(three, kMaxChannels);
+  const texton::TextonModel loaded =
+      texton::TextonModel::from_record(sixteen.to_record({}), "sixteen.stx");
+  EXPECT_EQ(loaded.channels(), kMaxChannels);
+}
+
+TEST(TextonChannels, RegistryTakesUpToSixteenChannels) {
+  int checked = 0;
+  for (const auto& method : methods())
+    if (method.name == "texton") {
+      EXPECT_EQ(method.max_channels, kMaxChannels);
+      ++checked;
+    }
+  EXPECT_EQ(checked, 1);
+}
+
+}  // namespace
+}  // namespace stochtex
