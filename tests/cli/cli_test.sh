@@ -1238,6 +1238,15 @@ expect_error "a missing map file" 1 "missing.png" "$stochtex" analyze \
   --map "albedo=$inputs/missing.png" -m tiling -o "$out/x.stx"
 expect_parse_error "--map with INPUT" "$stochtex" analyze "$exemplar" \
   --map "albedo=$rock/albedo.png" -m tiling -o "$out/x.stx"
+expect_ok "a material of 9 channels" "$stochtex" analyze --map albedo="$rock/albedo.png" \
+  --map normal="$rock/normal.png" --map roughness="$rock/roughness.png" \
+  --map height="$rock/height.png" --map ao="$rock/ao.png" -m texton -p iterations=3 \
+  -o "$models/rock.stx" &&
+  expect_ok "render its maps on the gl backend" "$stochtex" render "$models/rock.stx" \
+    -o "$models/rock_{map}.png" --size 24x24 --backend gl &&
+  expect_file "the gl backend's ao map" "$models/rock_ao.png" &&
+  expect_error "export-shader of a material beyond 4 channels" 1 "has 8 channels" "$stochtex" \
+    export-shader "$models/rock.stx" -o "$out/rock"
 expect_error "render-mesh of a material" 1 "material" "$stochtex" render-mesh \
   "$textures/../meshes/sphere.obj" --model "$models/material.stx" -o "$out/x.png" --size 16x16
 

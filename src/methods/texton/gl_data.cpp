@@ -145,7 +145,6 @@ bool has_fast_variant(const texton::TextonModel& model) {
 
 ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model,
                                               ShaderVariant variant) {
-  refuse_beyond_four_channels(model, "export-shader");
   if (variant == ShaderVariant::fast && has_fast_variant(model)) return fast_shader(model);
   TextonGlsl glsl = texton_glsl(model);
   std::ostringstream what;
@@ -163,7 +162,6 @@ ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model,
 
 std::optional<SurfaceShader> Twin<texton::TextonModel>::surface_shader(
     const texton::TextonModel& model, const SurfaceOptions& options) {
-  refuse_beyond_four_channels(model, "the GLSL surface and triplanar noise");
   TextonGlsl glsl = texton_glsl(model);
   const auto texels = glsl.atlas.pixels();
   if (options.mapping == SurfaceMapping::triplanar_linear)
