@@ -17,8 +17,8 @@ namespace stochtex::lrp {
 namespace {
 
 // Limits on what a model may ask of the evaluator; beyond them a model file is rejected. Channels:
-// 1 to kMaxChannels (stochtex.hpp), a material's maps side by side.
-// The most strata per channel (the parameter `strata`), for the evaluator's stream table.
+// 1 to kMaxChannels (stochtex.hpp; a material's maps side by side); strata per channel: 1 to
+// kMaxStrataPerChannel (the parameter `strata`), which sizes the evaluator's stream table.
 constexpr int kMaxStrataPerChannel = 16;
 static_assert(kParams[1].name == "strata" && kParams[1].max_value == kMaxStrataPerChannel);
 constexpr double kMinSpacing = 0.25;  // Delta_S = T sqrt(J_S / (2 |S|)) >= 1/2 for any stratum
