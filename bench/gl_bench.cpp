@@ -121,6 +121,21 @@ BENCHMARK(BM_GlLrpFrame)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+// LRP noise on a material of N = 4, 8, 16 channels (the synthetic material of bench_support.hpp,
+// J = 50): N > 4 runs one program per chunk of 4 channels (src/methods/lrp/gl_pass.cpp).
+void BM_GlLrpMaterialFrame(benchmark::State& state) {
+  frame_benchmark(state, "lrp", {}, 128, 128,
+                  bench::synthetic_material(static_cast<int>(state.range(0)), 256));
+}
+BENCHMARK(BM_GlLrpMaterialFrame)
+    ->ArgName("channels")
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(16)
+    ->Iterations(10)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 // Zoomed out by 4 (footprint filtering), --gl-filter exact (0) against hardware (1): texton
 // (support 64) and tiling, the colour exemplar, 256x256 and 1080p frames.
 void BM_GlFilteredFrame(benchmark::State& state) {

@@ -4,7 +4,7 @@
 // `ns_per_call` counter divides the time per sample by that count, so a constant value across J
 // shows the cost follows it. BM_LrpStructureRender adds section 5: r = 0.1 and 0.3 with J = 50,
 // fixed phases alone and with turbulence and random placement (the paper's table 1: fixed phases
-// cost nothing more, random placement 10-20%).
+// cost nothing more, random placement 10-20%). BM_LrpMaterialRender: 4, 8 and 16 channels.
 
 #include <benchmark/benchmark.h>
 
@@ -86,6 +86,36 @@ BENCHMARK(BM_LrpStructureRender)
     ->Args({30, 0})
     ->Args({10, 1})
     ->Args({30, 1})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// Materials (issue 18): the 256² synthetic material of N channels (bench_support.hpp) at J = 50,
+// one thread, point samples. N = 4 is a colour + alpha model; 8 and 16 one PCA over all
+// channels. The strata cost 9 (J + L) per channel; `ns_per_channel` shows it is linear in N (the
+// N x N basis mixing is N multiply-adds per channel).
+void BM_LrpMaterialRender(benchmark::State& state) {
+  const int channels = static_cast<int>(state.range(0));
+  Model model;
+  try {
+    model = analyze("lrp", synthetic_material(channels, 256).view(), {{"cosines", 50.0}}, 0);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  RenderOptions options;
+  options.threads = 1;
+  options.filter = false;
+  const Grid grid{{0.0, 0.0}, 1.0, kRenderSide, kRenderSide};
+  ImageF out(kRenderSide, kRenderSide, channels);
+  time_samples(state, std::int64_t{kRenderSide} * kRenderSide,
+               [&] { render(model, grid, kSeed, out.view(), options); });
+  state.counters["ns_per_channel"] = state.counters["ns_per_sample"] / channels;
+}
+BENCHMARK(BM_LrpMaterialRender)
+    ->ArgName("channels")
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(16)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

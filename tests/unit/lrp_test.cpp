@@ -226,8 +226,8 @@ ImageF render_model(const Model& model, const Grid& grid, std::uint32_t seed, in
   return out;
 }
 
-TEST(LrpModelFile, RoundTripRendersTheSameBytes) {
-  const Model& model = colour_model();
+// A model file read back holds the same tables and renders the same bytes.
+void expect_round_trip(const Model& model) {
   const Model loaded = deserialize_model(serialize_model(model), "memory");
   EXPECT_EQ(loaded.method(), "lrp");
   const LrpData& a = std::get<LrpModel>(model.data().model).data();
@@ -243,6 +243,10 @@ TEST(LrpModelFile, RoundTripRendersTheSameBytes) {
   }
   const Grid grid{{-3.0, 7.5}, 0.7, 40, 30};
   EXPECT_TRUE(same_bytes(render_model(model, grid, 9), render_model(loaded, grid, 9)));
+}
+
+TEST(LrpModelFile, RoundTripRendersTheSameBytes) {
+  expect_round_trip(colour_model());
 }
 
 TEST(LrpModelFile, CorruptRecordsAreRejected) {
@@ -300,9 +304,9 @@ void expect_deterministic(const Model& model, const Grid& grid, int x, int y) {
   const std::vector<Vec2d> one = {
       {grid.origin.x + grid.scale * (x + 0.5), grid.origin.y + grid.scale * (y + 0.5)}};
   const std::vector<Footprint> footprint = {{{grid.scale, 0.0}, {0.0, grid.scale}}};
-  ImageF single(1, 1, 3);
+  ImageF single(1, 1, model.channels());
   evaluate(model, one, footprint, 11, single.view());
-  for (int c = 0; c < 3; ++c) EXPECT_EQ(single.at(0, 0, c), reference.at(x, y, c));
+  for (int c = 0; c < model.channels(); ++c) EXPECT_EQ(single.at(0, 0, c), reference.at(x, y, c));
 }
 
 // The largest second difference along a line of samples 0.001 pixel apart starting at
@@ -470,6 +474,112 @@ TEST(LrpStructure, FarFromTheOriginIsAsPreciseAsAtTheOrigin) {
 TEST(LrpStructure, ContinuousTargetsHaveNoPhasesToKeep) {
   EXPECT_THROW(spectrum_model(ring_spectrum(16, 0.1, 0.01, 1.0), {{"ratio", 0.2}}),
                std::invalid_argument);
+}
+
+// Materials (issue 18): the maps of a material set side by side, up to kMaxChannels channels.
+// rock_sandstone with every map: 9 channels; small budgets keep it quick.
+const ImageF& rock_exemplar() {
+  static const ImageF exemplar = test_support::material_exemplar(
+      "rock_sandstone", {"albedo", "normal", "roughness", "height", "ao"});
+  return exemplar;
+}
+
+const Model& material() {
+  static const Model model =
+      analyze("lrp", rock_exemplar().view(), {{"cosines", 8}, {"strata", 2}}, 5, "rock");
+  return model;
+}
+
+const Model& structured_material() {
+  static const Model model = analyze(
+      "lrp", rock_exemplar().view(),
+      {{"cosines", 8}, {"strata", 2}, {"ratio", 0.3}, {"turbulence", 2.0}, {"placement", 1}}, 5,
+      "rock");
+  return model;
+}
+
+TEST(LrpMaterial, ModelFileRoundTripRendersTheSameBytes) {
+  ASSERT_EQ(material().channels(), 9);
+  expect_round_trip(material());
+  expect_round_trip(structured_material());
+}
+
+TEST(LrpMaterial, DeterministicWhateverTheThreadsAndSplits) {
+  expect_deterministic(material(), Grid{{-20.0, 3.0}, 1.3, 30, 25}, 7, 4);
+  expect_deterministic(structured_material(), Grid{{-20.0, 3.0}, 1.3, 30, 25}, 3, 9);
+}
+
+TEST(LrpMaterial, HostileChannelCountsAreRefusedBeforeAnyArray) {
+  const LrpModel& lrp = std::get<LrpModel>(material().data().model);
+  const ModelRecord good = lrp.to_record(material().params());
+  EXPECT_NO_THROW(LrpModel::from_record(good, "good"));
+  expect_corruptions_rejected<LrpModel>(good,
+                                        {{"channels", 0},
+                                         {"channels", -9},
+                                         {"channels", 8},
+                                         {"channels", 16},
+                                         {"channels", 17},
+                                         {"channels", 9.5},
+                                         {"channels", 1e9},
+                                         {"channels", 1e300},
+                                         {"channels", NAN}},
+                                        {});
+  // Beyond kMaxChannels the scalar itself is named, before any array is read (a record without
+  // arrays would otherwise fail on the first one).
+  for (const double channels : {17.0, 1e9}) {
+    ModelRecord record = good;
+    record.scalars["channels"] = channels;
+    record.arrays.clear();
+    try {
+      LrpModel::from_record(record, "bad.stx");
+      ADD_FAILURE() << channels << " channels accepted";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("lrp channels"), std::string::npos) << error.what();
+    }
+  }
+  LrpData data = lrp.data();
+  data.channels = kMaxChannels + 1;
+  EXPECT_THROW(LrpModel{data}, std::invalid_argument);
+}
+
+TEST(LrpMaterial, OnePcaOverAllChannelsAndColourAlphaKeptUpToFour) {
+  // 1-4 channels: colour (the first 1 or 3) and alpha are analysed apart, so each component (a
+  // column of the basis) lives on colour or on alpha alone; 5 and more: one PCA over all
+  // channels, whose components mix the first 3 channels with the others on these correlated
+  // exemplars.
+  for (const int channels : {2, 4, 5, 16}) {
+    const Model model =
+        analyze("lrp", random_exemplar(24, channels, 4).view(), {{"cosines", 4}}, 1);
+    const LrpData& data = std::get<LrpModel>(model.data().model).data();
+    const int colour = channels >= 3 ? 3 : 1;
+    double mixed = 0.0;
+    for (int k = 0; k < channels; ++k) {
+      std::array<double, 2> largest{};
+      for (int c = 0; c < channels; ++c)
+        largest[c < colour ? 0 : 1] =
+            std::max(largest[c < colour ? 0 : 1],
+                     static_cast<double>(
+                         std::abs(data.colour_basis[static_cast<std::size_t>(c * channels + k)])));
+      mixed = std::max(mixed, std::min(largest[0], largest[1]));
+    }
+    if (channels <= 4)
+      EXPECT_EQ(mixed, 0.0) << channels;
+    else
+      EXPECT_GT(mixed, 0.1) << channels;
+  }
+}
+
+TEST(LrpMaterial, ChannelStreamsAreDistinctAndSkipTheTurbulence) {
+  // Channels 0 to 3 keep their streams (every 1-4 channel model renders the same bytes); none
+  // takes a turbulence axis' key, so the turbulence stays independent of every channel.
+  for (int c = 0; c < kMaxChannels; ++c) {
+    if (c < 4) {
+      EXPECT_EQ(channel_stream(c), c);
+    }
+    for (std::int64_t axis = 0; axis < kTurbulenceAxes; ++axis)
+      EXPECT_NE(channel_stream(c), kTurbulenceStreamBase + axis) << c;
+    for (int d = 0; d < c; ++d) EXPECT_NE(channel_stream(c), channel_stream(d));
+  }
 }
 
 }  // namespace

@@ -583,8 +583,10 @@ LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uin
 
   // Colour (section 6 defers it to a decorrelated space): PCA of the colour channels, so the
   // per-channel noises, independent, keep the exemplar's colour covariance. Alpha (channel 2 of
-  // 2 or 4 of 4) is its own channel and never mixes with colour (docs/design.md §1).
-  const int colour_channels = channels >= 3 ? 3 : 1;
+  // 2 or 4 of 4) is its own channel and never mixes with colour (docs/design.md §1). A material
+  // (more than 4 channels, its maps side by side) has no alpha: one PCA over all its channels, so
+  // the zero-lag covariance between maps is kept (docs/methods/lrp.md, "Materials").
+  const int colour_channels = channels > 4 ? channels : (channels >= 3 ? 3 : 1);
   const std::vector<double> mean = channel_means(exemplar);
   std::vector<double> covariance = channel_covariance(exemplar, mean);
   // Block-diagonal, so the eigenvectors do not mix colour and alpha.
@@ -631,8 +633,9 @@ LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uin
       regions.push_back(fixed_phase_region(component.view(), size, ratio));
       remove_region(power, regions.back());
     }
-    append_channel(data, plan_strata(power, size, strata, std::max(1, cosines - fixed_cosines),
-                                     shaped, cell_key(k, 0, seed, Stream::analysis)));
+    append_channel(data,
+                   plan_strata(power, size, strata, std::max(1, cosines - fixed_cosines), shaped,
+                               cell_key(channel_stream(k), 0, seed, Stream::analysis)));
   }
   if (fixed_cosines > 0) {
     data.structure = reduce_structure(regions, fixed_cosines, data.colour_basis);

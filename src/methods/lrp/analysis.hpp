@@ -13,6 +13,7 @@
 #include "methods/lrp/params.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex::lrp {
 
@@ -74,7 +75,8 @@ constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<Lr
       "local random-phase noise (Gilet et al. 2014): windowed cosines with random "
       "phases on a lattice, 9 (J + L) cosines and windows per channel and sample",
       kFields,
-      {.per_pixel = 36, .per_channel = 12}};
+      {.per_pixel = 36, .per_channel = 12},
+      kMaxChannels};
 }
 
 }  // namespace stochtex::lrp

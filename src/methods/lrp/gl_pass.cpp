@@ -1,9 +1,15 @@
 // Local random-phase noise on the GL renderer: the program (compiled with the model's constants)
-// and the frequency, sub-stratum and section 5 tables as storage buffers.
+// and the frequency, sub-stratum and section 5 tables as storage buffers. A material (more than 4
+// channels) runs one program per chunk of up to 4 of its decorrelated channels, each adding its
+// columns of the colour basis to the N output channels.
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numeric>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/hash.hpp"
@@ -31,13 +37,17 @@ void put_nearest_node(double u, double v, std::size_t i, std::vector<GLuint>& no
 // frequency and sub-stratum tables, in the smallest exact format: tightly packed std430 arrays of
 // the C++ floats and uint32 counts (no padding channel, no integer stored as a float). The GLSL
 // has no doubles: positions come split into a lattice node and a float offset (prepare).
+// `first_channel` and `material`: for a chunk of a material (material_chunk), the index of the
+// model's first channel in the material and the GLSL of the chunk's output (empty otherwise).
 class LrpPass final : public Pass {
  public:
-  explicit LrpPass(const lrp::LrpModel& model)
-      : model_(model),
-        glsl_(lrp_glsl(model)),
-        program_(std::string("#version 450\n") + lrp_library_source(glsl_) +
-                 shader_source("methods/lrp/render.glsl")),
+  LrpPass(lrp::LrpModel model, int first_channel, const std::string& material)
+      : model_(std::move(model)),
+        first_channel_(first_channel),
+        glsl_(lrp_glsl(model_)),
+        program_(std::string("#version 450\n") +
+                 (material.empty() ? "" : "#define LRP_MATERIAL\n") + lrp_library_source(glsl_) +
+                 material + shader_source("methods/lrp/render.glsl")),
         frequencies_(glsl_.frequencies.size() * sizeof(float), glsl_.frequencies.data()),
         substrata_(glsl_.substrata.size() * sizeof(std::uint32_t), glsl_.substrata.data()),
         structure_(glsl_.structure.size() * sizeof(float), glsl_.structure.data()),
@@ -62,7 +72,7 @@ class LrpPass final : public Pass {
       const double u = grid.origin.x * inverse_spacing;
       const double v = grid.origin.y * inverse_spacing;
       put_nearest_node(u, v, s, nodes, offsets);
-      seeds[s] = cell_key(static_cast<std::int64_t>(s) / d.strata,
+      seeds[s] = cell_key(lrp::channel_stream(first_channel_ + static_cast<int>(s) / d.strata),
                           static_cast<std::int64_t>(s) % d.strata, seed, Stream::phases);
     }
     const auto count = static_cast<GLsizei>(strata);
@@ -86,7 +96,8 @@ class LrpPass final : public Pass {
   }
 
  private:
-  const lrp::LrpModel& model_;
+  const lrp::LrpModel model_;
+  const int first_channel_;
   LrpGlsl glsl_;
   Program program_;
   Buffer frequencies_;
@@ -134,10 +145,95 @@ class LrpPass final : public Pass {
   }
 };
 
+// Channels [first, first + count) of a material `model` as a model of its own: their strata and
+// sub-strata, the whole frequency table (the sub-strata index it), their slice of the structure
+// table and the same turbulence. Its mean and basis are unused (the chunk's output is
+// material_output's).
+lrp::LrpModel material_chunk(const lrp::LrpModel& model, int first, int count) {
+  const lrp::LrpData& d = model.data();
+  lrp::LrpData chunk;
+  chunk.channels = count;
+  chunk.strata = d.strata;
+  chunk.normalise_envelope = d.normalise_envelope;
+  chunk.mean.assign(static_cast<std::size_t>(count), 0.0f);
+  chunk.colour_basis.assign(static_cast<std::size_t>(count) * count, 0.0f);
+  for (int c = 0; c < count; ++c)
+    chunk.colour_basis[static_cast<std::size_t>(c * count + c)] = 1.0f;
+  const auto strata_begin = d.strata_table.begin() + first * d.strata;
+  const auto strata_end = strata_begin + count * d.strata;
+  chunk.strata_table.assign(strata_begin, strata_end);
+  const auto cosines_of = [](int sum, const lrp::Stratum& stratum) {
+    return sum + stratum.cosines;
+  };
+  const int substrata_begin = std::accumulate(d.strata_table.begin(), strata_begin, 0, cosines_of);
+  const int substrata_end = std::accumulate(strata_begin, strata_end, substrata_begin, cosines_of);
+  chunk.substratum_first.assign(d.substratum_first.begin() + substrata_begin,
+                                d.substratum_first.begin() + substrata_end);
+  chunk.substratum_count.assign(d.substratum_count.begin() + substrata_begin,
+                                d.substratum_count.begin() + substrata_end);
+  chunk.frequencies = d.frequencies;
+  chunk.weights = d.weights;
+  chunk.structure = d.structure;
+  if (!d.structure.empty()) {
+    const auto per_channel = static_cast<std::ptrdiff_t>(4) * d.structure.blocks *
+                             d.structure.blocks * d.structure.cosines;
+    const auto table = d.structure.cosine_table.begin() + first * per_channel;
+    chunk.structure.cosine_table.assign(table, table + count * per_channel);
+  }
+  return lrp::LrpModel(std::move(chunk));
+}
+
+// The GLSL constants of a material chunk's output (render.glsl, LRP_MATERIAL): the material's
+// channel count and mean, the chunk's first channel and its columns of the colour basis (N x
+// count, row-major).
+std::string material_output(const lrp::LrpModel& model, int first, int count) {
+  const lrp::LrpData& d = model.data();
+  std::vector<float> columns;
+  for (int c = 0; c < d.channels; ++c)
+    for (int k = first; k < first + count; ++k)
+      columns.push_back(d.colour_basis[static_cast<std::size_t>(c * d.channels + k)]);
+  return "const int LRP_MATERIAL_CHANNELS = " + glsl_int(d.channels) +
+         ";\nconst int LRP_CHUNK_FIRST = " + glsl_int(first) + ";\n" +
+         glsl_array("float", "LRP_MATERIAL_MEAN", std::span<const float>(d.mean), glsl_float) +
+         glsl_array("float", "LRP_CHUNK_BASIS", std::span<const float>(columns), glsl_float);
+}
+
+// A material: one LrpPass per chunk of up to 4 channels, run in channel order on the same result
+// buffer (each chunk adds to what the chunks before it wrote), so a sample sums mean + basis *
+// noise in the CPU's order. Each chunk's strata are evaluated once; turbulence (section 5.2) is
+// evaluated again by every chunk.
+class LrpMaterialPass final : public Pass {
+ public:
+  explicit LrpMaterialPass(const lrp::LrpModel& model) {
+    for (int first = 0; first < model.channels(); first += 4) {
+      const int count = std::min(4, model.channels() - first);
+      chunks_.push_back(std::make_unique<LrpPass>(material_chunk(model, first, count), first,
+                                                  material_output(model, first, count)));
+    }
+  }
+
+  void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) override {
+    for (const auto& chunk : chunks_) chunk->prepare(grid, seed, options);
+  }
+
+  void dispatch(std::int64_t first_x, std::int64_t first_y, int width, int height,
+                const Buffer& result) const override {
+    for (const auto& chunk : chunks_) {
+      chunk->dispatch(first_x, first_y, width, height, result);
+      // The next chunk reads what this one wrote.
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+  }
+
+ private:
+  std::vector<std::unique_ptr<LrpPass>> chunks_;
+};
+
 }  // namespace
 
 std::unique_ptr<Pass> Twin<lrp::LrpModel>::pass(const lrp::LrpModel& model) {
-  return std::make_unique<LrpPass>(model);
+  if (model.channels() > 4) return std::make_unique<LrpMaterialPass>(model);
+  return std::make_unique<LrpPass>(model, 0, std::string());
 }
 
 }  // namespace stochtex::gl

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "core/hash.hpp"
 #include "methods/lrp/evaluate.hpp"
@@ -10,12 +11,16 @@
 #include "methods/lrp/tables.hpp"
 #include "model/value_range.hpp"
 #include "stochtex/error.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex::lrp {
 namespace {
 
-// Limits on what a model may ask of the evaluator; beyond them a model file is rejected.
-constexpr int kMaxChannels = 4;
+// Limits on what a model may ask of the evaluator; beyond them a model file is rejected. Channels:
+// 1 to kMaxChannels (stochtex.hpp; a material's maps side by side); strata per channel: 1 to
+// kMaxStrataPerChannel (the parameter `strata`), which sizes the evaluator's stream table.
+constexpr int kMaxStrataPerChannel = 16;
+static_assert(kParams[1].name == "strata" && kParams[1].max_value == kMaxStrataPerChannel);
 constexpr double kMinSpacing = 0.25;  // Delta_S = T sqrt(J_S / (2 |S|)) >= 1/2 for any stratum
 constexpr double kMaxSpacing = 1e6;
 constexpr double kMaxAmplitude = 1e6;
@@ -33,7 +38,7 @@ LrpModel::LrpModel(LrpData data) : data_(std::move(data)) {
   const int channels = data_.channels;
   const int strata = data_.strata;
   if (channels < 1 || channels > kMaxChannels)
-    throw std::invalid_argument("lrp: channels must be 1 to 4");
+    throw std::invalid_argument("lrp: channels must be 1 to " + std::to_string(kMaxChannels));
   if (strata < param("strata").min_value || strata > param("strata").max_value)
     throw std::invalid_argument("lrp: the number of strata is out of range");
   const auto channel_count = static_cast<std::size_t>(channels);
@@ -98,7 +103,9 @@ LrpModel LrpModel::from_record(const ModelRecord& record, const std::string& sou
   const auto envelope = read("envelope", 0, 1);
   const auto substrata =
       read("substrata", 1, param("cosines").max_value * static_cast<double>(channels * strata));
-  const auto frequencies = read("frequencies", 1, kMaxSubstratumSize * 4.0);
+  // 2^22 frequencies, or 2^20 per channel from 5 channels on.
+  const auto frequencies =
+      read("frequencies", 1, kMaxSubstratumSize * std::max(4.0, static_cast<double>(channels)));
   const NamedArray& mean = record.array("mean", {channels}, source);
   const NamedArray& basis = record.array("colour_basis", {channels, channels}, source);
   const NamedArray& table = record.array("strata", {channels * strata, 3}, source);
@@ -184,8 +191,12 @@ void LrpModel::evaluate(std::span<const Vec2d> positions, std::span<const Footpr
       return with_channels.template operator()<2>();
     case 3:
       return with_channels.template operator()<3>();
-    default:
+    case 4:
       return with_channels.template operator()<4>();
+    default:
+      // A material (5 to kMaxChannels channels): one loop whose accumulators hold kMaxChannels,
+      // the channel count read at run time.
+      return with_channels.template operator()<kMaxChannels>();
   }
 }
 
@@ -195,10 +206,11 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
                               ImageView<float> out) const noexcept {
   // Each stratum of each channel has its own random stream, so strata and channels are
   // independent noises (equation 2; independent channels in the decorrelated colour space).
-  constexpr std::size_t kMaxStrata = 4 * 16;
+  constexpr auto kMaxStrata = static_cast<std::size_t>(kMaxChannels * kMaxStrataPerChannel);
   std::array<std::uint32_t, kMaxStrata> stratum_seeds{};
+  const int channels = Channels <= 4 ? Channels : data_.channels;
   for (std::size_t s = 0; s < runtime_strata_.size(); ++s)
-    stratum_seeds[s] = cell_key(runtime_strata_[s].channel,
+    stratum_seeds[s] = cell_key(channel_stream(runtime_strata_[s].channel),
                                 static_cast<std::int64_t>(s) % data_.strata, seed, Stream::phases);
   const float mean_envelope = static_cast<float>(mean_envelope_);
   const bool normalise = data_.normalise_envelope;
@@ -232,13 +244,13 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
     }
     if (!data_.structure.empty())
       add_structure(data_.structure, window_coefficients_, mean_envelope, p,
-                    Filtered ? &footprints[index] : nullptr, seed, Channels, noise);
+                    Filtered ? &footprints[index] : nullptr, seed, channels, noise);
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-    for (int c = 0; c < Channels; ++c) {
+    for (int c = 0; c < channels; ++c) {
       float value = data_.mean[static_cast<std::size_t>(c)];
-      for (int k = 0; k < Channels; ++k)
-        value += data_.colour_basis[static_cast<std::size_t>(c * Channels + k)] * noise[k];
+      for (int k = 0; k < channels; ++k)
+        value += data_.colour_basis[static_cast<std::size_t>(c * channels + k)] * noise[k];
       out.at(x, y, c) = value;
     }
   }

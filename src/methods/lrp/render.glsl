@@ -1,8 +1,14 @@
 // The compute shader of `render --backend gl` for local random-phase noise: one invocation per
-// output pixel. Requires random.glsl, the model's constants and lrp evaluate.glsl.
+// output pixel. Requires random.glsl, the model's constants and lrp evaluate.glsl. With
+// LRP_MATERIAL, the model is a chunk of up to 4 channels of a material (gl_pass.cpp), and the
+// constants LRP_MATERIAL_CHANNELS, LRP_CHUNK_FIRST, LRP_MATERIAL_MEAN and LRP_CHUNK_BASIS.
 
 layout(local_size_x = 8, local_size_y = 8) in;
+#ifdef LRP_MATERIAL
+layout(std430, binding = 1) buffer Result { float result[]; };
+#else
 layout(std430, binding = 1) writeonly buffer Result { float result[]; };
+#endif
 
 uniform ivec2 first_pixel;  // grid.first_pixel + the dispatch's offset
 uniform ivec2 dispatch_size;
@@ -41,7 +47,19 @@ void main() {
   if (LRP_HAS_STRUCTURE)
     lrp_add_structure(p, structure_origin, placement_block, placement_offset, turbulence_node,
                       turbulence_offset, turbulence_seed, seed, filtered, axis_a, axis_b, noise);
+#ifdef LRP_MATERIAL
+  // mean + basis * noise over the N channels, summed in the CPU's order: the first chunk starts
+  // from the mean, each later chunk adds its columns to what the chunks before it wrote.
+  int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * LRP_MATERIAL_CHANNELS;
+  for (int c = 0; c < LRP_MATERIAL_CHANNELS; ++c) {
+    float value = LRP_CHUNK_FIRST == 0 ? LRP_MATERIAL_MEAN[c] : result[index + c];
+    for (int k = 0; k < LRP_CHANNELS; ++k)
+      value += LRP_CHUNK_BASIS[c * LRP_CHANNELS + k] * noise[k];
+    result[index + c] = value;
+  }
+#else
   vec4 value = lrp_colour(noise);
   int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * LRP_CHANNELS;
   for (int c = 0; c < LRP_CHANNELS; ++c) result[index + c] = value[c];
+#endif
 }

@@ -25,9 +25,17 @@ inline constexpr float kPlacementBlend = 0.125f;
 // budget is actually sufficient"): this many strata and cosines in all, per displacement axis.
 inline constexpr int kTurbulenceStrata = 2;
 inline constexpr int kTurbulenceCosines = 8;
-// Each turbulence axis has its own stream, keyed like a colour channel the model cannot have
-// (channels are 0 to 3), so n_T is independent of the noise it distorts.
+// Each turbulence axis has its own stream, keyed like a colour channel 4 and 5, so n_T is
+// independent of the noise it distorts; the channels of a material from 4 on skip those keys
+// (channel_stream).
 inline constexpr std::int64_t kTurbulenceStreamBase = 4;
+inline constexpr std::int64_t kTurbulenceAxes = 2;
+
+// The key of channel c's random strata: c itself for channels 0 to 3 (the streams of every 1-4
+// channel model), c + 2 from channel 4 on, past the turbulence's two axes.
+constexpr std::int64_t channel_stream(int channel) {
+  return channel < kTurbulenceStreamBase ? channel : channel + kTurbulenceAxes;
+}
 
 // One stratum of the turbulence noise (the same sampling as a random stratum, section 4.3).
 struct TurbulenceStratum {

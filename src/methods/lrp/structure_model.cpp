@@ -8,6 +8,7 @@
 #include "methods/lrp/tables.hpp"
 #include "model/value_range.hpp"
 #include "stochtex/error.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex::lrp {
 namespace {
@@ -186,7 +187,7 @@ void add_fixed_phase(const StructureData& s,
     axis_b_x = static_cast<float>(footprint->dpdy.x);
     axis_b_y = static_cast<float>(footprint->dpdy.y);
   }
-  float sum[4] = {};
+  float sum[kMaxChannels] = {};
   float window_sum = 0.0f;
   for (int dy = -1; dy <= 1; ++dy) {
     for (int dx = -1; dx <= 1; ++dx) {
