@@ -197,11 +197,6 @@ ImageF lrp_tables_image(const LrpGlsl& glsl) {
 
 ExportParts Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model,
                                         ShaderVariant /*variant: fast is exact*/) {
-  if (model.channels() > 4)
-    throw Error(ErrorCode::invalid_input,
-                "export-shader: an lrp model of " + std::to_string(model.channels()) +
-                    " channels (a material) has no exported shader yet; export at most 4 "
-                    "channels, or render it with `render --backend gl`");
   const LrpGlsl glsl = lrp_glsl(model);
   constexpr std::uint32_t kExactFloatIntegers = 1u << 24;
   const auto too_large = [](std::uint32_t value) { return value >= kExactFloatIntegers; };
