@@ -23,7 +23,8 @@ namespace stochtex {
 namespace {
 
 using AnalyzeFunction = MethodModel (*)(ImageView<const float>, const ParamValues&, std::uint32_t,
-                                        const std::function<void(double)>&);
+                                        const std::function<void(double)>&,
+                                        std::span<const MapInfo>);
 
 struct MethodEntry {
   MethodInfo info;
@@ -34,11 +35,17 @@ struct MethodEntry {
 // The entry of one alternative of MethodModel: its name, the summary and parameter record of its
 // registry row (`registry_row`, in the method's analysis.hpp), and its analysis from checked values
 // through the typed record (`analyze`, found by argument-dependent lookup on the method's Params),
-// given the progress hook where the method's analysis reports progress.
+// given the progress hook where the method's analysis reports progress and a material's maps
+// where it groups channels by map.
 template <class Params>
 concept ReportsProgress = requires(ImageView<const float> exemplar, const Params& params,
                                    const std::function<void(double)>& progress) {
   analyze(exemplar, params, std::uint32_t{0}, progress);
+};
+template <class Params>
+concept GroupsMaps = requires(ImageView<const float> exemplar, const Params& params,
+                              std::span<const MapInfo> maps) {
+  analyze(exemplar, params, std::uint32_t{0}, maps);
 };
 
 template <class Model>
@@ -47,10 +54,12 @@ MethodEntry entry_of() {
   static constexpr auto infos = param_infos(row.fields);
   return {{Model::kMethodName, row.summary, infos, row.max_channels},
           [](ImageView<const float> exemplar, const ParamValues& values, std::uint32_t seed,
-             const std::function<void(double)>& progress) {
+             const std::function<void(double)>& progress, std::span<const MapInfo> maps) {
             const auto params = params_from_values(row.fields, values);
             if constexpr (ReportsProgress<decltype(params)>)
               return MethodModel(analyze(exemplar, params, seed, progress));
+            else if constexpr (GroupsMaps<decltype(params)>)
+              return MethodModel(analyze(exemplar, params, seed, maps));
             else
               return MethodModel(analyze(exemplar, params, seed));
           },
@@ -297,7 +306,7 @@ Model analyze_exemplar(std::string_view method, ImageView<const float> exemplar,
   // The methods' analyses do not know the file: their data errors are named here (§9).
   MethodModel model = [&] {
     try {
-      return entry.analyze(exemplar, resolved, seed, progress);
+      return entry.analyze(exemplar, resolved, seed, progress, maps);
     } catch (const Error& e) {
       throw Error(e.code(), "cannot analyse '" + source_name + "': " + e.what());
     }

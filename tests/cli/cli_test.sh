@@ -1224,8 +1224,14 @@ expect_error "maps of different sizes" 1 "the same size" "$stochtex" analyze \
   --map albedo="$rock/albedo.png" --map roughness="$exemplar" -m tiling -o "$out/x.stx"
 expect_error "a normal map that is not one" 1 "not a tangent-space normal map" "$stochtex" \
   analyze --map normal="$rock/albedo.png" -m tiling -o "$out/x.stx"
-expect_error "more channels than a method takes" 1 "this material has 5" "$stochtex" analyze \
-  --map albedo="$rock/albedo.png" --map normal="$rock/normal.png" -m tiling -o "$out/x.stx"
+expect_error "more channels than a material may have" 1 "17 channels in 7 maps" "$stochtex" \
+  analyze --map a="$rock/albedo.png" --map b="$rock/albedo.png" --map c="$rock/albedo.png" \
+  --map d="$rock/albedo.png" --map e="$rock/albedo.png" --map ao="$rock/ao.png" \
+  --map height="$rock/height.png" -m tiling -o "$out/x.stx"
+expect_error "a material's groups on tiling's gpu twin" 1 "--backend cpu" "$stochtex" render \
+  "$models/relief.stx" -o "$out/x_{map}.png" --size 8x8 --backend gl
+expect_error "tiling's rotation with a normal map" 2 "rotation" "$stochtex" analyze \
+  --map normal="$rock/normal.png" -m tiling -p rotation=30 -o "$out/x.stx"
 expect_error "a map named twice" 1 "twice" "$stochtex" analyze --map albedo="$rock/albedo.png" \
   --map albedo="$rock/albedo.png" -m tiling -o "$out/x.stx"
 expect_error "a colour roughness map" 1 "one channel" "$stochtex" analyze \

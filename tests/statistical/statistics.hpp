@@ -7,6 +7,7 @@
 #include <numeric>
 #include <vector>
 
+#include "core/colour_statistics.hpp"
 #include "metrics/metrics.hpp"
 #include "stochtex/image.hpp"
 
@@ -28,6 +29,19 @@ inline Sample summarise(const std::vector<double>& values) {
 // The pooled standard deviation of two measurements' samples (equal counts).
 inline double pooled(const Sample& a, const Sample& b) {
   return std::sqrt(0.5 * (a.deviation * a.deviation + b.deviation * b.deviation));
+}
+
+// Correlation matrix (channels x channels, row-major) of an image's values.
+inline std::vector<double> correlation_matrix(const ImageF& image) {
+  const ColourStatistics statistics = colour_statistics(image.view());
+  const auto n = static_cast<std::size_t>(image.channels());
+  std::vector<double> result(n * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      result[i * n + j] =
+          statistics.covariance[i * n + j] /
+          std::sqrt(statistics.covariance[i * n + i] * statistics.covariance[j * n + j]);
+  return result;
 }
 
 // Welch spectrum averaged over the images make(1) ... make(seeds): an estimate of the expected

@@ -24,6 +24,7 @@
 namespace stochtex {
 namespace {
 
+using test_support::correlation_matrix;
 using test_support::pooled;
 using test_support::Sample;
 using test_support::summarise;
@@ -42,19 +43,6 @@ struct MaterialCase {
   std::vector<std::string> maps;
   std::vector<Pair> pairs;  // cross-map correlations the material really has
 };
-
-// Correlation matrix (channels x channels, row-major) of an image's values.
-std::vector<double> correlation(const ImageF& image) {
-  const ColourStatistics statistics = colour_statistics(image.view());
-  const auto n = static_cast<std::size_t>(image.channels());
-  std::vector<double> result(n * n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j)
-      result[i * n + j] =
-          statistics.covariance[i * n + j] /
-          std::sqrt(statistics.covariance[i * n + i] * statistics.covariance[j * n + j]);
-  return result;
-}
 
 double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
   double worst = 0.0;
@@ -101,14 +89,15 @@ TEST(TextonMaterial, JointAnalysisKeepsTheCrossMapCorrelationsAndSpectra) {
     const ImageF exemplar = test_support::material_exemplar(material.set, material.maps);
     const int channels = exemplar.channels();
     const Model model = analyze("texton", exemplar.view(), {}, 0, material.set);
-    const std::vector<double> target = correlation(exemplar);
+    const std::vector<double> target = correlation_matrix(exemplar);
     const int crop = welch_crop_size(exemplar.view(), exemplar.view());
     std::vector<double> texton_error, adsn_error;
     std::vector<std::vector<double>> texton_pair(material.pairs.size()),
         adsn_pair(material.pairs.size());
     for (std::uint32_t seed = 1; seed <= kSeeds; ++seed) {
-      const std::vector<double> noise = correlation(render_texton(model, seed));
-      const std::vector<double> gaussian = correlation(adsn(exemplar.view(), kSide, kSide, seed));
+      const std::vector<double> noise = correlation_matrix(render_texton(model, seed));
+      const std::vector<double> gaussian =
+          correlation_matrix(adsn(exemplar.view(), kSide, kSide, seed));
       texton_error.push_back(largest_difference(noise, target));
       adsn_error.push_back(largest_difference(gaussian, target));
       for (std::size_t p = 0; p < material.pairs.size(); ++p) {

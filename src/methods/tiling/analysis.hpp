@@ -34,8 +34,10 @@ std::vector<float> sliced_transport_to_gaussian(std::span<const float> source, i
 void gaussianise_1d(std::span<const float> values, std::span<float> gaussian,
                     std::span<float> table);
 
-// Histogram-preserving tiling and blending analysis.
-TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);
+// Histogram-preserving tiling and blending analysis. `maps`: a material's layout (issue 18), whose
+// maps go through T and T^-1 in groups of their own (material_groups in analysis.cpp).
+TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed,
+                    std::span<const MapInfo> maps = {});
 
 // This method's row of the registry (src/registry.cpp).
 constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<TilingModel>) {
@@ -43,7 +45,8 @@ constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<Ti
       "histogram-preserving tiling and blending (Heitz, Neyret 2018): 3 patches of the "
       "Gaussianised exemplar and one look-up per sample",
       kFields,
-      {.per_pixel = 40, .per_channel = 25}};
+      {.per_pixel = 40, .per_channel = 25},
+      kMaxChannels};
 }
 
 }  // namespace stochtex::tiling

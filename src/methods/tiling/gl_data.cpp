@@ -11,6 +11,7 @@
 
 #include "gl/shaders.hpp"
 #include "methods/tiling/gl_twin.hpp"
+#include "stochtex/error.hpp"
 
 namespace stochtex::gl {
 
@@ -18,6 +19,12 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) 
   const bool exact = variant == ShaderVariant::exact;
   const tiling::TilingData& d = model.data();
   const tiling::TilingLayout& layout = model.layout();
+  // The GLSL reads an image's colour and alpha (blend.glsl); a material's groups are CPU only.
+  if (!layout.image_layout || d.channels > 4)
+    throw Error(ErrorCode::invalid_input,
+                "tiling: the GPU twin renders an image's colour and alpha, and this material's " +
+                    std::to_string(layout.groups.size()) +
+                    " maps go through their own tables; render it with --backend cpu");
   TilingGlsl glsl;
   std::vector<int> widths;
   std::vector<int> heights;

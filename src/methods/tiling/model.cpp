@@ -134,22 +134,58 @@ double control(const TilingData& data, std::size_t index) {
 
 }  // namespace
 
-TilingLayout tiling_layout(int channels, Transport transport, Blend blend) {
+TilingLayout tiling_layout(int channels, Transport transport, Blend blend,
+                           std::span<const GroupSpec> groups) {
   TilingLayout layout;
   layout.has_alpha = channels == 2 || channels == 4;
   layout.colour_channels = layout.has_alpha ? channels - 1 : channels;
-  if (blend != Blend::histogram) return layout;
-  layout.colour_lut = layout.colour_channels == 3 && transport == Transport::sliced;
-  layout.table_count =
-      (layout.colour_lut ? 0 : layout.colour_channels) + (layout.has_alpha ? 1 : 0);
-  layout.first_alpha_table = layout.colour_lut ? 0 : layout.colour_channels;
+  if (blend != Blend::histogram) {
+    if (!groups.empty()) throw std::invalid_argument("tiling: only the histogram blend has groups");
+    return layout;
+  }
+  std::vector<GroupSpec> specs(groups.begin(), groups.end());
+  if (specs.empty()) {
+    const bool lut = layout.colour_channels == 3 && transport == Transport::sliced;
+    specs.push_back(
+        {lut ? GroupTransform::lut : GroupTransform::decorrelated, layout.colour_channels});
+    if (layout.has_alpha) specs.push_back({GroupTransform::direct, 1});
+  } else {
+    layout.image_layout = false;
+  }
+  int channel = 0;
+  for (const GroupSpec& spec : specs) {
+    TableGroup group{spec.transform,     channel,           spec.channels,
+                     layout.table_count, layout.basis_size, layout.mean_size};
+    if (spec.channels < 1 || spec.channels > channels - channel ||
+        (spec.transform == GroupTransform::lut &&
+         (spec.channels != 3 || transport != Transport::sliced || layout.colour_lut)) ||
+        (spec.transform == GroupTransform::direct && spec.channels != 1))
+      throw std::invalid_argument("tiling: the channel groups are invalid");
+    switch (spec.transform) {
+      case GroupTransform::lut:
+        layout.colour_lut = true;
+        break;
+      case GroupTransform::decorrelated:
+        layout.table_count += spec.channels;
+        layout.basis_size += spec.channels * spec.channels;
+        layout.mean_size += spec.channels;
+        break;
+      case GroupTransform::direct:
+        if (layout.image_layout) layout.first_alpha_table = layout.table_count;
+        layout.table_count += 1;
+        break;
+    }
+    channel += spec.channels;
+    layout.groups.push_back(group);
+  }
+  if (channel != channels) throw std::invalid_argument("tiling: the channel groups are invalid");
   return layout;
 }
 
 TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
   const TilingData& d = data_;
-  if (d.channels < 1 || d.channels > 4)
-    throw std::invalid_argument("tiling: channels must be 1 to 4");
+  if (d.channels < 1 || d.channels > kMaxChannels)
+    throw std::invalid_argument("tiling: channels must be 1 to " + std::to_string(kMaxChannels));
   if (d.width < 2 || d.height < 2 || d.width > kMaxExemplarSide || d.height > kMaxExemplarSide)
     throw std::invalid_argument("tiling: the exemplar sides must be 2 to 65536 pixels");
   if (!(d.tile_radius >= kParams[0].min_value && d.tile_radius <= kParams[0].max_value))
@@ -161,16 +197,14 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
     if (!(value >= kParams[i].min_value && value <= kParams[i].max_value))
       throw std::invalid_argument("tiling: " + std::string(kParams[i].name) + " is out of range");
   }
-  layout_ = tiling_layout(d.channels, d.transport, d.blend);
+  layout_ = tiling_layout(d.channels, d.transport, d.blend, d.groups);
   const auto n = static_cast<std::size_t>(d.lut_size);
-  const auto cc = static_cast<std::size_t>(layout_.colour_channels);
-  const bool colour_tables = d.blend == Blend::histogram && !layout_.colour_lut;
   if (d.gaussian.size() != static_cast<std::size_t>(d.width) * d.height * d.channels ||
       d.blend_mean.size() != static_cast<std::size_t>(d.channels) ||
       d.lut.size() != (layout_.colour_lut ? n * n * n * 3 : 0) ||
       d.tables.size() != static_cast<std::size_t>(layout_.table_count) * d.table_size ||
-      d.colour_basis.size() != (colour_tables ? cc * cc : 0) ||
-      d.colour_mean.size() != (colour_tables ? cc : 0))
+      d.colour_basis.size() != static_cast<std::size_t>(layout_.basis_size) ||
+      d.colour_mean.size() != static_cast<std::size_t>(layout_.mean_size))
     throw std::invalid_argument("tiling: an array has the wrong size");
   edge_ = d.tile_radius * std::min(d.width, d.height);
 
@@ -192,25 +226,31 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
       return l == 0 ? 0.0 : std::sqrt(std::max(0.0, base_variance[channel] - variance[channel]));
     };
     std::vector<float> lut = d.lut;
-    if (layout_.colour_lut && l > 0) {
-      std::vector<float> scratch(lut.size());
-      // Axis c of the table is channel c of G; the layout is [z][y][x][colour].
-      apply_kernel(prefilter_kernel(d.lut_size, residual(0)), lut, scratch, 3, n * n, 3,
-                   [&](std::size_t line) { return line * n * 3; });
-      apply_kernel(prefilter_kernel(d.lut_size, residual(1)), scratch, lut, n * 3, n * n, 3,
-                   [&](std::size_t line) { return (line / n) * n * n * 3 + (line % n) * 3; });
-      apply_kernel(prefilter_kernel(d.lut_size, residual(2)), lut, scratch, n * n * 3, n * n, 3,
-                   [&](std::size_t line) { return line * 3; });
-      lut = std::move(scratch);
-    }
     std::vector<float> tables = d.tables;
-    if (l > 0)
-      for (int t = 0; t < layout_.table_count; ++t) {
-        const int channel = layout_.colour_lut ? 3 + t : t;
-        const auto size = static_cast<std::size_t>(d.table_size);
-        apply_kernel(prefilter_kernel(d.table_size, residual(channel)), d.tables, tables, 1, 1, 1,
-                     [&](std::size_t) { return static_cast<std::size_t>(t) * size; });
+    for (const TableGroup& group : layout_.groups) {
+      if (l == 0) break;
+      if (group.transform == GroupTransform::lut) {
+        std::vector<float> scratch(lut.size());
+        // Axis c of the table is channel first + c of G; the layout is [z][y][x][colour].
+        const int f = group.first;
+        apply_kernel(prefilter_kernel(d.lut_size, residual(f)), lut, scratch, 3, n * n, 3,
+                     [&](std::size_t line) { return line * n * 3; });
+        apply_kernel(prefilter_kernel(d.lut_size, residual(f + 1)), scratch, lut, n * 3, n * n, 3,
+                     [&](std::size_t line) { return (line / n) * n * n * 3 + (line % n) * 3; });
+        apply_kernel(prefilter_kernel(d.lut_size, residual(f + 2)), lut, scratch, n * n * 3, n * n,
+                     3, [&](std::size_t line) { return line * 3; });
+        lut = std::move(scratch);
+        continue;
       }
+      // Table k of a group is read at channel first + k of G.
+      const int count = group.transform == GroupTransform::direct ? 1 : group.channels;
+      for (int k = 0; k < count; ++k) {
+        const int t = group.first_table + k;
+        const auto size = static_cast<std::size_t>(d.table_size);
+        apply_kernel(prefilter_kernel(d.table_size, residual(group.first + k)), d.tables, tables, 1,
+                     1, 1, [&](std::size_t) { return static_cast<std::size_t>(t) * size; });
+      }
+    }
     level_luts_.push_back(std::move(lut));
     level_tables_.push_back(std::move(tables));
   }
@@ -232,7 +272,7 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
     return record.param_scalar(name, kParams, source);
   };
   TilingData data;
-  data.channels = static_cast<int>(read("channels", 1, 4, true));
+  data.channels = static_cast<int>(read("channels", 1, kMaxChannels, true));
   data.width = static_cast<int>(read("width", 2, kMaxExemplarSide, true));
   data.height = static_cast<int>(read("height", 2, kMaxExemplarSide, true));
   data.tile_radius = read_param("tile_radius");
@@ -248,9 +288,6 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
   data.rotation = read_control(kFirstControl);
   data.scale_jitter = read_control(kFirstControl + 1);
   data.sharpness = read_control(kFirstControl + 2);
-  const TilingLayout layout = tiling_layout(data.channels, data.transport, data.blend);
-  const std::int64_t n = data.lut_size;
-  const std::int64_t cc = layout.colour_channels;
   const auto take = [&](const std::string& name, const std::vector<std::int64_t>& shape) {
     const NamedArray& array = record.array(name, shape, source);
     if (!within_model_range(array.values))
@@ -260,13 +297,41 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
                                          name + "'; re-run `stochtex analyze`");
     return array.values;
   };
+  // A material's groups: (channels, transform) rows, checked by tiling_layout.
+  const auto grouped = std::find_if(record.arrays.begin(), record.arrays.end(),
+                                    [](const NamedArray& array) { return array.name == "groups"; });
+  TilingLayout layout;
+  try {
+    if (grouped != record.arrays.end()) {
+      const std::vector<std::int64_t> shape = grouped->shape;
+      if (shape.size() != 2 || shape[0] < 1 || shape[0] > data.channels || shape[1] != 2)
+        throw std::invalid_argument("the groups array has the wrong shape");
+      const std::vector<float> rows = take("groups", shape);
+      for (std::size_t i = 0; i < rows.size(); i += 2) {
+        if (rows[i] != std::floor(rows[i]) || rows[i + 1] < 0.0f || rows[i + 1] > 2.0f ||
+            rows[i + 1] != std::floor(rows[i + 1]))
+          throw std::invalid_argument("a group is invalid");
+        data.groups.push_back({static_cast<GroupTransform>(static_cast<int>(rows[i + 1])),
+                               static_cast<int>(rows[i])});
+      }
+    }
+    layout = tiling_layout(data.channels, data.transport, data.blend, data.groups);
+  } catch (const std::invalid_argument& e) {
+    throw Error(ErrorCode::format, "'" + source + "' is not a valid tiling model (" + e.what() +
+                                       "); re-run `stochtex analyze`");
+  }
+  const std::int64_t n = data.lut_size;
+  const std::int64_t cc = layout.colour_channels;
   data.gaussian = take("gaussian", {data.height, data.width, data.channels});
   data.blend_mean = take("blend_mean", {data.channels});
   if (layout.colour_lut) data.lut = take("lut", {n, n, n, 3});
   if (layout.table_count > 0) data.tables = take("tables", {layout.table_count, data.table_size});
-  if (data.blend == Blend::histogram && !layout.colour_lut) {
+  if (layout.basis_size > 0 && layout.image_layout) {
     data.colour_basis = take("colour_basis", {cc, cc});
     data.colour_mean = take("colour_mean", {cc});
+  } else if (layout.basis_size > 0) {
+    data.colour_basis = take("colour_basis", {layout.basis_size});
+    data.colour_mean = take("colour_mean", {layout.mean_size});
   }
   try {
     return TilingModel(std::move(data));
@@ -303,9 +368,20 @@ ModelRecord TilingModel::to_record(const ParamValues& params) const {
   if (layout_.colour_lut) record.arrays.push_back({"lut", {n, n, n, 3}, d.lut});
   if (layout_.table_count > 0)
     record.arrays.push_back({"tables", {layout_.table_count, d.table_size}, d.tables});
-  if (!d.colour_basis.empty()) {
+  if (!d.colour_basis.empty() && layout_.image_layout) {
     record.arrays.push_back({"colour_basis", {cc, cc}, d.colour_basis});
     record.arrays.push_back({"colour_mean", {cc}, d.colour_mean});
+  } else if (!d.colour_basis.empty()) {
+    record.arrays.push_back({"colour_basis", {layout_.basis_size}, d.colour_basis});
+    record.arrays.push_back({"colour_mean", {layout_.mean_size}, d.colour_mean});
+  }
+  if (!d.groups.empty()) {
+    std::vector<float> rows;
+    for (const GroupSpec& group : d.groups) {
+      rows.push_back(static_cast<float>(group.channels));
+      rows.push_back(static_cast<float>(static_cast<int>(group.transform)));
+    }
+    record.arrays.push_back({"groups", {static_cast<std::int64_t>(d.groups.size()), 2}, rows});
   }
   return record;
 }
@@ -350,7 +426,7 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
   const auto edge = static_cast<float>(edge_);
   float weight[3] = {lattice.weight[0], lattice.weight[1], lattice.weight[2]};
   sharpen_weights(weight, static_cast<float>(data_.sharpness));
-  float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  float acc[kMaxChannels] = {};
   float weight_squares = 0.0f;
   double weighted_lod = 0.0;
   for (int v = 0; v < 3; ++v) {
@@ -388,45 +464,50 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
 void TilingModel::inverse_at_level(const float* g, int level, float* out) const noexcept {
   const std::vector<float>& tables = level_tables_[static_cast<std::size_t>(level)];
   const int size = data_.table_size;
-  if (layout_.colour_lut) {
-    // Trilinear fetch of the 3-D table at U of eq. (22), [z][y][x][colour] layout.
-    const std::vector<float>& lut = level_luts_[static_cast<std::size_t>(level)];
-    const int n = data_.lut_size;
-    int cell[3];
-    float t[3];
-    for (int c = 0; c < 3; ++c) t[c] = table_coordinate(gaussian_to_uniform(g[c]), n, cell[c]);
-    const std::ptrdiff_t step_y = static_cast<std::ptrdiff_t>(n) * 3;
-    const std::ptrdiff_t step_z = step_y * n;
-    const float* base = lut.data() + cell[2] * step_z + cell[1] * step_y + cell[0] * 3;
-    float acc[3];
-    for (int c = 0; c < 3; ++c) {
-      const float* p = base + c;
-      const float x00 = p[0] + t[0] * (p[3] - p[0]);
-      const float x10 = p[step_y] + t[0] * (p[step_y + 3] - p[step_y]);
-      const float x01 = p[step_z] + t[0] * (p[step_z + 3] - p[step_z]);
-      const float x11 = p[step_z + step_y] + t[0] * (p[step_z + step_y + 3] - p[step_z + step_y]);
-      const float y0 = x00 + t[1] * (x10 - x00);
-      const float y1 = x01 + t[1] * (x11 - x01);
-      acc[c] = y0 + t[2] * (y1 - y0);
-    }
-    for (int c = 0; c < 3; ++c) out[c] = acc[c];
-  } else {
-    // 1-D tables per decorrelated colour channel, then back to the colour basis.
-    const int cc = layout_.colour_channels;
-    float decorrelated[3];
-    for (int c = 0; c < cc; ++c)
-      decorrelated[c] =
-          table_lookup(tables.data() + static_cast<std::ptrdiff_t>(c) * size, size, g[c]);
-    for (int c = 0; c < cc; ++c) {
-      float value = data_.colour_mean[c];
-      for (int k = 0; k < cc; ++k) value += data_.colour_basis[c * cc + k] * decorrelated[k];
-      out[c] = value;
+  for (const TableGroup& group : layout_.groups) {
+    const float* gg = g + group.first;
+    float* o = out + group.first;
+    if (group.transform == GroupTransform::lut) {
+      // Trilinear fetch of the 3-D table at U of eq. (22), [z][y][x][colour] layout.
+      const std::vector<float>& lut = level_luts_[static_cast<std::size_t>(level)];
+      const int n = data_.lut_size;
+      int cell[3];
+      float t[3];
+      for (int c = 0; c < 3; ++c) t[c] = table_coordinate(gaussian_to_uniform(gg[c]), n, cell[c]);
+      const std::ptrdiff_t step_y = static_cast<std::ptrdiff_t>(n) * 3;
+      const std::ptrdiff_t step_z = step_y * n;
+      const float* base = lut.data() + cell[2] * step_z + cell[1] * step_y + cell[0] * 3;
+      float acc[3];
+      for (int c = 0; c < 3; ++c) {
+        const float* p = base + c;
+        const float x00 = p[0] + t[0] * (p[3] - p[0]);
+        const float x10 = p[step_y] + t[0] * (p[step_y + 3] - p[step_y]);
+        const float x01 = p[step_z] + t[0] * (p[step_z + 3] - p[step_z]);
+        const float x11 = p[step_z + step_y] + t[0] * (p[step_z + step_y + 3] - p[step_z + step_y]);
+        const float y0 = x00 + t[1] * (x10 - x00);
+        const float y1 = x01 + t[1] * (x11 - x01);
+        acc[c] = y0 + t[2] * (y1 - y0);
+      }
+      for (int c = 0; c < 3; ++c) o[c] = acc[c];
+    } else if (group.transform == GroupTransform::decorrelated) {
+      // 1-D tables per decorrelated channel, then back to the group's basis.
+      const int cc = group.channels;
+      const float* basis = data_.colour_basis.data() + group.first_basis;
+      const float* mean = data_.colour_mean.data() + group.first_mean;
+      float decorrelated[kMaxChannels];
+      for (int c = 0; c < cc; ++c)
+        decorrelated[c] = table_lookup(
+            tables.data() + static_cast<std::ptrdiff_t>(group.first_table + c) * size, size, gg[c]);
+      for (int c = 0; c < cc; ++c) {
+        float value = mean[c];
+        for (int k = 0; k < cc; ++k) value += basis[c * cc + k] * decorrelated[k];
+        o[c] = value;
+      }
+    } else {
+      o[0] = table_lookup(tables.data() + static_cast<std::ptrdiff_t>(group.first_table) * size,
+                          size, gg[0]);
     }
   }
-  if (layout_.has_alpha)
-    out[data_.channels - 1] =
-        table_lookup(tables.data() + static_cast<std::ptrdiff_t>(layout_.first_alpha_table) * size,
-                     size, g[data_.channels - 1]);
 }
 
 void TilingModel::inverse_transform(const float* g, LevelOfDetail lod, float* out) const noexcept {
@@ -437,7 +518,7 @@ void TilingModel::inverse_transform(const float* g, LevelOfDetail lod, float* ou
   }
   inverse_at_level(g, lod.level, out);
   if (lod.blend > 0.0f) {
-    float coarse[4];
+    float coarse[kMaxChannels];
     inverse_at_level(g, lod.level + 1, coarse);
     for (int c = 0; c < channels; ++c) out[c] += lod.blend * (coarse[c] - out[c]);
   }
@@ -446,7 +527,7 @@ void TilingModel::inverse_transform(const float* g, LevelOfDetail lod, float* ou
 void TilingModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                            std::uint32_t seed, ImageView<float> out) const noexcept {
   for (std::size_t index = 0; index < positions.size(); ++index) {
-    float g[4];
+    float g[kMaxChannels];
     const LevelOfDetail lod = blended_gaussian(
         positions[index], footprint_width(footprints.empty() ? nullptr : &footprints[index]), seed,
         g);
@@ -463,7 +544,7 @@ void TilingModel::evaluate_triplanar(std::span<const SurfacePoint> points, doubl
   for (std::size_t index = 0; index < points.size(); ++index) {
     const SurfacePoint& p = points[index];
     const std::array<double, 3> weights = triplanar_weights(p.normal, sharpness);
-    double acc[4] = {0.0, 0.0, 0.0, 0.0};
+    double acc[kMaxChannels] = {};
     double weight_squares = 0.0;
     double lod = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -471,7 +552,7 @@ void TilingModel::evaluate_triplanar(std::span<const SurfacePoint> points, doubl
       if (w == 0.0) continue;
       // Plane k's footprint: the 3-D footprint projected on the plane, as a 2-D render's.
       const Footprint footprint{on_plane(p.dpdx, k), on_plane(p.dpdy, k)};
-      float g[4];
+      float g[kMaxChannels];
       const LevelOfDetail plane_lod = blended_gaussian(
           on_plane(p.position, k), footprint_width(&footprint), triplanar_seed(k, seed), g);
       for (int c = 0; c < channels; ++c) acc[c] += w * (g[c] - mean[c]);
@@ -481,7 +562,7 @@ void TilingModel::evaluate_triplanar(std::span<const SurfacePoint> points, doubl
     // The same operator as the lattice blend (eq. 13), with the normal's weights.
     const double inverse_norm =
         data_.blend == Blend::linear ? 1.0 : 1.0 / std::sqrt(weight_squares);
-    float g[4];
+    float g[kMaxChannels];
     for (int c = 0; c < channels; ++c) g[c] = static_cast<float>(acc[c] * inverse_norm + mean[c]);
     // One T^-1 look-up, prefiltered for the w^2-weighted mean of the planes' levels: the blend's
     // variance is the w^2-weighted mean of the planes' (eq. 13), so is, to first order, the

@@ -27,6 +27,16 @@ enum class Transport { sliced = 0, per_channel = 1 };
 // exact for Gaussian inputs: the fast path of section 6.1) or linear (eq. 3, a baseline).
 enum class Blend { histogram = 0, variance = 1, linear = 2 };
 
+// How one group of channels goes through T and T^-1: the 3-D table of section 4.3 (3 channels,
+// sliced transport; at most one group), 1-D tables on the group's principal axes (Deliot & Heitz
+// 2019), or one 1-D table (one channel).
+enum class GroupTransform { lut = 0, decorrelated = 1, direct = 2 };
+struct GroupSpec {
+  GroupTransform transform = GroupTransform::direct;
+  int channels = 1;
+  bool operator==(const GroupSpec&) const = default;
+};
+
 // The plain data of a model, as analysis builds it and the model file stores it.
 struct TilingData {
   int channels = 0;
@@ -46,19 +56,43 @@ struct TilingData {
   std::vector<float> blend_mean;    // channels: E[G] in eq. (8)
   std::vector<float> lut;           // lut_size^3 x 3, T^-1 of the colour (3-D transport), or empty
   std::vector<float> tables;        // table_count x table_size, 1-D T^-1 tables, or empty
-  std::vector<float> colour_basis;  // colour_channels^2 row-major (1-D colour tables), or empty
-  std::vector<float> colour_mean;   // colour_channels (1-D colour tables), or empty
+  std::vector<float> colour_basis;  // each decorrelated group's channels^2, row-major, or empty
+  std::vector<float> colour_mean;   // each decorrelated group's channels, or empty
+  // T^-1 by groups of channels, a material's maps (issue 18); empty: an image's colour and alpha
+  // (tiling_layout).
+  std::vector<GroupSpec> groups;
 };
 
-// How the arrays of TilingData are laid out for a channel count and transport.
+// One group of channels of T^-1 and where its tables are.
+struct TableGroup {
+  GroupTransform transform = GroupTransform::direct;
+  int first = 0;  // its first channel
+  int channels = 1;
+  int first_table = 0;  // its 1-D tables: one per channel (decorrelated) or one (direct)
+  int first_basis = 0;  // decorrelated: its channels^2 values in colour_basis
+  int first_mean = 0;   // decorrelated: its channels values in colour_mean
+};
+
+// How the arrays of TilingData are laid out for a channel count, transport and blend. The fields
+// before `groups` describe an image (colour, then alpha when it has 2 or 4 channels), as the GLSL
+// twin reads them; a material's groups have no such description (image_layout false).
 struct TilingLayout {
   int colour_channels = 0;    // 1 or 3
   bool has_alpha = false;     // the last channel is alpha
   bool colour_lut = false;    // colour through the 3-D table (else 1-D tables + basis)
   int table_count = 0;        // 1-D tables: decorrelated colour channels (if no 3-D table), alpha
   int first_alpha_table = 0;  // index of the alpha table when has_alpha
+  bool image_layout = true;
+  std::vector<TableGroup> groups;  // empty for the variance and linear blends
+  int basis_size = 0;
+  int mean_size = 0;
 };
-TilingLayout tiling_layout(int channels, Transport transport, Blend blend);
+// `groups` empty: an image's colour (3-D table with sliced transport and 3 colour channels, else
+// decorrelated) and alpha (direct). Throws std::invalid_argument for groups that do not cover
+// the channels, a 3-D table that is not the one group of 3 channels with sliced transport, or a
+// direct group of more than one channel.
+TilingLayout tiling_layout(int channels, Transport transport, Blend blend,
+                           std::span<const GroupSpec> groups = {});
 
 // Which pyramid levels a footprint reads: level `level` blended with level + 1 by `blend`.
 struct LevelOfDetail {
