@@ -45,6 +45,22 @@ inline ImageF crop_top_left(const ImageF& image, int side) {
   return result;
 }
 
+// An exemplar of `channels` channels, as a material's maps make one (issue 18): channel c is
+// channel c % 3 of the side² crop of the colour exemplar at column side ((c / 3) % 4) and row
+// side (c / 12), so channels of one crop are correlated and those of different crops are not.
+// side <= 128 for up to 16 channels.
+inline ImageF stacked_exemplar(int channels, int side) {
+  const ImageF& colour = colour_exemplar();
+  ImageF result(side, side, channels);
+  for (int c = 0; c < channels; ++c) {
+    const int crop_x = side * ((c / 3) % 4);
+    const int crop_y = side * (c / 12);
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) result.at(x, y, c) = colour.at(crop_x + x, crop_y + y, c % 3);
+  }
+  return result;
+}
+
 // Runs body() per iteration and reports items (samples) per second and the counter ns_per_sample,
 // from the wall clock: a render's work happens on worker threads, which CPU time would miss.
 template <typename Body>

@@ -94,21 +94,6 @@ BENCHMARK(BM_GaborEvaluateFiltered8)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// An exemplar of `channels` channels, as a material's maps make one (issue 18): channel c is
-// channel c % 3 of the 128² crop of the colour exemplar at column 128 ((c / 3) % 4) and row
-// 128 (c / 12), so channels of one crop are correlated and those of different crops are not.
-ImageF stacked_exemplar(int channels) {
-  const ImageF& colour = colour_exemplar();
-  ImageF result(kSide, kSide, channels);
-  for (int c = 0; c < channels; ++c) {
-    const int crop_x = kSide * ((c / 3) % 4);
-    const int crop_y = kSide * (c / 12);
-    for (int y = 0; y < kSide; ++y)
-      for (int x = 0; x < kSide; ++x) result.at(x, y, c) = colour.at(crop_x + x, crop_y + y, c % 3);
-  }
-  return result;
-}
-
 // Cost per sample against the channel count at the default budget N = 1024: the budget is split
 // over the (channel, band) grids, so the kernels per sample stay ~2N; what grows with the
 // channels is the grids' cell visits and the mixing back to the exemplar's channels (n^2).
@@ -117,7 +102,7 @@ void BM_GaborEvaluateChannels(benchmark::State& state) {
   const auto channels = static_cast<int>(state.range(0));
   if (!cache.contains(channels)) {
     try {
-      cache.emplace(channels, analyze("gabor", stacked_exemplar(channels).view(), {}, 0));
+      cache.emplace(channels, analyze("gabor", stacked_exemplar(channels, kSide).view(), {}, 0));
     } catch (const std::exception& e) {
       state.SkipWithError(e.what());
       return;
