@@ -37,6 +37,19 @@ inline const ImageF& grey_exemplar() {
   return corpus_image(kGreyExemplar);
 }
 
+// An exemplar of `channels` channels (a material's maps, issue 18) from the colour exemplar:
+// side x side, channel c its colour channel c % 3 shifted by 17 (c / 3) pixels, so the channels
+// are distinct maps (only their count matters for the costs measured).
+inline ImageF stacked_exemplar(int channels, int side) {
+  const ImageF& source = colour_exemplar();
+  ImageF exemplar(side, side, channels);
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      for (int c = 0; c < channels; ++c)
+        exemplar.at(x, y, c) = source.at((x + 17 * (c / 3)) % side, y, c % 3);
+  return exemplar;
+}
+
 inline ImageF crop_top_left(const ImageF& image, int side) {
   ImageF result(side, side, image.channels());
   for (int y = 0; y < side; ++y)
@@ -45,20 +58,17 @@ inline ImageF crop_top_left(const ImageF& image, int side) {
   return result;
 }
 
-// An exemplar of `channels` channels, as a material's maps make one (issue 18): channel c is
-// channel c % 3 of the side² crop of the colour exemplar at column side ((c / 3) % 4) and row
-// side (c / 12), so channels of one crop are correlated and those of different crops are not.
-// side <= 128 for up to 16 channels.
-inline ImageF stacked_exemplar(int channels, int side) {
+// A synthetic material of `channels` maps (issue 18): the side x side crop of the colour exemplar
+// with channel c its colour channel c % 3 moved right by 17 (c / 3) pixels, distinct but
+// correlated maps (side <= 512 - 17 (channels - 1) / 3).
+inline ImageF synthetic_material(int channels, int side) {
   const ImageF& colour = colour_exemplar();
-  ImageF result(side, side, channels);
-  for (int c = 0; c < channels; ++c) {
-    const int crop_x = side * ((c / 3) % 4);
-    const int crop_y = side * (c / 12);
-    for (int y = 0; y < side; ++y)
-      for (int x = 0; x < side; ++x) result.at(x, y, c) = colour.at(crop_x + x, crop_y + y, c % 3);
-  }
-  return result;
+  ImageF material(side, side, channels);
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      for (int c = 0; c < channels; ++c)
+        material.at(x, y, c) = colour.at(x + 17 * (c / 3), y, c % 3);
+  return material;
 }
 
 // Runs body() per iteration and reports items (samples) per second and the counter ns_per_sample,
