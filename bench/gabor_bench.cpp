@@ -94,4 +94,33 @@ BENCHMARK(BM_GaborEvaluateFiltered8)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+// Cost per sample against the channel count at the default budget N = 1024: the budget is split
+// over the (channel, band) grids, so the kernels per sample stay ~2N; what grows with the
+// channels is the grids' cell visits and the mixing back to the exemplar's channels (n^2).
+void BM_GaborEvaluateChannels(benchmark::State& state) {
+  static std::map<int, Model> cache;
+  const auto channels = static_cast<int>(state.range(0));
+  if (!cache.contains(channels)) {
+    try {
+      cache.emplace(channels, analyze("gabor", stacked_exemplar(channels, kSide).view(), {}, 0));
+    } catch (const std::exception& e) {
+      state.SkipWithError(e.what());
+      return;
+    }
+  }
+  const Model& model = cache.at(channels);
+  std::vector<Vec2d> positions;
+  for (int j = 0; j < kSide; ++j)
+    for (int i = 0; i < kSide; ++i) positions.push_back({i + 0.5, j + 0.5});
+  ImageF out(kSide * kSide, 1, channels);
+  time_samples(state, kSamples, [&] { evaluate(model, positions, {}, kSeed, out.view()); });
+}
+BENCHMARK(BM_GaborEvaluateChannels)
+    ->ArgName("channels")
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(16)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace

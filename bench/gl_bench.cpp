@@ -210,4 +210,19 @@ BENCHMARK(BM_GlGaborPrecision)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+// Gabor noise of 4, 8 and 16 channels (a material's maps, bench::stacked_exemplar), 128² frames,
+// default parameters: beyond 4 channels the colour is an array of floats (noise_channels.glsl).
+void BM_GlGaborChannels(benchmark::State& state) {
+  const ImageF exemplar = bench::stacked_exemplar(static_cast<int>(state.range(0)), 128);
+  frame_benchmark(state, "gabor", {}, 128, 128, exemplar);
+}
+BENCHMARK(BM_GlGaborChannels)
+    ->ArgName("channels")
+    ->Arg(4)
+    ->Arg(8)
+    ->Arg(16)
+    ->Iterations(3)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 }  // namespace

@@ -295,6 +295,35 @@ TEST(GlGabor, BitIdenticalWhateverTheDispatchTilesAndRegions) {
   EXPECT_TRUE(same_bytes(fast, render_float(model, grid, 4, 13)));
 }
 
+TEST(GlGabor, MaterialOfEightChannelsMatchesTheCpuReference) {
+  // A material (sand_pebbles: albedo, normal, roughness, metallic; a 64² crop) beyond a vec4: the
+  // colour is an array of 8 floats (noise_channels.glsl) summed in the CPU's order, so both GL
+  // paths keep the tolerances of the tests above (measured maxima in docs/methods/gabor.md).
+  const ImageF material = test_support::material_exemplar(
+      "sand_pebbles", {"albedo", "normal", "roughness", "metallic"});
+  ASSERT_EQ(material.channels(), 8);
+  const Model model = analyze("gabor", material.view().sub(0, 0, 64, 64), {{"impulses", 256}}, 0);
+  const std::vector<GaborCase> cases = {
+      {"sand_pebbles", {{0.0, 0.0}, 1.0, 32, 24}},
+      {"sand_pebbles", {{1e7, -3e6}, 4.0, 24, 24}},
+      {"sand_pebbles", {{3.0, 5.0}, 2.0, 24, 24}, false},
+  };
+  for (const auto& c : cases) {
+    const ImageF cpu = render_cpu(model, c.grid, 9, c.filter);
+    const float worst = max_difference(cpu, render_gpu(model, c.grid, 9, 4096, c.filter));
+    std::cout << "8 channels, scale " << c.grid.scale << (c.filter ? "" : " unfiltered")
+              << ": max |cpu - gl| = " << worst;
+    EXPECT_LT(worst, 1e-4f) << "scale " << c.grid.scale;
+    if (c.filter) {
+      const RelativeDifference fast = relative_difference(cpu, render_float(model, c.grid, 9));
+      std::cout << "; float max " << fast.max << " rms " << fast.rms;
+      EXPECT_LT(fast.max, 1e-3) << "scale " << c.grid.scale;
+      EXPECT_LT(fast.rms, 1e-4) << "scale " << c.grid.scale;
+    }
+    std::cout << "\n";
+  }
+}
+
 TEST(GlGabor, AModelWithoutGaussiansRendersItsMean) {
   // An edit can drop every Gaussian: no grids, GLSL arrays of one unused element.
   const gabor::GaborModel empty(1, 256, 0, {}, {1.0f}, {0.25f}, gabor::FitReport{});

@@ -354,7 +354,8 @@ Model analysed_model(int channels, double colour_space = 0) {
 }
 
 TEST(GaborModelFile, RoundTripIsExactAndEvaluatesTheSame) {
-  for (const int channels : {1, 3, 4}) {
+  // Up to kMaxChannels: a material's maps analysed and evaluated jointly.
+  for (const int channels : {1, 3, 4, 9, kMaxChannels}) {
     const Model model = analysed_model(channels);
     EXPECT_EQ(model.method(), "gabor");
     const std::vector<std::uint8_t> bytes = serialize_model(model);
@@ -404,7 +405,7 @@ TEST(GaborModelFile, CorruptRecordsAreRejected) {
       {"infinite variance", [&](ModelRecord& r) { gaussian_value(r, 4) = INFINITY; }},
       {"impulse budget too large", [](ModelRecord& r) { r.scalars["impulses"] = 1e9; }},
       {"impulse budget zero", [](ModelRecord& r) { r.scalars["impulses"] = 0; }},
-      {"channels", [](ModelRecord& r) { r.scalars["channels"] = 5; }},
+      {"channels disagreeing with the arrays", [](ModelRecord& r) { r.scalars["channels"] = 5; }},
       {"count mismatch", [](ModelRecord& r) { r.scalars["gaussians"] += 1; }},
       {"too many Gaussians", [](ModelRecord& r) { r.scalars["gaussians"] = 1e12; }},
       {"negative report", [](ModelRecord& r) { r.scalars["fit_error"] = -1; }},
@@ -416,6 +417,27 @@ TEST(GaborModelFile, CorruptRecordsAreRejected) {
     ModelRecord record = good;
     corrupt(record);
     test_support::expect_record_rejected<GaborModel>(record, what);
+  }
+}
+
+TEST(GaborModelFile, HostileChannelCountsAreRefusedBeforeTheArraysAreRead) {
+  // The count is read and checked first: a file cannot size the colour matrix, the mean or the
+  // renderer's buffers. With the arrays gone, only the count's own check can refuse it by name.
+  const Model model = analysed_model(9);
+  ModelRecord good = std::get<GaborModel>(model.data().model).to_record(model.params());
+  ASSERT_NO_THROW(GaborModel::from_record(good, "model.stx"));
+  good.arrays.clear();
+  for (const double channels : {0.0, -1.0, 2.5, double{kMaxChannels} + 1.0, 1e9, 1e300,
+                                static_cast<double>(NAN), static_cast<double>(INFINITY)}) {
+    ModelRecord record = good;
+    record.scalars["channels"] = channels;
+    try {
+      GaborModel::from_record(record, "bad.stx");
+      ADD_FAILURE() << channels << " channels: accepted";
+    } catch (const Error& error) {
+      EXPECT_NE(std::string(error.what()).find("channels"), std::string::npos)
+          << channels << ": " << error.what();
+    }
   }
 }
 

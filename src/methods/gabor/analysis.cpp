@@ -34,6 +34,12 @@ constexpr float kSupportThreshold = 1e-6f;
 // Lags |xi|_inf <= 4 of the lagged correlation matrices (section 7): 81 matrices. Longer lags of a
 // 128^2 exemplar carry mostly estimation noise.
 constexpr int kMaxLag = 4;
+// The channels' fits run in parallel, each with its own dictionary and iterates (~370 bytes a
+// pixel at 256², measured): at most this many at once, so that the analysis memory row
+// (registry_row) bounds a material of up to kMaxChannels channels on any core count (9 channels
+// at 256², 4 fits in flight: 1852 bytes a pixel against the row's 2540; 9 in flight: 3325).
+// Exemplars of 1 to 4 channels fit every channel at once where the cores allow, as before.
+constexpr int kMaxFitsInFlight = 4;
 
 double dot(std::span<const float> a, std::span<const float> b) {
   double sum = 0.0;
@@ -646,14 +652,15 @@ GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::u
     };
   };
   try {
-    parallel_for(fits.size(), 0, [&](std::size_t k) {
-      if (k == 0) {
-        fits[k] = fit_spectrum(dictionary, targets[k], options, fit_progress(k));
-      } else {
-        const GaussianDictionary own(width, height);
-        fits[k] = fit_spectrum(own, targets[k], options, fit_progress(k));
-      }
-    });
+    parallel_for(fits.size(), std::min(resolve_thread_count(0), kMaxFitsInFlight),
+                 [&](std::size_t k) {
+                   if (k == 0) {
+                     fits[k] = fit_spectrum(dictionary, targets[k], options, fit_progress(k));
+                   } else {
+                     const GaussianDictionary own(width, height);
+                     fits[k] = fit_spectrum(own, targets[k], options, fit_progress(k));
+                   }
+                 });
   } catch (...) {
     if (cancellation) std::rethrow_exception(cancellation);
     throw;

@@ -15,6 +15,7 @@
 #include "methods/gabor/params.hpp"
 #include "spectral/fft.hpp"
 #include "stochtex/image.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex::gabor {
 
@@ -161,7 +162,8 @@ constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<Ga
       "Gabor noise by example (Galerne, Lagae, Lefebvre, Drettakis 2012): a sparse sum "
       "of bandwidth-quantised Gaussians fitted to the spectrum, ~2N kernels per sample",
       kFields,
-      {.per_pixel = 200, .per_channel = 260}};
+      {.per_pixel = 200, .per_channel = 260},
+      kMaxChannels};
 }
 
 }  // namespace stochtex::gabor

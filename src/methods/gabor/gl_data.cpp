@@ -55,8 +55,13 @@ GaborGlsl gabor_glsl(const gabor::GaborModel& model, GlslPrecision precision) {
     for (std::size_t k = 0; k < cdf.size(); ++k)
       texel(cdf_first + k / 4, static_cast<int>(k % 4)) = cdf[k];
   }
-  std::vector<float> mixing(16, 0.0f);
+  // 1 to 4 channels: a vec4 mean and a 4 x 4 array of the mixing matrix's rows, zero-padded
+  // (noise.glsl); more: arrays of the channels' means and the channels^2 mixing matrix
+  // (noise_channels.glsl).
   const int channels = model.channels();
+  glsl.channels = channels;
+  const bool beyond_vec4 = channels > 4;
+  std::vector<float> mixing(beyond_vec4 ? model.mixing().size() : 16, 0.0f);
   for (std::size_t i = 0; i < model.mixing().size(); ++i) mixing[i] = model.mixing()[i];
 
   std::string& text = glsl.constants;
@@ -68,7 +73,10 @@ GaborGlsl gabor_glsl(const gabor::GaborModel& model, GlslPrecision precision) {
   constant("int", "GABOR_GRIDS", glsl_int(static_cast<int>(grids.size())));
   constant("int", "GABOR_GAUSSIANS", glsl_int(static_cast<int>(gaussians)));
   constant("int", "GABOR_DATA_WIDTH", glsl_int(GaborGlsl::kDataWidth));
-  constant("vec4", "GABOR_MEAN", glsl_vec4(model.mean()));
+  if (beyond_vec4)
+    text += glsl_array("float", "GABOR_MEAN", model.mean(), glsl_float);
+  else
+    constant("vec4", "GABOR_MEAN", glsl_vec4(model.mean()));
   text += glsl_array("float", "GABOR_MIXING", std::span<const float>(mixing), glsl_float);
   text += glsl_array("int", "GABOR_GRID_CHANNEL", std::span<const int>(channel), glsl_int);
   text += glsl_array("int", "GABOR_GRID_FIRST", std::span<const int>(first), glsl_int);
@@ -105,7 +113,11 @@ std::string gabor_library_source(const GaborGlsl& glsl) {
       "GABOR_DATA_WIDTH), 0);\n}\n";
   return random_source() + glsl_constants(Twin<gabor::GaborModel>::kConstants, glsl.precision) +
          glsl.constants + reader +
-         glsl_precision_variant(shader_source("methods/gabor/evaluate.glsl"), glsl.precision);
+         glsl_precision_variant(
+             shader_source("methods/gabor/evaluate.glsl") +
+                 shader_source(glsl.channels > 4 ? "methods/gabor/noise_channels.glsl"
+                                                 : "methods/gabor/noise.glsl"),
+             glsl.precision);
 }
 
 std::optional<SurfaceShader> Twin<gabor::GaborModel>::surface_shader(

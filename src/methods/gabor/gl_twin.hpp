@@ -23,6 +23,8 @@ struct GaborGlsl {
   static constexpr int kCdfTexels = PoissonSampler::kTableSize / 4;
 
   GlslPrecision precision = GlslPrecision::doubles;
+  // The model's; beyond 4 the colour is an array of floats (noise_channels.glsl), not a vec4.
+  int channels = 1;
   std::string constants;  // GLSL const declarations, GABOR_* (exact float and double literals)
   // 4 channels, kDataWidth wide, read in row-major texel order: texel i < gaussians is Gaussian i
   // of the grid-sorted model (frequency x, frequency y, alias probability, alias index within
@@ -37,7 +39,8 @@ GaborGlsl gabor_glsl(const gabor::GaborModel& model,
                      GlslPrecision precision = GlslPrecision::doubles);
 
 // random.glsl, kConstants, the model's constants, the data read (gabor_texel: texelFetch from the
-// sampler `stochtex_gabor_data`) and gabor evaluate.glsl, all in
+// sampler `stochtex_gabor_data`) and gabor evaluate.glsl and noise.glsl (noise_channels.glsl
+// beyond 4 channels), all in
 // glsl.precision (the float one is the `--gl-filter hardware` library, without doubles): all but
 // `#version`.
 std::string gabor_library_source(const GaborGlsl& glsl);

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "core/hash.hpp"
 #include "core/surface_process.hpp"
@@ -14,6 +15,7 @@
 #include "methods/texton/evaluate.hpp"
 #include "model/value_range.hpp"
 #include "stochtex/error.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex::gabor {
 namespace {
@@ -205,7 +207,8 @@ GaborModel::GaborModel(int channels, double impulses, int colour_space,
       mixing_(std::move(mixing)),
       mean_(std::move(mean)),
       report_(report) {
-  if (channels_ < 1 || channels_ > 4) throw std::invalid_argument("gabor: channels must be 1 to 4");
+  if (channels_ < 1 || channels_ > kMaxChannels)
+    throw std::invalid_argument("gabor: channels must be 1 to " + std::to_string(kMaxChannels));
   if (!(impulses_ >= kParams[1].min_value && impulses_ <= kParams[1].max_value) ||
       impulses_ != std::floor(impulses_))
     throw std::invalid_argument("gabor: impulses must be an integer from 1 to 65536");
@@ -321,7 +324,8 @@ GaborModel GaborModel::from_record(const ModelRecord& record, const std::string&
       throw fail("invalid " + name + " value");
     return value;
   };
-  const int channels = static_cast<int>(read("channels", 1, 4, true));
+  // Checked before any array is read or allocated: a hostile count is refused here.
+  const int channels = static_cast<int>(read("channels", 1, kMaxChannels, true));
   const double impulses =
       read("impulses", kParams[1].min_value, kParams[1].max_value, kParams[1].integer);
   const int colour_space = static_cast<int>(read("colour_space", 0, 2, true));
@@ -339,9 +343,11 @@ GaborModel GaborModel::from_record(const ModelRecord& record, const std::string&
   std::vector<GaussianComponent> gaussians(static_cast<std::size_t>(count));
   for (std::size_t i = 0; i < gaussians.size(); ++i) {
     const float* row = &table.values[5 * i];
-    // Indices are stored as floats: exact integers below 2^24, checked before the conversion.
+    // Indices are stored as floats: exact integers below 2^24, checked before the conversion
+    // (the constructor checks the channel against `channels`).
+    constexpr auto kIndexBound = static_cast<float>(std::max(kMaxChannels, kMaxBands));
     for (int k = 0; k < 2; ++k)
-      if (!(row[k] >= 0.0f && row[k] < 16.0f) || row[k] != std::floor(row[k]))
+      if (!(row[k] >= 0.0f && row[k] < kIndexBound) || row[k] != std::floor(row[k]))
         throw fail("a Gaussian has an invalid channel or bandwidth index");
     gaussians[i] = {static_cast<int>(row[0]), static_cast<int>(row[1]), row[2], row[3], row[4]};
   }
@@ -484,12 +490,13 @@ void GaborModel::mix_to_colour(std::size_t count, ImageView<float> out) const no
   const auto pixel = [&](std::size_t index, int c) -> float& { return batch_pixel(out, index, c); };
   // Back to the exemplar's colours: colour = mean + mixing * noise (section 7).
   for (std::size_t index = 0; index < count; ++index) {
-    float noise[4] = {};
-    for (int c = 0; c < channels_; ++c) noise[c] = pixel(index, c);
+    std::array<float, kMaxChannels> noise{};
+    for (int c = 0; c < channels_; ++c) noise[static_cast<std::size_t>(c)] = pixel(index, c);
     for (int c = 0; c < channels_; ++c) {
       float value = mean_[static_cast<std::size_t>(c)];
       for (int k = 0; k < channels_; ++k)
-        value += mixing_[static_cast<std::size_t>(c) * channels_ + k] * noise[k];
+        value += mixing_[static_cast<std::size_t>(c) * channels_ + k] *
+                 noise[static_cast<std::size_t>(k)];
       pixel(index, c) = value;
     }
   }

@@ -19,6 +19,11 @@ uniform double scale;
 #endif
 uniform uint seed;
 uniform bool filtered;
+// The colour type of gabor_noise: vec4 (noise.glsl), or GABOR_CHANNELS floats beyond 4 channels
+// (noise_channels.glsl).
+#ifndef GABOR_COLOUR
+#define GABOR_COLOUR vec4
+#endif
 
 void main() {
   ivec2 local_pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -31,13 +36,13 @@ void main() {
   for (int g = 0; g < GABOR_GRID_ARRAY; ++g) offset[g] = origin_offset[g] + pixel;
   vec2 dpdx = filtered ? vec2(scale, 0.0) : vec2(0.0);
   vec2 dpdy = filtered ? vec2(0.0, scale) : vec2(0.0);
-  vec4 value = gabor_noise(origin_cell, offset, dpdx, dpdy, seed);
+  GABOR_COLOUR value = gabor_noise(origin_cell, offset, dpdx, dpdy, seed);
 #else
   // p = origin + scale (i + 1/2), the CPU renderer's position to the last bit.
   precise dvec2 p = origin + scale * (dvec2(first_pixel + local_pixel) + 0.5lf);
   dvec2 dpdx = filtered ? dvec2(scale, 0.0lf) : dvec2(0.0lf);
   dvec2 dpdy = filtered ? dvec2(0.0lf, scale) : dvec2(0.0lf);
-  vec4 value = gabor_noise(p, dpdx, dpdy, seed);
+  GABOR_COLOUR value = gabor_noise(p, dpdx, dpdy, seed);
 #endif
   int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * GABOR_CHANNELS;
   for (int c = 0; c < GABOR_CHANNELS; ++c) result[index + c] = value[c];
