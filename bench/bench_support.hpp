@@ -58,19 +58,6 @@ inline ImageF crop_top_left(const ImageF& image, int side) {
   return result;
 }
 
-// A synthetic material of `channels` maps (issue 18): the side x side crop of the colour exemplar
-// with channel c its colour channel c % 3 moved right by 17 (c / 3) pixels, distinct but
-// correlated maps (side <= 512 - 17 (channels - 1) / 3).
-inline ImageF synthetic_material(int channels, int side) {
-  const ImageF& colour = colour_exemplar();
-  ImageF material(side, side, channels);
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x)
-      for (int c = 0; c < channels; ++c)
-        material.at(x, y, c) = colour.at(x + 17 * (c / 3), y, c % 3);
-  return material;
-}
-
 // Runs body() per iteration and reports items (samples) per second and the counter ns_per_sample,
 // from the wall clock: a render's work happens on worker threads, which CPU time would miss.
 template <typename Body>

@@ -121,11 +121,11 @@ BENCHMARK(BM_GlLrpFrame)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// LRP noise on a material of N = 4, 8, 16 channels (the synthetic material of bench_support.hpp,
+// LRP noise on a material of N = 4, 8, 16 channels (the stacked_exemplar of bench_support.hpp,
 // J = 50): N > 4 runs one program per chunk of 4 channels (src/methods/lrp/gl_pass.cpp).
 void BM_GlLrpMaterialFrame(benchmark::State& state) {
   frame_benchmark(state, "lrp", {}, 128, 128,
-                  bench::synthetic_material(static_cast<int>(state.range(0)), 256));
+                  bench::stacked_exemplar(static_cast<int>(state.range(0)), 256));
 }
 BENCHMARK(BM_GlLrpMaterialFrame)
     ->ArgName("channels")

@@ -89,7 +89,7 @@ BENCHMARK(BM_LrpStructureRender)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// Materials (issue 18): the 256² synthetic material of N channels (bench_support.hpp) at J = 50,
+// Materials (issue 18): the 256² stacked_exemplar of N channels (bench_support.hpp) at J = 50,
 // one thread, point samples. N = 4 is a colour + alpha model; 8 and 16 one PCA over all
 // channels. The strata cost 9 (J + L) per channel; `ns_per_channel` shows it is linear in N (the
 // N x N basis mixing is N multiply-adds per channel).
@@ -97,7 +97,7 @@ void BM_LrpMaterialRender(benchmark::State& state) {
   const int channels = static_cast<int>(state.range(0));
   Model model;
   try {
-    model = analyze("lrp", synthetic_material(channels, 256).view(), {{"cosines", 50.0}}, 0);
+    model = analyze("lrp", stacked_exemplar(channels, 256).view(), {{"cosines", 50.0}}, 0);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
     return;

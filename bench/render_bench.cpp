@@ -20,8 +20,8 @@ constexpr int kSide = 256;
 // A quick texton model (support 64 on a 256² colour exemplar) stands in for any method.
 const Model& render_model() {
   static const Model model = [] {
-    return analyze("texton", bench::corpus_image("grass_lawn_256.png").view(), {{"support", 64}},
-                   0, "grass_lawn_256.png");
+    return analyze("texton", bench::corpus_image("grass_lawn_256.png").view(), {{"support", 64}}, 0,
+                   "grass_lawn_256.png");
   }();
   return model;
 }
