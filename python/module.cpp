@@ -125,10 +125,16 @@ Model analyze_maps(const py::dict& arrays, const std::string& method, std::uint3
 
 py::list map_list(const Model& model) {
   py::list maps;
-  for (const MapInfo& map : model.maps())
-    maps.append(py::dict(py::arg("name") = map.name,
-                         py::arg("kind") = std::string(map_kind_name(map.kind)),
-                         py::arg("channels") = map.channels));
+  for (const MapInfo& map : model.maps()) {
+    py::dict entry(py::arg("name") = map.name,
+                   py::arg("kind") = std::string(map_kind_name(map.kind)),
+                   py::arg("channels") = map.channels);
+    if (!map.derived_from.empty()) {
+      entry["from"] = map.derived_from;
+      entry["scale"] = map.slope_scale;
+    }
+    maps.append(entry);
+  }
   return maps;
 }
 
@@ -143,10 +149,11 @@ py::dict split_image(const Model& model, const py::array& image) {
   return maps;
 }
 
-py::array_t<float> render_model(const Model& model, int width, int height,
-                                std::array<double, 2> origin, double scale, std::uint32_t seed,
-                                int threads, std::array<std::int64_t, 2> offset,
-                                const py::object& progress) {
+// The grid of a render request, checked as the CLI checks it: sizes, threads, positions and the
+// memory budget (docs/design.md §9; a larger image is rendered in pieces with offset, or as a
+// dask array, whose chunks each stay within it).
+Grid checked_grid(int width, int height, std::array<double, 2> origin, double scale, int threads,
+                  std::array<std::int64_t, 2> offset) {
   if (width < 1 || height < 1 || width > (1 << 16) || height > (1 << 16))
     throw py::value_error("render's width and height must be between 1 and 65536, not " +
                           std::to_string(width) + "x" + std::to_string(height));
@@ -154,12 +161,36 @@ py::array_t<float> render_model(const Model& model, int width, int height,
     throw py::value_error("threads must be 0 (all) to " + std::to_string(kMaxThreads));
   const Grid grid{{origin[0], origin[1]}, scale, width, height, offset[0], offset[1]};
   check_grid(grid, "render's grid");
-  // The CLI's budget (docs/design.md §9): a larger image is rendered in pieces (offset) or as a
-  // dask array, whose chunks each stay within it.
   check_memory_budget(
       render_peak_bytes(width, height, RenderOptions{}.tile_size, 1, resolve_thread_count(threads)),
       "rendering " + std::to_string(width) + "x" + std::to_string(height) + " pixels",
       "render it in pieces with offset, or with stochtex.dask.render");
+  return grid;
+}
+
+py::dict render_material(const Model& model, int width, int height, std::array<double, 2> origin,
+                         double scale, std::uint32_t seed, int threads,
+                         std::array<std::int64_t, 2> offset) {
+  const Grid grid = checked_grid(width, height, origin, scale, threads, offset);
+  RenderOptions options;
+  options.threads = threads;
+  std::vector<NamedImage> maps;
+  {
+    py::gil_scoped_release release;
+    maps = render_maps(model, grid, [&](const Grid& part, ImageView<float> out) {
+      render(model, part, seed, out, options);
+    });
+  }
+  py::dict result;
+  for (const auto& [name, map] : maps) result[py::str(name)] = to_array(map);
+  return result;
+}
+
+py::array_t<float> render_model(const Model& model, int width, int height,
+                                std::array<double, 2> origin, double scale, std::uint32_t seed,
+                                int threads, std::array<std::int64_t, 2> offset,
+                                const py::object& progress) {
+  const Grid grid = checked_grid(width, height, origin, scale, threads, offset);
   OutputArray output = output_array(width, height, model.channels());
   RenderOptions options;
   options.threads = threads;
@@ -228,8 +259,15 @@ PYBIND11_MODULE(_stochtex, m) {
                              [](const Model& model) { return std::string(model.method()); })
       .def_property_readonly("channels", &Model::channels)
       .def_property_readonly("maps", &map_list,
-                             "A material's maps in channel order, each {name, kind, channels}; "
+                             "A material's maps in channel order, each {name, kind, channels} "
+                             "(and from, scale for a normal map derived from a height map); "
                              "empty for a model of one image.")
+      .def("render_maps", &render_material, py::arg("width"), py::arg("height"),
+           py::arg("origin") = std::array<double, 2>{0.0, 0.0}, py::arg("scale") = 1.0,
+           py::arg("seed") = 0, py::arg("threads") = 0,
+           py::arg("offset") = std::array<std::int64_t, 2>{0, 0},
+           "A material's maps of the render's grid, {name: HxWxC array} (a derived normal map "
+           "from the height around each pixel); render's arguments.")
       .def("split", &split_image, py::arg("image"),
            "A render of a material cut into its maps: {name: HxWxC array}, a normal map as "
            "unit normals encoded 0.5 + 0.5 n (stochtex.split_maps).")

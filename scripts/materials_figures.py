@@ -69,7 +69,7 @@ for method in ["texton", "tiling", "lrp", "gabor"]:
     start = time.perf_counter()
     model = stochtex.analyze_material(maps, method)
     seconds = time.perf_counter() - start
-    parts = model.split(model.render(SIZE, SIZE, seed=1))
+    parts = model.render_maps(SIZE, SIZE, seed=1)
     picture = {name: part[:PICTURE, :PICTURE] for name, part in parts.items()}
     save(picture["albedo"], f"{method}_albedo")
     save(picture["normal"], f"{method}_normal")

@@ -52,7 +52,7 @@ template <class Model>
 MethodEntry entry_of() {
   static constexpr auto row = registry_row(std::type_identity<Model>{});
   static constexpr auto infos = param_infos(row.fields);
-  return {{Model::kMethodName, row.summary, infos, row.max_channels},
+  return {{Model::kMethodName, row.summary, infos, row.max_channels, row.derives_normals},
           [](ImageView<const float> exemplar, const ParamValues& values, std::uint32_t seed,
              const std::function<void(double)>& progress, std::span<const MapInfo> maps) {
             const auto params = params_from_values(row.fields, values);
@@ -266,6 +266,7 @@ std::string methods_json() {
     list.push_back({{"name", method.name},
                     {"summary", method.summary},
                     {"max_channels", method.max_channels},
+                    {"derives_normals", method.derives_normals},
                     {"params", params}});
   }
   return list.dump(2);

@@ -36,6 +36,10 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
                    "down (DirectX)")
       ->check(CLI::IsMember({"up", "down"}))
       ->capture_default_str();
+  command->add_flag("--synthesise-normals", options.synthesise_normals,
+                    "synthesise a --map normal map as two channels of its own; by default texton, "
+                    "lrp and gabor derive it from the synthesised height map when the material "
+                    "has one and the normal map follows its gradient (docs/materials.md)");
   command->add_option("--method,-m", options.method, "texture method (see `stochtex methods`)")
       ->required();
   command->add_option("-p,--param", options.params,
@@ -59,9 +63,10 @@ Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params) {
   Progress progress("analyse");
   progress.message(
       fmt::format("analysing a material of {} maps with {}...", maps.size(), options.method));
-  return analyze_material(options.method, maps, params, options.seed,
-                          {.normal_y_down = options.normal_y == "down"},
-                          [&](double fraction) { progress(fraction); });
+  return analyze_material(
+      options.method, maps, params, options.seed,
+      {.normal_y_down = options.normal_y == "down", .derive_normals = !options.synthesise_normals},
+      [&](double fraction) { progress(fraction); });
 }
 
 }  // namespace

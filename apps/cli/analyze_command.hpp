@@ -15,12 +15,13 @@ struct AnalyzeOptions {
   std::string target;
   std::vector<std::string> maps;  // a material: --map NAME[:KIND]=FILE, in channel order
   std::string normal_y = "up";
+  bool synthesise_normals = false;
   std::string method;
   std::vector<std::string> params;
   std::uint32_t seed = 0;
 };
 
-// INPUT, --target, --map, --normal-y, --method, -p and --analysis-seed.
+// INPUT, --target, --map, --normal-y, --synthesise-normals, --method, -p and --analysis-seed.
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options);
 
 // The model of the options' exemplar or target. The method and parameters are checked before

@@ -36,8 +36,12 @@ void print_text(const Model& model, const std::string& path, const std::string& 
   for (const auto& [name, value] : doc["params"].items())
     fmt::print("  {} = {}\n", name, format_param(model.method(), name, value.get<double>()));
   for (const MapInfo& map : model.maps())
-    fmt::print("map       {} ({}, {} channel{})\n", map.name, map_kind_name(map.kind), map.channels,
-               map.channels == 1 ? "" : "s");
+    if (map.derived_from.empty())
+      fmt::print("map       {} ({}, {} channel{})\n", map.name, map_kind_name(map.kind),
+                 map.channels, map.channels == 1 ? "" : "s");
+    else
+      fmt::print("map       {} ({}, derived: {:.4g} times the gradient of {})\n", map.name,
+                 map_kind_name(map.kind), map.slope_scale, map.derived_from);
   for (const auto& array : doc["arrays"])
     fmt::print("array     {} {}\n", array["name"].get<std::string>(), array["shape"].dump());
   fmt::print("data      {} bytes\n", doc["array_bytes"].get<std::size_t>());

@@ -295,10 +295,10 @@ void render_model(const Model& model, const RenderPlan& plan, int threads,
                   const RenderSettings& settings, const std::string& output) {
   const Grid& grid = plan.grid;
   if (!model.maps().empty()) {
-    ImageF image(grid.width, grid.height, model.channels());
-    GridRenderer(model, settings, threads, static_cast<std::uint64_t>(grid.width) * grid.height)(
-        grid, image.view());
-    const std::vector<NamedImage> maps = split_maps(model, image.view());
+    GridRenderer renderer(model, settings, threads,
+                          static_cast<std::uint64_t>(grid.width + 2) * (grid.height + 2));
+    const std::vector<NamedImage> maps = render_maps(
+        model, grid, [&](const Grid& part, ImageView<float> out) { renderer(part, out); });
     for (const auto& [name, map] : maps)
       write_image(map_output(output, name), map.view(), settings.bit_depth);
     return;

@@ -16,6 +16,7 @@
 
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
+#include "stochtex/render.hpp"
 
 namespace stochtex {
 
@@ -31,7 +32,13 @@ struct MaterialMap {
 struct MaterialOptions {
   // Normal maps with green pointing down the image (DirectX's convention) instead of up.
   bool normal_y_down = false;
+  // analyze_material with a method that derives normals (MethodInfo::derives_normals): a normal
+  // map that follows the height map's gradient (correlation at least kMinDerivedFit) is derived
+  // from the synthesised height, its slopes slope_scale times the height's gradient, the scale
+  // fitted by least squares on the exemplar; false synthesises it as two channels of its own.
+  bool derive_normals = true;
 };
+inline constexpr double kMinDerivedFit = 0.5;
 
 // The kind a map named `name` gets when none is given: normal for normal, normals, normal_map,
 // nrm; height for height, displacement, disp, bump; scalar for roughness, glossiness, metallic,
@@ -62,7 +69,16 @@ Model analyze_material(std::string_view method, std::span<const MaterialMap> map
 // A render of a material model cut into its maps, in the model's order: colour, height and scalar
 // maps as rendered, a normal map as the unit normal normalize(-s_x, -s_y, 1) of its rendered
 // slopes, encoded 0.5 + 0.5 n (y up) in 3 channels. `rendered` has model.channels() channels; a
-// model without maps gives one image named "image".
+// model without maps gives one image named "image". A derived normal map needs the height around
+// each pixel: render_maps.
 std::vector<NamedImage> split_maps(const Model& model, ImageView<const float> rendered);
+
+// The maps of `grid`: `render_grid` renders the model's channels of a grid (stochtex::render, or
+// the GL backend), here the grid with a one-pixel margin when a normal map is derived, whose
+// slopes are then slope_scale times the height's central differences over the grid's spacing
+// (scale), y up; then split_maps.
+using GridRenderFunction = std::function<void(const Grid&, ImageView<float>)>;
+std::vector<NamedImage> render_maps(const Model& model, const Grid& grid,
+                                    const GridRenderFunction& render_grid);
 
 }  // namespace stochtex

@@ -61,6 +61,9 @@ struct MethodInfo {
   // The most channels its analysis takes (stochtex.hpp: kMaxImageChannels for one image, up to
   // kMaxChannels for a material set).
   int max_channels = 4;
+  // Whether a material's normal map is derived from its synthesised height (the Gaussian-model
+  // methods: their slopes would otherwise not follow their height) rather than synthesised.
+  bool derives_normals = true;
 };
 
 // A material model (stochtex/material.hpp) is analysed from several aligned maps whose channels
@@ -75,7 +78,11 @@ enum class MapKind {
 struct MapInfo {
   std::string name;  // 1 to 32 of a-z, 0-9 and _, unique in a model
   MapKind kind = MapKind::colour;
-  int channels = 1;  // the channels this map holds in the model (2 for a normal map)
+  int channels = 1;  // the channels this map holds in the model (2 for a normal map, 0 derived)
+  // A normal map derived from the height map `derived_from` (channels 0): its slopes are
+  // slope_scale times the rendered height's gradient (stochtex/material.hpp, render_maps).
+  std::string derived_from;
+  double slope_scale = 0.0;
 };
 std::string_view map_kind_name(MapKind kind);
 

@@ -125,7 +125,8 @@ struct AnalysisMemory {
 };
 
 // A method's row of the registry (src/registry.cpp): its one-line summary, its parameter record,
-// its analysis's memory and the most channels it analyses (MethodInfo::max_channels). Each method's
+// its analysis's memory, the most channels it analyses and whether it derives a material's normal
+// map from the height (MethodInfo). Each method's
 // analysis.hpp returns it from `registry_row(std::type_identity<Model>)`, which the registry finds
 // by argument-dependent lookup for every alternative of MethodModel.
 template <class P, std::size_t N>
@@ -134,6 +135,7 @@ struct RegistryRow {
   const std::array<ParamField<P>, N>& fields;
   AnalysisMemory analysis_memory;
   int max_channels = 4;
+  bool derives_normals = true;  // MethodInfo::derives_normals
 };
 
 }  // namespace stochtex

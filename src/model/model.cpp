@@ -99,9 +99,15 @@ std::string describe_model(const Model& model) {
   json["params"] = record.params;
   if (!record.maps.empty()) {
     auto maps = nlohmann::ordered_json::array();
-    for (const MapInfo& map : record.maps)
-      maps.push_back(
-          {{"name", map.name}, {"kind", map_kind_name(map.kind)}, {"channels", map.channels}});
+    for (const MapInfo& map : record.maps) {
+      nlohmann::ordered_json entry{
+          {"name", map.name}, {"kind", map_kind_name(map.kind)}, {"channels", map.channels}};
+      if (!map.derived_from.empty()) {
+        entry["from"] = map.derived_from;
+        entry["scale"] = map.slope_scale;
+      }
+      maps.push_back(entry);
+    }
     json["maps"] = maps;
   }
   json["scalars"] = record.scalars;

@@ -203,10 +203,23 @@ class Reader {
           !map_kind_from_name(kind->get<std::string>()).has_value())
         fail("has a malformed map declaration in its header; the file is corrupt");
       const auto count = channels->get<std::int64_t>();
-      if (count < 1 || count > kMaxChannels)
+      if (count < 0 || count > kMaxChannels)
         fail("declares a map of " + std::to_string(count) + " channels; the file is corrupt");
-      maps.push_back({name->get<std::string>(), *map_kind_from_name(kind->get<std::string>()),
-                      static_cast<int>(count)});
+      MapInfo map{name->get<std::string>(),
+                  *map_kind_from_name(kind->get<std::string>()),
+                  static_cast<int>(count),
+                  {},
+                  0.0};
+      const auto from = entry.find("from");
+      const auto scale = entry.find("scale");
+      if ((from == entry.end()) != (scale == entry.end()) ||
+          (from != entry.end() && (!from->is_string() || !scale->is_number())))
+        fail("has a malformed map declaration in its header; the file is corrupt");
+      if (from != entry.end()) {
+        map.derived_from = from->get<std::string>();
+        map.slope_scale = scale->get<double>();
+      }
+      maps.push_back(std::move(map));
     }
     if (const auto problem = map_layout_problem(maps)) fail(*problem + "; the file is corrupt");
     return maps;
@@ -237,9 +250,15 @@ std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
     header["arrays"].push_back({{"name", array.name}, {"shape", array.shape}});
   if (!record.maps.empty()) {
     header["maps"] = nlohmann::ordered_json::array();
-    for (const MapInfo& map : record.maps)
-      header["maps"].push_back(
-          {{"name", map.name}, {"kind", map_kind_name(map.kind)}, {"channels", map.channels}});
+    for (const MapInfo& map : record.maps) {
+      nlohmann::ordered_json entry{
+          {"name", map.name}, {"kind", map_kind_name(map.kind)}, {"channels", map.channels}};
+      if (!map.derived_from.empty()) {
+        entry["from"] = map.derived_from;
+        entry["scale"] = map.slope_scale;
+      }
+      header["maps"].push_back(entry);
+    }
   }
   const std::string text = header.dump();
 

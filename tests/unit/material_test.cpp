@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -253,6 +254,52 @@ TEST(Material, CorruptMapListsAreRefused) {
   for (int i = 0; i < 8; ++i)
     version_one[version_one.size() - 8 + i] = static_cast<std::uint8_t>(sum >> (8 * i));
   EXPECT_TRUE(mentions(refused(version_one), "list of maps in a version-1"));
+}
+
+// With a height map, texton (a method that derives normals) derives the normal map: no channels
+// of its own, its slopes the scale times the rendered height's central differences.
+TEST(Material, NormalMapsDeriveFromTheHeight) {
+  const ImageF albedo = rock("albedo");
+  const ImageF normal = rock("normal");
+  const ImageF height = rock("height");
+  const std::vector<MaterialMap> maps{{"albedo", {}, albedo.view(), "a.png"},
+                                      {"normal", {}, normal.view(), "n.png"},
+                                      {"height", {}, height.view(), "h.png"}};
+  const Model model = analyze_material("texton", maps, {{"iterations", 3}});
+  ASSERT_EQ(model.channels(), 4);
+  const MapInfo& derived = model.maps()[1];
+  EXPECT_EQ(derived.channels, 0);
+  EXPECT_EQ(derived.derived_from, "height");
+  EXPECT_GT(derived.slope_scale, 0.0);
+  const Model loaded = deserialize_model(serialize_model(model), "m.stx");
+  EXPECT_EQ(loaded.maps()[1].slope_scale, derived.slope_scale);
+  EXPECT_THROW(split_maps(model, ImageF(4, 4, 4).view()), std::invalid_argument);
+
+  const Grid grid{{3.0, -5.0}, 2.0, 24, 16};
+  const std::vector<NamedImage> parts = render_maps(
+      model, grid, [&](const Grid& part, ImageView<float> out) { render(model, part, 9, out); });
+  ASSERT_EQ(parts.size(), 3u);
+  // The height's neighbours: the same grid one pixel wider on each side.
+  ImageF wide(grid.width + 2, grid.height + 2, 4);
+  render(model, Grid{grid.origin, grid.scale, grid.width + 2, grid.height + 2, -1, -1}, 9,
+         wide.view());
+  const double k = derived.slope_scale / (2.0 * grid.scale);
+  for (int y = 0; y < grid.height; ++y)
+    for (int x = 0; x < grid.width; ++x) {
+      const double sx = k * (wide.at(x + 2, y + 1, 3) - wide.at(x, y + 1, 3));
+      const double sy = -k * (wide.at(x + 1, y + 2, 3) - wide.at(x + 1, y, 3));
+      const double length = std::sqrt(sx * sx + sy * sy + 1.0);
+      EXPECT_NEAR(parts[1].image.at(x, y, 0), 0.5 - 0.5 * sx / length, 1e-6);
+      EXPECT_NEAR(parts[1].image.at(x, y, 1), 0.5 - 0.5 * sy / length, 1e-6);
+      EXPECT_EQ(parts[2].image.at(x, y, 0), wide.at(x + 1, y + 1, 3));
+    }
+  // tiling copies the normal map from the same patches: two channels of its own.
+  EXPECT_EQ(analyze_material("tiling", maps).maps()[1].channels, 2);
+  // So does texton when asked to synthesise it.
+  EXPECT_EQ(analyze_material("texton", maps, {{"iterations", 3}}, 0, {.derive_normals = false})
+                .maps()[1]
+                .channels,
+            2);
 }
 
 }  // namespace

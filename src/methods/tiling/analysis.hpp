@@ -46,7 +46,8 @@ constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<Ti
       "Gaussianised exemplar and one look-up per sample",
       kFields,
       {.per_pixel = 40, .per_channel = 25},
-      kMaxChannels};
+      kMaxChannels,
+      false};  // a material's normal map comes from the same patches as its height
 }
 
 }  // namespace stochtex::tiling
