@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
 
@@ -56,6 +57,20 @@ std::optional<MapKind> map_kind_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+nlohmann::ordered_json maps_json(std::span<const MapInfo> maps) {
+  auto list = nlohmann::ordered_json::array();
+  for (const MapInfo& map : maps) {
+    nlohmann::ordered_json entry{
+        {"name", map.name}, {"kind", map_kind_name(map.kind)}, {"channels", map.channels}};
+    if (!map.derived_from.empty()) {
+      entry["from"] = map.derived_from;
+      entry["scale"] = map.slope_scale;
+    }
+    list.push_back(entry);
+  }
+  return list;
+}
+
 int map_channels(std::span<const MapInfo> maps) {
   int channels = 0;
   for (const MapInfo& map : maps) channels += map.channels;
@@ -94,10 +109,6 @@ std::optional<std::string> map_layout_problem(std::span<const MapInfo> maps) {
            " maps, more than the " + std::to_string(kMaxChannels) + " a material may have";
   return std::nullopt;
 }
-
-}  // namespace stochtex
-
-namespace stochtex {
 
 namespace {
 

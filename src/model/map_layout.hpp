@@ -3,6 +3,7 @@
 // comes in (analysis of a material, a model file), and the kinds' names as files and users write
 // them.
 
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <span>
 #include <string>
@@ -20,6 +21,10 @@ std::optional<MapKind> map_kind_from_name(std::string_view name);
 // count (colour 1 or 3, normal 2, height and scalar 1); at least one map and kMaxChannels channels
 // in all.
 std::optional<std::string> map_layout_problem(std::span<const MapInfo> maps);
+
+// The maps as the model file's header and `stochtex info --json` write them: {"name", "kind",
+// "channels"}, and "from", "scale" for a derived normal map.
+nlohmann::ordered_json maps_json(std::span<const MapInfo> maps);
 
 // The channels of all maps.
 int map_channels(std::span<const MapInfo> maps);

@@ -97,19 +97,7 @@ std::string describe_model(const Model& model) {
   json["method"] = record.method;
   json["channels"] = model.channels();
   json["params"] = record.params;
-  if (!record.maps.empty()) {
-    auto maps = nlohmann::ordered_json::array();
-    for (const MapInfo& map : record.maps) {
-      nlohmann::ordered_json entry{
-          {"name", map.name}, {"kind", map_kind_name(map.kind)}, {"channels", map.channels}};
-      if (!map.derived_from.empty()) {
-        entry["from"] = map.derived_from;
-        entry["scale"] = map.slope_scale;
-      }
-      maps.push_back(entry);
-    }
-    json["maps"] = maps;
-  }
+  if (!record.maps.empty()) json["maps"] = maps_json(record.maps);
   json["scalars"] = record.scalars;
   auto arrays = nlohmann::ordered_json::array();
   std::size_t bytes = 0;

@@ -248,18 +248,7 @@ std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
   header["arrays"] = nlohmann::ordered_json::array();
   for (const auto& array : record.arrays)
     header["arrays"].push_back({{"name", array.name}, {"shape", array.shape}});
-  if (!record.maps.empty()) {
-    header["maps"] = nlohmann::ordered_json::array();
-    for (const MapInfo& map : record.maps) {
-      nlohmann::ordered_json entry{
-          {"name", map.name}, {"kind", map_kind_name(map.kind)}, {"channels", map.channels}};
-      if (!map.derived_from.empty()) {
-        entry["from"] = map.derived_from;
-        entry["scale"] = map.slope_scale;
-      }
-      header["maps"].push_back(entry);
-    }
-  }
+  if (!record.maps.empty()) header["maps"] = maps_json(record.maps);
   const std::string text = header.dump();
 
   std::vector<std::uint8_t> out(std::begin(kMagic), std::end(kMagic));

@@ -5,7 +5,8 @@
 //     of every preceding byte.
 // The header JSON is {"method": str, "params": {name: number}, "scalars": {name: number},
 //   "arrays": [{"name": str, "shape": [int, ...]}, ...]}, and for a material (format version 2
-//   only) "maps": [{"name": str, "kind": str, "channels": int[, "from": str, "scale": number]}, ...]
+//   only) "maps": [{"name": str, "kind": str, "channels": int[, "from": str, "scale": number]},
+//   ...]
 //   ("from": a normal map derived from that height map, channels 0). A model of one image is
 //   written as version 1, byte for byte what stochtex wrote before materials; version 2 holds a
 //   material, so that a stochtex without materials refuses it ("upgrade") rather than render it.
