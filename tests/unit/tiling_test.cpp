@@ -721,13 +721,14 @@ TEST(TilingControls, SharpenedWeightsSumToOneAndFavourTheNearestVertex) {
 }
 
 TEST(TilingControls, HeightBlendWeightsFavourTheHigherPatchAndKeepAVertexAlone) {
-  // Equal weights: the weights go as exp(h / depth); a higher patch by depth weighs e times more.
+  // The weights go as w exp((h + w) / depth): with equal weights, a patch higher by depth
+  // weighs e times more.
   const float heights[3] = {0.5f, 0.6f, 0.4f};
-  float even[3] = {0.25f, 0.25f, 0.5f};
-  height_blend_weights(even, heights, 0.1f);
-  EXPECT_NEAR(even[0] + even[1] + even[2], 1.0f, 1e-6f);
-  EXPECT_NEAR(even[1] / even[0], std::exp(1.0f), 1e-4f);
-  EXPECT_NEAR(even[2] / even[0], 2.0f * std::exp(-1.0f), 1e-4f);
+  float weights[3] = {0.25f, 0.25f, 0.5f};
+  height_blend_weights(weights, heights, 0.1f);
+  EXPECT_NEAR(weights[0] + weights[1] + weights[2], 1.0f, 1e-6f);
+  EXPECT_NEAR(weights[1] / weights[0], std::exp(1.0f), 1e-4f);
+  EXPECT_NEAR(weights[2] / weights[0], 2.0f * std::exp(1.5f), 1e-3f);
   // A weight of 0 stays 0 however high its patch (the blend is continuous across triangle
   // edges), and a vanishing depth leaves the highest patch of weight > 0 alone, without NaN.
   float edge[3] = {0.7f, 0.3f, 0.0f};

@@ -77,10 +77,11 @@ inline constexpr std::array<ParamField<Params>, 11> kFields = {{
         "weights of section 5.1)"),
     number_field<&Params::height_blend>(
         "height_blend", 0.0, 1.0,
-        "artist control for a material with a height map: the higher patch wins at the "
-        "transitions between tiles (the height blend of game engines, smooth form): a patch "
-        "higher by height_blend, in the height's Gaussianised values (mean 1/2, deviation 1/6), "
-        "weighs e times more (smaller: sharper, e.g. 0.05; 0: off, the blend of section 5.1)"),
+        "artist control for a material with a height map: the patch of the highest height + "
+        "weight wins at the transitions between tiles (the height blend of game engines, smooth "
+        "form), over a transition of this width in the height's Gaussianised values (mean 1/2, "
+        "deviation 1/6) plus the barycentric weight (smaller: sharper; 1: near the plain blend; "
+        "0: off, the blend of section 5.1)"),
 }};
 
 inline constexpr auto kParams = param_infos(kFields);
