@@ -402,14 +402,18 @@ constexpr auto expect_rejected = &test_support::expect_record_rejected<TilingMod
 
 void check_threads_tiles_and_regions(const Model& model);
 
+// `record` with the scalar `name` set to `value`.
+ModelRecord scalar_edited(ModelRecord record, const std::string& name, double value) {
+  record.scalars[name] = value;
+  return record;
+}
+
 TEST(TilingModelFile, CorruptRecordsAreRejectedWithAFormatError) {
   const Model model = analyse(structured_exemplar(16, 4, 8), {{"lut_size", 4}});
   const ModelRecord good = tiling_of(model).to_record(model.params());
   EXPECT_NO_THROW(TilingModel::from_record(good, "good.stx"));
   const auto with_scalar = [&](const std::string& name, double value) {
-    ModelRecord record = good;
-    record.scalars[name] = value;
-    return record;
+    return scalar_edited(good, name, value);
   };
   expect_rejected(with_scalar("channels", 5), "5 channels");
   expect_rejected(with_scalar("channels", 3), "channel count that disagrees with the arrays");
@@ -804,16 +808,12 @@ TEST(TilingControls, HostileHeightBlendRecordsAreRejected) {
   const Model model = height_material({{"height_blend", 0.1}, {"lut_size", 4}});
   const ModelRecord good = tiling_of(model).to_record(model.params());
   EXPECT_NO_THROW(TilingModel::from_record(good, "good.stx"));
-  const auto with_scalar = [&](const std::string& name, double value) {
-    ModelRecord record = good;
-    record.scalars[name] = value;
-    return record;
-  };
   for (const double channel : {-1.0, 2.0, 0.5, 1e12, std::nan("")})
-    expect_rejected(with_scalar("height_channel", channel),
+    expect_rejected(scalar_edited(good, "height_channel", channel),
                     "height_channel " + std::to_string(channel));
   for (const double blend : {-0.1, 1.5, std::nan("")})
-    expect_rejected(with_scalar("height_blend", blend), "height_blend " + std::to_string(blend));
+    expect_rejected(scalar_edited(good, "height_blend", blend),
+                    "height_blend " + std::to_string(blend));
   ModelRecord missing = good;
   missing.scalars.erase("height_channel");
   expect_rejected(missing, "height_blend without its channel");
