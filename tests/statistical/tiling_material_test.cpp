@@ -24,33 +24,13 @@ namespace stochtex {
 namespace {
 
 using test_support::correlation_matrix;
+using test_support::histogram_distance;
 using test_support::pooled;
 using test_support::Sample;
 using test_support::summarise;
 
 constexpr int kSide = 1024;
 constexpr int kSeeds = 8;
-
-// The 1-D Wasserstein-1 distance of channel c's histograms in `a` and `b`: the mean absolute
-// difference of their quantiles at the levels (k + 1/2) / n of the smaller image's n pixels.
-double histogram_distance(const ImageF& a, const ImageF& b, int c) {
-  const auto sorted = [c](const ImageF& image) {
-    std::vector<double> values;
-    for (int j = 0; j < image.height(); ++j)
-      for (int i = 0; i < image.width(); ++i) values.push_back(image.at(i, j, c));
-    std::sort(values.begin(), values.end());
-    return values;
-  };
-  const std::vector<double> x = sorted(a);
-  const std::vector<double> y = sorted(b);
-  const std::size_t n = std::min(x.size(), y.size());
-  const auto quantile = [n](const std::vector<double>& values, std::size_t k) {
-    return values[(2 * k + 1) * values.size() / (2 * n)];
-  };
-  double sum = 0.0;
-  for (std::size_t k = 0; k < n; ++k) sum += std::abs(quantile(x, k) - quantile(y, k));
-  return sum / static_cast<double>(n);
-}
 
 double largest_difference(const std::vector<double>& a, const std::vector<double>& b) {
   double worst = 0.0;

@@ -11,6 +11,7 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "methods/tiling/model.hpp"
 #include "methods/tiling/params.hpp"
 #include "model/model_data.hpp"
+#include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
 #include "stochtex/surface.hpp"
 #include "test_support.hpp"
@@ -400,14 +402,18 @@ constexpr auto expect_rejected = &test_support::expect_record_rejected<TilingMod
 
 void check_threads_tiles_and_regions(const Model& model);
 
+// `record` with the scalar `name` set to `value`.
+ModelRecord scalar_edited(ModelRecord record, const std::string& name, double value) {
+  record.scalars[name] = value;
+  return record;
+}
+
 TEST(TilingModelFile, CorruptRecordsAreRejectedWithAFormatError) {
   const Model model = analyse(structured_exemplar(16, 4, 8), {{"lut_size", 4}});
   const ModelRecord good = tiling_of(model).to_record(model.params());
   EXPECT_NO_THROW(TilingModel::from_record(good, "good.stx"));
   const auto with_scalar = [&](const std::string& name, double value) {
-    ModelRecord record = good;
-    record.scalars[name] = value;
-    return record;
+    return scalar_edited(good, name, value);
   };
   expect_rejected(with_scalar("channels", 5), "5 channels");
   expect_rejected(with_scalar("channels", 3), "channel count that disagrees with the arrays");
@@ -692,10 +698,12 @@ TEST(TilingControls, DefaultsAreThePapersOperatorAndOldFilesLoad) {
   EXPECT_EQ(loaded.rotation, 0.0);
   EXPECT_EQ(loaded.scale_jitter, 0.0);
   EXPECT_EQ(loaded.sharpness, 1.0);
-  // Each control is stored, read back, and changes the render.
+  // Each control of an image is stored, read back, and changes the render (height_blend, which
+  // needs a height map: TilingControls.HeightBlend*).
   const ImageF reference = render_model(model, grid, 5);
   for (std::size_t i = kFirstControl; i < kParams.size(); ++i) {
     const std::string name(kParams[i].name);
+    if (name == "height_blend") continue;
     const Model controlled = analyse(exemplar, {{name, kParams[i].max_value / 2}});
     const Model round = deserialize_model(serialize_model(controlled), "round.stx");
     EXPECT_EQ(round.params().at(name), kParams[i].max_value / 2) << name;
@@ -714,6 +722,111 @@ TEST(TilingControls, SharpenedWeightsSumToOneAndFavourTheNearestVertex) {
   float unchanged[3] = {0.5f, 0.3f, 0.2f};
   sharpen_weights(unchanged, 1.0f);
   EXPECT_EQ(unchanged[1], 0.3f);
+}
+
+TEST(TilingControls, HeightBlendWeightsFavourTheHigherPatchAndKeepAVertexAlone) {
+  // The weights go as w exp((h + w) / depth): with equal weights, a patch higher by depth
+  // weighs e times more.
+  const float heights[3] = {0.5f, 0.6f, 0.4f};
+  float weights[3] = {0.25f, 0.25f, 0.5f};
+  height_blend_weights(weights, heights, 0.1f);
+  EXPECT_NEAR(weights[0] + weights[1] + weights[2], 1.0f, 1e-6f);
+  EXPECT_NEAR(weights[1] / weights[0], std::exp(1.0f), 1e-4f);
+  EXPECT_NEAR(weights[2] / weights[0], 2.0f * std::exp(1.5f), 1e-3f);
+  // A weight of 0 stays 0 however high its patch (the blend is continuous across triangle
+  // edges), and a vanishing depth leaves the highest patch of weight > 0 alone, without NaN.
+  float edge[3] = {0.7f, 0.3f, 0.0f};
+  const float high_third[3] = {0.5f, 0.2f, 2.0f};
+  height_blend_weights(edge, high_third, 1e-30f);
+  EXPECT_EQ(edge[0], 1.0f);
+  EXPECT_EQ(edge[1], 0.0f);
+  EXPECT_EQ(edge[2], 0.0f);
+}
+
+// A two-map material (albedo, height: structured_exemplar's two channels) analysed with `params`.
+Model height_material(const ParamValues& params, const std::string& height_kind = "height") {
+  const ImageF both = structured_exemplar(32, 2, 23);
+  ImageF albedo(32, 32, 1), height(32, 32, 1);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      albedo.at(x, y, 0) = both.at(x, y, 0);
+      height.at(x, y, 0) = both.at(x, y, 1);
+    }
+  ParamValues all = params;
+  all.try_emplace("iterations", 24);
+  return analyze_material("tiling",
+                          std::vector<MaterialMap>{{"albedo", {}, albedo.view(), "albedo.png"},
+                                                   {height_kind, {}, height.view(), "h.png"}},
+                          all, 3);
+}
+
+TEST(TilingControls, HeightBlendIsStoredOnlyWhenOnAndNeedsAHeightMap) {
+  const Grid grid{{3.0, -7.0}, 1.5, 24, 20};
+  // Off: the file of a material made before the control, which loads with it off.
+  const Model plain = height_material({});
+  const std::vector<std::uint8_t> bytes = serialize_model(plain);
+  EXPECT_EQ(bytes, serialize_model(height_material({{"height_blend", 0}})));
+  const std::string text(bytes.begin(), bytes.end());
+  EXPECT_EQ(text.find("height_blend"), std::string::npos);
+  EXPECT_EQ(text.find("height_channel"), std::string::npos);
+  EXPECT_EQ(tiling_of(deserialize_model(bytes, "old.stx")).data().height_channel, -1);
+  // On: the height map's channel is stored; the file round-trips and the render changes.
+  const Model blended = height_material({{"height_blend", 0.05}});
+  EXPECT_EQ(tiling_of(blended).data().height_channel, 1);
+  const Model round = deserialize_model(serialize_model(blended), "round.stx");
+  EXPECT_EQ(serialize_model(round), serialize_model(blended));
+  EXPECT_EQ(tiling_of(round).data().height_channel, 1);
+  const ImageF image = render_model(blended, grid, 5);
+  EXPECT_TRUE(same_bytes(image, render_model(round, grid, 5)));
+  EXPECT_FALSE(same_bytes(image, render_model(plain, grid, 5)));
+  // Refused by the analysis with one sentence: no height map (an image, or a material whose second
+  // map is a scalar map), or a blend without Gaussianised heights.
+  const auto refusal = [](const auto& call) -> std::string {
+    try {
+      call();
+    } catch (const std::invalid_argument& error) {
+      return error.what();
+    }
+    return "";
+  };
+  const std::string no_map = "has no height map";
+  EXPECT_NE(refusal([] {
+              analyse(structured_exemplar(16, 1, 2), {{"height_blend", 0.1}});
+            }).find(no_map),
+            std::string::npos);
+  EXPECT_NE(refusal([] {
+              height_material({{"height_blend", 0.1}}, "roughness");
+            }).find(no_map),
+            std::string::npos);
+  EXPECT_NE(refusal([] {
+              height_material({{"height_blend", 0.1}, {"blend", 1}});
+            }).find("histogram blend"),
+            std::string::npos);
+}
+
+TEST(TilingControls, HostileHeightBlendRecordsAreRejected) {
+  const Model model = height_material({{"height_blend", 0.1}, {"lut_size", 4}});
+  const ModelRecord good = tiling_of(model).to_record(model.params());
+  EXPECT_NO_THROW(TilingModel::from_record(good, "good.stx"));
+  for (const double channel : {-1.0, 2.0, 0.5, 1e12, std::nan("")})
+    expect_rejected(scalar_edited(good, "height_channel", channel),
+                    "height_channel " + std::to_string(channel));
+  for (const double blend : {-0.1, 1.5, std::nan("")})
+    expect_rejected(scalar_edited(good, "height_blend", blend),
+                    "height_blend " + std::to_string(blend));
+  ModelRecord missing = good;
+  missing.scalars.erase("height_channel");
+  expect_rejected(missing, "height_blend without its channel");
+  // The variance blend has no Gaussianised heights: its data with the control on is refused.
+  TilingData variance = tiling_of(height_material({{"blend", 1}})).data();
+  EXPECT_NO_THROW(TilingModel{variance});
+  variance.height_blend = 0.1;
+  variance.height_channel = 1;
+  EXPECT_THROW(TilingModel{variance}, std::invalid_argument);
+  // A stored channel is ignored with the control off (the file of a model without it).
+  ModelRecord off = good;
+  off.scalars.erase("height_blend");
+  EXPECT_EQ(TilingModel::from_record(off, "off.stx").data().height_channel, -1);
 }
 
 TEST(TilingControls, PatchTransformRotatesAboutTheVertexWithinTheRange) {

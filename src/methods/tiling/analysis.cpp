@@ -283,6 +283,17 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
     throw std::invalid_argument(
         "tiling's rotation and scale_jitter turn the patches but not yet a normal map's slopes: "
         "leave them at 0 for a material with a normal map");
+  const auto height_map = std::find_if(maps.begin(), maps.end(), [](const MapInfo& map) {
+    return map.kind == MapKind::height && map.channels == 1;
+  });
+  if (params.height_blend > 0.0 && height_map == maps.end())
+    throw std::invalid_argument(
+        "tiling's height_blend compares the patches' heights and this exemplar has no height "
+        "map: analyse a material with one (--map height=...) or leave height_blend at 0");
+  if (params.height_blend > 0.0 && params.blend != Blend::histogram)
+    throw std::invalid_argument(
+        "tiling's height_blend compares the patches' Gaussianised heights, which only the "
+        "histogram blend has: use blend=histogram or leave height_blend at 0");
   TilingData data;
   data.groups = material_groups(maps, params);
   data.channels = exemplar.channels;
@@ -296,6 +307,12 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
   data.rotation = params.rotation;
   data.scale_jitter = params.scale_jitter;
   data.sharpness = params.sharpness;
+  data.height_blend = params.height_blend;
+  if (params.height_blend > 0.0) {
+    // The maps are interleaved in their order: the height map's channel follows the others'.
+    data.height_channel = 0;
+    for (auto map = maps.begin(); map != height_map; ++map) data.height_channel += map->channels;
+  }
   const int iterations = params.iterations;
   const int channels = data.channels;
   const std::size_t pixels = static_cast<std::size_t>(data.width) * data.height;

@@ -4,8 +4,10 @@
 // can be mirrored in GLSL. Lattice and fetch functions are public so tests and baselines (linear
 // blending) use exactly the evaluator's geometry.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "core/hash.hpp"
 #include "stochtex/model.hpp"
@@ -87,6 +89,31 @@ inline void sharpen_weights(float* weight, float sharpness) noexcept {
   float sum = 0.0f;
   for (int v = 0; v < 3; ++v) {
     weight[v] = std::pow(weight[v], sharpness);
+    sum += weight[v];
+  }
+  for (int v = 0; v < 3; ++v) weight[v] /= sum;
+}
+
+// The height-aware blend: the height blend of game engines (A. Mishkinis, "Advanced Terrain
+// Texture Splatting", Gamasutra 2013), w_i' = max(h_i + w_i - max_j(h_j + w_j) + depth, 0)
+// renormalised, with h_i the patch's height, in a smooth form: w_i' = w_i exp((h_i + w_i -
+// max_j(h_j + w_j)) / depth) / sum_j (...), the max over the patches of weight > 0. The engine
+// form gives a vertex of barycentric weight 0 a weight of its own when its patch is higher than
+// the others by more than their weight - depth, so the blend would jump across the lattice's
+// triangle edges (where that vertex changes); the factor w_i keeps w_i = 0 at 0, so the blend is
+// continuous and a vertex shows its patch alone. As in the engine form, the patch of the highest
+// h + w wins, over a transition about `depth` wide in h + w; a large depth tends to the
+// barycentric weights. `depth` > 0.
+inline void height_blend_weights(float* weight, const float* height, float depth) noexcept {
+  float top = -std::numeric_limits<float>::infinity();
+  for (int v = 0; v < 3; ++v)
+    if (weight[v] > 0.0f) top = std::max(top, height[v] + weight[v]);
+  float sum = 0.0f;
+  for (int v = 0; v < 3; ++v) {
+    // below <= 0 where the weight is > 0; the top patch's factor is 1 even for a tiny depth.
+    const float below = height[v] + weight[v] - top;
+    weight[v] =
+        weight[v] > 0.0f ? weight[v] * (below < 0.0f ? std::exp(below / depth) : 1.0f) : 0.0f;
     sum += weight[v];
   }
   for (int v = 0; v < 3; ++v) weight[v] /= sum;

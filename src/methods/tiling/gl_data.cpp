@@ -25,6 +25,10 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) 
                 "tiling: the GPU twin renders an image's colour and alpha, and this material's " +
                     std::to_string(layout.groups.size()) +
                     " maps go through their own tables; render it with --backend cpu");
+  if (d.height_blend > 0.0)
+    throw Error(ErrorCode::invalid_input,
+                "tiling: the GPU twin has no height-aware blend yet and this model has "
+                "height_blend on; render it with --backend cpu");
   TilingGlsl glsl;
   std::vector<int> widths;
   std::vector<int> heights;

@@ -128,7 +128,7 @@ float table_lookup(const float* table, int size, float g) noexcept {
 
 // Artist control i of kParams (i >= kFirstControl) in the data.
 double control(const TilingData& data, std::size_t index) {
-  const double values[] = {data.rotation, data.scale_jitter, data.sharpness};
+  const double values[] = {data.rotation, data.scale_jitter, data.sharpness, data.height_blend};
   return values[index - kFirstControl];
 }
 
@@ -197,6 +197,11 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
     if (!(value >= kParams[i].min_value && value <= kParams[i].max_value))
       throw std::invalid_argument("tiling: " + std::string(kParams[i].name) + " is out of range");
   }
+  if (d.height_blend > 0.0
+          ? d.blend != Blend::histogram || d.height_channel < 0 || d.height_channel >= d.channels
+          : d.height_channel != -1)
+    throw std::invalid_argument(
+        "tiling: height_blend needs the histogram blend and a height channel within the channels");
   layout_ = tiling_layout(d.channels, d.transport, d.blend, d.groups);
   const auto n = static_cast<std::size_t>(d.lut_size);
   if (d.gaussian.size() != static_cast<std::size_t>(d.width) * d.height * d.channels ||
@@ -288,6 +293,9 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
   data.rotation = read_control(kFirstControl);
   data.scale_jitter = read_control(kFirstControl + 1);
   data.sharpness = read_control(kFirstControl + 2);
+  data.height_blend = read_control(kFirstControl + 3);
+  if (data.height_blend > 0.0)
+    data.height_channel = static_cast<int>(read("height_channel", 0, data.channels - 1, true));
   const auto take = [&](const std::string& name, const std::vector<std::int64_t>& shape) {
     const NamedArray& array = record.array(name, shape, source);
     if (!within_model_range(array.values))
@@ -361,6 +369,7 @@ ModelRecord TilingModel::to_record(const ParamValues& params) const {
     else
       record.scalars[name] = record.params[name] = control(d, i);
   }
+  if (d.height_blend > 0.0) record.scalars["height_channel"] = d.height_channel;
   const std::int64_t n = d.lut_size;
   const std::int64_t cc = layout_.colour_channels;
   record.arrays.push_back({"gaussian", {d.height, d.width, d.channels}, d.gaussian});
@@ -429,6 +438,10 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
   float acc[kMaxChannels] = {};
   float weight_squares = 0.0f;
   double weighted_lod = 0.0;
+  // The height-aware blend: each patch fetched apart, then weighted by its height (below).
+  const bool height_aware = data_.height_blend > 0.0;
+  float patch[3][kMaxChannels];
+  double patch_level[3] = {};
   for (int v = 0; v < 3; ++v) {
     const float w = weight[v];
     weight_squares += w * w;
@@ -449,10 +462,35 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
           static_cast<double>(w) * w * (patch_lod.level + static_cast<double>(patch_lod.blend));
     }
     const MipLevel fine = level(patch_lod.level);
+    if (height_aware) {
+      std::fill_n(patch[v], channels, 0.0f);
+      fetch_bilinear(fine, channels, x, y, 1.0f - patch_lod.blend, patch[v]);
+      if (patch_lod.blend > 0.0f)
+        fetch_bilinear(level(std::min(patch_lod.level + 1, level_count() - 1)), channels, x, y,
+                       patch_lod.blend, patch[v]);
+      patch_level[v] = patch_lod.level + static_cast<double>(patch_lod.blend);
+      continue;
+    }
     fetch_bilinear(fine, channels, x, y, w * (1.0f - patch_lod.blend), acc);
     if (patch_lod.blend > 0.0f)
       fetch_bilinear(level(std::min(patch_lod.level + 1, level_count() - 1)), channels, x, y,
                      w * patch_lod.blend, acc);
+  }
+  if (height_aware) {
+    // The weights from the patches' Gaussianised heights, then the same variance-preserving blend
+    // (eq. 13 of Heitz & Neyret 2018, DOI 10.1145/3233304) with them: sum w' = 1, normalised by
+    // sqrt(sum w'^2).
+    const float heights[3] = {patch[0][data_.height_channel], patch[1][data_.height_channel],
+                              patch[2][data_.height_channel]};
+    height_blend_weights(weight, heights, static_cast<float>(data_.height_blend));
+    weight_squares = 0.0f;
+    weighted_lod = 0.0;
+    for (int v = 0; v < 3; ++v) {
+      const float w = weight[v];
+      weight_squares += w * w;
+      weighted_lod += static_cast<double>(w) * w * patch_level[v];
+      for (int c = 0; c < channels; ++c) acc[c] += w * patch[v][c];
+    }
   }
   // Eq. (8)/(13): (sum w G - E[G]) / sqrt(sum w^2) + E[G], with sum w = 1; eq. (3) for linear.
   const float inverse_norm = data_.blend == Blend::linear ? 1.0f : 1.0f / std::sqrt(weight_squares);

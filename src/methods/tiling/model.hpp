@@ -52,6 +52,10 @@ struct TilingData {
   double rotation = 0.0;
   double scale_jitter = 0.0;
   double sharpness = 1.0;
+  // The height-aware blend (height_blend_weights): the transition's width in Gaussian values,
+  // 0 when off; the channel of the material's height map when on, -1 when off.
+  double height_blend = 0.0;
+  int height_channel = -1;
   std::vector<float> gaussian;      // height x width x channels: T(X), or X itself without T
   std::vector<float> blend_mean;    // channels: E[G] in eq. (8)
   std::vector<float> lut;           // lut_size^3 x 3, T^-1 of the colour (3-D transport), or empty
@@ -149,7 +153,8 @@ class TilingModel {
   // footprint of width `footprint_width` (exemplar pixels; 0: a point sample). `g` gets
   // `channels()` values. Returns the level of detail of T^-1 (step 3): the footprint's, or, with
   // scale jitter (each patch at its own level), the w^2-weighted mean of the patches' levels, as
-  // evaluate_triplanar does for its planes.
+  // evaluate_triplanar does for its planes. With height_blend on, the weights are the
+  // height-aware ones (height_blend_weights) of the patches' heights.
   LevelOfDetail blended_gaussian(Vec2d position, double footprint_width, std::uint32_t seed,
                                  float* g) const noexcept;
   // The rotation or the scale jitter is on.
@@ -164,6 +169,8 @@ class TilingModel {
   // detail of the 3-D footprint projected on it, blended with the normal's weights |n_k|^sharpness
   // / sum by the variance-preserving operator of eq. (13) in Gaussian space, then one T^-1
   // look-up (step 3) per point. Plane k draws its patches from the seed triplanar_seed(k, seed).
+  // height_blend applies within each plane (its lattice's patches); the planes keep the normal's
+  // weights, which say where the surface faces, not which patch is higher.
   // `out` holds points.size() pixels in row-major order. noexcept, no allocation. The GLSL twin
   // is stochtex_tiling_triplanar (triplanar.glsl).
   void evaluate_triplanar(std::span<const SurfacePoint> points, double sharpness,

@@ -22,6 +22,7 @@ struct Params {
   double rotation = 0.0;
   double scale_jitter = 0.0;
   double sharpness = 1.0;
+  double height_blend = 0.0;
 
   bool operator==(const Params&) const = default;
 };
@@ -30,7 +31,7 @@ inline constexpr std::array<ParamChoice, 2> kTransports = {{{"sliced", 0}, {"pca
 inline constexpr std::array<ParamChoice, 3> kBlends = {
     {{"histogram", 0}, {"variance", 1}, {"linear", 2}}};
 
-inline constexpr std::array<ParamField<Params>, 10> kFields = {{
+inline constexpr std::array<ParamField<Params>, 11> kFields = {{
     number_field<&Params::tile_radius>(
         "tile_radius", 0.05, 4.0,
         "radius of the hexagonal tiles (the edge of the triangle lattice) as a fraction of the "
@@ -74,6 +75,13 @@ inline constexpr std::array<ParamField<Params>, 10> kFields = {{
         "artist control: the blend weights raised to this power and renormalised before the "
         "blend (Burley 2019), narrowing the transitions between tiles (1: the barycentric "
         "weights of section 5.1)"),
+    number_field<&Params::height_blend>(
+        "height_blend", 0.0, 1.0,
+        "artist control for a material with a height map: the patch of the highest height + "
+        "weight wins at the transitions between tiles (the height blend of game engines, smooth "
+        "form), over a transition of this width in the height's Gaussianised values (mean 1/2, "
+        "deviation 1/6) plus the barycentric weight (smaller: sharper; 1: near the plain blend; "
+        "0: off, the blend of section 5.1)"),
 }};
 
 inline constexpr auto kParams = param_infos(kFields);
