@@ -1239,8 +1239,12 @@ expect_error "more channels than a material may have" 1 "17 channels in 7 maps" 
   --map height="$rock/height.png" -m tiling -o "$out/x.stx"
 expect_error "a material's groups on tiling's gpu twin" 1 "--backend cpu" "$stochtex" render \
   "$models/relief.stx" -o "$out/x_{map}.png" --size 8x8 --backend gl
-expect_error "tiling's rotation with a normal map" 2 "rotation" "$stochtex" analyze \
-  --map normal="$rock/normal.png" -m tiling -p rotation=30 -o "$out/x.stx"
+expect_ok "tiling's rotation with a normal map" "$stochtex" analyze --map normal="$rock/normal.png" \
+  --map height="$rock/height.png" -m tiling -p rotation=30 -p scale_jitter=0.2 \
+  -o "$models/turned.stx" &&
+  expect_ok "render turned slopes" "$stochtex" render "$models/turned.stx" \
+    -o "$models/turned_{map}.png" --size 24x24 --scale 4 &&
+  expect_file "the turned normal map" "$models/turned_normal.png"
 expect_error "a map named twice" 1 "twice" "$stochtex" analyze --map albedo="$rock/albedo.png" \
   --map albedo="$rock/albedo.png" -m tiling -o "$out/x.stx"
 expect_error "a colour roughness map" 1 "one channel" "$stochtex" analyze \

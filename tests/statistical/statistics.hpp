@@ -6,13 +6,33 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "core/colour_statistics.hpp"
 #include "metrics/metrics.hpp"
 #include "stochtex/image.hpp"
+#include "stochtex/io.hpp"
+#include "stochtex/material.hpp"
 
 namespace stochtex::test_support {
+
+// The shipped maps `names` of the material set `set` (data/materials/<set>/<name>.png), as
+// analyze_material and material_exemplar take them; `maps` views `images`.
+struct ShippedMaterial {
+  std::vector<ImageF> images;
+  std::vector<MaterialMap> maps;
+};
+inline ShippedMaterial shipped_material(const std::string& set,
+                                        const std::vector<std::string>& names) {
+  ShippedMaterial material;
+  for (const std::string& name : names)
+    material.images.push_back(
+        read_image(std::string(STOCHTEX_MATERIAL_DIR) + "/" + set + "/" + name + ".png"));
+  for (std::size_t i = 0; i < names.size(); ++i)
+    material.maps.push_back({names[i], {}, material.images[i].view(), names[i] + ".png"});
+  return material;
+}
 
 struct Sample {
   double mean = 0;

@@ -39,13 +39,9 @@ double largest_difference(const std::vector<double>& a, const std::vector<double
 }
 
 TEST(TilingMaterial, MapsKeepTheirHistogramsAndCrossCorrelations) {
-  const std::string folder = std::string(STOCHTEX_MATERIAL_DIR) + "/rock_sandstone/";
-  const std::vector<std::string> names{"albedo", "normal", "roughness", "height", "ao"};
-  std::vector<ImageF> images;
-  for (const auto& name : names) images.push_back(read_image(folder + name + ".png"));
-  std::vector<MaterialMap> maps;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    maps.push_back({names[i], {}, images[i].view(), names[i] + ".png"});
+  const test_support::ShippedMaterial rock = test_support::shipped_material(
+      "rock_sandstone", {"albedo", "normal", "roughness", "height", "ao"});
+  const std::vector<MaterialMap>& maps = rock.maps;
   const ImageF exemplar = material_exemplar(maps).exemplar;  // 8 channels: normal as 2 slopes
   const Model model = analyze_material("tiling", maps);
   ASSERT_EQ(model.channels(), 8);

@@ -238,6 +238,31 @@ std::vector<float> sliced_transport_to_gaussian(std::span<const float> source, i
       });
 }
 
+void gaussianise_radial(std::span<const float> slopes, std::span<float> gaussian,
+                        std::span<float> table) {
+  const std::size_t count = slopes.size() / 2;
+  std::vector<float> magnitude(count);
+  for (std::size_t i = 0; i < count; ++i)
+    magnitude[i] = std::hypot(slopes[2 * i], slopes[2 * i + 1]);
+  std::vector<std::uint64_t> keys;
+  std::vector<std::uint64_t> scratch;
+  argsort(magnitude, keys, scratch);
+  std::vector<float> sorted(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t i = index_of(keys[k]);
+    sorted[k] = magnitude[i];
+    const auto rho = static_cast<float>(
+        uniform_to_radius((static_cast<double>(k) + 0.5) / static_cast<double>(count)));
+    // A flat pixel (s = 0) has no direction: it takes the x axis'.
+    const float scale = magnitude[i] > 0.0f ? rho / magnitude[i] : 0.0f;
+    gaussian[2 * i] = kGaussianMean + (magnitude[i] > 0.0f ? scale * slopes[2 * i] : rho);
+    gaussian[2 * i + 1] = kGaussianMean + scale * slopes[2 * i + 1];
+  }
+  for (std::size_t k = 0; k < table.size(); ++k)
+    table[k] =
+        sorted_quantile(sorted, (static_cast<double>(k) + 0.5) / static_cast<double>(table.size()));
+}
+
 void gaussianise_1d(std::span<const float> values, std::span<float> gaussian,
                     std::span<float> table) {
   std::vector<std::uint64_t> keys;
@@ -264,12 +289,18 @@ namespace {
 // a second transport that inverts T only approximately, and on rock_sandstone it moved the
 // rendered albedo-height correlation by 0.11 (1024² renders, 4 seeds), where 1-D tables on
 // principal axes, exact inverses, kept every cross-map correlation within 0.03.
+//
+// With rotation or scale jitter, a normal map's slopes go through the radial transform instead
+// (GroupTransform::radial, evaluate.hpp), whose Gaussian space turns with the patches.
 std::vector<GroupSpec> material_groups(std::span<const MapInfo> maps, const Params& params) {
   std::vector<GroupSpec> groups;
   if (maps.empty() || params.blend != Blend::histogram) return groups;
+  const bool turned = params.rotation > 0.0 || params.scale_jitter > 0.0;
   for (const MapInfo& map : maps)
-    groups.push_back(
-        {map.channels > 1 ? GroupTransform::decorrelated : GroupTransform::direct, map.channels});
+    groups.push_back({map.kind == MapKind::normal && turned ? GroupTransform::radial
+                      : map.channels > 1                    ? GroupTransform::decorrelated
+                                                            : GroupTransform::direct,
+                      map.channels});
   return groups;
 }
 
@@ -277,12 +308,6 @@ std::vector<GroupSpec> material_groups(std::span<const MapInfo> maps, const Para
 
 TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed,
                     std::span<const MapInfo> maps) {
-  const bool normals = std::any_of(maps.begin(), maps.end(),
-                                   [](const MapInfo& map) { return map.kind == MapKind::normal; });
-  if (normals && (params.rotation > 0.0 || params.scale_jitter > 0.0))
-    throw std::invalid_argument(
-        "tiling's rotation and scale_jitter turn the patches but not yet a normal map's slopes: "
-        "leave them at 0 for a material with a normal map");
   const auto height_map = std::find_if(maps.begin(), maps.end(), [](const MapInfo& map) {
     return map.kind == MapKind::height && map.channels == 1;
   });
@@ -364,6 +389,21 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
   for (const TableGroup& group : layout.groups) {
     if (group.transform == GroupTransform::direct) {
       transport_1d(pixel_values, channels, group.first, group.first, group.first_table);
+      continue;
+    }
+    if (group.transform == GroupTransform::radial) {
+      std::vector<float> slopes(pixels * 2);
+      std::vector<float> gaussian(pixels * 2);
+      for (std::size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < 2; ++c)
+          slopes[i * 2 + c] = pixel_values[i * channels + group.first + c];
+      gaussianise_radial(slopes, gaussian,
+                         std::span<float>(data.tables)
+                             .subspan(static_cast<std::size_t>(group.first_table) * data.table_size,
+                                      data.table_size));
+      for (std::size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < 2; ++c)
+          data.gaussian[i * channels + group.first + c] = gaussian[i * 2 + c];
       continue;
     }
     const int cc = group.channels;

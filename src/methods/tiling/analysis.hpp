@@ -33,6 +33,12 @@ std::vector<float> sliced_transport_to_gaussian(std::span<const float> source, i
 // quantiles of `values` at the uniform levels (k + 1/2) / table.size() of eq. (22).
 void gaussianise_1d(std::span<const float> values, std::span<float> gaussian,
                     std::span<float> table);
+// The radial T of a normal map's slopes (GroupTransform::radial): `slopes` and `gaussian` hold n
+// pairs; the pair of magnitude rank k among n keeps its direction and gets the radius of the 2-D
+// Gaussian of eq. (20) at level (k + 1/2) / n, uniform_to_radius. Fills `table` with T^-1's
+// magnitudes: the quantiles of |s| at the uniform levels (k + 1/2) / table.size().
+void gaussianise_radial(std::span<const float> slopes, std::span<float> gaussian,
+                        std::span<float> table);
 
 // Histogram-preserving tiling and blending analysis. `maps`: a material's layout (issue 18), whose
 // maps go through T and T^-1 in groups of their own (material_groups in analysis.cpp).

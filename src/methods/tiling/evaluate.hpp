@@ -237,6 +237,62 @@ inline float table_coordinate(float u, int size, int& first) noexcept {
   return x - static_cast<float>(first);
 }
 
+// A normal map's slopes s = (ds/dx, ds/dv) under the artist controls (issue 18) go through T in a
+// radial group: T(s) = c + rho(|s|) s / |s|, c = (1/2, 1/2), with rho the exact 1-D transport of
+// |s| onto the radius of the 2-D Gaussian of eq. (20), Rayleigh of scale sigma = 1/6. Unlike the
+// principal axes, this T commutes with rotations, so a patch's slopes are turned in Gaussian space
+// (turn_slopes) and blended like any channel. The table of T^-1 holds the quantiles of |s| at the
+// uniform levels U = 1 - exp(-rho^2 / (2 sigma^2)) (the Rayleigh CDF), as eq. (22) does with erf.
+inline float radius_to_uniform(float rho) noexcept {
+  return -std::expm1(-0.5f * (rho * rho) / (kGaussianDeviation * kGaussianDeviation));
+}
+
+// The Rayleigh quantile: the radius rho whose radius_to_uniform is u, for u in [0, 1).
+inline double uniform_to_radius(double u) noexcept {
+  return kGaussianDeviation * std::sqrt(-2.0 * std::log1p(-u));
+}
+
+// |s| = T^-1's radial table at the Gaussian radius rho (linear in U, clamped at the ends).
+inline float radial_lookup(const float* table, int size, float rho) noexcept {
+  int cell = 0;
+  const float t = table_coordinate(radius_to_uniform(rho), size, cell);
+  return table[cell] + t * (table[cell + 1] - table[cell]);
+}
+
+// The inverse of radial_lookup: the Gaussian radius of the slope magnitude r, by bisection on the
+// non-decreasing table (clamped to its first and last cell centres, as the look-up is).
+inline float radial_inverse(const float* table, int size, float r) noexcept {
+  if (!(r > table[0])) return static_cast<float>(uniform_to_radius(0.5 / size));
+  if (!(r < table[size - 1])) return static_cast<float>(uniform_to_radius((size - 0.5) / size));
+  int low = 0;  // table[low] < r <= table[high]
+  int high = size - 1;
+  while (high - low > 1) {
+    const int middle = (low + high) / 2;
+    (table[middle] < r ? low : high) = middle;
+  }
+  const float t = (r - table[low]) / (table[high] - table[low]);
+  return static_cast<float>(uniform_to_radius((low + 0.5 + static_cast<double>(t)) / size));
+}
+
+// A patch's slopes (two channels of G in a radial group) under its transform M = scale * R: the
+// patch shows the height h(M p) (p relative to the tile's centre, in pixels with rows down), whose
+// gradient is M^T grad h there; in the slopes' (x, up) axes that is s' = M s, a turn by the patch's
+// angle and a factor of its scale (a patch shrunk by the jitter has steeper relief: the normal map
+// stays the gradient of the rendered height). The turn is exact in Gaussian space (T commutes with
+// it); the magnitude goes through the level-0 table: rho' = T(scale T^-1(rho)).
+inline void turn_slopes(const PatchTransform& m, const float* table, int size, float* g) noexcept {
+  const float dx = g[0] - kGaussianMean;
+  const float dy = g[1] - kGaussianMean;
+  float factor = 1.0f / m.scale;
+  if (m.scale != 1.0f) {
+    const float rho = std::sqrt(dx * dx + dy * dy);
+    if (rho > 0.0f)
+      factor *= radial_inverse(table, size, m.scale * radial_lookup(table, size, rho)) / rho;
+  }
+  g[0] = kGaussianMean + factor * (m.xx * dx + m.xy * dy);
+  g[1] = kGaussianMean + factor * (m.yx * dx + m.yy * dy);
+}
+
 // The standard normal quantile Phi^-1(q) for q in (0, 1), to double precision: an initial guess
 // refined by Halley steps on erfc (used to place the look-up-table cells of eq. 20).
 inline double normal_quantile(double q) noexcept {

@@ -120,6 +120,34 @@ void apply_kernel(const std::vector<KernelRow>& rows, const std::vector<float>& 
   }
 }
 
+// prefilter_kernel for a radial table (GroupTransform::radial): the level's texel is the mean g of
+// slopes in Gaussian space spread as N(g, r^2 I) in 2-D, and the filtered slope wanted is the mean
+// of T^-1 over them, E[|s|(|z|) z / |z|], z ~ N(g, r^2 I) (centred). By symmetry it points along g
+// with a magnitude that depends on |g| alone: row i holds it at the cell's radius. The expectation
+// is a midpoint rule over kRadialStrata^2 equal-probability strata of the 2-D Gaussian.
+constexpr int kRadialStrata = 16;
+
+void prefilter_radial(const std::vector<float>& base, int table, int size, double spread,
+                      std::vector<float>& out) {
+  std::vector<double> strata(kRadialStrata);
+  for (int q = 0; q < kRadialStrata; ++q)
+    strata[q] = spread * normal_quantile((q + 0.5) / kRadialStrata);
+  const float* slopes = base.data() + static_cast<std::ptrdiff_t>(table) * size;
+  for (int i = 0; i < size; ++i) {
+    const double rho = uniform_to_radius((i + 0.5) / size);
+    double sum = 0.0;
+    for (const double a : strata)
+      for (const double b : strata) {
+        const double x = rho + a;
+        const double length = std::hypot(x, b);
+        if (length > 0.0)
+          sum += radial_lookup(slopes, size, static_cast<float>(length)) * (x / length);
+      }
+    out[static_cast<std::size_t>(table) * size + i] =
+        static_cast<float>(sum / (kRadialStrata * kRadialStrata));
+  }
+}
+
 float table_lookup(const float* table, int size, float g) noexcept {
   int cell = 0;
   const float t = table_coordinate(gaussian_to_uniform(g), size, cell);
@@ -159,7 +187,8 @@ TilingLayout tiling_layout(int channels, Transport transport, Blend blend,
     if (spec.channels < 1 || spec.channels > channels - channel ||
         (spec.transform == GroupTransform::lut &&
          (spec.channels != 3 || transport != Transport::sliced || layout.colour_lut)) ||
-        (spec.transform == GroupTransform::direct && spec.channels != 1))
+        (spec.transform == GroupTransform::direct && spec.channels != 1) ||
+        (spec.transform == GroupTransform::radial && spec.channels != 2))
       throw std::invalid_argument("tiling: the channel groups are invalid");
     switch (spec.transform) {
       case GroupTransform::lut:
@@ -172,6 +201,9 @@ TilingLayout tiling_layout(int channels, Transport transport, Blend blend,
         break;
       case GroupTransform::direct:
         if (layout.image_layout) layout.first_alpha_table = layout.table_count;
+        layout.table_count += 1;
+        break;
+      case GroupTransform::radial:
         layout.table_count += 1;
         break;
     }
@@ -203,6 +235,9 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
     throw std::invalid_argument(
         "tiling: height_blend needs the histogram blend and a height channel within the channels");
   layout_ = tiling_layout(d.channels, d.transport, d.blend, d.groups);
+  has_radial_group_ = std::any_of(
+      layout_.groups.begin(), layout_.groups.end(),
+      [](const TableGroup& group) { return group.transform == GroupTransform::radial; });
   const auto n = static_cast<std::size_t>(d.lut_size);
   if (d.gaussian.size() != static_cast<std::size_t>(d.width) * d.height * d.channels ||
       d.blend_mean.size() != static_cast<std::size_t>(d.channels) ||
@@ -245,6 +280,13 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
         apply_kernel(prefilter_kernel(d.lut_size, residual(f + 2)), lut, scratch, n * n * 3, n * n,
                      3, [&](std::size_t line) { return line * 3; });
         lut = std::move(scratch);
+        continue;
+      }
+      if (group.transform == GroupTransform::radial) {
+        // Both slopes of G spread alike (T is isotropic): one residual for the pair.
+        const double spread = std::hypot(residual(group.first), residual(group.first + 1));
+        prefilter_radial(d.tables, group.first_table, d.table_size,
+                         spread * std::numbers::sqrt2 / 2.0, tables);
         continue;
       }
       // Table k of a group is read at channel first + k of G.
@@ -316,7 +358,7 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
         throw std::invalid_argument("the groups array has the wrong shape");
       const std::vector<float> rows = take("groups", shape);
       for (std::size_t i = 0; i < rows.size(); i += 2) {
-        if (rows[i] != std::floor(rows[i]) || rows[i + 1] < 0.0f || rows[i + 1] > 2.0f ||
+        if (rows[i] != std::floor(rows[i]) || rows[i + 1] < 0.0f || rows[i + 1] > 3.0f ||
             rows[i + 1] != std::floor(rows[i + 1]))
           throw std::invalid_argument("a group is invalid");
         data.groups.push_back({static_cast<GroupTransform>(static_cast<int>(rows[i + 1])),
@@ -438,8 +480,10 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
   float acc[kMaxChannels] = {};
   float weight_squares = 0.0f;
   double weighted_lod = 0.0;
-  // The height-aware blend: each patch fetched apart, then weighted by its height (below).
+  // The height-aware blend and the turn of a normal map's slopes: each patch fetched apart, then
+  // turned (turn_slopes) and weighted by its height (below).
   const bool height_aware = data_.height_blend > 0.0;
+  const bool turned = transformed && has_radial_group_;
   float patch[3][kMaxChannels];
   double patch_level[3] = {};
   for (int v = 0; v < 3; ++v) {
@@ -450,9 +494,9 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
     float x = wrapped.x + offset.x;
     float y = wrapped.y + offset.y;
     LevelOfDetail patch_lod = lod;
+    PatchTransform m{1.0f, 0.0f, 0.0f, 1.0f, 1.0f};
     if (transformed) {
-      const PatchTransform m =
-          patch_transform(lattice.vertex_x[v], lattice.vertex_y[v], seed, max_angle, jitter);
+      m = patch_transform(lattice.vertex_x[v], lattice.vertex_y[v], seed, max_angle, jitter);
       const Point2f shift =
           patch_shift(m, lattice.from_vertex_x[v], lattice.from_vertex_y[v], edge);
       x += shift.x;
@@ -462,13 +506,20 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
           static_cast<double>(w) * w * (patch_lod.level + static_cast<double>(patch_lod.blend));
     }
     const MipLevel fine = level(patch_lod.level);
-    if (height_aware) {
+    if (height_aware || turned) {
       std::fill_n(patch[v], channels, 0.0f);
       fetch_bilinear(fine, channels, x, y, 1.0f - patch_lod.blend, patch[v]);
       if (patch_lod.blend > 0.0f)
         fetch_bilinear(level(std::min(patch_lod.level + 1, level_count() - 1)), channels, x, y,
                        patch_lod.blend, patch[v]);
       patch_level[v] = patch_lod.level + static_cast<double>(patch_lod.blend);
+      if (turned)
+        for (const TableGroup& group : layout_.groups)
+          if (group.transform == GroupTransform::radial)
+            turn_slopes(m,
+                        data_.tables.data() +
+                            static_cast<std::ptrdiff_t>(group.first_table) * data_.table_size,
+                        data_.table_size, patch[v] + group.first);
       continue;
     }
     fetch_bilinear(fine, channels, x, y, w * (1.0f - patch_lod.blend), acc);
@@ -476,13 +527,15 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
       fetch_bilinear(level(std::min(patch_lod.level + 1, level_count() - 1)), channels, x, y,
                      w * patch_lod.blend, acc);
   }
-  if (height_aware) {
-    // The weights from the patches' Gaussianised heights, then the same variance-preserving blend
-    // (eq. 13 of Heitz & Neyret 2018, DOI 10.1145/3233304) with them: sum w' = 1, normalised by
-    // sqrt(sum w'^2).
-    const float heights[3] = {patch[0][data_.height_channel], patch[1][data_.height_channel],
-                              patch[2][data_.height_channel]};
-    height_blend_weights(weight, heights, static_cast<float>(data_.height_blend));
+  if (height_aware || turned) {
+    // The same variance-preserving blend (eq. 13 of Heitz & Neyret 2018, DOI 10.1145/3233304) of
+    // the patches kept apart, with the weights from their Gaussianised heights when height_blend is
+    // on: sum w' = 1, normalised by sqrt(sum w'^2).
+    if (height_aware) {
+      const float heights[3] = {patch[0][data_.height_channel], patch[1][data_.height_channel],
+                                patch[2][data_.height_channel]};
+      height_blend_weights(weight, heights, static_cast<float>(data_.height_blend));
+    }
     weight_squares = 0.0f;
     weighted_lod = 0.0;
     for (int v = 0; v < 3; ++v) {
@@ -541,6 +594,19 @@ void TilingModel::inverse_at_level(const float* g, int level, float* out) const 
         for (int k = 0; k < cc; ++k) value += basis[c * cc + k] * decorrelated[k];
         o[c] = value;
       }
+    } else if (group.transform == GroupTransform::radial) {
+      // The magnitude from the (prefiltered) radial table, along g's direction from the centre.
+      const float dx = gg[0] - kGaussianMean;
+      const float dy = gg[1] - kGaussianMean;
+      const float rho = std::sqrt(dx * dx + dy * dy);
+      const float magnitude =
+          rho > 0.0f
+              ? radial_lookup(tables.data() + static_cast<std::ptrdiff_t>(group.first_table) * size,
+                              size, rho) /
+                    rho
+              : 0.0f;
+      o[0] = magnitude * dx;
+      o[1] = magnitude * dy;
     } else {
       o[0] = table_lookup(tables.data() + static_cast<std::ptrdiff_t>(group.first_table) * size,
                           size, gg[0]);

@@ -29,8 +29,10 @@ enum class Blend { histogram = 0, variance = 1, linear = 2 };
 
 // How one group of channels goes through T and T^-1: the 3-D table of section 4.3 (3 channels,
 // sliced transport; at most one group), 1-D tables on the group's principal axes (Deliot & Heitz
-// 2019), or one 1-D table (one channel).
-enum class GroupTransform { lut = 0, decorrelated = 1, direct = 2 };
+// 2019), one 1-D table (one channel), or the radial transform of a normal map's two slopes that
+// commutes with rotation (one table of |s|: radial_lookup in evaluate.hpp; materials whose
+// patches turn or scale).
+enum class GroupTransform { lut = 0, decorrelated = 1, direct = 2, radial = 3 };
 struct GroupSpec {
   GroupTransform transform = GroupTransform::direct;
   int channels = 1;
@@ -72,7 +74,7 @@ struct TableGroup {
   GroupTransform transform = GroupTransform::direct;
   int first = 0;  // its first channel
   int channels = 1;
-  int first_table = 0;  // its 1-D tables: one per channel (decorrelated) or one (direct)
+  int first_table = 0;  // its 1-D tables: one per channel (decorrelated) or one (direct, radial)
   int first_basis = 0;  // decorrelated: its channels^2 values in colour_basis
   int first_mean = 0;   // decorrelated: its channels values in colour_mean
 };
@@ -195,7 +197,8 @@ class TilingModel {
     std::vector<float> texels;
   };
   std::vector<PyramidLevel> levels_;
-  std::vector<std::vector<float>> level_luts_;    // per level: lut_size^3 x 3, or empty
+  bool has_radial_group_ = false;               // a normal map's slopes, turned with their patches
+  std::vector<std::vector<float>> level_luts_;  // per level: lut_size^3 x 3, or empty
   std::vector<std::vector<float>> level_tables_;  // per level: table_count x table_size, or empty
 };
 
