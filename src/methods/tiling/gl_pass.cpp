@@ -95,21 +95,22 @@ class TilingPass final : public Pass {
 // variance and linear blends stay themselves (they have no T^-1).
 tiling::TilingModel gaussian_chunk(const tiling::TilingModel& model, int first, int count) {
   const tiling::TilingData& d = model.data();
-  tiling::TilingData chunk = d;
+  std::vector<float> gaussian;
+  gaussian.reserve(d.gaussian.size() / static_cast<std::size_t>(d.channels) *
+                   static_cast<std::size_t>(count));
+  for (auto pixel = d.gaussian.begin(); pixel != d.gaussian.end(); pixel += d.channels)
+    gaussian.insert(gaussian.end(), pixel + first, pixel + first + count);
+  tiling::TilingData chunk = d;  // the sizes, the lattice and the controls; the arrays below
   chunk.channels = count;
-  chunk.gaussian.clear();
-  for (std::size_t pixel = 0; pixel < d.gaussian.size();
-       pixel += static_cast<std::size_t>(d.channels))
-    chunk.gaussian.insert(chunk.gaussian.end(),
-                          d.gaussian.begin() + static_cast<std::ptrdiff_t>(pixel) + first,
-                          d.gaussian.begin() + static_cast<std::ptrdiff_t>(pixel) + first + count);
-  chunk.blend_mean.assign(d.blend_mean.begin() + first, d.blend_mean.begin() + first + count);
+  chunk.gaussian = std::move(gaussian);
+  chunk.blend_mean =
+      std::vector<float>(d.blend_mean.begin() + first, d.blend_mean.begin() + first + count);
   if (chunk.blend == tiling::Blend::histogram) chunk.blend = tiling::Blend::variance;
-  chunk.lut.clear();
-  chunk.tables.clear();
-  chunk.colour_basis.clear();
-  chunk.colour_mean.clear();
-  chunk.groups.clear();
+  chunk.lut = std::vector<float>();
+  chunk.tables = std::vector<float>();
+  chunk.colour_basis = std::vector<float>();
+  chunk.colour_mean = std::vector<float>();
+  chunk.groups = std::vector<tiling::GroupSpec>();
   return tiling::TilingModel(std::move(chunk));
 }
 
@@ -131,12 +132,13 @@ std::string chunk_output(const tiling::TilingModel& model, int first) {
 class TilingGroupsPass final : public Pass {
  public:
   explicit TilingGroupsPass(const tiling::TilingModel& model) {
+    // First: it refuses a group without a GLSL case.
+    if (!model.layout().groups.empty()) groups_ = std::make_unique<Groups>(model);
     for (int first = 0; first < model.channels(); first += 4)
       chunk_models_.push_back(gaussian_chunk(model, first, std::min(4, model.channels() - first)));
     for (std::size_t k = 0; k < chunk_models_.size(); ++k)
       chunks_.push_back(std::make_unique<TilingPass>(chunk_models_[k],
                                                      chunk_output(model, static_cast<int>(k) * 4)));
-    if (!model.layout().groups.empty()) groups_ = std::make_unique<Groups>(model);
   }
 
   void prepare(const Grid& grid, std::uint32_t seed, const GpuRenderOptions& options) override {
