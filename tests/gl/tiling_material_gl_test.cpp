@@ -49,6 +49,8 @@ TEST(Gl, TilingMaterialsMatchTheCpuReference) {
       // their w^2-weighted mean, which the first chunk hands to the groups' pass.
       {no_normal, {{"rotation", 180}, {"scale_jitter", 0.5}}, {{1e7, -3e6}, 1.0, 48, 40}},
       {no_normal, {{"scale_jitter", 0.7}, {"rotation", 45}}, {{-9.5, 2.0}, 5.0, 40, 40}},
+      // The variance-preserving blend: no T^-1, so no groups' pass (chunks only).
+      {rock, {{"blend", 1}}, {{3.0, 4.0}, 2.0, 40, 40}},
       // One chunk: the normal map and the height, 3 channels in 2 groups.
       {{"normal", "height"}, {}, {{2.0, 3.0}, 4.0, 40, 40}},
   };
