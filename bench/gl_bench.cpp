@@ -108,6 +108,24 @@ BENCHMARK(BM_GlTilingFrame)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+// Materials (issue 18) on tiling, 256x256 frames zoomed out by 4, --gl-filter exact (0) and
+// hardware (1), on a 256x256 stacked_exemplar of 4, 8 and 16 channels: 4 renders as an image
+// (one program, the colour's 3-D table and alpha); beyond, the Gaussian in chunks of 4 channels
+// (the same patches), then the groups' T^-1 (src/methods/tiling/gl_pass.cpp, groups.glsl). An
+// image of N channels is one group of N on its principal axes: N^2 products per pixel and level,
+// the costliest grouping (a material's maps are groups of at most 3).
+void BM_GlTilingChannels(benchmark::State& state) {
+  frame_benchmark(state, "tiling", {}, 256, 256,
+                  bench::stacked_exemplar(static_cast<int>(state.range(0)), 256), 4.0,
+                  state.range(1) == 1 ? GlFilter::hardware : GlFilter::exact);
+}
+BENCHMARK(BM_GlTilingChannels)
+    ->ArgNames({"channels", "hardware"})
+    ->ArgsProduct({{4, 8, 16}, {0, 1}})
+    ->Iterations(4)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 // LRP noise, J = 50 cosines, L = 4 (paper: about 0.5 ms for 128^2 on a GTX 780).
 void BM_GlLrpFrame(benchmark::State& state) {
   frame_benchmark(state, "lrp", {}, static_cast<int>(state.range(0)),

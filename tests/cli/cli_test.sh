@@ -1237,14 +1237,23 @@ expect_error "more channels than a material may have" 1 "17 channels in 7 maps" 
   analyze --map a="$rock/albedo.png" --map b="$rock/albedo.png" --map c="$rock/albedo.png" \
   --map d="$rock/albedo.png" --map e="$rock/albedo.png" --map ao="$rock/ao.png" \
   --map height="$rock/height.png" -m tiling -o "$out/x.stx"
-expect_error "a material's groups on tiling's gpu twin" 1 "--backend cpu" "$stochtex" render \
-  "$models/relief.stx" -o "$out/x_{map}.png" --size 8x8 --backend gl
+expect_ok "a material's groups on tiling's gpu twin" "$stochtex" render "$models/relief.stx" \
+  -o "$models/relief_gl_{map}.png" --size 8x8 --backend gl &&
+  expect_file "the gl backend's tiling height map" "$models/relief_gl_height.png"
+expect_error "export-shader of a tiling material" 1 "groups of their own" "$stochtex" \
+  export-shader "$models/relief.stx" -o "$out/relief"
 expect_ok "tiling's rotation with a normal map" "$stochtex" analyze --map normal="$rock/normal.png" \
   --map height="$rock/height.png" -m tiling -p rotation=30 -p scale_jitter=0.2 \
   -o "$models/turned.stx" &&
   expect_ok "render turned slopes" "$stochtex" render "$models/turned.stx" \
     -o "$models/turned_{map}.png" --size 24x24 --scale 4 &&
   expect_file "the turned normal map" "$models/turned_normal.png"
+expect_error "turned slopes on tiling's gpu twin" 1 "--backend cpu" "$stochtex" render \
+  "$models/turned.stx" -o "$out/x_{map}.png" --size 8x8 --backend gl
+expect_ok "tiling's height-aware blend" "$stochtex" analyze --map albedo="$rock/albedo.png" \
+  --map height="$rock/height.png" -m tiling -p height_blend=0.1 -o "$models/height_blend.stx" &&
+  expect_error "the height-aware blend on tiling's gpu twin" 1 "height_blend on" "$stochtex" \
+    render "$models/height_blend.stx" -o "$out/x_{map}.png" --size 8x8 --backend gl
 expect_error "a map named twice" 1 "twice" "$stochtex" analyze --map albedo="$rock/albedo.png" \
   --map albedo="$rock/albedo.png" -m tiling -o "$out/x.stx"
 expect_error "a colour roughness map" 1 "one channel" "$stochtex" analyze \

@@ -12,6 +12,7 @@
 #include "gl/program.hpp"
 #include "io/image_io.hpp"
 #include "stochtex/gpu.hpp"
+#include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
@@ -96,6 +97,25 @@ inline std::vector<ExportCase> export_cases() {
                             [&](const ExportCase& c) { return c.method == method.name; }))
         << "no export case for " << method.name;
   return cases;
+}
+
+// The maps `names` of the shipped material set `set` (data/materials/<set>/<name>.png) for
+// analyze_material, named `prefix` + name, their kinds from their names.
+struct MaterialFiles {
+  std::vector<ImageF> images;
+  std::vector<MaterialMap> maps;
+};
+
+inline MaterialFiles material_files(const std::string& set, const std::vector<std::string>& names,
+                                    const std::string& prefix = "") {
+  MaterialFiles files;
+  for (const auto& name : names)
+    files.images.push_back(
+        read_image(std::string(STOCHTEX_MATERIAL_DIR) + "/" + set + "/" + name + ".png"));
+  for (std::size_t i = 0; i < names.size(); ++i)
+    files.maps.push_back(
+        {prefix + names[i], default_map_kind(names[i]), files.images[i].view(), names[i] + ".png"});
+  return files;
 }
 
 inline float max_difference(const ImageF& a, const ImageF& b) {

@@ -15,20 +15,27 @@
 
 namespace stochtex::gl {
 
+void refuse_cpu_only_controls(const tiling::TilingModel& model) {
+  if (model.data().height_blend > 0.0)
+    throw Error(ErrorCode::invalid_input,
+                "tiling: the GPU twin has no height-aware blend yet and this model has "
+                "height_blend on; render it with --backend cpu");
+}
+
 TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) {
   const bool exact = variant == ShaderVariant::exact;
   const tiling::TilingData& d = model.data();
   const tiling::TilingLayout& layout = model.layout();
-  // The GLSL reads an image's colour and alpha (blend.glsl); a material's groups are CPU only.
-  if (!layout.image_layout || d.channels > 4)
+  // This GLSL reads an image's colour and alpha (blend.glsl): the renderer takes other models in
+  // groups (renders_in_groups), exported shaders and meshes do not.
+  if (renders_in_groups(model))
     throw Error(ErrorCode::invalid_input,
-                "tiling: the GPU twin renders an image's colour and alpha, and this material's " +
+                "tiling: exported shaders and meshes take an image's colour and alpha (1 to 4 "
+                "channels), and this model's " +
+                    std::to_string(d.channels) + " channels go through T^-1 in " +
                     std::to_string(layout.groups.size()) +
-                    " maps go through their own tables; render it with --backend cpu");
-  if (d.height_blend > 0.0)
-    throw Error(ErrorCode::invalid_input,
-                "tiling: the GPU twin has no height-aware blend yet and this model has "
-                "height_blend on; render it with --backend cpu");
+                    " groups of their own; render it with `stochtex render` (either backend)");
+  refuse_cpu_only_controls(model);
   TilingGlsl glsl;
   std::vector<int> widths;
   std::vector<int> heights;
@@ -88,20 +95,32 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) 
   return glsl;
 }
 
-std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
-  const std::string reader =
-      source == DataSource::storage_buffers
-          ? "layout(std430, binding = 0) readonly buffer TilingData { float tiling_data[]; };\n"
-            "float tiling_data_at(int index) { return tiling_data[index]; }\n"
-          : glsl_packed_read("stochtex_tiling_data", "tiling_data_at");
-  return random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
-         reader + shader_source("methods/tiling/evaluate.glsl") +
-         shader_source("methods/tiling/exact_fetch.glsl") +
-         shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/entry.glsl") +
-         shader_source("gl/triplanar.glsl") + shader_source("methods/tiling/triplanar.glsl");
+namespace {
+
+// tiling_data_at(), the read of the model's float array: the storage buffer at binding 0, or the
+// texture `stochtex_tiling_data` of pack_rgba(data).
+std::string data_reader(DataSource source) {
+  return source == DataSource::storage_buffers
+             ? "layout(std430, binding = 0) readonly buffer TilingData { float tiling_data[]; };\n"
+               "float tiling_data_at(int index) { return tiling_data[index]; }\n"
+             : glsl_packed_read("stochtex_tiling_data", "tiling_data_at");
 }
 
-namespace {
+// What groups.glsl has no case for, in words, or nullptr: the 3-D table (an image's colour,
+// blend.glsl) and the radial slopes of a normal map whose patches turn (turned before the blend,
+// which the chunks of gl_pass.cpp do not do).
+const char* missing_group_case(tiling::GroupTransform transform) {
+  switch (transform) {
+    case tiling::GroupTransform::decorrelated:
+    case tiling::GroupTransform::direct:
+      return nullptr;
+    case tiling::GroupTransform::lut:
+      return "the 3-D colour table";
+    case tiling::GroupTransform::radial:
+      return "the radial transform of a normal map turned with its patches";
+  }
+  return "an unknown transform";
+}
 
 // The README's word on the triplanar entry point (triplanar.glsl, docs/shaders.md).
 constexpr std::string_view kTriplanarNote =
@@ -196,6 +215,82 @@ ExportParts fast_shader(const tiling::TilingModel& model) {
 }
 
 }  // namespace
+
+bool renders_in_groups(const tiling::TilingModel& model) {
+  return !model.layout().image_layout || model.channels() > 4;
+}
+
+TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model) {
+  const tiling::TilingData& d = model.data();
+  const tiling::TilingLayout& layout = model.layout();
+  std::vector<int> transforms;
+  std::vector<int> firsts;
+  std::vector<int> counts;
+  std::vector<int> tables;
+  std::vector<int> bases;
+  std::vector<int> means;
+  for (const tiling::TableGroup& group : layout.groups) {
+    if (const char* missing = missing_group_case(group.transform))
+      throw Error(ErrorCode::invalid_input,
+                  "tiling: the GPU twin takes groups of channels on their principal axes or of one "
+                  "channel, and channels " +
+                      std::to_string(group.first) + " to " +
+                      std::to_string(group.first + group.channels - 1) +
+                      " of this model go through " + missing + "; render it with --backend cpu");
+    transforms.push_back(static_cast<int>(group.transform));
+    firsts.push_back(group.first);
+    counts.push_back(group.channels);
+    tables.push_back(group.first_table);
+    bases.push_back(group.first_basis);
+    means.push_back(group.first_mean);
+  }
+  TilingGlsl glsl;
+  std::vector<int> level_tables;
+  for (int level = 0; level < model.level_count(); ++level) {
+    level_tables.push_back(static_cast<int>(glsl.data.size()));
+    const std::span<const float> values = model.level_tables(level);
+    glsl.data.insert(glsl.data.end(), values.begin(), values.end());
+  }
+  std::string& text = glsl.constants;
+  const auto constant = [&](const char* name, int value) {
+    text += "const int " + std::string(name) + " = " + glsl_int(value) + ";\n";
+  };
+  const auto array = [&](const char* name, const std::vector<int>& values) {
+    text += glsl_array("int", name, std::span<const int>(values), glsl_int);
+  };
+  constant("TILING_CHANNELS", d.channels);
+  constant("TILING_LEVELS", model.level_count());
+  constant("TILING_TABLE_SIZE", d.table_size);
+  constant("TILING_GROUP_DECORRELATED", static_cast<int>(tiling::GroupTransform::decorrelated));
+  constant("TILING_GROUP_DIRECT", static_cast<int>(tiling::GroupTransform::direct));
+  constant("TILING_GROUPS", static_cast<int>(layout.groups.size()));
+  array("TILING_GROUP_TRANSFORM", transforms);
+  array("TILING_GROUP_FIRST", firsts);
+  array("TILING_GROUP_CHANNELS", counts);
+  array("TILING_GROUP_TABLE", tables);
+  array("TILING_GROUP_BASIS", bases);
+  array("TILING_GROUP_MEAN", means);
+  text += glsl_array("float", "TILING_COLOUR_BASIS", std::span<const float>(d.colour_basis),
+                     glsl_float);
+  text +=
+      glsl_array("float", "TILING_COLOUR_MEAN", std::span<const float>(d.colour_mean), glsl_float);
+  array("TILING_LEVEL_TABLES", level_tables);
+  return glsl;
+}
+
+std::string tiling_groups_source(const TilingGlsl& glsl) {
+  return "#version 450\n" + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
+         data_reader(DataSource::storage_buffers) + shader_source("methods/tiling/evaluate.glsl") +
+         shader_source("methods/tiling/groups.glsl");
+}
+
+std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
+  return random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
+         data_reader(source) + shader_source("methods/tiling/evaluate.glsl") +
+         shader_source("methods/tiling/exact_fetch.glsl") +
+         shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/entry.glsl") +
+         shader_source("gl/triplanar.glsl") + shader_source("methods/tiling/triplanar.glsl");
+}
 
 ExportParts Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model,
                                               ShaderVariant variant) {

@@ -24,6 +24,7 @@ struct TilingGlsl {
 
 // exact: `data` holds each level's texels, 3-D table and 1-D tables (the TILING_LEVEL_* offsets);
 // fast: the 1-D tables only (TILING_LEVEL_TABLES), the rest being textures (hardware.glsl).
+// Throws a sentence for a model that renders_in_groups.
 TilingGlsl tiling_glsl(const tiling::TilingModel& model,
                        ShaderVariant variant = ShaderVariant::exact);
 
@@ -37,6 +38,21 @@ inline constexpr int kLutBits = 16;
 // pack_rgba(data).
 std::string tiling_library_source(const TilingGlsl& glsl,
                                   DataSource source = DataSource::storage_buffers);
+
+// A model whose channels go through T^-1 in groups of their own (a material's maps, issue 18) or
+// that has more than 4 channels: the renderer takes it in two passes (gl_pass.cpp), its Gaussian
+// in chunks of up to 4 channels (render.glsl), then each group's T^-1 (groups.glsl); exported
+// shaders and meshes (a vec4 and an image's colour and alpha) refuse it.
+bool renders_in_groups(const tiling::TilingModel& model);
+// Throws a sentence for a model with an artist control the GPU twin does not have (height_blend).
+void refuse_cpu_only_controls(const tiling::TilingModel& model);
+// The groups' T^-1 for groups.glsl: their constants (TILING_GROUP_*, the bases and means) and each
+// pyramid level's 1-D tables as `data` (the TILING_LEVEL_TABLES offsets). Throws a sentence for a
+// group of a kind groups.glsl has no case for (the 3-D table, the radial slopes).
+TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model);
+// The compute shader of the groups' T^-1: `#version`, kConstants, the constants, the storage
+// buffer reader, tiling evaluate.glsl and groups.glsl.
+std::string tiling_groups_source(const TilingGlsl& glsl);
 
 template <>
 struct Twin<tiling::TilingModel> {

@@ -18,6 +18,13 @@ uniform float lod_blend;
 uniform float footprint_width;  // TilingModel::footprint_width (zero for point samples)
 // --gl-filter hardware: the footprint's side (zero for point samples).
 uniform float filter_scale;
+// A model whose channels go through T^-1 in groups of their own (gl_pass.cpp) renders its Gaussian
+// in chunks of up to 4 channels, each chunk a model of the variance blend (no T^-1) writing its
+// TILING_CHANNELS channels from channel TILING_RESULT_FIRST of pixels of TILING_RESULT_STRIDE; the
+// first chunk (TILING_RESULT_LEVELS) also writes each pixel's level of detail for groups.glsl.
+#ifdef TILING_RESULT_LEVELS
+layout(std430, binding = 2) writeonly buffer ResultLevels { float result_levels[]; };
+#endif
 
 void main() {
   ivec2 local_pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -33,6 +40,16 @@ void main() {
   vec4 g = tiling_blended_gaussian(skewed, origin_cell, origin_wrapped + p, seed, footprint_width,
                                    level, level_blend);
   vec4 value = tiling_inverse(g, level, level_blend);
+#ifdef TILING_RESULT_STRIDE
+  int pixel = local_pixel.y * dispatch_size.x + local_pixel.x;
+  int index = pixel * TILING_RESULT_STRIDE + TILING_RESULT_FIRST;
+  for (int c = 0; c < TILING_CHANNELS; ++c) result[index + c] = value[c];
+#ifdef TILING_RESULT_LEVELS
+  result_levels[2 * pixel] = float(level);
+  result_levels[2 * pixel + 1] = level_blend;
+#endif
+#else
   int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * TILING_CHANNELS;
   for (int c = 0; c < TILING_CHANNELS; ++c) result[index + c] = value[c];
+#endif
 }
