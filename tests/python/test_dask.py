@@ -45,3 +45,25 @@ def test_local_cluster_of_two_worker_processes(texton_model):
         computed = client.compute(lazy).result()
         assert len(client.scheduler_info()["workers"]) == 2
     assert numpy.array_equal(computed, texton_model.render(128, 96, seed=3))
+
+
+def test_material_maps_in_chunks_equal_the_single_render(exemplar):
+    # texton derives the normal map from its height: each chunk renders its own one-pixel margin,
+    # so every map is bit for bit the whole grid's.
+    height = exemplar[:, :, 0]
+    gy, gx = numpy.gradient(height)
+    n = numpy.stack([-gx * 4, gy * 4, numpy.ones_like(height)], axis=-1)
+    n /= numpy.linalg.norm(n, axis=-1, keepdims=True)
+    model = stochtex.analyze_material(
+        {"albedo": exemplar, "normal": (0.5 + 0.5 * n).astype(numpy.float32), "height": height},
+        "texton", iterations=5)
+    assert any("from" in entry for entry in model.maps)
+    whole = model.render_maps(100, 70, origin=(2, 3), scale=1.25, seed=6)
+    lazy = stochtex.dask.render_maps(model, (70, 100), chunks=(32, 48), origin=(2, 3),
+                                     scale=1.25, seed=6)
+    assert list(lazy) == list(whole)
+    for name, array in lazy.items():
+        assert array.shape == whole[name].shape and array.numblocks == (3, 3, 1)
+        assert numpy.array_equal(array.compute(scheduler="threads"), whole[name]), name
+    with pytest.raises(ValueError, match="not a material"):
+        stochtex.dask.render_maps(stochtex.analyze(exemplar, "texton", iterations=5), (8, 8), 4)
