@@ -273,30 +273,71 @@ void check_map_outputs(const Model& model, const RenderPlan& plan, const std::st
     throw std::invalid_argument("'" + input + "' is a material of maps " + names +
                                 ": name the output with {map}, one file per map, e.g. -o "
                                 "out_{map}.png");
-  if (plan.streamed)
-    throw std::invalid_argument(
-        "materials are rendered in memory: --tiled, --mipmap, --half and .exr outputs beyond 64 "
-        "Mpixel are for models of one image; render the maps in --region pieces");
   std::uint64_t bytes_per_pixel = 4 * static_cast<std::uint64_t>(model.channels());
   for (const MapInfo& map : model.maps()) {
     const std::string path = map_output(output, map.name);
     check_output_path(path, true, input);
     check_output_channels(path, written_channels(map));
-    bytes_per_pixel += 6 * static_cast<std::uint64_t>(written_channels(map));
+    // The map cut from the render and its encoded copy, or the strip of every map's file.
+    bytes_per_pixel += (plan.streamed ? 8 : 6) * static_cast<std::uint64_t>(written_channels(map));
   }
-  check_memory_budget(bytes_per_pixel * static_cast<std::uint64_t>(plan.grid.width) *
-                          static_cast<std::uint64_t>(plan.grid.height),
-                      fmt::format("rendering the {} maps of a {}x{} material", model.maps().size(),
-                                  plan.grid.width, plan.grid.height),
-                      "render a smaller --size, or --region pieces");
+  // In memory: the whole grid; streamed: one strip and its margin (render_maps).
+  const std::uint64_t rows = plan.streamed ? kExrTileSide + 2 : plan.grid.height;
+  check_memory_budget(
+      bytes_per_pixel * static_cast<std::uint64_t>(plan.grid.width + 2) * rows,
+      fmt::format("rendering the {} maps of a {}x{} material{}", model.maps().size(),
+                  plan.grid.width, plan.streamed ? static_cast<int>(rows) : plan.grid.height,
+                  plan.streamed ? " strip" : ""),
+      "render a smaller --size, or --region pieces");
+}
+
+// The pixels render_maps renders for `grid`: with a derived normal map, a one-pixel margin.
+std::uint64_t material_pixels(const Model& model, const Grid& grid) {
+  const bool margin = std::any_of(model.maps().begin(), model.maps().end(),
+                                  [](const MapInfo& map) { return !map.derived_from.empty(); });
+  return static_cast<std::uint64_t>(grid.width + (margin ? 2 : 0)) *
+         static_cast<std::uint64_t>(grid.height + (margin ? 2 : 0));
+}
+
+// A material's maps to one tiled .exr file each, strip by strip: each strip is one render_maps
+// call for every map (docs/materials.md).
+void stream_maps(const Model& model, const RenderPlan& plan, int threads,
+                 const RenderSettings& settings, const std::string& output) {
+  std::vector<TiledExrFile> files;
+  for (const MapInfo& map : model.maps())
+    files.push_back({map_output(output, map.name), written_channels(map)});
+  std::uint64_t pixels = 0;
+  for (const Grid& level : tiled_exr_levels(plan.grid, plan.exr.mipmap))
+    for (int row = 0; row < level.height; row += kExrTileSide) {
+      Grid strip = level;
+      strip.height = std::min(kExrTileSide, level.height - row);
+      pixels += material_pixels(model, strip);
+    }
+  GridRenderer renderer(model, settings, threads, pixels);
+  TiledExrOptions options = plan.exr;
+  options.threads = threads;
+  write_tiled_exrs(files, plan.grid, options, [&](const Grid& strip, ImageView<float> out) {
+    const std::vector<NamedImage> maps = render_maps(
+        model, strip, [&](const Grid& part, ImageView<float> into) { renderer(part, into); });
+    int first = 0;
+    for (const auto& [name, map] : maps) {
+      for (int y = 0; y < strip.height; ++y)
+        for (int x = 0; x < strip.width; ++x)
+          for (int c = 0; c < map.channels(); ++c) out.at(x, y, first + c) = map.at(x, y, c);
+      first += map.channels();
+    }
+  });
 }
 
 void render_model(const Model& model, const RenderPlan& plan, int threads,
                   const RenderSettings& settings, const std::string& output) {
   const Grid& grid = plan.grid;
+  if (!model.maps().empty() && plan.streamed) {
+    stream_maps(model, plan, threads, settings, output);
+    return;
+  }
   if (!model.maps().empty()) {
-    GridRenderer renderer(model, settings, threads,
-                          static_cast<std::uint64_t>(grid.width + 2) * (grid.height + 2));
+    GridRenderer renderer(model, settings, threads, material_pixels(model, grid));
     const std::vector<NamedImage> maps = render_maps(
         model, grid, [&](const Grid& part, ImageView<float> out) { renderer(part, out); });
     for (const auto& [name, map] : maps)
@@ -327,7 +368,15 @@ void render_to_file(const std::function<Model()>& make_model, const RenderSettin
   const Model model = make_model();
   check_map_outputs(model, plan, output, input);
   if (model.maps().empty()) check_output_channels(output, model.channels());
-  if (plan.streamed) check_disk_space(plan, model.channels(), output);
+  if (plan.streamed) {
+    int channels = model.channels();  // a material's: every map's file
+    if (!model.maps().empty()) {
+      channels = 0;
+      for (const MapInfo& map : model.maps()) channels += written_channels(map);
+    }
+    check_disk_space(plan, channels,
+                     map_output(output, model.maps().empty() ? "" : model.maps().front().name));
+  }
   render_model(model, plan, threads, settings, output);
   if (model.maps().empty()) {
     fmt::print(stderr, "wrote {}\n", output);

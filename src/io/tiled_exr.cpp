@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -49,32 +50,53 @@ std::uint64_t tiled_exr_pixels(const Grid& grid, bool mipmap) {
 
 void write_tiled_exr(const fs::path& path, const Grid& grid, int channels,
                      const TiledExrOptions& options, const StripRenderer& render_strip) {
-  if (channels < 1 || channels > 4 || grid.width < 1 || grid.height < 1)
-    throw std::invalid_argument("cannot write " + quoted(path) + ": the image is " +
-                                std::to_string(grid.width) + "x" + std::to_string(grid.height) +
-                                " pixels with " + std::to_string(channels) +
-                                " channels; it needs at least one pixel and 1 to 4 channels");
+  const TiledExrFile file{path, channels};
+  write_tiled_exrs(std::span<const TiledExrFile>(&file, 1), grid, options, render_strip);
+}
+
+void write_tiled_exrs(std::span<const TiledExrFile> files, const Grid& grid,
+                      const TiledExrOptions& options, const StripRenderer& render_strip) {
+  if (files.empty()) throw std::invalid_argument("write_tiled_exrs: no file to write");
+  int channels = 0;  // of a strip: every file's
+  for (const TiledExrFile& file : files) {
+    if (file.channels < 1 || file.channels > 4 || grid.width < 1 || grid.height < 1)
+      throw std::invalid_argument("cannot write " + quoted(file.path) + ": the image is " +
+                                  std::to_string(grid.width) + "x" + std::to_string(grid.height) +
+                                  " pixels with " + std::to_string(file.channels) +
+                                  " channels; it needs at least one pixel and 1 to 4 channels");
+    channels += file.channels;
+  }
   const std::vector<Grid> levels = tiled_exr_levels(grid, options.mipmap);
-  const auto& names = exr_written_channel_names(channels);
-  Imf::Header header(grid.width, grid.height);
-  // Measured (docs/large-renders.md): ZIP saves a third of half pixels for half again the time,
-  // and 2 % of float pixels for twice the time.
-  header.compression() = options.half ? Imf::ZIP_COMPRESSION : Imf::NO_COMPRESSION;
-  header.setTileDescription(
-      Imf::TileDescription(kExrTileSide, kExrTileSide,
-                           options.mipmap ? Imf::MIPMAP_LEVELS : Imf::ONE_LEVEL, Imf::ROUND_DOWN));
   const Imf::PixelType type = options.half ? Imf::HALF : Imf::FLOAT;
   const std::size_t value_bytes = options.half ? sizeof(Imath::half) : sizeof(float);
-  for (int c = 0; c < channels; ++c) header.channels().insert(names[c], Imf::Channel(type));
   // One strip of level 0, the widest; the strips of the other levels use its first columns.
   ImageF strip(grid.width, std::min(kExrTileSide, grid.height), channels);
   std::vector<Imath::half> halves(options.half ? strip.pixels().size() : 0);
 
-  AtomicFile file(path);
+  std::vector<std::unique_ptr<AtomicFile>> atomic;
+  std::size_t current = 0;  // the file being opened or written, for the messages
   try {
     Imf::setGlobalThreadCount(options.threads);
-    ExrFileStream stream(file.stream(), file.temporary().c_str());
-    Imf::TiledOutputFile output(stream, header, options.threads);
+    std::vector<std::unique_ptr<ExrFileStream>> streams;
+    std::vector<std::unique_ptr<Imf::TiledOutputFile>> outputs;
+    for (; current < files.size(); ++current) {
+      const TiledExrFile& file = files[current];
+      Imf::Header header(grid.width, grid.height);
+      // Measured (docs/large-renders.md): ZIP saves a third of half pixels for half again the
+      // time, and 2 % of float pixels for twice the time.
+      header.compression() = options.half ? Imf::ZIP_COMPRESSION : Imf::NO_COMPRESSION;
+      header.setTileDescription(Imf::TileDescription(
+          kExrTileSide, kExrTileSide, options.mipmap ? Imf::MIPMAP_LEVELS : Imf::ONE_LEVEL,
+          Imf::ROUND_DOWN));
+      const auto& names = exr_written_channel_names(file.channels);
+      for (int c = 0; c < file.channels; ++c)
+        header.channels().insert(names[c], Imf::Channel(type));
+      atomic.push_back(std::make_unique<AtomicFile>(file.path));
+      streams.push_back(std::make_unique<ExrFileStream>(atomic.back()->stream(),
+                                                        atomic.back()->temporary().c_str()));
+      outputs.push_back(
+          std::make_unique<Imf::TiledOutputFile>(*streams.back(), header, options.threads));
+    }
     for (int level = 0; level < static_cast<int>(levels.size()); ++level) {
       const Grid& level_grid = levels[static_cast<std::size_t>(level)];
       for (int row = 0; row < level_grid.height; row += kExrTileSide) {
@@ -93,15 +115,23 @@ void write_tiled_exr(const fs::path& path, const Grid& grid, int channels,
           values = reinterpret_cast<const char*>(halves.data());
           row_bytes = sizeof(Imath::half) * row_values;
         }
-        // The slices address the level's pixel coordinates: the strip holds rows [row, row + h).
+        // The slices address the level's pixel coordinates: the strip holds rows [row, row + h),
+        // each file its channels from `first`.
         const Imath::Box2i window({0, row}, {strip_grid.width - 1, row + strip_grid.height - 1});
-        Imf::FrameBuffer frame_buffer;
-        for (int c = 0; c < channels; ++c)
-          frame_buffer.insert(names[c], Imf::Slice::Make(type, values + c * value_bytes, window,
-                                                         value_bytes * channels, row_bytes));
-        output.setFrameBuffer(frame_buffer);
-        const int tile_row = row / kExrTileSide;
-        output.writeTiles(0, output.numXTiles(level) - 1, tile_row, tile_row, level);
+        int first = 0;
+        for (current = 0; current < files.size(); ++current) {
+          const auto& names = exr_written_channel_names(files[current].channels);
+          Imf::FrameBuffer frame_buffer;
+          for (int c = 0; c < files[current].channels; ++c)
+            frame_buffer.insert(names[c],
+                                Imf::Slice::Make(type, values + (first + c) * value_bytes, window,
+                                                 value_bytes * channels, row_bytes));
+          first += files[current].channels;
+          Imf::TiledOutputFile& output = *outputs[current];
+          output.setFrameBuffer(frame_buffer);
+          const int tile_row = row / kExrTileSide;
+          output.writeTiles(0, output.numXTiles(level) - 1, tile_row, tile_row, level);
+        }
       }
     }
   } catch (const Error&) {
@@ -111,9 +141,11 @@ void write_tiled_exr(const fs::path& path, const Grid& grid, int channels,
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
-    throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": " + e.what());
+    throw Error(ErrorCode::io, "cannot write " +
+                                   quoted(files[std::min(current, files.size() - 1)].path) + ": " +
+                                   e.what());
   }
-  file.commit();
+  for (const auto& file : atomic) file->commit();
 }
 
 }  // namespace stochtex

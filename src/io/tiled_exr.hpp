@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "stochtex/image.hpp"
@@ -42,5 +43,18 @@ using StripRenderer = std::function<void(const Grid& strip, ImageView<float> out
 // throw like write_image's: Error(io) with one sentence naming the file, which is not left behind.
 void write_tiled_exr(const std::filesystem::path& path, const Grid& grid, int channels,
                      const TiledExrOptions& options, const StripRenderer& render_strip);
+
+// One of the files of write_tiled_exrs: its path and channel count (1 to 4).
+struct TiledExrFile {
+  std::filesystem::path path;
+  int channels = 0;
+};
+
+// write_tiled_exr of several files of the same grid from one render: each strip has the files'
+// channels one after another (the first file's, then the second's...), and each file takes its
+// own (a material's maps, docs/materials.md). A failure while rendering or writing leaves none of
+// them behind.
+void write_tiled_exrs(std::span<const TiledExrFile> files, const Grid& grid,
+                      const TiledExrOptions& options, const StripRenderer& render_strip);
 
 }  // namespace stochtex

@@ -1227,8 +1227,29 @@ expect_error "a material rendered into one file" 2 "{map}" "$stochtex" render \
   "$models/material.stx" -o "$out/x.png" --size 8x8
 expect_error "{map} for a model of one image" 2 "{map}" "$stochtex" render "$model" \
   -o "$out/x_{map}.png" --size 8x8
-expect_error "a material beyond memory outputs" 2 "--region" "$stochtex" render \
-  "$models/material.stx" -o "$out/x_{map}.exr" --size 16x16 --tiled
+# Materials streamed to tiled, mip-mapped maps: each map's level 0 is its in-memory render's,
+# a normal map derived from the height (texton) included: every strip renders its own margin.
+mkdir -p "$large/maps"
+expect_ok "a texton material with a derived normal map" "$stochtex" analyze \
+  --map normal="$rock/normal.png" --map height="$rock/height.png" -m texton -p support=24 \
+  -o "$models/derived.stx"
+for material in "material albedo roughness" "derived normal height"; do
+  read -r name maps <<<"$material"
+  expect_ok "render the $name maps --mipmap" "$stochtex" render "$models/$name.stx" \
+    -o "$large/maps/tiled_{map}.exr" --size 90x70 --seed 4 --mipmap || continue
+  expect_ok "render the $name maps to scanline .exr" "$stochtex" render "$models/$name.stx" \
+    -o "$large/maps/scanline_{map}.exr" --size 90x70 --seed 4 || continue
+  for map in $maps; do
+    for image in tiled scanline; do
+      mkdir -p "$large/maps/$image-$map"
+      cp "$large/maps/${image}_$map.exr" "$large/maps/$image-$map/exemplar.exr"
+      "$stochtex" analyze "$large/maps/$image-$map/exemplar.exr" -m tiling \
+        -o "$large/maps/$image-$map/model.stx" 2>/dev/null
+    done
+    if cmp -s "$large/maps/tiled-$map/model.stx" "$large/maps/scanline-$map/model.stx"; then pass
+    else fail "the tiled $map map holds the in-memory render's pixels" "their models differ"; fi
+  done
+done
 expect_error "maps of different sizes" 1 "the same size" "$stochtex" analyze \
   --map albedo="$rock/albedo.png" --map roughness="$exemplar" -m tiling -o "$out/x.stx"
 expect_error "a normal map that is not one" 1 "not a tangent-space normal map" "$stochtex" \

@@ -128,5 +128,47 @@ TEST_F(TiledExrTest, AFailedRenderLeavesNoFile) {
   EXPECT_TRUE(folder_contents().empty());
 }
 
+TEST_F(TiledExrTest, SeveralFilesTakeTheirChannelsOfOneStrip) {
+  // A material's maps (write_tiled_exrs): a strip of 3 + 1 channels, the plain render then each
+  // pixel's level-grid coordinate sum, half pixels, every level; each file holds its own.
+  const Grid grid{{2.0, -3.0}, 1.25, 90, 140};
+  const std::vector<TiledExrFile> files{{file("albedo.exr"), 3}, {file("height.exr"), 1}};
+  write_tiled_exrs(files, grid, {true, true, 1}, [](const Grid& strip, ImageView<float> out) {
+    ImageF colour(strip.width, strip.height, 3);
+    render(test_model(), strip, 5, colour.view());
+    for (int y = 0; y < strip.height; ++y)
+      for (int x = 0; x < strip.width; ++x) {
+        for (int c = 0; c < 3; ++c) out.at(x, y, c) = colour.at(x, y, c);
+        out.at(x, y, 3) = static_cast<float>(x + strip.first_pixel_y + y);
+      }
+  });
+  const std::vector<Grid> levels = tiled_exr_levels(grid, true);
+  Imf::TiledInputFile albedo(files[0].path.c_str());
+  Imf::TiledInputFile height(files[1].path.c_str());
+  ASSERT_EQ(albedo.numLevels(), static_cast<int>(levels.size()));
+  ASSERT_EQ(height.numLevels(), static_cast<int>(levels.size()));
+  EXPECT_EQ(height.header().channels().findChannel("Y")->type, Imf::HALF);
+  for (std::size_t k = 0; k < levels.size(); ++k) {
+    SCOPED_TRACE("level " + std::to_string(k));
+    const ImageF expected = plain_render(levels[k]);
+    const ImageF written = read_level(albedo, static_cast<int>(k));
+    for (std::size_t i = 0; i < expected.pixels().size(); ++i)
+      ASSERT_EQ(written.pixels()[i], static_cast<float>(Imath::half(expected.pixels()[i])));
+  }
+  const ImageF sums = read_image(files[1].path);
+  ASSERT_EQ(sums.channels(), 1);
+  for (int y = 0; y < grid.height; y += 13)
+    for (int x = 0; x < grid.width; x += 7) ASSERT_EQ(sums.at(x, y, 0), static_cast<float>(x + y));
+  // A failure half way leaves neither file.
+  const std::vector<TiledExrFile> failing{{file("a.exr"), 2}, {file("b.exr"), 4}};
+  EXPECT_THROW(write_tiled_exrs(failing, grid, {},
+                                [](const Grid& strip, ImageView<float>) {
+                                  if (strip.first_pixel_y > 64) throw std::runtime_error("stop");
+                                }),
+               Error);
+  EXPECT_FALSE(std::filesystem::exists(failing[0].path));
+  EXPECT_FALSE(std::filesystem::exists(failing[1].path));
+}
+
 }  // namespace
 }  // namespace stochtex
