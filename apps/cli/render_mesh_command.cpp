@@ -163,7 +163,11 @@ Command add_render_mesh_command(CLI::App& app) {
   command->add_option("MESH", options->mesh, "mesh file (.obj)")->required();
   command->add_option("-o,--output", options->output, "image to write (.png, .exr or .pfm)")
       ->required();
-  command->add_option("--model", options->model, "model file (.stx)")->required();
+  command
+      ->add_option("--model", options->model,
+                   "model file (.stx); a material's colour map is shaded, bumped by its normal "
+                   "map, its ambient light times its ao map (docs/materials.md)")
+      ->required();
   command
       ->add_option("--mapping", options->mapping,
                    "surface (surface noise), triplanar (histogram-preserving, tiling), "
@@ -204,7 +208,7 @@ Command add_render_mesh_command(CLI::App& app) {
       ->add_option("--backend", options->backend,
                    "cpu (the reference) or gl (OpenGL 4.5, headless: the mesh rasterised, each "
                    "fragment calling the method's GLSL; --mapping uv with every method, triplanar "
-                   "with tiling)")
+                   "with tiling; no materials)")
       ->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
   return {command, [options] { return run(*options); }};

@@ -26,11 +26,11 @@ ImageView<float> row_view(std::vector<float>& storage, std::size_t count, int ch
   return {storage.data(), width, 1, channels, width * channels};
 }
 
-// The derived normal map's slopes along each fragment's footprint steps: slope_scale times half
-// the height's change from p - dpdx to p + dpdx (x) and from p - dpdy to p + dpdy (y).
-std::vector<Vec2d> height_steps(const Model& model, const MeshMaterial& material,
-                                std::span<const MeshFragment> fragments, bool uv,
-                                const SurfaceOptions& surface, std::uint32_t seed) {
+// The derived normal map's height changes along each fragment's footprint steps: slope_scale times
+// half the height's change from p - dpdx to p + dpdx (x) and from p - dpdy to p + dpdy (y).
+std::vector<Vec2d> height_changes(const Model& model, const MeshMaterial& material,
+                                  std::span<const MeshFragment> fragments, bool uv,
+                                  const SurfaceOptions& surface, std::uint32_t seed) {
   const std::size_t count = fragments.size() * 4;
   std::vector<float> storage;
   const ImageView<float> heights = row_view(storage, count, model.channels());
@@ -57,16 +57,16 @@ std::vector<Vec2d> height_steps(const Model& model, const MeshMaterial& material
       }
     evaluate_surface(model, points, surface, seed, heights);
   }
-  std::vector<Vec2d> steps;
+  std::vector<Vec2d> changes;
   const double half = 0.5 * material.slope_scale;
   const ImageView<const float> h = heights;
   for (std::size_t i = 0; i < fragments.size(); ++i) {
     const auto at = [&](std::size_t k) {
       return static_cast<double>(value(h, 4 * i + k, material.height));
     };
-    steps.push_back({half * (at(1) - at(0)), half * (at(3) - at(2))});
+    changes.push_back({half * (at(1) - at(0)), half * (at(3) - at(2))});
   }
-  return steps;
+  return changes;
 }
 
 // Stored slopes through a triplanar mapping: each plane alone (the mapping at a normal along the
@@ -156,14 +156,16 @@ void bump_gradients(const Model& model, const MeshMaterial& material, const Mesh
                     std::span<Vec3d> gradients) {
   std::fill(gradients.begin(), gradients.end(), Vec3d{});
   if (material.height >= 0) {
-    const std::vector<Vec2d> steps = height_steps(model, material, fragments, uv, surface, seed);
+    const std::vector<Vec2d> changes =
+        height_changes(model, material, fragments, uv, surface, seed);
     for (std::size_t i = 0; i < fragments.size(); ++i) {
       const MeshFragment& f = fragments[i];
-      gradients[i] = uv ? texture_surface_gradient(
-                              f.normal, texture_gradients(mesh, f.triangle, texture_scale),
-                              texture_gradient_from_steps(f.uv_footprint, steps[i].x, steps[i].y))
-                        : surface_gradient_from_steps(f.normal, f.point.dpdx, f.point.dpdy,
-                                                      steps[i].x, steps[i].y);
+      gradients[i] =
+          uv ? texture_surface_gradient(
+                   f.normal, texture_gradients(mesh, f.triangle, texture_scale),
+                   texture_gradient_from_steps(f.uv_footprint, changes[i].x, changes[i].y))
+             : surface_gradient_from_steps(f.normal, f.point.dpdx, f.point.dpdy, changes[i].x,
+                                           changes[i].y);
     }
     return;
   }
