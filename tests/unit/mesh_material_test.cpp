@@ -130,37 +130,43 @@ TEST(MeshBump, SurfaceGradientsOfALinearHeight) {
   expect_near(bumped, normalized({-0.6, 0.4, 1.0}), 1e-15, "bumped");
 }
 
-// A tiling model of an exemplar whose albedo is white noise and whose normal map's slopes are
-// (0.6, -0.4) up to 1e-6 (tiling renders every value within the exemplar's range), read with and
-// without the normal map.
+// A tiling model of an exemplar whose albedo is white noise, whose normal map's slopes are s up to
+// 1e-6 and whose last channel is 0.4 up to 1e-6 (tiling renders every value within the
+// exemplar's range), read as a material of albedo, normal map and ambient occlusion, and read
+// without a normal map and with the last channel a scalar map of another name (render-mesh uses
+// neither).
 struct ConstantSlopes {
   Model bumped;
   Model flat;
 };
+constexpr double kOcclusion = 0.4;
 ConstantSlopes constant_slopes(double sx, double sy) {
   std::mt19937 engine(4);
   std::normal_distribution<float> noise(0.5f, 0.1f);
   std::uniform_real_distribution<double> tiny(0.0, 1e-6);
-  ImageF exemplar(32, 32, 5);
+  ImageF exemplar(32, 32, 6);
   for (int y = 0; y < 32; ++y)
     for (int x = 0; x < 32; ++x) {
       for (int c = 0; c < 3; ++c) exemplar.at(x, y, c) = noise(engine);
       exemplar.at(x, y, 3) = static_cast<float>(sx + tiny(engine));
       exemplar.at(x, y, 4) = static_cast<float>(sy + tiny(engine));
+      exemplar.at(x, y, 5) = static_cast<float>(kOcclusion + tiny(engine));
     }
   const Model bumped = analyze_exemplar(
       "tiling", exemplar.view(), {}, 3, "constant slopes", {},
-      {map_info("albedo", MapKind::colour, 3), map_info("normal", MapKind::normal, 2)});
+      {map_info("albedo", MapKind::colour, 3), map_info("normal", MapKind::normal, 2),
+       map_info("ao", MapKind::scalar, 1)});
   return {bumped, with_maps(bumped, {map_info("albedo", MapKind::colour, 3),
                                      map_info("slope_x", MapKind::colour, 1),
-                                     map_info("slope_y", MapKind::colour, 1)})};
+                                     map_info("slope_y", MapKind::colour, 1),
+                                     map_info("roughness", MapKind::scalar, 1)})};
 }
 
-// A plane under a normal map of constant slopes s is lit as the normal the slopes give, computed
-// by hand: normalize(-s_x, -s_y, 1) through the uvs (x right, y up the picture, as the normal
-// map's), normalize(-s_x, s_y, 1) through the triplanar projection on (x, y), whose texture y
-// runs up the picture (world y) where the image's runs down. The same albedo, unbumped, gives each
-// pixel's albedo.
+// A plane under a normal map of constant slopes s and an ambient occlusion a is lit as computed by
+// hand: 0.3 a + 0.7 max(0, n.l) with n = normalize(-s_x, -s_y, 1) through the uvs (x right, y up
+// the picture, as the normal map's), normalize(-s_x, s_y, 1) through the triplanar projection on
+// (x, y), whose texture y runs up the picture (world y) where the image's runs down. The same
+// albedo without normal map or ambient occlusion (0.3 + 0.7 n.l) gives each pixel's albedo.
 TEST(MeshBump, ConstantSlopesLightAPlaneAsTheirNormal) {
   const double sx = 0.6, sy = -0.4;
   const ConstantSlopes models = constant_slopes(sx, sy);
@@ -175,7 +181,7 @@ TEST(MeshBump, ConstantSlopesLightAPlaneAsTheirNormal) {
     render_mesh(models.bumped, mesh, head_on(), options, 2, bumped.view());
     render_mesh(models.flat, mesh, head_on(), options, 2, flat.view());
     const Vec3d n = normalized({-sx, uv ? -sy : sy, 1.0});
-    const double expected = 0.3 + 0.7 * std::max(0.0, dot(n, light));
+    const double expected = 0.3 * kOcclusion + 0.7 * std::max(0.0, dot(n, light));
     const double unbumped = 0.3 + 0.7 * light.z;
     double largest = 0.0;
     for (int y = 0; y < kSide; ++y)
@@ -184,9 +190,10 @@ TEST(MeshBump, ConstantSlopesLightAPlaneAsTheirNormal) {
           const double albedo = flat.at(x, y, c) / unbumped;
           largest = std::max(largest, std::abs(bumped.at(x, y, c) - albedo * expected));
         }
-    // The slopes' 1e-6 spread and float rounding (measured: 1.8e-7 uv, 3.8e-7 triplanar-linear).
+    // The maps' 1e-6 spread and float rounding (measured: 1.8e-7 uv, 5.7e-7 triplanar-linear).
     EXPECT_LT(largest, 2e-6) << (uv ? "uv" : "triplanar-linear");
-    EXPECT_GT(std::abs(expected - unbumped), 0.05);  // the bump shows (0.24 and 0.08)
+    // The bump shows: n.l against the unbumped normal's (measured: 0.35 and -0.12 apart).
+    EXPECT_GT(std::abs(dot(n, light) - light.z), 0.1) << (uv ? "uv" : "triplanar-linear");
   }
 }
 
