@@ -107,7 +107,13 @@ int run(const Options& o) {
   check_output_is_not_input(o.output, o.model);
 
   const Model model = load_model(o.model);
-  check_output_channels(o.output, model.channels());
+  int channels = 0;
+  try {
+    channels = mesh_output_channels(model);
+  } catch (const Error& error) {
+    throw Error(error.code(), o.model + ": " + error.what());
+  }
+  check_output_channels(o.output, channels);
   if (mapping && !supports_mapping(model, *mapping))
     throw std::invalid_argument(fmt::format(
         "{}: {} models have no {} mapping; use --mapping triplanar-linear or uv, which every "
@@ -133,7 +139,7 @@ int run(const Options& o) {
   options.texture_scale =
       o.texture_scale > 0.0 ? o.texture_scale : (mapping ? default_texture_scale(mesh) : 1024.0);
   options.threads = threads;
-  ImageF image(size.width, size.height, model.channels());
+  ImageF image(size.width, size.height, channels);
   const Camera view = make_camera(camera, mesh, size);
 #ifdef STOCHTEX_WITH_GL
   if (o.backend == "gl") render_mesh_gl(model, mesh, view, options, o.seed, image.view());
@@ -157,7 +163,11 @@ Command add_render_mesh_command(CLI::App& app) {
   command->add_option("MESH", options->mesh, "mesh file (.obj)")->required();
   command->add_option("-o,--output", options->output, "image to write (.png, .exr or .pfm)")
       ->required();
-  command->add_option("--model", options->model, "model file (.stx)")->required();
+  command
+      ->add_option("--model", options->model,
+                   "model file (.stx); a material's colour map is shaded, bumped by its normal "
+                   "map, its ambient light times its ao map (docs/materials.md)")
+      ->required();
   command
       ->add_option("--mapping", options->mapping,
                    "surface (surface noise), triplanar (histogram-preserving, tiling), "
@@ -198,7 +208,7 @@ Command add_render_mesh_command(CLI::App& app) {
       ->add_option("--backend", options->backend,
                    "cpu (the reference) or gl (OpenGL 4.5, headless: the mesh rasterised, each "
                    "fragment calling the method's GLSL; --mapping uv with every method, triplanar "
-                   "with tiling)")
+                   "with tiling; no materials)")
       ->capture_default_str()
       ->check(CLI::IsMember({"cpu", "gl"}));
   return {command, [options] { return run(*options); }};

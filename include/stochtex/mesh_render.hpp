@@ -2,8 +2,8 @@
 // Pictures of a textured mesh (docs/meshes.md): a pinhole camera, a z-buffer rasteriser on the
 // CPU (the reference), the texture from evaluate_surface() (surface.hpp) or from evaluate() at the
 // mesh's texture coordinates, with footprints from ray differentials, and Lambert + ambient
-// shading. Like render(): a pure function of its arguments, bit-identical whatever the thread
-// count. In stochtex::runtime.
+// shading; a material's colour map bumped by its normal map. Like render(): a pure function of its
+// arguments, bit-identical whatever the thread count. In stochtex::runtime.
 
 #include <cstdint>
 #include <functional>
@@ -49,10 +49,18 @@ struct MeshRenderOptions {
   std::function<void(double)> progress;  // called with the fraction done, from one thread
 };
 
-// Renders the mesh (prepared by prepare_mesh) seen by the camera into `out`, which has the
-// model's channels. Throws std::invalid_argument, before any work, when the model is empty or
-// does not support the mapping, the uv mapping meets a mesh without uvs, the camera is degenerate
-// (eye at target, up along the view) or the texture scale puts the mesh beyond kPositionLimit.
+// The channels of render_mesh's picture: a model of one image's own; a material's colour map's
+// (the map named albedo, else the first colour map: 1 or 3), lit with its normal map bumping the
+// normal and its ambient occlusion map (ao, occlusion or ambient_occlusion) darkening the ambient
+// light, its other maps unused (docs/materials.md, "On a mesh"). Throws Error(invalid_input), one
+// sentence, for a material without a colour map.
+int mesh_output_channels(const Model& model);
+
+// Renders the mesh (prepared by prepare_mesh) seen by the camera into `out`, which has
+// mesh_output_channels(model) channels. Throws std::invalid_argument, before any work, when the
+// model is empty or does not support the mapping, the uv mapping meets a mesh without uvs, the
+// camera is degenerate (eye at target, up along the view) or the texture scale puts the mesh
+// beyond kPositionLimit; Error(invalid_input) for a material without a colour map.
 void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
                  const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out);
 

@@ -28,4 +28,9 @@ inline Vec2d on_plane(const Vec3d& v, int k) {
   return k == 0 ? Vec2d{v.y, v.z} : k == 1 ? Vec2d{v.z, v.x} : Vec2d{v.x, v.y};
 }
 
+// The vector within axis plane k whose on_plane coordinates are v: a plane's 2-D gradient in space.
+inline Vec3d off_plane(const Vec2d& v, int k) {
+  return k == 0 ? Vec3d{0.0, v.x, v.y} : k == 1 ? Vec3d{v.y, 0.0, v.x} : Vec3d{v.x, v.y, 0.0};
+}
+
 }  // namespace stochtex

@@ -193,6 +193,11 @@ std::array<float, 16> clip_from_eye(const PixelRays& rays, int x0, int y0, int w
 void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
                     const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out) {
   check_mesh_render_arguments(model, mesh, options, out);
+  if (!model.maps().empty())
+    throw Error(ErrorCode::invalid_input,
+                "the gl backend of render-mesh shades models of one image, and this is a material "
+                "(its exported shader returns at most 4 channels and no normal map); render it "
+                "with --backend cpu");
   const PixelRays rays = pixel_rays(camera, out.width, out.height);
   const Texturing parts = texturing(model, options);
 

@@ -77,6 +77,16 @@ int map_channels(std::span<const MapInfo> maps) {
   return channels;
 }
 
+std::vector<int> first_channels(std::span<const MapInfo> maps) {
+  std::vector<int> first;
+  int channel = 0;
+  for (const MapInfo& map : maps) {
+    first.push_back(channel);
+    channel += map.channels;
+  }
+  return first;
+}
+
 std::optional<std::string> map_layout_problem(std::span<const MapInfo> maps) {
   if (maps.empty()) return "has no maps";
   std::set<std::string, std::less<>> names;
@@ -178,13 +188,9 @@ std::vector<NamedImage> render_maps(const Model& model, const Grid& grid,
   render_grid(wide, rendered.view());
   // Every map's channels (a derived normal map's two slopes) in the grid.
   std::vector<MapInfo> maps(model.maps().begin(), model.maps().end());
-  std::vector<int> first_channel;  // of each map in `rendered`
-  int channel = 0;
-  for (MapInfo& map : maps) {
-    first_channel.push_back(channel);
-    channel += map.channels;
+  const std::vector<int> first_channel = first_channels(maps);  // of each map in `rendered`
+  for (MapInfo& map : maps)
     if (!map.derived_from.empty()) map.channels = 2;
-  }
   ImageF full(grid.width, grid.height, map_channels(maps));
   int target = 0;
   for (std::size_t m = 0; m < maps.size(); ++m) {

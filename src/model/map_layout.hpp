@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "stochtex/model.hpp"
 
@@ -28,5 +29,9 @@ nlohmann::ordered_json maps_json(std::span<const MapInfo> maps);
 
 // The channels of all maps.
 int map_channels(std::span<const MapInfo> maps);
+
+// The first channel of each map among the model's channels, in map order (a derived map, which
+// has none, gets the channel where the next map starts).
+std::vector<int> first_channels(std::span<const MapInfo> maps);
 
 }  // namespace stochtex

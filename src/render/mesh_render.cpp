@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "render/mesh_material.hpp"
 #include "render/mesh_shading.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/render.hpp"
@@ -154,27 +155,17 @@ Vec3d clamp_length(const Vec3d& v, double limit) {
   return l > limit ? v * (limit / l) : v;
 }
 
-// What one covered pixel needs for texturing and shading.
-struct Fragment {
-  int x = 0;
-  int y = 0;
-  Vec3d direction;
-  Vec3d normal;
-  SurfacePoint point;  // in model space
-  Vec2d uv;            // in model space, with its footprint
-  Footprint uv_footprint;
-};
-
-Fragment make_fragment(const PixelRays& rays, const Mesh& mesh, const Hit& hit, int x, int y,
-                       double scale, bool uv) {
+MeshFragment make_fragment(const PixelRays& rays, const Mesh& mesh, const Hit& hit, int x, int y,
+                           double scale, bool uv) {
   const auto& corners = mesh.triangles[hit.triangle];
   const Vec3d& p0 = mesh.positions[corners[0]];
   const Vec3d e1 = mesh.positions[corners[1]] - p0;
   const Vec3d e2 = mesh.positions[corners[2]] - p0;
   const Vec3d face = cross(e1, e2);
-  Fragment f;
+  MeshFragment f;
   f.x = x;
   f.y = y;
+  f.triangle = hit.triangle;
   f.direction = rays.direction(x, y);
   const Vec3d position = rays.eye + f.direction * hit.t;
   const PlaneHit differentials = plane_differentials(rays, f.direction, hit.t, face);
@@ -211,13 +202,13 @@ Fragment make_fragment(const PixelRays& rays, const Mesh& mesh, const Hit& hit, 
 void check_mesh_render_arguments(const Model& model, const Mesh& mesh,
                                  const MeshRenderOptions& options, ImageView<float> out) {
   if (model.empty()) throw std::invalid_argument("render_mesh: the model is empty");
-  if (!model.maps().empty())
-    throw Error(ErrorCode::invalid_input,
-                "render-mesh shades a model of one image, and this is a material of " +
-                    std::to_string(model.maps().size()) +
-                    " maps; render its maps with `stochtex render -o out_{map}.png` and texture "
-                    "the mesh with them");
-  if (out.channels != model.channels() || out.width < 1 || out.height < 1)
+  const MeshMaterial material = mesh_material(model);
+  if (material.colours > 0 && (out.channels != material.colours || out.width < 1 || out.height < 1))
+    throw std::invalid_argument(
+        "render_mesh: the output must be an image of the material's colour map's " +
+        std::to_string(material.colours) + " channels");
+  if (material.colours == 0 &&
+      (out.channels != model.channels() || out.width < 1 || out.height < 1))
     throw std::invalid_argument("render_mesh: the output must be an image of the model's " +
                                 std::to_string(model.channels()) + " channels");
   if (options.mapping && !supports_mapping(model, *options.mapping))
@@ -237,7 +228,9 @@ void check_mesh_render_arguments(const Model& model, const Mesh& mesh,
   } else {
     for (const Vec2d& uv : mesh.uvs) extent = std::max({extent, std::abs(uv.x), std::abs(uv.y)});
   }
-  if (!(extent * options.texture_scale <= kPositionLimit))
+  // A derived normal map samples the height up to a footprint (kMaxFootprint) beyond.
+  const double margin = material.height >= 0 ? kMaxFootprint : 0.0;
+  if (!(extent * options.texture_scale <= kPositionLimit - margin))
     throw std::invalid_argument(
         "the texture scale puts the mesh beyond 2^32 exemplar pixels from the origin; use a "
         "smaller texture scale");
@@ -278,8 +271,63 @@ BarycentricGradients barycentric_gradients(const Vec3d& e1, const Vec3d& e2) {
 }
 
 double shading(const Vec3d& light, const Vec3d& view_direction, const Vec3d& normal) {
-  const Vec3d facing = dot(normal, view_direction) > 0.0 ? normal * -1.0 : normal;
-  return kAmbient + (1.0 - kAmbient) * std::max(0.0, dot(facing, light));
+  return lambert(light, facing_viewer(view_direction, normal), 1.0);
+}
+
+Vec3d facing_viewer(const Vec3d& view_direction, const Vec3d& normal) {
+  return dot(normal, view_direction) > 0.0 ? normal * -1.0 : normal;
+}
+
+double lambert(const Vec3d& light, const Vec3d& facing_normal, double ambient_occlusion) {
+  return kAmbient * ambient_occlusion + (1.0 - kAmbient) * std::max(0.0, dot(facing_normal, light));
+}
+
+Vec3d surface_gradient(const Vec3d& n, const Vec3d& gradient) {
+  return gradient - n * dot(n, gradient);
+}
+
+Vec3d surface_gradient_from_steps(const Vec3d& n, const Vec3d& dpdx, const Vec3d& dpdy, double dh_x,
+                                  double dh_y) {
+  const Vec3d sigma_x = surface_gradient(n, dpdx);
+  const Vec3d sigma_y = surface_gradient(n, dpdy);
+  const Vec3d r1 = cross(sigma_y, n);
+  const Vec3d r2 = cross(n, sigma_x);
+  const double det = dot(sigma_x, r1);
+  // Parallel steps (relative to their lengths, at double's resolution) determine no gradient.
+  if (!(std::abs(det) > 1e-12 * length(sigma_x) * length(sigma_y))) return {};
+  return (r1 * dh_x + r2 * dh_y) * (1.0 / det);
+}
+
+TextureGradients texture_gradients(const Mesh& mesh, std::uint32_t triangle, double scale) {
+  const auto& [a, b, c] = mesh.triangles[triangle];
+  const BarycentricGradients bary = barycentric_gradients(mesh.positions[b] - mesh.positions[a],
+                                                          mesh.positions[c] - mesh.positions[a]);
+  const Vec2d& t0 = mesh.uvs[a];
+  const Vec2d& t1 = mesh.uvs[b];
+  const Vec2d& t2 = mesh.uvs[c];
+  return {(bary.du * (t1.x - t0.x) + bary.dv * (t2.x - t0.x)) * scale,
+          (bary.du * (t1.y - t0.y) + bary.dv * (t2.y - t0.y)) * scale};
+}
+
+Vec3d texture_surface_gradient(const Vec3d& n, const TextureGradients& texture,
+                               const Vec2d& gradient) {
+  const double area = length(cross(texture.x, texture.y));  // exemplar pixels per unit area
+  if (!(area > 0.0) || !std::isfinite(area)) return {};
+  return surface_gradient(n, texture.x * gradient.x + texture.y * gradient.y) *
+         (1.0 / std::sqrt(area));
+}
+
+Vec2d texture_gradient_from_steps(const Footprint& footprint, double dh_x, double dh_y) {
+  const Vec2d& a = footprint.dpdx;
+  const Vec2d& b = footprint.dpdy;
+  const double det = a.x * b.y - a.y * b.x;
+  if (!(std::abs(det) > 1e-12 * std::hypot(a.x, a.y) * std::hypot(b.x, b.y))) return {};
+  // [a; b] g = (dh_x, dh_y) by Cramer's rule.
+  return {(dh_x * b.y - dh_y * a.y) / det, (a.x * dh_y - b.x * dh_x) / det};
+}
+
+Vec3d bumped_normal(const Vec3d& n, const Vec3d& surface_gradient) {
+  return normalized(n - surface_gradient);
 }
 
 Vec3d light_direction(const PixelRays& rays) {
@@ -311,6 +359,12 @@ Camera orbit_camera(const Mesh& mesh, double azimuth_degrees, double elevation_d
   return camera;
 }
 
+int mesh_output_channels(const Model& model) {
+  if (model.empty()) throw std::invalid_argument("render_mesh: the model is empty");
+  const MeshMaterial material = mesh_material(model);
+  return material.colours > 0 ? material.colours : model.channels();
+}
+
 double default_texture_scale(const Mesh& mesh) {
   const Box box = bounding_box(mesh.positions);
   const Vec3d size = box.max - box.min;
@@ -320,6 +374,7 @@ double default_texture_scale(const Mesh& mesh) {
 void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
                  const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out) {
   check_mesh_render_arguments(model, mesh, options, out);
+  const MeshMaterial material = mesh_material(model);
   const PixelRays rays = pixel_rays(camera, out.width, out.height);
   const Vec3d light_towards = light_direction(rays);
   SurfaceOptions surface = options.surface;
@@ -347,7 +402,7 @@ void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
     for (const std::uint32_t t : bins.tiles[tile]) test(t);
     for (const std::uint32_t t : bins.everywhere) test(t);
 
-    std::vector<Fragment> fragments;
+    std::vector<MeshFragment> fragments;
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         const Hit& hit = hits[static_cast<std::size_t>((y - y0) * kTile + (x - x0))];
@@ -359,26 +414,46 @@ void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
       }
     if (fragments.empty()) return;
     const auto count = static_cast<int>(fragments.size());
-    std::vector<float> values(fragments.size() * static_cast<std::size_t>(channels));
-    const ImageView<float> view{values.data(), count, 1, channels, count * channels};
+    const int model_channels = model.channels();
+    std::vector<float> values(fragments.size() * static_cast<std::size_t>(model_channels));
+    const ImageView<float> view{values.data(), count, 1, model_channels, count * model_channels};
     if (uv) {
       std::vector<Vec2d> positions;
       std::vector<Footprint> footprints;
-      for (const Fragment& f : fragments) {
+      for (const MeshFragment& f : fragments) {
         positions.push_back(f.uv);
         footprints.push_back(f.uv_footprint);
       }
       evaluate(model, positions, footprints, seed, view);
     } else {
       std::vector<SurfacePoint> points;
-      for (const Fragment& f : fragments) points.push_back(f.point);
+      for (const MeshFragment& f : fragments) points.push_back(f.point);
       evaluate_surface(model, points, surface, seed, view);
     }
+    if (material.colours == 0) {
+      for (int i = 0; i < count; ++i) {
+        const MeshFragment& f = fragments[static_cast<std::size_t>(i)];
+        const auto light = static_cast<float>(shading(light_towards, f.direction, f.normal));
+        for (int c = 0; c < channels; ++c)
+          out.at(f.x, f.y, c) = c < colours ? view.at(i, 0, c) * light : view.at(i, 0, c);
+      }
+      return;
+    }
+    // A material: its colour map lit with the bumped normal, turned towards the viewer as the
+    // surface's own normal is, the ambient term times the ambient occlusion (within [0, 1]).
+    std::vector<Vec3d> gradients(fragments.size());
+    if (has_bump(material))
+      bump_gradients(model, material, mesh, fragments, uv, surface, options.texture_scale, seed,
+                     view, gradients);
     for (int i = 0; i < count; ++i) {
-      const Fragment& f = fragments[static_cast<std::size_t>(i)];
-      const auto light = static_cast<float>(shading(light_towards, f.direction, f.normal));
+      const MeshFragment& f = fragments[static_cast<std::size_t>(i)];
+      const Vec3d n = bumped_normal(f.normal, gradients[static_cast<std::size_t>(i)]);
+      const double occlusion =
+          material.occlusion < 0 ? 1.0 : std::clamp(view.at(i, 0, material.occlusion), 0.0f, 1.0f);
+      const Vec3d facing = dot(f.normal, f.direction) > 0.0 ? n * -1.0 : n;
+      const auto light = static_cast<float>(lambert(light_towards, facing, occlusion));
       for (int c = 0; c < channels; ++c)
-        out.at(f.x, f.y, c) = c < colours ? view.at(i, 0, c) * light : view.at(i, 0, c);
+        out.at(f.x, f.y, c) = view.at(i, 0, material.colour + c) * light;
     }
   };
   parallel_for(tiles, options.threads, render_tile, [&](std::size_t done) {

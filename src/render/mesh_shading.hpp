@@ -53,11 +53,79 @@ BarycentricGradients barycentric_gradients(const Vec3d& e1, const Vec3d& e2);
 
 // Lambert + ambient with a light fixed to the camera, above-left and behind it (`light`, from
 // light_direction once per render); `normal` is turned towards the viewer first (both sides of a
-// surface are lit, holes show the inside).
+// surface are lit, holes show the inside): lambert(light, facing_viewer(view_direction, normal),
+// 1).
 inline constexpr double kAmbient = 0.3;
 double shading(const Vec3d& light, const Vec3d& view_direction, const Vec3d& normal);
+// The normal, or its opposite where it faces away from the viewer (view_direction: from the eye).
+Vec3d facing_viewer(const Vec3d& view_direction, const Vec3d& normal);
+// kAmbient * ambient_occlusion + (1 - kAmbient) max(0, n.l) of a normal facing the viewer.
+double lambert(const Vec3d& light, const Vec3d& facing_normal, double ambient_occlusion);
 // The light's unit direction of shading(): towards the light, in world space.
 Vec3d light_direction(const PixelRays& rays);
+
+// Bump mapping by surface gradients (M. S. Mikkelsen, "Surface Gradient-Based Bump Mapping
+// Framework", JCGT 9(3), 2020, https://jcgt.org/published/0009/03/04/): a height H on a surface
+// of unit normal n turns the normal into normalize(n - grad_S H), grad_S H the height's gradient
+// within the tangent plane (the surface gradient). The height and the positions are in
+// the same units; every function below gives grad_S H in them.
+
+// The surface gradient of a height whose gradient in space is `gradient` (a height defined in
+// space, e.g. one triplanar projection's, whose gradient lies in its plane): its tangent part,
+// gradient - n (n . gradient) (the paper's surfgrad of a volume gradient).
+Vec3d surface_gradient(const Vec3d& n, const Vec3d& gradient);
+
+// The surface gradient of a height that changes by dh_x over the step dpdx and by dh_y over dpdy
+// (two steps along the surface, e.g. a pixel's footprint): the tangent vector v with
+// v . sigma_x = dh_x and v . sigma_y = dh_y, sigma the steps projected on the tangent plane,
+// v = (dh_x (sigma_y x n) + dh_y (n x sigma_x)) / (sigma_x . (sigma_y x n)) (the paper's surface
+// gradient from screen-space derivatives). Zero where the steps are parallel.
+Vec3d surface_gradient_from_steps(const Vec3d& n, const Vec3d& dpdx, const Vec3d& dpdy, double dh_x,
+                                  double dh_y);
+
+// The gradients, within a triangle's plane, of the texture coordinates p = scale * uv (exemplar
+// pixels) per unit of position: p_x(q) = p_x(q0) + texture_x . (q - q0), likewise y.
+struct TextureGradients {
+  Vec3d x;
+  Vec3d y;
+};
+TextureGradients texture_gradients(const Mesh& mesh, std::uint32_t triangle, double scale);
+
+// The surface gradient of a height given over the texture coordinates: `gradient` its gradient
+// over p (height per exemplar pixel), the height in units of one exemplar pixel's size on the
+// surface, l = 1 / sqrt(|texture_x x texture_y|) (the square root of a pixel's area there). Then
+// grad_S H = l (gradient_x grad_S p_x + gradient_y grad_S p_y), grad_S p the tangent parts of the
+// texture gradients: for texture coordinates that keep angles, gradient_x t + gradient_y b with t
+// and b the unit tangents along p_x and p_y, the tangent-space normal map's convention. Zero on a
+// triangle whose texture coordinates are degenerate.
+Vec3d texture_surface_gradient(const Vec3d& n, const TextureGradients& texture,
+                               const Vec2d& gradient);
+
+// The gradient g over the texture of a height that changes by dh_x over the footprint's step
+// dpdx and by dh_y over dpdy: g . dpdx = dh_x, g . dpdy = dh_y. Zero where the footprint is
+// degenerate (its steps parallel or zero).
+Vec2d texture_gradient_from_steps(const Footprint& footprint, double dh_x, double dh_y);
+
+// A normal map's stored slopes s (y up the image, stochtex/model.hpp MapKind::normal) as the
+// height's gradient over the texture coordinates (y down the image, as rows and p_y grow).
+inline Vec2d texture_gradient_of_slopes(double slope_x, double slope_y) {
+  return {slope_x, -slope_y};
+}
+
+// The bumped normal normalize(n - surface_gradient).
+Vec3d bumped_normal(const Vec3d& n, const Vec3d& surface_gradient);
+
+// What one covered pixel needs for texturing and shading (render_mesh).
+struct MeshFragment {
+  int x = 0;
+  int y = 0;
+  std::uint32_t triangle = 0;
+  Vec3d direction;     // the pixel's ray, from the eye
+  Vec3d normal;        // unit, interpolated (the face's where that cancels)
+  SurfacePoint point;  // in model space
+  Vec2d uv;            // in model space, with its footprint (the uv mapping)
+  Footprint uv_footprint;
+};
 
 // Footprint components are clamped to this length (exemplar pixels): a footprint wider than any
 // exemplar already filters to the mean, and grazing angles (the ray along the plane) stay finite.

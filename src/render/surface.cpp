@@ -72,6 +72,12 @@ void evaluate_triplanar_linear(const MethodModel& m, std::span<const SurfacePoin
       weights[static_cast<std::size_t>(i)] =
           triplanar_weights(points[first + static_cast<std::size_t>(i)].normal, sharpness);
     for (int k = 0; k < 3; ++k) {
+      // A plane of no weight at every point adds nothing (normals along an axis).
+      if (std::all_of(weights.begin(), weights.begin() + count,
+                      [&](const std::array<double, 3>& w) {
+                        return w[static_cast<std::size_t>(k)] == 0.0;
+                      }))
+        continue;
       std::array<Vec2d, kBatch> positions;
       std::array<Footprint, kBatch> footprints;
       for (int i = 0; i < count; ++i) {

@@ -1296,8 +1296,25 @@ expect_ok "a material of 9 channels" "$stochtex" analyze --map albedo="$rock/alb
   expect_file "the gl backend's ao map" "$models/rock_ao.png" &&
   expect_error "export-shader of a material beyond 4 channels" 1 "has 6 channels" "$stochtex" \
     export-shader "$models/rock.stx" -o "$out/rock"
-expect_error "render-mesh of a material" 1 "material" "$stochtex" render-mesh \
-  "$textures/../meshes/sphere.obj" --model "$models/material.stx" -o "$out/x.png" --size 16x16
+# render-mesh shades a material's colour map (3 channels), bumped by a derived normal map (rock) or
+# none (material), through every mapping its method has.
+for mapping in uv triplanar-linear surface; do
+  expect_ok "render-mesh of a material, $mapping" "$stochtex" render-mesh \
+    "$textures/../meshes/sphere.obj" --model "$models/rock.stx" -o "$models/rock_mesh.pfm" \
+    --size 24x16 --mapping "$mapping" &&
+    if head -c 3 "$models/rock_mesh.pfm" | grep -q '^PF$'; then pass; else
+      fail "render-mesh of a material writes its colour map" "not a 3-channel PFM"
+    fi
+done
+expect_ok "render-mesh of a material without a normal map" "$stochtex" render-mesh \
+  "$textures/../meshes/sphere.obj" --model "$models/material.stx" -o "$models/material_mesh.png" \
+  --size 16x16 && expect_file "the material's picture" "$models/material_mesh.png"
+expect_error "render-mesh of a material without a colour map" 1 "relief.stx" "$stochtex" \
+  render-mesh "$textures/../meshes/sphere.obj" --model "$models/relief.stx" -o "$out/x.png" \
+  --size 16x16
+expect_error "render-mesh --backend gl of a material" 1 "--backend cpu" "$stochtex" render-mesh \
+  "$textures/../meshes/sphere.obj" --model "$models/material.stx" -o "$out/x.png" --size 16x16 \
+  --backend gl
 
 # --- summary ------------------------------------------------------------------------------------
 

@@ -19,6 +19,7 @@
 
 #include "gl_support.hpp"
 #include "stochtex/gpu.hpp"
+#include "stochtex/material.hpp"
 #include "stochtex/mesh.hpp"
 #include "stochtex/mesh_render.hpp"
 
@@ -200,6 +201,25 @@ TEST(GlMesh, AMappingWithoutGlslIsRefused) {
   // The uv mapping needs uvs, which the scan has not.
   options.mapping = std::nullopt;
   EXPECT_THROW(render_mesh_gl(lrp, mesh, camera, options, 1, out.view()), std::invalid_argument);
+}
+
+// A material is shaded by render_mesh only (its exported shader has at most 4 channels and no
+// normal map): refused with a sentence that says so.
+TEST(GlMesh, AMaterialIsRefused) {
+  const std::string rock = std::string(STOCHTEX_MATERIAL_DIR) + "/rock_sandstone/";
+  const ImageF albedo = read_image(rock + "albedo.png");
+  const ImageF roughness = read_image(rock + "roughness.png");
+  const Model material = analyze_material(
+      "tiling", std::vector<MaterialMap>{{"albedo", {}, albedo.view(), "a.png"},
+                                         {"roughness", {}, roughness.view(), "r.png"}});
+  const Mesh mesh = read_mesh(kMeshes + "sphere.obj");
+  ImageF out(8, 8, 3);
+  try {
+    render_mesh_gl(material, mesh, orbit_camera(mesh, 0.0, 0.0, 1.0, 8, 8), {}, 1, out.view());
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("--backend cpu"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace
