@@ -190,8 +190,13 @@ struct ShaderExport {
   std::vector<ShaderTexture> textures;  // each bound to the texture `stochtex_<name>`
   std::string readme;
 };
-// Throws std::invalid_argument, one sentence, when the model's shader uses what the language
-// lacks (the gabor exact shader's double precision in GLSL ES, HLSL and Metal).
+// A material (a model with maps) exports a struct of its maps and
+// StochtexMaterial stochtex_<method>_material(vec2 p, vec2 dpdx, vec2 dpdy, uint seed), derived
+// normal maps from the height around p (docs/shaders.md, "Materials"). Throws
+// std::invalid_argument, one sentence, when the model's shader uses what the language lacks (the
+// gabor exact shader's double precision in GLSL ES, HLSL and Metal), and Error(invalid_input),
+// one sentence, for what cannot be exported (a model of more than 4 channels without maps,
+// tiling's material groups, texton's fast variant and lrp's section 5 beyond 4 channels).
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options = {});
 
 // "OpenGL <version> on <renderer>" of the context render_gl uses (creates one).

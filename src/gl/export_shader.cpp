@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <optional>
+#include <span>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -15,6 +17,7 @@
 #include <vector>
 
 #include "gl/cross_compile.hpp"
+#include "gl/export_material.hpp"
 #include "gl/twin.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/error.hpp"
@@ -25,24 +28,52 @@ namespace stochtex {
 namespace gl {
 namespace {
 
-const char* const kArguments =
-    "`p` is in exemplar pixels (1 unit = 1 pixel of the analysed image), `dpdx`/`dpdy` its "
-    "screen\nderivatives (`dFdx(p)`, `dFdy(p)` in a fragment shader; `vec2(0)` for no "
-    "filtering) and `seed`\npicks the random pattern. The result's first `channels` "
-    "components are the colour.\n\n";
+// What an export's README, header and wrappers name: the method and, for a material, its
+// function (export_material.hpp); otherwise stochtex_<method>.
+struct Entry {
+  std::string method;
+  const MaterialShader* material = nullptr;
 
-// The GLSL entry point's documentation: its signature and arguments.
-std::string entry_point(const std::string& method) {
-  return "\n\n    vec4 stochtex_" + method + "(vec2 p, vec2 dpdx, vec2 dpdy, uint seed);\n\n" +
-         kArguments;
+  std::string function() const { return material ? material->function : "stochtex_" + method; }
+};
+
+// The arguments of the entry point and what it returns.
+std::string arguments(const Entry& entry) {
+  return std::string(
+             "`p` is in exemplar pixels (1 unit = 1 pixel of the analysed image), `dpdx`/`dpdy` "
+             "its screen\nderivatives (`dFdx(p)`, `dFdy(p)` in a fragment shader; `vec2(0)` for "
+             "no filtering) and `seed`\npicks the random pattern.") +
+         (entry.material ? "\n\n"
+                         : " The result's first `channels` components are the colour.\n\n");
+}
+
+// The GLSL entry point's documentation: its signature and arguments (a material: and its struct).
+std::string entry_point(const Entry& entry) {
+  const std::string type = entry.material ? "StochtexMaterial " : "vec4 ";
+  std::string text = "\n\n    " + type + entry.function() +
+                     "(vec2 p, vec2 dpdx, vec2 dpdy, uint seed);\n\n" + arguments(entry);
+  if (entry.material) text += material_readme(*entry.material, ShaderLanguage::glsl) + "\n";
+  return text;
+}
+
+// An example's RGB colour from `call`, the entry point's result in a language whose 3-vector is
+// `vec3`: its .rgb, or a material's first member of 3 components (else its first, as grey).
+std::string example_colour(const Entry& entry, const std::string& call, std::string_view vec3) {
+  if (!entry.material) return call + ".rgb";
+  const std::vector<MaterialMember>& members = entry.material->members;
+  const auto vector = std::find_if(members.begin(), members.end(),
+                                   [](const MaterialMember& member) { return member.vector; });
+  if (vector != members.end()) return call + "." + vector->name;
+  return std::string(vec3) + "(" + call + "." + members.front().name + ")";
 }
 
 // A fragment shader calling the entry point.
-std::string usage(const std::string& method, const std::string& glsl_file) {
+std::string usage(const Entry& entry, const std::string& glsl_file) {
   return "```glsl\n#version 450\n// ... contents of " + glsl_file +
          " ...\nin vec2 uv;  // your surface coordinate\nout vec4 colour;\nvoid main() {\n"
-         "  vec2 p = uv * 512.0;  // scaled to exemplar pixels\n  colour = vec4(stochtex_" +
-         method + "(p, dFdx(p), dFdy(p), 7u).rgb, 1.0);\n}\n```\n\n";
+         "  vec2 p = uv * 512.0;  // scaled to exemplar pixels\n  colour = vec4(" +
+         example_colour(entry, entry.function() + "(p, dFdx(p), dFdy(p), 7u)", "vec3") +
+         ", 1.0);\n}\n```\n\n";
 }
 
 constexpr std::array<const char*, 4> kChannelNames = {"grey", "grey + alpha", "RGB", "RGBA"};
@@ -127,13 +158,12 @@ std::string fast_data_section(ShaderLanguage language, const std::vector<ShaderT
 
 // README.md of a fast export: files with their texture settings, entry point, colour spaces,
 // binding in plain OpenGL 4.5, and method notes.
-std::string fast_readme(const std::string& method, const std::string& title,
-                        const std::string& glsl_file, const std::vector<ShaderTexture>& textures,
-                        const std::string& notes) {
+std::string fast_readme(const Entry& entry, const std::string& title, const std::string& glsl_file,
+                        const std::vector<ShaderTexture>& textures, const std::string& notes) {
   std::ostringstream text;
   text << "# stochtex " << title << " shader (fast variant)\n\nFiles: `" << glsl_file
        << "` (the noise, self-contained) and the data images below. It exposes"
-       << entry_point(method) << fast_data_section(ShaderLanguage::glsl, textures)
+       << entry_point(entry) << fast_data_section(ShaderLanguage::glsl, textures)
        << "## Binding in plain OpenGL 4.5\n\n```c\n";
   for (std::size_t i = 0; i < textures.size(); ++i) {
     const ShaderTexture& t = textures[i];
@@ -181,7 +211,7 @@ std::string fast_readme(const std::string& method, const std::string& title,
          << ");\nglProgramUniform1i(program, glGetUniformLocation(program, \"stochtex_" << t.name
          << "\"), " << i << ");\n";
   }
-  text << "```\n\n" << usage(method, glsl_file);
+  text << "```\n\n" << usage(entry, glsl_file);
   if (!notes.empty()) text << notes << "\n";
   return text.str();
 }
@@ -192,9 +222,8 @@ std::string shader_graph_file(const std::string& method) {
 
 // The GLSL 4.50 README of an export: files, entry point, binding in plain OpenGL 4.5, and method
 // notes.
-std::string glsl_readme(const std::string& method, const std::string& title,
-                        const std::string& glsl_file, const std::vector<ShaderTexture>& textures,
-                        const std::string& notes) {
+std::string glsl_readme(const Entry& entry, const std::string& title, const std::string& glsl_file,
+                        const std::vector<ShaderTexture>& textures, const std::string& notes) {
   std::ostringstream text;
   text << "# stochtex " << title << " shader\n\nFiles: `" << glsl_file
        << "` (the noise, self-contained)\nand";
@@ -202,7 +231,7 @@ std::string glsl_readme(const std::string& method, const std::string& title,
     text << (i == 0 ? " `" : ", `") << textures[i].name << ".exr`";
   text << " (the model's data, RGBA float32).\nThe GLSL declares";
   for (const ShaderTexture& t : textures) text << " `uniform sampler2D stochtex_" << t.name << ";`";
-  text << " and exposes" << entry_point(method)
+  text << " and exposes" << entry_point(entry)
        << "Binding it in a plain OpenGL 4.5 program (load each EXR with any EXR reader into "
           "`texels`,\n`width` x `height` RGBA floats):\n\n```c\n";
   for (std::size_t i = 0; i < textures.size(); ++i)
@@ -214,7 +243,7 @@ std::string glsl_readme(const std::string& method, const std::string& title,
          << ", texture" << i << ");\nglProgramUniform1i(program, glGetUniformLocation(program, \""
          << "stochtex_" << textures[i].name << "\"), " << i << ");\n";
   text << "```\n\n"
-       << usage(method, glsl_file)
+       << usage(entry, glsl_file)
        << "The textures are read with `texelFetch` (exact texels, no sampler filtering needed): "
           "the shader\ndoes its own interpolation and footprint filtering, the same as the CPU "
           "reference, whose output\nit matches to float rounding (tested).\n";
@@ -222,12 +251,22 @@ std::string glsl_readme(const std::string& method, const std::string& title,
   return text.str();
 }
 
+// The Shader Graph node's outputs, as the README names them.
+std::string shader_graph_outputs(const Entry& entry) {
+  if (!entry.material) return "output `colour`\n(Vector 4)";
+  std::string text = "outputs";
+  for (const MaterialMember& member : entry.material->members)
+    text += std::string(&member == &entry.material->members.front() ? " `" : ", `") + member.name +
+            "` (" + (member.vector ? "Vector 3" : "Float") + ")";
+  return text;
+}
+
 // The binding of the data textures in a cross-compiled language, after the shared introduction
 // (fast: after the data table). `call_arguments` follow `seed` in the example's call (Metal: the
 // textures, samplers and the variables SPIRV-Cross made of the library's private globals, which
 // `locals` declares).
 void write_binding(std::ostringstream& text, ShaderLanguage language, ShaderVariant variant,
-                   const std::string& method, const std::string& file,
+                   const Entry& entry, const std::string& file,
                    const std::vector<ShaderTexture>& textures, const std::string& call_arguments,
                    const std::string& locals) {
   const bool fast = variant == ShaderVariant::fast;
@@ -265,8 +304,9 @@ void write_binding(std::ostringstream& text, ShaderLanguage language, ShaderVari
       text << "\n#version 300 es\n// ... contents of " << file
            << " ...\nin highp vec2 uv;  // your surface coordinate\nout highp vec4 colour;\n"
               "void main() {\n  highp vec2 p = uv * 512.0;  // scaled to exemplar pixels\n"
-              "  colour = vec4(stochtex_"
-           << method << "(p, dFdx(p), dFdy(p), 7u).rgb, 1.0);\n}\n```\n";
+              "  colour = vec4("
+           << example_colour(entry, entry.function() + "(p, dFdx(p), dFdy(p), 7u)", "vec3")
+           << ", 1.0);\n}\n```\n";
       break;
     case ShaderLanguage::hlsl:
       if (fast)
@@ -286,8 +326,9 @@ void write_binding(std::ostringstream& text, ShaderLanguage language, ShaderVari
       text << file
            << " ...\nfloat4 main(float4 position : SV_Position, float2 uv : TEXCOORD0) : "
               "SV_Target {\n  float2 p = uv * 512.0;  // scaled to exemplar pixels\n  return "
-              "float4(stochtex_"
-           << method << "(p, ddx(p), ddy(p), 7u).rgb, 1.0);\n}\n```\n\n";
+              "float4("
+           << example_colour(entry, entry.function() + "(p, ddx(p), ddy(p), 7u)", "float3")
+           << ", 1.0);\n}\n```\n\n";
       if (fast)
         text << "Unity: import each file with sRGB off, Compression None, Generate Mip Maps on "
                 "where the table has\nmip-maps, Filter Mode Trilinear (mip-mapped), Bilinear or "
@@ -301,10 +342,10 @@ void write_binding(std::ostringstream& text, ShaderLanguage language, ShaderVari
       for (const ShaderTexture& t : textures)
         text << "material.SetTexture(\"stochtex_" << t.name << "\", " << t.name << ");\n";
       text << "```\n\nIn Shader Graph, add a Custom Function node of Type File with Source\n`"
-           << shader_graph_file(method) << "`, Name `stochtex_" << method
+           << shader_graph_file(entry.method) << "`, Name `" << entry.function()
            << "`, precision Float, inputs `p`, `dpdx`,\n`dpdy` (Vector 2) and `seed` (Float, a "
-              "whole number below 2^24) and output `colour`\n(Vector 4). It calls `stochtex_"
-           << method << "_float`.\n";
+              "whole number below 2^24) and "
+           << shader_graph_outputs(entry) << ". It calls `" << entry.function() << "_float`.\n";
       break;
     case ShaderLanguage::msl:
       if (fast)
@@ -318,9 +359,12 @@ void write_binding(std::ostringstream& text, ShaderLanguage language, ShaderVari
                 "`ClampToBorderColor` with `TransparentBlack`).\n\n```metal\n// ... contents of ";
       else
         text << "Metal has no global textures: the function takes each texture and a sampler "
-                "(declared, never\nused) as arguments. Binding it: each EXR as an "
-                "`MTLPixelFormatRGBA32Float` texture with\n`mipmapLevelCount = 1`, and any "
-                "sampler state.\n\n```metal\n// ... contents of ";
+                "(declared, never\nused) as arguments"
+             << (locals.empty() ? ""
+                                : ", and the library's private variables as `thread` references "
+                                  "the caller\ndeclares")
+             << ". Binding it: each EXR as an `MTLPixelFormatRGBA32Float` texture with\n"
+                "`mipmapLevelCount = 1`, and any sampler state.\n\n```metal\n// ... contents of ";
       text << file
            << " ...\nstruct Varyings {\n  float4 position [[position]];\n  float2 uv;  // "
               "your surface coordinate\n};\nfragment float4 shade(Varyings in [[stage_in]]";
@@ -333,8 +377,11 @@ void write_binding(std::ostringstream& text, ShaderLanguage language, ShaderVari
       text << ") {\n"
            << locals
            << "  float2 p = in.uv * 512.0;  // scaled to exemplar pixels\n  return "
-              "float4(stochtex_"
-           << method << "(p, dfdx(p), dfdy(p), 7u" << call_arguments << ").rgb, 1.0);\n}\n```\n";
+              "float4("
+           << example_colour(entry,
+                             entry.function() + "(p, dfdx(p), dfdy(p), 7u" + call_arguments + ")",
+                             "float3")
+           << ", 1.0);\n}\n```\n";
       break;
     case ShaderLanguage::glsl:
       break;
@@ -364,7 +411,7 @@ void extra_parameters(const std::string& signature, std::string& arguments, std:
 }
 
 // The README of a cross-compiled export: the GLSL one's content, in the language's terms.
-std::string cross_readme(ShaderLanguage language, ShaderVariant variant, const std::string& method,
+std::string cross_readme(ShaderLanguage language, ShaderVariant variant, const Entry& entry,
                          const std::string& title, const std::string& file,
                          const std::string& signature, const std::vector<ShaderTexture>& textures,
                          const std::string& notes) {
@@ -376,7 +423,7 @@ std::string cross_readme(ShaderLanguage language, ShaderVariant variant, const s
        << "`: the noise, self-contained, cross-compiled from the GLSL 4.50 by\n  glslang and "
           "SPIRV-Cross;\n";
   if (language == ShaderLanguage::hlsl)
-    text << "- `" << shader_graph_file(method)
+    text << "- `" << shader_graph_file(entry.method)
          << "`: the same as a Unity Shader Graph custom "
             "function;\n";
   for (const ShaderTexture& t : textures)
@@ -384,12 +431,13 @@ std::string cross_readme(ShaderLanguage language, ShaderVariant variant, const s
          << (fast ? "the model's data, as the table below says;\n"
                   : "the model's data, RGBA float32, linear values;\n");
   text << "\nThe function keeps the GLSL's signature:\n\n    " << signature << ";\n\n"
-       << kArguments;
+       << arguments(entry);
+  if (entry.material) text << material_readme(*entry.material, language) << "\n";
   if (fast) text << fast_data_section(language, textures);
-  std::string arguments;
+  std::string call_arguments;
   std::string locals;
-  extra_parameters(signature, arguments, locals);
-  write_binding(text, language, variant, method, file, textures, arguments, locals);
+  extra_parameters(signature, call_arguments, locals);
+  write_binding(text, language, variant, entry, file, textures, call_arguments, locals);
   if (!fast)
     text << "\nEvery data texture is read texel by texel (" << row.texel_read
          << "): one mip level, no sampler filtering,\nno sRGB decoding. The shader does its own "
@@ -399,9 +447,8 @@ std::string cross_readme(ShaderLanguage language, ShaderVariant variant, const s
 }
 
 // The comment opening the shader file.
-std::string export_header(ShaderLanguage language, const std::string& what,
-                          const std::string& method, const std::vector<ShaderTexture>& textures,
-                          ShaderVariant variant) {
+std::string export_header(ShaderLanguage language, const std::string& what, const Entry& entry,
+                          const std::vector<ShaderTexture>& textures, ShaderVariant variant) {
   std::ostringstream text;
   if (language == ShaderLanguage::glsl)
     text << "// " << what << " exported by `stochtex export-shader`.\n"
@@ -417,59 +464,81 @@ std::string export_header(ShaderLanguage language, const std::string& what,
                  ? std::string("an RGBA32F")
                  : "a " + std::string(texture_format(language, textures[i])))
          << " texture to `stochtex_" << textures[i].name << "`";
-  text << ",\n// then call stochtex_" << method << "(p, dpdx, dpdy, seed"
+  text << ",\n// then call " << entry.function() << "(p, dpdx, dpdy, seed"
        << (language == ShaderLanguage::msl ? ", <textures, samplers>" : "")
        << "). See README.md.\n\n";
   return text.str();
 }
 
-// Shader Graph's Custom Function (File mode) calls <name>_float with the node's ports.
-TextFile shader_graph_wrapper(const std::string& method, const std::string& what,
-                              const std::string& hlsl, const std::vector<ShaderTexture>& textures) {
-  std::string guard = "STOCHTEX_" + method + "_SHADERGRAPH_INCLUDED";
+// Shader Graph's Custom Function (File mode) calls <name>_float with the node's ports: the
+// inputs and `colour`, or a material's maps, one output each.
+TextFile shader_graph_wrapper(const Entry& entry, const std::string& what, const std::string& hlsl,
+                              const std::vector<ShaderTexture>& textures) {
+  std::string guard = "STOCHTEX_" + entry.method + "_SHADERGRAPH_INCLUDED";
   std::transform(guard.begin(), guard.end(), guard.begin(),
                  [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  std::string outputs = "output colour\n// (Vector 4)";
+  std::string parameters = ", out float4 colour";
+  std::string body = "  colour = " + entry.function() + "(p, dpdx, dpdy, seed);\n";
+  if (entry.material) {
+    outputs = "outputs";
+    parameters.clear();
+    body = "  StochtexMaterial material = " + entry.function() + "(p, dpdx, dpdy, seed);\n";
+    for (const MaterialMember& member : entry.material->members) {
+      outputs += std::string(&member == &entry.material->members.front() ? "\n// " : ", ") +
+                 member.name + (member.vector ? " (Vector 3)" : " (Float)");
+      parameters += ", out " + std::string(hlsl_type(member)) + " " + member.name;
+      body += "  " + member.name + " = material." + member.name + ";\n";
+    }
+  }
   std::ostringstream text;
   text << "// " << what
        << ": a Unity Shader Graph custom function, exported by\n// `stochtex "
           "export-shader --language hlsl`. Custom Function node: Type File, this file, Name\n"
-          "// stochtex_"
-       << method
-       << ", precision Float; inputs p, dpdx, dpdy (Vector 2), seed (Float); output colour\n"
-          "// (Vector 4). Set";
+          "// "
+       << entry.function() << ", precision Float; inputs p, dpdx, dpdy (Vector 2), seed (Float); "
+       << outputs << ". Set";
   for (std::size_t i = 0; i < textures.size(); ++i)
     text << (i == 0 ? " " : ", ") << "stochtex_" << textures[i].name;
   text << " on the material by script. See README.md.\n#ifndef " << guard << "\n#define " << guard
        << "\n\n"
-       << hlsl << "\nvoid stochtex_" << method
-       << "_float(float2 p, float2 dpdx, float2 dpdy, uint seed, out float4 colour) {\n"
-       << "  colour = stochtex_" << method << "(p, dpdx, dpdy, seed);\n}\n\n#endif  // " << guard
-       << "\n";
-  return {shader_graph_file(method), text.str()};
+       << hlsl << "\nvoid " << entry.function()
+       << "_float(float2 p, float2 dpdx, float2 dpdy, uint seed" << parameters << ") {\n"
+       << body << "}\n\n#endif  // " << guard << "\n";
+  return {shader_graph_file(entry.method), text.str()};
 }
 
-ShaderExport assemble_export(ExportParts parts, ShaderLanguage language) {
+// The export of a method's parts: a model of one image exposes stochtex_<method>, a material (a
+// model with `maps`) its material function after the library.
+ShaderExport assemble_export(ExportParts parts, ShaderLanguage language,
+                             std::span<const MapInfo> maps, int channels) {
   const std::string method(parts.method);
+  std::optional<MaterialShader> material;
+  if (!maps.empty()) {
+    material = material_shader(maps, channels, method, parts.channels_function);
+    parts.library += material->glsl;
+  }
+  const Entry entry{method, material ? &*material : nullptr};
   ShaderExport result;
   result.shader.name = "stochtex_" + method + std::string(language_row(language).extension);
   const std::string header =
-      export_header(language, parts.what, method, parts.textures, parts.variant);
+      export_header(language, parts.what, entry, parts.textures, parts.variant);
   if (language == ShaderLanguage::glsl) {
     result.shader.text = header + parts.library;
     result.readme =
         parts.variant == ShaderVariant::exact
-            ? glsl_readme(method, parts.title, result.shader.name, parts.textures, parts.notes)
-            : fast_readme(method, parts.title, result.shader.name, parts.textures, parts.notes);
+            ? glsl_readme(entry, parts.title, result.shader.name, parts.textures, parts.notes)
+            : fast_readme(entry, parts.title, result.shader.name, parts.textures, parts.notes);
   } else {
-    const std::string function = "stochtex_" + method;
+    const std::string function = entry.function();
     const std::string source = cross_compile(parts.library, function, method, language);
     const std::size_t name = source.find(function + "(");
     const std::size_t line = source.rfind('\n', name) + 1;
     const std::string signature = source.substr(line, source.find('\n', name) - line);
     result.shader.text = header + source;
     if (language == ShaderLanguage::hlsl)
-      result.wrappers.push_back(shader_graph_wrapper(method, parts.what, source, parts.textures));
-    result.readme = cross_readme(language, parts.variant, method, parts.title, result.shader.name,
+      result.wrappers.push_back(shader_graph_wrapper(entry, parts.what, source, parts.textures));
+    result.readme = cross_readme(language, parts.variant, entry, parts.title, result.shader.name,
                                  signature, parts.textures, parts.notes);
   }
   result.textures = std::move(parts.textures);
@@ -486,17 +555,18 @@ std::string ShaderTexture::file_name() const {
 
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options) {
   if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
-  if (model.channels() > kMaxImageChannels)
+  if (model.maps().empty() && model.channels() > kMaxImageChannels)
     throw Error(ErrorCode::invalid_input,
-                "export-shader writes a vec4 function and this material model has " +
+                "export-shader writes a vec4 function for a model of one image, and this model "
+                "has " +
                     std::to_string(model.channels()) +
-                    " channels; export a material of at most 4 channels (e.g. albedo and "
-                    "roughness), or render its maps with `stochtex render`");
+                    " channels and no maps; analyse the maps with `stochtex analyze --map` to "
+                    "export one function returning each of them");
   return std::visit(
       [&](const auto& method_model) -> ShaderExport {
         using Method = std::decay_t<decltype(method_model)>;
         return gl::assemble_export(gl::Twin<Method>::shader(method_model, options.variant),
-                                   options.language);
+                                   options.language, model.maps(), model.channels());
       },
       model.data().model);
 }

@@ -54,6 +54,11 @@ struct ExportParts {
   std::vector<ShaderTexture> textures;
   std::string notes;                             // the README's method notes
   ShaderVariant variant = ShaderVariant::exact;  // fast: the README lists each file's settings
+  // A material beyond 4 channels (export_material.cpp): the function of `library` giving every
+  // channel, `float[N] <name>(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)` with the arguments of
+  // stochtex_<method>, whose vec4 cannot hold them (the library has no stochtex_<method> then).
+  // Empty for 1 to 4 channels.
+  std::string channels_function = {};
 };
 
 // Declared only: the specialisations in the method folders are the twins.

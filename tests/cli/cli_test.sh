@@ -1294,8 +1294,19 @@ expect_ok "a material of 9 channels" "$stochtex" analyze --map albedo="$rock/alb
   expect_ok "render its maps on the gl backend" "$stochtex" render "$models/rock.stx" \
     -o "$models/rock_{map}.png" --size 24x24 --backend gl &&
   expect_file "the gl backend's ao map" "$models/rock_ao.png" &&
-  expect_error "export-shader of a material beyond 4 channels" 1 "has 6 channels" "$stochtex" \
-    export-shader "$models/rock.stx" -o "$out/rock"
+  expect_ok "export-shader of a material" "$stochtex" export-shader "$models/rock.stx" \
+    -o "$models/rock_shader" &&
+  expect_readme_files "export-shader of a material writes its README's files" \
+    "$models/rock_shader" &&
+  if grep -qF "StochtexMaterial stochtex_texton_material(vec2 p" "$models/rock_shader/README.md" &&
+    grep -qF "float ao;" "$models/rock_shader/stochtex_texton.glsl"; then
+    pass
+  else
+    fail "export-shader of a material" "no StochtexMaterial with the map ao"
+  fi &&
+  expect_error "export-shader --variant fast of a material beyond 4 channels" 1 \
+    "export it with --variant exact" "$stochtex" export-shader "$models/rock.stx" \
+    -o "$out/rock" --variant fast
 # render-mesh shades a material's colour map (3 channels), bumped by a derived normal map (rock) or
 # none (material), through every mapping its method has.
 for mapping in uv triplanar-linear surface; do

@@ -126,26 +126,28 @@ inline float max_difference(const ImageF& a, const ImageF& b) {
 }
 
 // Runs an exported shader as an engine would: a compute shader after `#version 450` and the
-// exported GLSL calls stochtex_<method>(p, (scale, 0), (0, scale), seed) at p = scale * (pixel +
-// 0.5) for size x size pixels (size a multiple of 8), with `textures[i]` bound to the sampler of
-// files.textures[i]. Returns the image of the model's `channels` channels.
-inline ImageF run_export(const ShaderExport& files, const std::string& method,
-                         const std::vector<GLuint>& textures, int channels, int size, float scale,
-                         std::uint32_t seed) {
-  const std::string source = "#version 450\n" + files.shader.text + R"glsl(
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(std430, binding = 0) writeonly buffer Out { vec4 values[]; };
+// exported GLSL whose `store` (GLSL statements) writes the `floats` values of one pixel to
+// values[pixel.y * width + pixel.x] from p = scale * (pixel + 0.5), its footprint (scale, 0),
+// (0, scale) as `dpdx`, `dpdy` and `seed`, for size x size pixels (size a multiple of 8), with
+// `textures[i]` bound to the sampler of files.textures[i]. Returns the values, pixel by pixel.
+inline std::vector<float> run_export_program(const ShaderExport& files, const std::string& store,
+                                             int floats, const std::vector<GLuint>& textures,
+                                             int size, float scale, std::uint32_t seed) {
+  const std::string source = "#version 450\n" + files.shader.text +
+                             "\nlayout(local_size_x = 8, local_size_y = 8) in;\n"
+                             "struct Values { float v[" +
+                             std::to_string(floats) + R"glsl(]; };
+layout(std430, binding = 0) writeonly buffer Out { Values values[]; };
 uniform int width;
 uniform float scale;
 uniform uint seed;
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   vec2 p = scale * (vec2(pixel) + 0.5);
-  values[pixel.y * width + pixel.x] =
-      stochtex_)glsl" + method +
-                             R"glsl((p, vec2(scale, 0.0), vec2(0.0, scale), seed);
-}
-)glsl";
+  vec2 dpdx = vec2(scale, 0.0);
+  vec2 dpdy = vec2(0.0, scale);
+  int index = pixel.y * width + pixel.x;
+)glsl" + store + "}\n";
   const gl::Program program(source);
   for (std::size_t i = 0; i < textures.size(); ++i) {
     glBindTextureUnit(static_cast<GLuint>(i), textures[i]);
@@ -154,15 +156,30 @@ void main() {
   program.set("width", size);
   program.set("scale", scale);
   program.set("seed", static_cast<unsigned>(seed));
-  const gl::Buffer buffer(static_cast<std::size_t>(size) * size * 4 * sizeof(float));
+  const auto count = static_cast<std::size_t>(size) * size * static_cast<std::size_t>(floats);
+  const gl::Buffer buffer(count * sizeof(float));
   glUseProgram(program.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.id());
   glDispatchCompute(static_cast<GLuint>(size / 8), static_cast<GLuint>(size / 8), 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  std::vector<float> values(static_cast<std::size_t>(size) * size * 4);
+  std::vector<float> values(count);
   glGetNamedBufferSubData(buffer.id(), 0, static_cast<GLsizeiptr>(values.size() * sizeof(float)),
                           values.data());
   gl::check_gl("running an exported shader");
+  return values;
+}
+
+// run_export_program of stochtex_<method>(p, dpdx, dpdy, seed): the image of the model's
+// `channels` channels.
+inline ImageF run_export(const ShaderExport& files, const std::string& method,
+                         const std::vector<GLuint>& textures, int channels, int size, float scale,
+                         std::uint32_t seed) {
+  const std::vector<float> values = run_export_program(
+      files,
+      "  vec4 value = stochtex_" + method +
+          "(p, dpdx, dpdy, seed);\n  values[index].v = float[4](value.x, value.y, value.z, "
+          "value.w);\n",
+      4, textures, size, scale, seed);
   ImageF image(size, size, channels);
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x)

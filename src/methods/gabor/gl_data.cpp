@@ -172,24 +172,28 @@ ExportParts Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model, Shad
   GaborGlsl glsl = gabor_glsl(model, fast ? GlslPrecision::floats : GlslPrecision::doubles);
   std::vector<ShaderTexture> images;
   images.push_back({"gabor_data", std::move(glsl.data)});
-  return {gabor::GaborModel::kMethodName,
-          "Gabor noise",
-          std::string("Gabor noise by example") + (fast ? ", fast variant (" : " (") +
-              std::to_string(model.channels()) + " channels, " +
-              std::to_string(model.grids().size()) + " grids, " +
-              std::to_string(static_cast<int>(model.impulses())) + " impulses)",
-          gabor_library_source(glsl),
-          std::move(images),
-          std::string("Texel i < GABOR_GAUSSIANS of `gabor_data.exr` is Gaussian i (frequency x, "
-                      "y, alias probability,\nalias index); then 24 texels per grid hold its "
-                      "Poisson table. ") +
-              (fast ? "The shader is float-only (the `--gl-filter hardware` GLSL): positions are "
-                      "split per grid\ninto a cell and a float offset, so it runs where doubles "
-                      "are missing (GLSL ES, HLSL, Metal),\nwithin about 1e-3 of the image's "
-                      "standard deviation of the exact variant."
-                    : "The shader uses double precision\n(core since OpenGL 4.0) for positions "
-                      "and cell corners, as the CPU reference does."),
-          variant};
+  ExportParts parts{
+      gabor::GaborModel::kMethodName,
+      "Gabor noise",
+      std::string("Gabor noise by example") + (fast ? ", fast variant (" : " (") +
+          std::to_string(model.channels()) + " channels, " + std::to_string(model.grids().size()) +
+          " grids, " + std::to_string(static_cast<int>(model.impulses())) + " impulses)",
+      gabor_library_source(glsl),
+      std::move(images),
+      std::string("Texel i < GABOR_GAUSSIANS of `gabor_data.exr` is Gaussian i (frequency x, "
+                  "y, alias probability,\nalias index); then 24 texels per grid hold its "
+                  "Poisson table. ") +
+          (fast ? "The shader is float-only (the `--gl-filter hardware` GLSL): positions are "
+                  "split per grid\ninto a cell and a float offset, so it runs where doubles "
+                  "are missing (GLSL ES, HLSL, Metal),\nwithin about 1e-3 of the image's "
+                  "standard deviation of the exact variant."
+                : "The shader uses double precision\n(core since OpenGL 4.0) for positions "
+                  "and cell corners, as the CPU reference does."),
+      variant};
+  // Beyond 4 channels (a material), noise_channels.glsl's gabor_channels instead of the vec4
+  // entry point.
+  if (model.channels() > 4) parts.channels_function = "gabor_channels";
+  return parts;
 }
 
 }  // namespace stochtex::gl

@@ -44,3 +44,21 @@ GABOR_COLOUR gabor_noise(dvec2 p, dvec2 dpdx, dvec2 dpdy, uint seed) {
   }
   return gabor_colour(noise);
 }
+
+// Every channel at p, with the arguments of stochtex_gabor (noise.glsl): what `export-shader` calls
+// for a material (export_material.cpp). Keep |p| below ~1e4 for full precision.
+#ifdef STOCHTEX_FLOAT
+GABOR_COLOUR gabor_channels(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {
+  uvec4 cell[GABOR_GRID_ARRAY];
+  vec2 offset[GABOR_GRID_ARRAY];
+  for (int g = 0; g < GABOR_GRID_ARRAY; ++g) {
+    cell[g] = uvec4(0u);
+    offset[g] = p;
+  }
+  return gabor_noise(cell, offset, dpdx, dpdy, seed);
+}
+#else
+GABOR_COLOUR gabor_channels(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {
+  return gabor_noise(dvec2(p), dvec2(dpdx), dvec2(dpdy), seed);
+}
+#endif

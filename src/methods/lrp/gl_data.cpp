@@ -197,7 +197,7 @@ ImageF lrp_tables_image(const LrpGlsl& glsl) {
 
 ExportParts Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model,
                                         ShaderVariant /*variant: fast is exact*/) {
-  const LrpGlsl glsl = lrp_glsl(model);
+  LrpGlsl glsl = lrp_glsl(model);
   constexpr std::uint32_t kExactFloatIntegers = 1u << 24;
   const auto too_large = [](std::uint32_t value) { return value >= kExactFloatIntegers; };
   if (std::any_of(glsl.substrata.begin(), glsl.substrata.end(), too_large) ||
@@ -205,19 +205,39 @@ ExportParts Twin<lrp::LrpModel>::shader(const lrp::LrpModel& model,
     throw Error(ErrorCode::invalid_input,
                 "export-shader: this lrp model has more than 2^24 frequencies, which a float "
                 "texture cannot index exactly");
+  // Beyond 4 channels (a material), lrp_channels (channels.glsl) instead of the vec4 entry point.
+  const bool material = model.channels() > 4;
+  std::string entry = shader_source("methods/lrp/entry.glsl");
+  if (material) {
+    const lrp::LrpData& d = model.data();
+    if (!d.structure.empty())
+      throw Error(ErrorCode::invalid_input,
+                  "export-shader: the lrp shader keeps section 5's structure (ratio > 0) for at "
+                  "most 4 channels and this material has " +
+                      std::to_string(d.channels) +
+                      "; analyse it with ratio 0, or render its maps with `stochtex render`");
+    glsl.constants +=
+        "const int LRP_MATERIAL_CHANNELS = " + glsl_int(d.channels) +
+        ";\nconst int LRP_TURBULENCE_AXES = " + glsl_int(static_cast<int>(lrp::kTurbulenceAxes)) +
+        ";\n" +
+        glsl_array("float", "LRP_MATERIAL_MEAN", std::span<const float>(d.mean), glsl_float);
+    entry = shader_source("methods/lrp/channels.glsl");
+  }
   std::vector<ShaderTexture> images;
   images.push_back({"lrp_tables", lrp_tables_image(glsl)});
-  return {
+  ExportParts parts{
       lrp::LrpModel::kMethodName,
       "local random-phase noise",
       "Local random-phase noise (" + std::to_string(model.channels()) + " channels)",
-      lrp_library_source(glsl, DataSource::textures),
+      lrp_library_source(glsl, DataSource::textures) + (material ? "" : "\n") + entry,
       std::move(images),
       "`lrp_tables.exr` holds one table entry per texel, the tables one after the other from\n"
       "the texels LRP_SUBSTRATA_TEXEL, LRP_STRUCTURE_TEXEL, ... of the shader: frequencies\n"
       "(R, G: cycles per pixel; B: weight), sub-strata (R, G: first frequency and count), and\n"
       "for a model that keeps structure (ratio > 0) its cosines and turbulence tables. Keep |p|\n"
       "below ~1e4 for full float precision."};
+  if (material) parts.channels_function = "lrp_channels";
+  return parts;
 }
 
 }  // namespace stochtex::gl

@@ -88,15 +88,70 @@ std::string texton_atlas_source(const ImageF& atlas, DataSource source) {
          std::to_string(atlas.width()) + " + texel.x];\n}\n";
 }
 
-std::string texton_library_source(const TextonGlsl& glsl, DataSource source) {
+namespace {
+
+// The exact library up to texton_noise (noise.glsl), with `atlas_read` defining
+// texton_atlas_texel.
+std::string texton_noise_source(const TextonGlsl& glsl, const std::string& atlas_read) {
   return random_source() + glsl_constants(Twin<texton::TextonModel>::kConstants) + glsl.constants +
-         texton_atlas_source(glsl.atlas, source) + shader_source("methods/texton/evaluate.glsl") +
+         atlas_read + shader_source("methods/texton/evaluate.glsl") +
          shader_source("methods/texton/exact_fetch.glsl") +
-         shader_source("methods/texton/impulses.glsl") +
-         shader_source("methods/texton/noise.glsl") + shader_source("methods/texton/entry.glsl");
+         shader_source("methods/texton/impulses.glsl") + shader_source("methods/texton/noise.glsl");
+}
+
+}  // namespace
+
+std::string texton_library_source(const TextonGlsl& glsl, DataSource source) {
+  return texton_noise_source(glsl, texton_atlas_source(glsl.atlas, source)) +
+         shader_source("methods/texton/entry.glsl");
 }
 
 namespace {
+
+// A material beyond 4 channels (export-shader): the exact library of every chunk of 4 channels at
+// once, texton_channels (channels.glsl) summing the impulses once per chunk with the same draws, as
+// the renderer's chunks do (gl_pass.cpp). The chunks' atlases lie side by side in one image, chunk
+// k's from column k * TEXTON_CHUNK_WIDTH; chunk 0's constants serve every chunk but for the
+// constant term and mean, which TEXTON_MATERIAL_CONSTANT and TEXTON_MATERIAL_MEAN give per channel.
+ExportParts material_shader(const texton::TextonModel& model) {
+  TextonGlsl glsl = texton_glsl(model);
+  const int width = glsl.atlas.width();
+  const int chunks = (model.channels() + 3) / 4;
+  ImageF atlas(width * chunks, glsl.atlas.height(), 4);
+  for (int chunk = 0; chunk < chunks; ++chunk) {
+    const ImageF part = chunk == 0 ? glsl.atlas : texton_glsl(model, 4 * chunk).atlas;
+    for (int y = 0; y < part.height(); ++y)
+      for (int x = 0; x < width; ++x)
+        for (int c = 0; c < 4; ++c) atlas.at(chunk * width + x, y, c) = part.at(x, y, c);
+  }
+  glsl.constants +=
+      "const int TEXTON_MATERIAL_CHANNELS = " + glsl_int(model.channels()) +
+      ";\nconst int TEXTON_CHUNK_WIDTH = " + glsl_int(width) + ";\n" +
+      glsl_array("float", "TEXTON_MATERIAL_CONSTANT", model.constant_term(), glsl_float) +
+      glsl_array("float", "TEXTON_MATERIAL_MEAN", model.mean(), glsl_float);
+  const std::string atlas_read =
+      "uniform sampler2D stochtex_texton_atlas;\n// The chunk texton_channels sums.\n"
+      "int texton_chunk;\nvec4 texton_atlas_texel(ivec2 texel) {\n"
+      "  return texelFetch(stochtex_texton_atlas, texel + ivec2(texton_chunk * "
+      "TEXTON_CHUNK_WIDTH, 0), 0);\n}\n";
+  std::ostringstream what;
+  what << "Texton noise (" << model.channels() << " channels in " << chunks
+       << " chunks of 4, texton " << model.support() << "x" << model.support() << ", MNI "
+       << model.mean_impacts() << ")";
+  std::vector<ShaderTexture> images;
+  images.push_back({"texton_atlas", std::move(atlas)});
+  ExportParts parts{
+      texton::TextonModel::kMethodName,
+      "texton noise",
+      what.str(),
+      texton_noise_source(glsl, atlas_read) + shader_source("methods/texton/channels.glsl"),
+      std::move(images),
+      "`texton_atlas.exr` holds the pyramid of each chunk of 4 channels, side by "
+      "side, TEXTON_CHUNK_WIDTH\ncolumns each. Every chunk sums the same impulses. "
+      "Keep |p| below ~1e4 for full float precision."};
+  parts.channels_function = "texton_channels";
+  return parts;
+}
 
 // The fast variant (order-1 models): texton hardware.glsl and level 0 of the pyramid as a
 // mip-mapped float texture. Textons are signed and the texture's border must read zero: PNG's
@@ -145,7 +200,15 @@ bool has_fast_variant(const texton::TextonModel& model) {
 
 ExportParts Twin<texton::TextonModel>::shader(const texton::TextonModel& model,
                                               ShaderVariant variant) {
-  if (variant == ShaderVariant::fast && has_fast_variant(model)) return fast_shader(model);
+  if (variant == ShaderVariant::fast && has_fast_variant(model)) {
+    if (model.channels() > 4)
+      throw Error(ErrorCode::invalid_input,
+                  "texton: the fast variant reads the texton from one texture of at most 4 "
+                  "channels and this material has " +
+                      std::to_string(model.channels()) + "; export it with --variant exact");
+    return fast_shader(model);
+  }
+  if (model.channels() > 4) return material_shader(model);
   TextonGlsl glsl = texton_glsl(model);
   std::ostringstream what;
   what << "Texton noise (" << model.channels() << " channels, texton " << model.support() << "x"
