@@ -120,7 +120,8 @@ int run(const Options& o) {
         "method has",
         o.model, model.method(), o.mapping));
 #ifdef STOCHTEX_WITH_GL
-  if (o.backend == "gl" && mapping && !gl_supports_mapping(model, *mapping))
+  // (a material is refused by render_mesh_gl with its own sentence)
+  if (o.backend == "gl" && mapping && model.maps().empty() && !gl_supports_mapping(model, *mapping))
     throw std::invalid_argument(fmt::format(
         "{}: the gl backend has no GLSL {} mapping for {} models; use --backend cpu, or "
         "--mapping uv, which every method has on the gl backend",

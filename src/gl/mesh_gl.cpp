@@ -196,8 +196,8 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
   if (!model.maps().empty())
     throw Error(ErrorCode::invalid_input,
                 "the gl backend of render-mesh shades models of one image, and this is a material "
-                "(its exported shader returns at most 4 channels and no normal map); render it "
-                "with --backend cpu");
+                "(its colour lit through its normal map is CPU only); render it with --backend "
+                "cpu");
   const PixelRays rays = pixel_rays(camera, out.width, out.height);
   const Texturing parts = texturing(model, options);
 
