@@ -129,6 +129,11 @@ TEST(GlHardwareFilter, TilingMaterialsMatchTheCpuFilterInDistribution) {
   const MaterialFiles files =
       material_files("rock_sandstone", {"albedo", "normal", "roughness", "height", "ao"});
   expect_cpu_distribution(analyze_material("tiling", files.maps), "tiling rock");
+  // The patches kept apart: turned slopes and the height-aware blend after the hardware fetches.
+  expect_cpu_distribution(
+      analyze_material("tiling", files.maps,
+                       {{"rotation", 180}, {"scale_jitter", 0.4}, {"height_blend", 0.1}}),
+      "tiling rock, turned and height-blended");
 }
 
 // Without a footprint (scale 1) the texture is read at level 0, bilinearly: the hardware path
@@ -156,6 +161,9 @@ TEST(GlHardwareFilter, PointSamplesAreTheExactRender) {
   const MaterialFiles files =
       material_files("rock_sandstone", {"albedo", "normal", "roughness", "height", "ao"});
   expect_point_samples_exact(analyze_material("tiling", files.maps), "tiling rock");
+  expect_point_samples_exact(
+      analyze_material("tiling", files.maps, {{"rotation", 90}, {"height_blend", 0.1}}),
+      "tiling rock, turned and height-blended");
 }
 
 TEST(GlHardwareFilter, TheFastExportIsWhatTheRendererRuns) {

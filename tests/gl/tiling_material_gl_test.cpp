@@ -54,6 +54,14 @@ TEST(Gl, TilingMaterialsMatchTheCpuReference) {
       {rock, {{"blend", 1}}, {{3.0, 4.0}, 2.0, 40, 40}},
       // One chunk: the normal map and the height, 3 channels in 2 groups.
       {{"normal", "height"}, {}, {{2.0, 3.0}, 4.0, 40, 40}},
+      // The patches kept apart (render.glsl's TILING_PATCH_OUTPUT, groups.glsl): a normal map's
+      // slopes turned with their patches (its radial group), then scaled through its table...
+      {rock, {{"rotation", 180}}, {{1e7, -3e6}, 1.0, 48, 40}},
+      {rock, {{"rotation", 60}, {"scale_jitter", 0.6}}, {{-9.5, 2.0}, 5.0, 40, 40}},
+      {rock, {{"rotation", 120}, {"scale_jitter", 0.3}}, {{4.0, 8.0}, 1.0, 40, 40}, false},
+      // ...and the height-aware blend, alone and with the turned slopes.
+      {no_normal, {{"height_blend", 0.1}}, {{3.0, -4.0}, 1.0, 48, 40}},
+      {rock, {{"height_blend", 0.05}, {"rotation", 180}}, {{-77.5, 12.0}, 7.0, 32, 32}},
   };
   for (const auto& c : cases) {
     const MaterialFiles files = material_files("rock_sandstone", c.maps);

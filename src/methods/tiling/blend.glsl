@@ -5,6 +5,15 @@
 // each patch reads its own level and they become T^-1's: the w^2-weighted mean of the patches'.
 // The artist controls (TILING_ROTATION, TILING_SCALE_JITTER, TILING_SHARPNESS) are the model's
 // constants: with their defaults the compiler removes their code.
+#ifdef TILING_PATCH_OUTPUT
+// A material render with the height-aware blend or turned slopes (gl_pass.cpp) keeps the patches
+// apart: each one's Gaussian, weight, level of detail and transform (scale cos, scale sin, scale),
+// which groups.glsl turns, weighs and blends with every channel at hand.
+vec4 tiling_patch_value[3];
+float tiling_patch_weight[3];
+float tiling_patch_lod[3];
+vec3 tiling_patch_turn[3];
+#endif
 vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint seed, float width,
                              inout int level, inout float level_blend) {
   vec2 cell = floor(skewed);
@@ -43,6 +52,9 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
     mat2 patch_matrix = mat2(1.0);
     int patch_level = level;
     float patch_blend = level_blend;
+#ifdef TILING_PATCH_OUTPUT
+    tiling_patch_turn[v] = vec3(1.0, 0.0, 1.0);
+#endif
     if (TILING_TRANSFORMED) {
       // patch_transform and patch_shift (evaluate.hpp): rotation and scale about the vertex.
       CounterRng draws =
@@ -54,6 +66,9 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
       float c = patch_scale * cos(angle);
       float s = patch_scale * sin(angle);
       patch_matrix = mat2(c, s, -s, c);
+#ifdef TILING_PATCH_OUTPUT
+      tiling_patch_turn[v] = vec3(c, s, patch_scale);
+#endif
       vec2 from_vertex = f - vec2(d[v]);
       float local_x = TILING_EDGE * (from_vertex.x + 0.5 * from_vertex.y);
       float local_y = TILING_EDGE * from_vertex.y * (1.5 * TILING_INVERSE_SQRT3);
@@ -66,6 +81,19 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
         weighted_lod += w[v] * w[v] * lod;
       }
     }
+#ifdef TILING_PATCH_OUTPUT
+    tiling_patch_weight[v] = w[v];
+    tiling_patch_lod[v] = float(patch_level) + patch_blend;
+    tiling_patch_value[v] = vec4(0.0);
+#ifdef TILING_TEXTURE_FILTER
+    tiling_patch_value[v] = tiling_texture_fetch(x, y, patch_matrix);
+#else
+    tiling_fetch(patch_level, x, y, 1.0 - patch_blend, tiling_patch_value[v]);
+    if (patch_blend > 0.0)
+      tiling_fetch(min(patch_level + 1, TILING_LEVELS - 1), x, y, patch_blend,
+                   tiling_patch_value[v]);
+#endif
+#endif
 #ifdef TILING_TEXTURE_FILTER
     // `render --gl-filter hardware` (hardware.glsl): one mip-mapped, anisotropic
     // texture fetch of the patch instead of the exact trilinear reads of the pyramid.

@@ -15,13 +15,6 @@
 
 namespace stochtex::gl {
 
-void refuse_cpu_only_controls(const tiling::TilingModel& model) {
-  if (model.data().height_blend > 0.0)
-    throw Error(ErrorCode::invalid_input,
-                "tiling: the GPU twin has no height-aware blend yet and this model has "
-                "height_blend on; render it with --backend cpu");
-}
-
 TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) {
   const bool exact = variant == ShaderVariant::exact;
   const tiling::TilingData& d = model.data();
@@ -35,7 +28,6 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) 
                     std::to_string(d.channels) + " channels go through T^-1 in " +
                     std::to_string(layout.groups.size()) +
                     " groups of their own; render it with `stochtex render` (either backend)");
-  refuse_cpu_only_controls(model);
   TilingGlsl glsl;
   std::vector<int> widths;
   std::vector<int> heights;
@@ -107,17 +99,15 @@ std::string data_reader(DataSource source) {
 }
 
 // What groups.glsl has no case for, in words, or nullptr: the 3-D table (an image's colour,
-// blend.glsl) and the radial slopes of a normal map whose patches turn (turned before the blend,
-// which the chunks of gl_pass.cpp do not do).
+// blend.glsl).
 const char* missing_group_case(tiling::GroupTransform transform) {
   switch (transform) {
     case tiling::GroupTransform::decorrelated:
     case tiling::GroupTransform::direct:
+    case tiling::GroupTransform::radial:
       return nullptr;
     case tiling::GroupTransform::lut:
       return "the 3-D colour table";
-    case tiling::GroupTransform::radial:
-      return "the radial transform of a normal map turned with its patches";
   }
   return "an unknown transform";
 }
@@ -216,6 +206,27 @@ ExportParts fast_shader(const tiling::TilingModel& model) {
 
 }  // namespace
 
+namespace {
+
+// The model turns a normal map's slopes with its patches (GroupTransform::radial).
+bool turns_slopes(const tiling::TilingModel& model) {
+  const auto& groups = model.layout().groups;
+  return model.transformed() &&
+         std::any_of(groups.begin(), groups.end(), [](const tiling::TableGroup& group) {
+           return group.transform == tiling::GroupTransform::radial;
+         });
+}
+
+}  // namespace
+
+bool blends_patches_apart(const tiling::TilingModel& model) {
+  return model.data().height_blend > 0.0 || turns_slopes(model);
+}
+
+int patch_stride(const tiling::TilingModel& model) {
+  return 3 * model.channels() + 15;
+}
+
 bool renders_in_groups(const tiling::TilingModel& model) {
   return !model.layout().image_layout || model.channels() > 4;
 }
@@ -263,6 +274,22 @@ TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model) {
   constant("TILING_TABLE_SIZE", d.table_size);
   constant("TILING_GROUP_DECORRELATED", static_cast<int>(tiling::GroupTransform::decorrelated));
   constant("TILING_GROUP_DIRECT", static_cast<int>(tiling::GroupTransform::direct));
+  constant("TILING_GROUP_RADIAL", static_cast<int>(tiling::GroupTransform::radial));
+  // The per-patch blend (TILING_PATCH_INPUT): the controls that need every channel.
+  const auto flag = [&](const char* name, bool value) {
+    text += "const bool " + std::string(name) + " = " + (value ? "true" : "false") + ";\n";
+  };
+  flag("TILING_TURNED", turns_slopes(model));
+  if (blends_patches_apart(model))
+    text += "#define TILING_PATCH_INPUT\n#define TILING_PATCH_STRIDE " +
+            std::to_string(patch_stride(model)) + "\n";
+  flag("TILING_SCALE_JITTER_ON", d.scale_jitter > 0.0);
+  constant("TILING_HEIGHT_CHANNEL", std::max(d.height_channel, 0));
+  text += "const float TILING_HEIGHT_DEPTH = " + glsl_float(static_cast<float>(d.height_blend)) +
+          ";\nconst float TILING_GAUSSIAN_DEVIATION = " + glsl_float(tiling::kGaussianDeviation) +
+          ";\n";
+  text +=
+      glsl_array("float", "TILING_BLEND_MEANS", std::span<const float>(d.blend_mean), glsl_float);
   constant("TILING_GROUPS", static_cast<int>(layout.groups.size()));
   array("TILING_GROUP_TRANSFORM", transforms);
   array("TILING_GROUP_FIRST", firsts);

@@ -21,15 +21,17 @@ namespace {
 // The tiling evaluator's GPU state: the program (compiled with the model's constants) and the
 // storage buffer of its pyramid and tables; for --gl-filter hardware, the program and textures of
 // `export-shader --variant fast` (the Gaussianised exemplar as a mip-mapped texture, T^-1's 3-D
-// tables as a 3-D texture), made on first use. `output` is render.glsl's defines: empty for a model
-// of one image, a chunk's place in the result for TilingGroupsPass.
+// tables as a 3-D texture), made on first use. `output` is the defines of blend.glsl and
+// render.glsl, before the library: empty for a model of one image, a chunk's place in the result
+// for TilingGroupsPass.
 class TilingPass final : public Pass {
  public:
   TilingPass(const tiling::TilingModel& model, const std::string& output)
       : model_(model),
         glsl_(tiling_glsl(model)),
-        render_(output + shader_source("methods/tiling/render.glsl")),
-        exact_(std::string("#version 450\n") + tiling_library_source(glsl_) + render_),
+        output_(output),
+        exact_(std::string("#version 450\n") + output + tiling_library_source(glsl_) +
+               shader_source("methods/tiling/render.glsl")),
         data_(glsl_.data.size() * sizeof(float), glsl_.data.data()) {
     check_gl("uploading the tiling model");
   }
@@ -40,9 +42,12 @@ class TilingPass final : public Pass {
     const bool filter = options.filter;
     active_ = &exact_;
     if (options.texture_filter == GlFilter::hardware) {
-      if (!hardware_)
-        hardware_ = std::make_unique<ExportedProgram>(
-            Twin<tiling::TilingModel>::shader(model_, ShaderVariant::fast), render_);
+      if (!hardware_) {
+        ExportParts parts = Twin<tiling::TilingModel>::shader(model_, ShaderVariant::fast);
+        parts.library = output_ + parts.library;
+        hardware_ =
+            std::make_unique<ExportedProgram>(parts, shader_source("methods/tiling/render.glsl"));
+      }
       active_ = &hardware_->program();
     }
     const Program& program = *active_;
@@ -81,7 +86,7 @@ class TilingPass final : public Pass {
  private:
   const tiling::TilingModel& model_;
   TilingGlsl glsl_;
-  std::string render_;
+  std::string output_;
   Program exact_;
   Buffer data_;
   std::unique_ptr<ExportedProgram> hardware_;
@@ -111,15 +116,21 @@ tiling::TilingModel gaussian_chunk(const tiling::TilingModel& model, int first, 
   chunk.colour_basis = std::vector<float>();
   chunk.colour_mean = std::vector<float>();
   chunk.groups = std::vector<tiling::GroupSpec>();
+  chunk.height_blend = 0.0;  // applied by groups.glsl to the patches kept apart
+  chunk.height_channel = -1;
   return tiling::TilingModel(std::move(chunk));
 }
 
 // render.glsl's defines for the chunk of `model` from channel `first`: its place in the result
-// and, for the first chunk of a model with T^-1, the levels of detail that groups.glsl reads.
+// and, for the first chunk of a model with T^-1, the levels of detail that groups.glsl reads;
+// with the patches kept apart, where they go.
 std::string chunk_output(const tiling::TilingModel& model, int first) {
   std::string text = "#define TILING_RESULT_STRIDE " + std::to_string(model.channels()) +
                      "\n#define TILING_RESULT_FIRST " + std::to_string(first) + "\n";
   if (first == 0 && !model.layout().groups.empty()) text += "#define TILING_RESULT_LEVELS\n";
+  if (blends_patches_apart(model))
+    text += "#define TILING_PATCH_OUTPUT\n#define TILING_PATCH_STRIDE " +
+            std::to_string(patch_stride(model)) + "\n";
   return text;
 }
 
@@ -131,7 +142,8 @@ std::string chunk_output(const tiling::TilingModel& model, int first) {
 // exactly on both paths, as the fast variant of an image reads its 1-D tables.
 class TilingGroupsPass final : public Pass {
  public:
-  explicit TilingGroupsPass(const tiling::TilingModel& model) {
+  explicit TilingGroupsPass(const tiling::TilingModel& model)
+      : patch_stride_(blends_patches_apart(model) ? patch_stride(model) : 0) {
     // First: it refuses a group without a GLSL case.
     if (!model.layout().groups.empty()) groups_ = std::make_unique<Groups>(model);
     for (int first = 0; first < model.channels(); first += 4)
@@ -154,6 +166,15 @@ class TilingGroupsPass final : public Pass {
         levels_bytes_ = bytes;
       }
       glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, levels_->id());
+      if (patch_stride_ > 0) {
+        const std::size_t patch_bytes = static_cast<std::size_t>(patch_stride_) * sizeof(float) *
+                                        static_cast<std::size_t>(width) * height;
+        if (patch_bytes > patches_bytes_) {
+          patches_ = std::make_unique<Buffer>(patch_bytes);
+          patches_bytes_ = patch_bytes;
+        }
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, patches_->id());
+      }
     }
     for (const auto& chunk : chunks_) chunk->dispatch(first_x, first_y, width, height, result);
     if (!groups_) return;
@@ -180,15 +201,18 @@ class TilingGroupsPass final : public Pass {
   std::vector<tiling::TilingModel> chunk_models_;  // TilingPass keeps a reference
   std::vector<std::unique_ptr<TilingPass>> chunks_;
   std::unique_ptr<Groups> groups_;
-  // Each pixel's level and level blend from the first chunk, grown to the largest tile.
+  // Each pixel's level and level blend from the first chunk, grown to the largest tile; with the
+  // patches kept apart, their values (patch_stride_ floats a pixel, 0 otherwise).
   mutable std::unique_ptr<Buffer> levels_;
   mutable std::size_t levels_bytes_ = 0;
+  int patch_stride_ = 0;
+  mutable std::unique_ptr<Buffer> patches_;
+  mutable std::size_t patches_bytes_ = 0;
 };
 
 }  // namespace
 
 std::unique_ptr<Pass> Twin<tiling::TilingModel>::pass(const tiling::TilingModel& model) {
-  refuse_cpu_only_controls(model);
   if (renders_in_groups(model)) return std::make_unique<TilingGroupsPass>(model);
   return std::make_unique<TilingPass>(model, std::string());
 }

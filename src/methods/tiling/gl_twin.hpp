@@ -44,11 +44,15 @@ std::string tiling_library_source(const TilingGlsl& glsl,
 // in chunks of up to 4 channels (render.glsl), then each group's T^-1 (groups.glsl); exported
 // shaders and meshes (a vec4 and an image's colour and alpha) refuse it.
 bool renders_in_groups(const tiling::TilingModel& model);
-// Throws a sentence for a model with an artist control the GPU twin does not have (height_blend).
-void refuse_cpu_only_controls(const tiling::TilingModel& model);
+// A model whose blend needs every channel of each patch (the height-aware blend, a normal map's
+// slopes turned with their patches): its chunks write the three patches apart (render.glsl,
+// TILING_PATCH_OUTPUT) and groups.glsl turns, weighs and blends them, patch_stride floats a pixel
+// (3 patches of the channels, then 3 weights, 3 levels of detail and 3 transforms of 3).
+bool blends_patches_apart(const tiling::TilingModel& model);
+int patch_stride(const tiling::TilingModel& model);
 // The groups' T^-1 for groups.glsl: their constants (TILING_GROUP_*, the bases and means) and each
 // pyramid level's 1-D tables as `data` (the TILING_LEVEL_TABLES offsets). Throws a sentence for a
-// group of a kind groups.glsl has no case for (the 3-D table, the radial slopes).
+// group of a kind groups.glsl has no case for (the 3-D table).
 TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model);
 // The compute shader of the groups' T^-1: `#version`, kConstants, the constants, the storage
 // buffer reader, tiling evaluate.glsl and groups.glsl.
