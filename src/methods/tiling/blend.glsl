@@ -114,13 +114,6 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
   return (acc - TILING_BLEND_MEAN) * inverse_norm + TILING_BLEND_MEAN;
 }
 
-float tiling_table(int offset, float g) {
-  int cell;
-  float t = tiling_table_coordinate(g, TILING_TABLE_SIZE, cell);
-  float a = tiling_data_at(offset + cell);
-  return a + t * (tiling_data_at(offset + cell + 1) - a);
-}
-
 // Step 3 at one pyramid level (inverse_at_level).
 vec4 tiling_inverse_at_level(vec4 g, int level) {
   vec4 result = vec4(0.0);

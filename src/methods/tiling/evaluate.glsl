@@ -28,6 +28,15 @@ float tiling_table_coordinate(float g, int size, out int first) {
   return x - float(first);
 }
 
+// A 1-D table of T^-1 at `offset` in the model's array at g (table_lookup): eq. (22), then linear
+// interpolation.
+float tiling_table(int offset, float g) {
+  int cell;
+  float t = tiling_table_coordinate(g, TILING_TABLE_SIZE, cell);
+  float a = tiling_data_at(offset + cell);
+  return a + t * (tiling_data_at(offset + cell + 1) - a);
+}
+
 
 // TilingModel::footprint_width: the footprint's longer axis (isotropic).
 float tiling_footprint_width(vec2 dpdx, vec2 dpdy) {

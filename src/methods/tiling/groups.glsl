@@ -20,14 +20,6 @@ layout(std430, binding = 3) readonly buffer ResultPatches { float result_patches
 
 uniform ivec2 dispatch_size;
 
-// A 1-D table of T^-1 at g (table_lookup): eq. (22), then linear interpolation.
-float tiling_table(int offset, float g) {
-  int cell;
-  float t = tiling_table_coordinate(g, TILING_TABLE_SIZE, cell);
-  float a = tiling_data_at(offset + cell);
-  return a + t * (tiling_data_at(offset + cell + 1) - a);
-}
-
 // radial_lookup (evaluate.hpp): |s| of the radial table at `offset` at the Gaussian radius rho,
 // linear in the Rayleigh CDF U = 1 - exp(-rho^2 / (2 sigma^2)), clamped at the ends.
 float tiling_radial_lookup(int offset, float rho) {
