@@ -1,42 +1,41 @@
-// Steps 1-2 of Algorithm 1 (blended_gaussian). `skewed` is the position in skewed lattice units
-// relative to the lattice cell `origin_cell` (low 32 bits), `wrapped` the position modulo the
-// exemplar's period; both formed on the CPU in double for the far part. `width` is the
+// Step 1 of Algorithm 1: the three patches around a point, each with its blend weight (sharpened,
+// sharpen_weights), where it is read (exemplar pixels), its transform M (patch_transform, the
+// rotation and scale jitter) and its level of detail. `skewed` is the position in skewed lattice
+// units relative to the lattice cell `origin_cell` (low 32 bits), `wrapped` the position modulo
+// the exemplar's period; both formed on the CPU in double for the far part. `width` is the
 // footprint's (0: a point sample), `level`, `level_blend` its level of detail; with scale jitter
-// each patch reads its own level and they become T^-1's: the w^2-weighted mean of the patches'.
-// The artist controls (TILING_ROTATION, TILING_SCALE_JITTER, TILING_SHARPNESS) are the model's
-// constants: with their defaults the compiler removes their code.
-#ifdef TILING_PATCH_OUTPUT
-// A material render with the height-aware blend or turned slopes (gl_pass.cpp) keeps the patches
-// apart: each one's Gaussian, weight, level of detail and transform (scale cos, scale sin, scale),
-// which groups.glsl turns, weighs and blends with every channel at hand.
-vec4 tiling_patch_value[3];
-float tiling_patch_weight[3];
-float tiling_patch_lod[3];
-vec3 tiling_patch_turn[3];
-#endif
-vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint seed, float width,
-                             inout int level, inout float level_blend) {
+// each patch reads its own level. The artist controls (TILING_ROTATION, TILING_SCALE_JITTER,
+// TILING_SHARPNESS) are the model's constants: with their defaults the compiler removes their
+// code.
+struct TilingPatches {
+  float weight[3];
+  vec2 position[3];
+  mat2 matrix[3];
+  float scale[3];
+  int level[3];
+  float level_blend[3];
+};
+
+TilingPatches tiling_patches(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint seed, float width,
+                             int level, float level_blend) {
+  TilingPatches patches;
   vec2 cell = floor(skewed);
   vec2 f = skewed - cell;
   bool lower = f.x + f.y < 1.0;
   ivec2 d[3] = ivec2[3](lower ? ivec2(0, 0) : ivec2(1, 1), lower ? ivec2(1, 0) : ivec2(0, 1),
                         lower ? ivec2(0, 1) : ivec2(1, 0));
-  float w[3] = lower ? float[3](1.0 - f.x - f.y, f.x, f.y)
-                     : float[3](f.x + f.y - 1.0, 1.0 - f.x, 1.0 - f.y);
+  patches.weight = lower ? float[3](1.0 - f.x - f.y, f.x, f.y)
+                         : float[3](f.x + f.y - 1.0, 1.0 - f.x, 1.0 - f.y);
   if (TILING_SHARPNESS != 1.0) {
     // sharpen_weights (evaluate.hpp): Burley 2019's exponent, renormalised.
     float sum = 0.0;
     for (int v = 0; v < 3; ++v) {
-      w[v] = pow(w[v], TILING_SHARPNESS);
-      sum += w[v];
+      patches.weight[v] = pow(patches.weight[v], TILING_SHARPNESS);
+      sum += patches.weight[v];
     }
-    for (int v = 0; v < 3; ++v) w[v] /= sum;
+    for (int v = 0; v < 3; ++v) patches.weight[v] /= sum;
   }
-  vec4 acc = vec4(0.0);
-  float weight_squares = 0.0;
-  float weighted_lod = 0.0;
   for (int v = 0; v < 3; ++v) {
-    weight_squares += w[v] * w[v];
     uvec2 vertex = origin_cell + uvec2(ivec2(cell) + d[v]);
     CounterRng rng = CounterRng(cell_key(vertex.x, vertex.y, seed, STREAM_OFFSETS), 0u);
     uint draw_u = rng_next(rng);
@@ -49,12 +48,10 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
     float offset_y = float(high);
     float x = wrapped.x + offset_x;
     float y = wrapped.y + offset_y;
-    mat2 patch_matrix = mat2(1.0);
-    int patch_level = level;
-    float patch_blend = level_blend;
-#ifdef TILING_PATCH_OUTPUT
-    tiling_patch_turn[v] = vec3(1.0, 0.0, 1.0);
-#endif
+    patches.matrix[v] = mat2(1.0);
+    patches.scale[v] = 1.0;
+    patches.level[v] = level;
+    patches.level_blend[v] = level_blend;
     if (TILING_TRANSFORMED) {
       // patch_transform and patch_shift (evaluate.hpp): rotation and scale about the vertex.
       CounterRng draws =
@@ -65,10 +62,8 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
       float patch_scale = exp2(TILING_SCALE_JITTER * (2.0 * scale_draw - 1.0));
       float c = patch_scale * cos(angle);
       float s = patch_scale * sin(angle);
-      patch_matrix = mat2(c, s, -s, c);
-#ifdef TILING_PATCH_OUTPUT
-      tiling_patch_turn[v] = vec3(c, s, patch_scale);
-#endif
+      patches.matrix[v] = mat2(c, s, -s, c);
+      patches.scale[v] = patch_scale;
       vec2 from_vertex = f - vec2(d[v]);
       float local_x = TILING_EDGE * (from_vertex.x + 0.5 * from_vertex.y);
       float local_y = TILING_EDGE * from_vertex.y * (1.5 * TILING_INVERSE_SQRT3);
@@ -76,33 +71,46 @@ vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint 
       y += s * local_x + (c - 1.0) * local_y;
       if (TILING_SCALE_JITTER > 0.0) {
         float lod = tiling_lod_of_width(width * patch_scale);
-        patch_level = int(lod);
-        patch_blend = lod - float(patch_level);
-        weighted_lod += w[v] * w[v] * lod;
+        patches.level[v] = int(lod);
+        patches.level_blend[v] = lod - float(patches.level[v]);
       }
     }
-#ifdef TILING_PATCH_OUTPUT
-    tiling_patch_weight[v] = w[v];
-    tiling_patch_lod[v] = float(patch_level) + patch_blend;
-    tiling_patch_value[v] = vec4(0.0);
+    patches.position[v] = vec2(x, y);
+  }
+  return patches;
+}
+
+// Adds weight * patch v of `patches` (its level of detail blended with the next) to acc.
+void tiling_fetch_patch(TilingPatches patches, int v, float weight, inout vec4 acc) {
+  vec2 at = patches.position[v];
 #ifdef TILING_TEXTURE_FILTER
-    tiling_patch_value[v] = tiling_texture_fetch(x, y, patch_matrix);
+  // `render --gl-filter hardware` (hardware.glsl): one mip-mapped, anisotropic texture fetch of
+  // the patch instead of the exact trilinear reads of the pyramid.
+  acc += weight * tiling_texture_fetch(at.x, at.y, patches.matrix[v]);
 #else
-    tiling_fetch(patch_level, x, y, 1.0 - patch_blend, tiling_patch_value[v]);
-    if (patch_blend > 0.0)
-      tiling_fetch(min(patch_level + 1, TILING_LEVELS - 1), x, y, patch_blend,
-                   tiling_patch_value[v]);
+  int patch_level = patches.level[v];
+  float patch_blend = patches.level_blend[v];
+  tiling_fetch(patch_level, at.x, at.y, weight * (1.0 - patch_blend), acc);
+  if (patch_blend > 0.0)
+    tiling_fetch(min(patch_level + 1, TILING_LEVELS - 1), at.x, at.y, weight * patch_blend, acc);
 #endif
-#endif
-#ifdef TILING_TEXTURE_FILTER
-    // `render --gl-filter hardware` (hardware.glsl): one mip-mapped, anisotropic
-    // texture fetch of the patch instead of the exact trilinear reads of the pyramid.
-    acc += w[v] * tiling_texture_fetch(x, y, patch_matrix);
-#else
-    tiling_fetch(patch_level, x, y, w[v] * (1.0 - patch_blend), acc);
-    if (patch_blend > 0.0)
-      tiling_fetch(min(patch_level + 1, TILING_LEVELS - 1), x, y, w[v] * patch_blend, acc);
-#endif
+}
+
+// Step 2 (blended_gaussian): the patches blended by eq. (13) (eq. 3 for linear blending); with
+// scale jitter, `level` and `level_blend` become T^-1's: the w^2-weighted mean of the patches'.
+vec4 tiling_blended_gaussian(vec2 skewed, uvec2 origin_cell, vec2 wrapped, uint seed, float width,
+                             inout int level, inout float level_blend) {
+  TilingPatches patches = tiling_patches(skewed, origin_cell, wrapped, seed, width, level,
+                                         level_blend);
+  vec4 acc = vec4(0.0);
+  float weight_squares = 0.0;
+  float weighted_lod = 0.0;
+  for (int v = 0; v < 3; ++v) {
+    float w = patches.weight[v];
+    weight_squares += w * w;
+    if (TILING_SCALE_JITTER > 0.0)
+      weighted_lod += w * w * (float(patches.level[v]) + patches.level_blend[v]);
+    tiling_fetch_patch(patches, v, w, acc);
   }
   if (TILING_SCALE_JITTER > 0.0) {
     // TilingModel::split_level of the mean, clamped at the top level.

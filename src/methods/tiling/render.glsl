@@ -25,9 +25,10 @@ uniform float filter_scale;
 #ifdef TILING_RESULT_LEVELS
 layout(std430, binding = 2) writeonly buffer ResultLevels { float result_levels[]; };
 #endif
-// With the patches kept apart (TILING_PATCH_OUTPUT, blend.glsl), a chunk writes each patch's
-// channels instead, at pixel * TILING_PATCH_STRIDE + patch * TILING_RESULT_STRIDE, and the first
-// chunk the patches' weights, levels of detail and transforms after the 3 patches' channels.
+// With the patches kept apart (TILING_PATCH_OUTPUT: blend.glsl's tiling_patches), a chunk writes
+// each patch's channels instead, at pixel * TILING_PATCH_STRIDE + patch * TILING_RESULT_STRIDE,
+// and the first chunk the patches' weights, levels of detail and transforms (scale cos, scale
+// sin, scale) after the 3 patches' channels.
 #ifdef TILING_PATCH_OUTPUT
 layout(std430, binding = 3) writeonly buffer ResultPatches { float result_patches[]; };
 #endif
@@ -43,29 +44,37 @@ void main() {
 #endif
   int level = lod_level;
   float level_blend = lod_blend;
+#ifdef TILING_PATCH_OUTPUT
+  int pixel = local_pixel.y * dispatch_size.x + local_pixel.x;
+  TilingPatches patches = tiling_patches(skewed, origin_cell, origin_wrapped + p, seed,
+                                         footprint_width, level, level_blend);
+  int base = pixel * TILING_PATCH_STRIDE;
+  for (int v = 0; v < 3; ++v) {
+    vec4 value = vec4(0.0);
+    tiling_fetch_patch(patches, v, 1.0, value);
+    for (int c = 0; c < TILING_CHANNELS; ++c)
+      result_patches[base + v * TILING_RESULT_STRIDE + TILING_RESULT_FIRST + c] = value[c];
+  }
+#ifdef TILING_RESULT_LEVELS
+  int extra = base + 3 * TILING_RESULT_STRIDE;
+  for (int v = 0; v < 3; ++v) {
+    result_patches[extra + v] = patches.weight[v];
+    result_patches[extra + 3 + v] = float(patches.level[v]) + patches.level_blend[v];
+    result_patches[extra + 6 + 3 * v] = patches.matrix[v][0][0];
+    result_patches[extra + 7 + 3 * v] = patches.matrix[v][0][1];
+    result_patches[extra + 8 + 3 * v] = patches.scale[v];
+  }
+  result_levels[2 * pixel] = float(level);
+  result_levels[2 * pixel + 1] = level_blend;
+#endif
+#else
   vec4 g = tiling_blended_gaussian(skewed, origin_cell, origin_wrapped + p, seed, footprint_width,
                                    level, level_blend);
   vec4 value = tiling_inverse(g, level, level_blend);
 #ifdef TILING_RESULT_STRIDE
   int pixel = local_pixel.y * dispatch_size.x + local_pixel.x;
-#ifdef TILING_PATCH_OUTPUT
-  int patches = pixel * TILING_PATCH_STRIDE;
-  for (int v = 0; v < 3; ++v)
-    for (int c = 0; c < TILING_CHANNELS; ++c)
-      result_patches[patches + v * TILING_RESULT_STRIDE + TILING_RESULT_FIRST + c] =
-          tiling_patch_value[v][c];
-#ifdef TILING_RESULT_LEVELS
-  int extra = patches + 3 * TILING_RESULT_STRIDE;
-  for (int v = 0; v < 3; ++v) {
-    result_patches[extra + v] = tiling_patch_weight[v];
-    result_patches[extra + 3 + v] = tiling_patch_lod[v];
-    for (int k = 0; k < 3; ++k) result_patches[extra + 6 + 3 * v + k] = tiling_patch_turn[v][k];
-  }
-#endif
-#else
   int index = pixel * TILING_RESULT_STRIDE + TILING_RESULT_FIRST;
   for (int c = 0; c < TILING_CHANNELS; ++c) result[index + c] = value[c];
-#endif
 #ifdef TILING_RESULT_LEVELS
   result_levels[2 * pixel] = float(level);
   result_levels[2 * pixel + 1] = level_blend;
@@ -73,5 +82,6 @@ void main() {
 #else
   int index = (local_pixel.y * dispatch_size.x + local_pixel.x) * TILING_CHANNELS;
   for (int c = 0; c < TILING_CHANNELS; ++c) result[index + c] = value[c];
+#endif
 #endif
 }
