@@ -98,33 +98,35 @@ std::ostream& operator<<(std::ostream& out, const Parity& p) {
              << " (" << p.above << " beyond 1e-4), max " << p.largest << ", mean " << p.mean;
 }
 
-TEST(GlMesh, UvMatchesTheCpuReferenceForEveryMethod) {
+// The uv mapping on the sphere at texture scale 64 (footprints below a pixel of the exemplar over
+// most of the sphere: float rounding only) and 1024 (the default: footprints of several exemplar
+// pixels, filtered), against the CPU; `name` is printed with the measurements.
+void expect_uv_parity(const Model& model, const std::string& name) {
   const Mesh mesh = read_mesh(kMeshes + "sphere.obj");
-  for (const ExportCase& c : export_cases()) {
-    const Model model = case_model(c);
-    MeshRenderOptions options;
-    options.mapping = std::nullopt;
-    // Footprints below a pixel of the exemplar over most of the sphere: float rounding only.
-    options.texture_scale = 64.0;
-    const Parity fine = parity(render_both(model, mesh, options));
-    // The default: footprints of several exemplar pixels, filtered through dFdx against the CPU's
-    // exact ray differentials.
-    options.texture_scale = 1024.0;
-    const Parity filtered = parity(render_both(model, mesh, options));
-    std::cout << c.method << " " << c.exemplar << ": scale 64: " << fine
-              << "; scale 1024: " << filtered << "\n";
-    for (const Parity& p : {fine, filtered}) {
-      // Measured: no coverage difference, 6856 interior pixels; largest difference 0.018 (lrp,
-      // metal, scale 1024, a pixel on a triangle edge), means up to 7.5e-6 (the same), at most 6
-      // pixels beyond float rounding (texton_mix, metal, scale 1024), all within 2e-4 (in
-      // barycentrics) of a triangle edge.
-      EXPECT_LE(p.coverage_differences, 20) << c.method;
-      EXPECT_GT(p.interior, 6000) << c.method;
-      EXPECT_LT(p.largest, 0.035f) << c.method;
-      EXPECT_LT(p.mean, 1.5e-5) << c.method;
-      EXPECT_LE(p.above, 12) << c.method;
-    }
+  MeshRenderOptions options;
+  options.mapping = std::nullopt;
+  options.texture_scale = 64.0;
+  const Parity fine = parity(render_both(model, mesh, options));
+  options.texture_scale = 1024.0;
+  const Parity filtered = parity(render_both(model, mesh, options));
+  std::cout << name << ": scale 64: " << fine << "; scale 1024: " << filtered << "\n";
+  for (const Parity& p : {fine, filtered}) {
+    // Measured (every export case; the materials below): no coverage difference, 6856 interior
+    // pixels; largest difference 0.018 (lrp, metal, scale 1024, a pixel on a triangle edge; a
+    // material's 0.023), means up to 7.5e-6 (the same), at most 6 pixels beyond float rounding
+    // (texton_mix, metal, scale 1024; a material's 7), all within 2e-4 (in barycentrics) of a
+    // triangle edge.
+    EXPECT_LE(p.coverage_differences, 20) << name;
+    EXPECT_GT(p.interior, 6000) << name;
+    EXPECT_LT(p.largest, 0.035f) << name;
+    EXPECT_LT(p.mean, 1.5e-5) << name;
+    EXPECT_LE(p.above, 12) << name;
   }
+}
+
+TEST(GlMesh, UvMatchesTheCpuReferenceForEveryMethod) {
+  for (const ExportCase& c : export_cases())
+    expect_uv_parity(case_model(c), std::string(c.method) + " " + std::string(c.exemplar));
 }
 
 TEST(GlMesh, TriplanarMatchesTheCpuReference) {
@@ -220,37 +222,17 @@ Model rock(std::string_view method, const std::vector<std::string>& names,
 // A material on the uv mapping: the exported stochtex_<method>_material's colour map, lit through
 // its normal map (the bump in GLSL as render_mesh's surface gradients) and its ambient occlusion.
 TEST(GlMesh, AMaterialOnUvMatchesTheCpuReference) {
-  const Mesh mesh = read_mesh(kMeshes + "sphere.obj");
   const std::vector<std::string> maps = {"albedo", "normal", "height", "ao"};
   MaterialOptions stored;
   stored.derive_normals = false;
-  const std::tuple<std::string, Model> cases[] = {
-      {"texton, derived normals", rock("texton", maps, {{"iterations", 3}})},
-      {"texton, stored slopes", rock("texton", maps, {{"iterations", 3}}, stored)},
-      {"lrp, derived normals", rock("lrp", maps, {{"cosines", 10}})},
-      {"gabor, derived normals", rock("gabor", maps, {{"impulses", 64}, {"iterations", 30}})},
-  };
-  for (const auto& [name, model] : cases) {
-    ASSERT_FALSE(model.maps().empty()) << name;
-    MeshRenderOptions options;
-    options.mapping = std::nullopt;
-    options.texture_scale = 64.0;
-    const Parity fine = parity(render_both(model, mesh, options));
-    options.texture_scale = 1024.0;
-    const Parity filtered = parity(render_both(model, mesh, options));
-    std::cout << name << ": scale 64: " << fine << "; scale 1024: " << filtered << "\n";
-    for (const Parity& p : {fine, filtered}) {
-      // The bounds of the uv test above. Measured: no coverage difference, 6856 interior pixels;
-      // largest difference 0.023 (texton's stored slopes, lrp and gabor at scale 64: a pixel on a
-      // triangle edge), means up to 5.9e-6 (lrp, scale 64), at most 7 pixels beyond float
-      // rounding. A wrong sign of the bump's y, or no ambient occlusion: means 0.01 to 0.2.
-      EXPECT_LE(p.coverage_differences, 20) << name;
-      EXPECT_GT(p.interior, 6000) << name;
-      EXPECT_LT(p.largest, 0.035f) << name;
-      EXPECT_LT(p.mean, 1.5e-5) << name;
-      EXPECT_LE(p.above, 12) << name;
-    }
-  }
+  // Measured: largest difference 0.023 (texton's stored slopes, lrp and gabor at scale 64: a pixel
+  // on a triangle edge), means up to 5.9e-6 (lrp, scale 64), at most 7 pixels beyond float
+  // rounding. A wrong sign of the bump's y, or no ambient occlusion: means 0.01 to 0.2.
+  expect_uv_parity(rock("texton", maps, {{"iterations", 3}}), "texton, derived normals");
+  expect_uv_parity(rock("texton", maps, {{"iterations", 3}}, stored), "texton, stored slopes");
+  expect_uv_parity(rock("lrp", maps, {{"cosines", 10}}), "lrp, derived normals");
+  expect_uv_parity(rock("gabor", maps, {{"impulses", 64}, {"iterations", 30}}),
+                   "gabor, derived normals");
 }
 
 // Only the uv mapping calls the exported material function, and tiling exports none: refused with
