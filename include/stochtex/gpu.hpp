@@ -107,11 +107,13 @@ void evaluate_surface_gl(const Model& model, std::span<const SurfacePoint> point
 // GLSL: the uv mapping the exported stochtex_<method>(p, dpdx, dpdy, seed) (every method), the
 // surface mappings the method's GLSL surface function where gl_supports_mapping says so (tiling's
 // triplanar today); the CPU's footprints (ray differentials on each triangle's plane, in float);
-// the same shading. Positions are floats: the CPU's image to float rounding inside the silhouettes
-// but at pixels on a triangle edge (docs/meshes.md gives the measured differences). options.threads
-// and options.progress are not used. Throws std::invalid_argument as render_mesh() does, and
-// stochtex::Error when no OpenGL 4.5 context can be made, the mapping has no GLSL for the
-// model's method, or the model is a material (render_mesh() shades materials).
+// the same shading. A material (uv only): the exported stochtex_<method>_material, its colour map
+// lit through its normal map and ambient occlusion as render_mesh() does. Positions are floats:
+// the CPU's image to float rounding inside the silhouettes but at pixels on a triangle edge
+// (docs/meshes.md gives the measured differences). options.threads and options.progress are not
+// used. Throws std::invalid_argument as render_mesh() does, and stochtex::Error when no OpenGL 4.5
+// context can be made, the mapping has no GLSL for the model's method, or the model is a material
+// on another mapping than uv or without an exported material function (tiling).
 void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
                     const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out);
 

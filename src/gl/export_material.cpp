@@ -55,6 +55,25 @@ std::string_view hlsl_type(const MaterialMember& member) {
   return member.vector ? "float3" : "float";
 }
 
+std::vector<MaterialMember> material_members(std::span<const MapInfo> maps) {
+  std::vector<MaterialMember> members;
+  for (const MapInfo& map : maps) {
+    MaterialMember member{map.name, map, map.kind == MapKind::normal || map.channels == 3};
+    if (reserved_word(member.name)) member.name = "map_" + member.name;
+    const auto other =
+        std::find_if(members.begin(), members.end(),
+                     [&](const MaterialMember& before) { return before.name == member.name; });
+    if (other != members.end())
+      throw Error(ErrorCode::invalid_input,
+                  "export-shader: the maps '" + other->map.name + "' and '" + map.name +
+                      "' would both be the member " + member.name +
+                      " of the material's struct (map_ prefixes the names GLSL or HLSL reserve "
+                      "and the shader's own); rename one of them and analyse again");
+    members.push_back(std::move(member));
+  }
+  return members;
+}
+
 MaterialShader material_shader(std::span<const MapInfo> maps, int channels, std::string_view method,
                                const std::string& channels_function) {
   if (channels > 4 && channels_function.empty())
@@ -62,20 +81,7 @@ MaterialShader material_shader(std::span<const MapInfo> maps, int channels, std:
                            " library gives no function of more than 4 channels");
   MaterialShader material;
   material.function = "stochtex_" + std::string(method) + "_material";
-  for (const MapInfo& map : maps) {
-    MaterialMember member{map.name, map, map.kind == MapKind::normal || map.channels == 3};
-    if (reserved_word(member.name)) member.name = "map_" + member.name;
-    const auto other =
-        std::find_if(material.members.begin(), material.members.end(),
-                     [&](const MaterialMember& before) { return before.name == member.name; });
-    if (other != material.members.end())
-      throw Error(ErrorCode::invalid_input,
-                  "export-shader: the maps '" + other->map.name + "' and '" + map.name +
-                      "' would both be the member " + member.name +
-                      " of the material's struct (map_ prefixes the names GLSL or HLSL reserve "
-                      "and the shader's own); rename one of them and analyse again");
-    material.members.push_back(std::move(member));
-  }
+  material.members = material_members(maps);
 
   std::ostringstream text;
   const std::string count = std::to_string(channels);

@@ -31,9 +31,13 @@ struct MaterialShader {
   std::string glsl;  // what follows the method's library
 };
 
+// The members of StochtexMaterial for `maps`, in their order. Throws Error(invalid_input) when two
+// maps would give the struct the same member.
+std::vector<MaterialMember> material_members(std::span<const MapInfo> maps);
+
 // The material function of a model of `channels` channels with `maps` (not empty), whose library
-// defines `channels_function` (ExportParts), or stochtex_<method> when that is empty. Throws
-// Error(invalid_input) when two maps would give the struct the same member.
+// defines `channels_function` (ExportParts), or stochtex_<method> when that is empty. Throws as
+// material_members does.
 MaterialShader material_shader(std::span<const MapInfo> maps, int channels, std::string_view method,
                                const std::string& channels_function);
 

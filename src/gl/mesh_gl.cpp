@@ -2,22 +2,27 @@
 // into an offscreen float framebuffer with the CPU renderer's camera (src/render/mesh_shading.hpp),
 // and each fragment textured the way an engine uses `export-shader`: the uv mapping calls the
 // exported GLSL's stochtex_<method>(p, dpdx, dpdy, seed) with its textures bound as the README
-// says, the surface mappings the twin's GLSL surface function (gl::Twin<M>::surface_shader);
-// footprints from the CPU's ray differentials on each triangle's plane (mesh_fragment.glsl). The
-// image is drawn in tiles of at most kTile pixels a side.
+// says (a material: stochtex_<method>_material, its colour map lit through its normal map as
+// render_mesh does), the surface mappings the twin's GLSL surface function
+// (gl::Twin<M>::surface_shader); footprints from the CPU's ray differentials on each triangle's
+// plane (mesh_fragment.glsl). The image is drawn in tiles of at most kTile pixels a side.
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "gl/context.hpp"
+#include "gl/export_material.hpp"
 #include "gl/program.hpp"
 #include "gl/shaders.hpp"
 #include "gl/surface_shader.hpp"
 #include "gl/twin.hpp"
+#include "model/map_layout.hpp"
+#include "render/mesh_material.hpp"
 #include "render/mesh_shading.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/gpu.hpp"
@@ -42,15 +47,65 @@ struct Texturing {
   std::vector<float> data;
 };
 
-Texturing texturing(const Model& model, const MeshRenderOptions& options) {
-  const std::string fragment = gl::shader_source("gl/mesh_fragment.glsl");
-  if (!options.mapping) {
+// The macros by which mesh_fragment.glsl shades a material m, the StochtexMaterial of the
+// exported function, with the maps render_mesh picks (mesh_material): STOCHTEX_MESH_COLOUR(m) its
+// colour map as a vec4, STOCHTEX_MESH_NORMAL(m) the unit tangent-space normal of the normal map
+// that bumps, STOCHTEX_MESH_OCCLUSION(m) its ambient occlusion (the last two where it has them).
+std::string material_macros(const Model& model) {
+  const MeshMaterial material = mesh_material(model);
+  const std::span<const MapInfo> maps = model.maps();
+  const std::vector<int> first = first_channels(maps);
+  const std::vector<gl::MaterialMember> members = gl::material_members(maps);
+  std::string macros;
+  bool bump = false;
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    const std::string member = "m." + members[i].name;
+    if (maps[i].kind == MapKind::colour && first[i] == material.colour)
+      macros += "#define STOCHTEX_MESH_COLOUR(m) vec4(" + member +
+                (members[i].vector ? ", 0.0)\n" : ", 0.0, 0.0, 0.0)\n");
+    if (maps[i].kind == MapKind::normal && !bump) {
+      bump = true;
+      macros += "#define STOCHTEX_MESH_NORMAL(m) " + member + "\n";
+    }
+    if (maps[i].kind == MapKind::scalar && first[i] == material.occlusion)
+      macros += "#define STOCHTEX_MESH_OCCLUSION(m) " + member + "\n";
+  }
+  return macros;
+}
+
+// The exported GLSL at the mesh's uvs: stochtex_<method>, or a material's function.
+Texturing uv_texturing(const Model& model, const std::string& fragment) {
+  if (model.maps().empty()) {
     ShaderExport files = export_shader(model);
     return {"#define STOCHTEX_MESH_UV stochtex_" + std::string(model.method()) + "\n" +
                 files.shader.text + fragment,
             std::move(files.textures),
             {}};
   }
+  ShaderExport files;
+  try {
+    files = export_shader(model);
+  } catch (const Error& error) {
+    throw Error(ErrorCode::invalid_input,
+                "the gl backend of render-mesh shades a material through its exported material "
+                "function, which export-shader does not write for this one (" +
+                    std::string(error.what()) + "); render it with --backend cpu");
+  }
+  return {"#define STOCHTEX_MESH_UV stochtex_" + std::string(model.method()) + "_material\n" +
+              material_macros(model) + files.shader.text + fragment,
+          std::move(files.textures),
+          {}};
+}
+
+Texturing texturing(const Model& model, const MeshRenderOptions& options) {
+  const std::string fragment = gl::shader_source("gl/mesh_fragment.glsl");
+  if (!options.mapping) return uv_texturing(model, fragment);
+  if (!model.maps().empty())
+    throw Error(ErrorCode::invalid_input,
+                "the gl backend of render-mesh shades a material through its exported material "
+                "function, at the mesh's uvs only, and this render asks for the " +
+                    std::string(mapping_name(*options.mapping)) +
+                    " mapping; render it with --mapping uv or --backend cpu");
   SurfaceOptions surface = options.surface;
   surface.mapping = *options.mapping;
   std::optional<gl::SurfaceShader> shader = gl::model_surface_shader(model, surface);
@@ -193,11 +248,6 @@ std::array<float, 16> clip_from_eye(const PixelRays& rays, int x0, int y0, int w
 void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
                     const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out) {
   check_mesh_render_arguments(model, mesh, options, out);
-  if (!model.maps().empty())
-    throw Error(ErrorCode::invalid_input,
-                "the gl backend of render-mesh shades models of one image, and this is a material "
-                "(its colour lit through its normal map is CPU only); render it with --backend "
-                "cpu");
   const PixelRays rays = pixel_rays(camera, out.width, out.height);
   const Texturing parts = texturing(model, options);
 
@@ -208,7 +258,7 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
   const gl::Buffer data(std::max<std::size_t>(parts.data.size(), 1) * sizeof(float),
                         parts.data.data());
   const MeshBuffers buffers(mesh);
-  const int channels = model.channels();
+  const int channels = out.channels;
   const int colours = channels == 2 || channels == 4 ? channels - 1 : channels;
   const auto set_vector = [&](const char* name, const Vec3d& v) {
     glProgramUniform3f(program.id(), program.location(name), static_cast<float>(v.x),

@@ -1325,9 +1325,20 @@ expect_ok "render-mesh of a material without a normal map" "$stochtex" render-me
 expect_error "render-mesh of a material without a colour map" 1 "relief.stx" "$stochtex" \
   render-mesh "$textures/../meshes/sphere.obj" --model "$models/relief.stx" -o "$out/x.png" \
   --size 16x16
-expect_error "render-mesh --backend gl of a material" 1 "--backend cpu" "$stochtex" render-mesh \
-  "$textures/../meshes/sphere.obj" --model "$models/material.stx" -o "$out/x.png" --size 16x16 \
-  --backend gl
+# --backend gl: a material at the mesh's uvs through its exported material function; refused on
+# another mapping, and for tiling, which exports no material function.
+expect_ok "render-mesh --backend gl of a material, uv" "$stochtex" render-mesh \
+  "$textures/../meshes/sphere.obj" --model "$models/rock.stx" -o "$models/rock_mesh_gl.pfm" \
+  --size 24x16 --mapping uv --backend gl &&
+  if head -c 3 "$models/rock_mesh_gl.pfm" | grep -q '^PF$'; then pass; else
+    fail "render-mesh --backend gl of a material writes its colour map" "not a 3-channel PFM"
+  fi
+expect_error "render-mesh --backend gl of a material, triplanar-linear" 1 "--mapping uv" \
+  "$stochtex" render-mesh "$textures/../meshes/sphere.obj" --model "$models/rock.stx" \
+  -o "$out/x.png" --size 16x16 --mapping triplanar-linear --backend gl
+expect_error "render-mesh --backend gl of a tiling material" 1 "--backend cpu" "$stochtex" \
+  render-mesh "$textures/../meshes/sphere.obj" --model "$models/material.stx" -o "$out/x.png" \
+  --size 16x16 --mapping uv --backend gl
 
 # --- summary ------------------------------------------------------------------------------------
 

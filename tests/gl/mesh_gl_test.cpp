@@ -14,6 +14,7 @@
 #include <cmath>
 #include <iostream>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <vector>
 
@@ -43,7 +44,8 @@ struct Renders {
 Renders render_both(const Model& model, const Mesh& mesh, MeshRenderOptions options) {
   options.background = kBackground;
   const Camera camera = orbit_camera(mesh, 30.0, 20.0, 1.0, kWidth, kHeight);
-  Renders r{ImageF(kWidth, kHeight, model.channels()), ImageF(kWidth, kHeight, model.channels())};
+  const int channels = mesh_output_channels(model);
+  Renders r{ImageF(kWidth, kHeight, channels), ImageF(kWidth, kHeight, channels)};
   render_mesh(model, mesh, camera, options, kSeed, r.cpu.view());
   render_mesh_gl(model, mesh, camera, options, kSeed, r.gl.view());
   return r;
@@ -96,33 +98,35 @@ std::ostream& operator<<(std::ostream& out, const Parity& p) {
              << " (" << p.above << " beyond 1e-4), max " << p.largest << ", mean " << p.mean;
 }
 
-TEST(GlMesh, UvMatchesTheCpuReferenceForEveryMethod) {
+// The uv mapping on the sphere at texture scale 64 (footprints below a pixel of the exemplar over
+// most of the sphere: float rounding only) and 1024 (the default: footprints of several exemplar
+// pixels, filtered), against the CPU; `name` is printed with the measurements.
+void expect_uv_parity(const Model& model, const std::string& name) {
   const Mesh mesh = read_mesh(kMeshes + "sphere.obj");
-  for (const ExportCase& c : export_cases()) {
-    const Model model = case_model(c);
-    MeshRenderOptions options;
-    options.mapping = std::nullopt;
-    // Footprints below a pixel of the exemplar over most of the sphere: float rounding only.
-    options.texture_scale = 64.0;
-    const Parity fine = parity(render_both(model, mesh, options));
-    // The default: footprints of several exemplar pixels, filtered through dFdx against the CPU's
-    // exact ray differentials.
-    options.texture_scale = 1024.0;
-    const Parity filtered = parity(render_both(model, mesh, options));
-    std::cout << c.method << " " << c.exemplar << ": scale 64: " << fine
-              << "; scale 1024: " << filtered << "\n";
-    for (const Parity& p : {fine, filtered}) {
-      // Measured: no coverage difference, 6856 interior pixels; largest difference 0.018 (lrp,
-      // metal, scale 1024, a pixel on a triangle edge), means up to 7.5e-6 (the same), at most 6
-      // pixels beyond float rounding (texton_mix, metal, scale 1024), all within 2e-4 (in
-      // barycentrics) of a triangle edge.
-      EXPECT_LE(p.coverage_differences, 20) << c.method;
-      EXPECT_GT(p.interior, 6000) << c.method;
-      EXPECT_LT(p.largest, 0.035f) << c.method;
-      EXPECT_LT(p.mean, 1.5e-5) << c.method;
-      EXPECT_LE(p.above, 12) << c.method;
-    }
+  MeshRenderOptions options;
+  options.mapping = std::nullopt;
+  options.texture_scale = 64.0;
+  const Parity fine = parity(render_both(model, mesh, options));
+  options.texture_scale = 1024.0;
+  const Parity filtered = parity(render_both(model, mesh, options));
+  std::cout << name << ": scale 64: " << fine << "; scale 1024: " << filtered << "\n";
+  for (const Parity& p : {fine, filtered}) {
+    // Measured (every export case; the materials below): no coverage difference, 6856 interior
+    // pixels; largest difference 0.018 (lrp, metal, scale 1024, a pixel on a triangle edge; a
+    // material's 0.023), means up to 7.5e-6 (the same), at most 6 pixels beyond float rounding
+    // (texton_mix, metal, scale 1024; a material's 7), all within 2e-4 (in barycentrics) of a
+    // triangle edge.
+    EXPECT_LE(p.coverage_differences, 20) << name;
+    EXPECT_GT(p.interior, 6000) << name;
+    EXPECT_LT(p.largest, 0.035f) << name;
+    EXPECT_LT(p.mean, 1.5e-5) << name;
+    EXPECT_LE(p.above, 12) << name;
   }
+}
+
+TEST(GlMesh, UvMatchesTheCpuReferenceForEveryMethod) {
+  for (const ExportCase& c : export_cases())
+    expect_uv_parity(case_model(c), std::string(c.method) + " " + std::string(c.exemplar));
 }
 
 TEST(GlMesh, TriplanarMatchesTheCpuReference) {
@@ -203,22 +207,59 @@ TEST(GlMesh, AMappingWithoutGlslIsRefused) {
   EXPECT_THROW(render_mesh_gl(lrp, mesh, camera, options, 1, out.view()), std::invalid_argument);
 }
 
-// A material is shaded by render_mesh only (its exported shader has at most 4 channels and no
-// normal map): refused with a sentence that says so.
-TEST(GlMesh, AMaterialIsRefused) {
-  const std::string rock = std::string(STOCHTEX_MATERIAL_DIR) + "/rock_sandstone/";
-  const ImageF albedo = read_image(rock + "albedo.png");
-  const ImageF roughness = read_image(rock + "roughness.png");
-  const Model material = analyze_material(
-      "tiling", std::vector<MaterialMap>{{"albedo", {}, albedo.view(), "a.png"},
-                                         {"roughness", {}, roughness.view(), "r.png"}});
+// rock_sandstone's maps analysed into one material, in the given order.
+Model rock(std::string_view method, const std::vector<std::string>& names,
+           const ParamValues& params, const MaterialOptions& options = {}) {
+  const std::string dir = std::string(STOCHTEX_MATERIAL_DIR) + "/rock_sandstone/";
+  std::vector<ImageF> images;
+  for (const std::string& name : names) images.push_back(read_image(dir + name + ".png"));
+  std::vector<MaterialMap> maps;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    maps.push_back({names[i], {}, images[i].view(), names[i] + ".png"});
+  return analyze_material(method, maps, params, 0, options);
+}
+
+// A material on the uv mapping: the exported stochtex_<method>_material's colour map, lit through
+// its normal map (the bump in GLSL as render_mesh's surface gradients) and its ambient occlusion.
+TEST(GlMesh, AMaterialOnUvMatchesTheCpuReference) {
+  const std::vector<std::string> maps = {"albedo", "normal", "height", "ao"};
+  MaterialOptions stored;
+  stored.derive_normals = false;
+  // Measured: largest difference 0.023 (texton's stored slopes, lrp and gabor at scale 64: a pixel
+  // on a triangle edge), means up to 5.9e-6 (lrp, scale 64), at most 7 pixels beyond float
+  // rounding. A wrong sign of the bump's y, or no ambient occlusion: means 0.01 to 0.2.
+  expect_uv_parity(rock("texton", maps, {{"iterations", 3}}), "texton, derived normals");
+  expect_uv_parity(rock("texton", maps, {{"iterations", 3}}, stored), "texton, stored slopes");
+  expect_uv_parity(rock("lrp", maps, {{"cosines", 10}}), "lrp, derived normals");
+  expect_uv_parity(rock("gabor", maps, {{"impulses", 64}, {"iterations", 30}}),
+                   "gabor, derived normals");
+}
+
+// Only the uv mapping calls the exported material function, and tiling exports none: refused with
+// a sentence naming what to do instead.
+TEST(GlMesh, AMaterialOffUvOrWithoutAnExportIsRefused) {
   const Mesh mesh = read_mesh(kMeshes + "sphere.obj");
+  const Camera camera = orbit_camera(mesh, 0.0, 0.0, 1.0, 8, 8);
   ImageF out(8, 8, 3);
-  try {
-    render_mesh_gl(material, mesh, orbit_camera(mesh, 0.0, 0.0, 1.0, 8, 8), {}, 1, out.view());
-    ADD_FAILURE() << "accepted";
-  } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("--backend cpu"), std::string::npos) << error.what();
+  const auto refusal = [&](const Model& model, const MeshRenderOptions& options) -> std::string {
+    try {
+      render_mesh_gl(model, mesh, camera, options, 1, out.view());
+    } catch (const Error& error) {
+      return error.what();
+    }
+    return "accepted";
+  };
+  MeshRenderOptions uv;
+  uv.mapping = std::nullopt;
+  const std::string tiling = refusal(rock("tiling", {"albedo", "roughness"}, {}), uv);
+  EXPECT_NE(tiling.find("--backend cpu"), std::string::npos) << tiling;
+  const Model texton = rock("texton", {"albedo", "height"}, {{"iterations", 3}});
+  for (const SurfaceMapping mapping : {SurfaceMapping::triplanar_linear, SurfaceMapping::surface}) {
+    MeshRenderOptions options;
+    options.mapping = mapping;
+    const std::string sentence = refusal(texton, options);
+    EXPECT_NE(sentence.find("--mapping uv"), std::string::npos) << sentence;
+    EXPECT_NE(sentence.find("--backend cpu"), std::string::npos) << sentence;
   }
 }
 
