@@ -1261,8 +1261,12 @@ expect_error "more channels than a material may have" 1 "17 channels in 7 maps" 
 expect_ok "a material's groups on tiling's gpu twin" "$stochtex" render "$models/relief.stx" \
   -o "$models/relief_gl_{map}.png" --size 8x8 --backend gl &&
   expect_file "the gl backend's tiling height map" "$models/relief_gl_height.png"
-expect_error "export-shader of a tiling material" 1 "groups of their own" "$stochtex" \
-  export-shader "$models/relief.stx" -o "$out/relief"
+expect_ok "export-shader of a tiling material" "$stochtex" export-shader "$models/relief.stx" \
+  -o "$models/relief_shader" &&
+  if grep -qF "StochtexMaterial stochtex_tiling_material(vec2 p" \
+    "$models/relief_shader/stochtex_tiling.glsl"; then pass; else
+    fail "export-shader of a tiling material" "no stochtex_tiling_material"
+  fi
 expect_ok "tiling's rotation with a normal map" "$stochtex" analyze --map normal="$rock/normal.png" \
   --map height="$rock/height.png" -m tiling -p rotation=30 -p scale_jitter=0.2 \
   -o "$models/turned.stx" &&
