@@ -1261,8 +1261,12 @@ expect_error "more channels than a material may have" 1 "17 channels in 7 maps" 
 expect_ok "a material's groups on tiling's gpu twin" "$stochtex" render "$models/relief.stx" \
   -o "$models/relief_gl_{map}.png" --size 8x8 --backend gl &&
   expect_file "the gl backend's tiling height map" "$models/relief_gl_height.png"
-expect_error "export-shader of a tiling material" 1 "groups of their own" "$stochtex" \
-  export-shader "$models/relief.stx" -o "$out/relief"
+expect_ok "export-shader of a tiling material" "$stochtex" export-shader "$models/relief.stx" \
+  -o "$models/relief_shader" &&
+  if grep -qF "StochtexMaterial stochtex_tiling_material(vec2 p" \
+    "$models/relief_shader/stochtex_tiling.glsl"; then pass; else
+    fail "export-shader of a tiling material" "no stochtex_tiling_material"
+  fi
 expect_ok "tiling's rotation with a normal map" "$stochtex" analyze --map normal="$rock/normal.png" \
   --map height="$rock/height.png" -m tiling -p rotation=30 -p scale_jitter=0.2 \
   -o "$models/turned.stx" &&
@@ -1325,8 +1329,8 @@ expect_ok "render-mesh of a material without a normal map" "$stochtex" render-me
 expect_error "render-mesh of a material without a colour map" 1 "relief.stx" "$stochtex" \
   render-mesh "$textures/../meshes/sphere.obj" --model "$models/relief.stx" -o "$out/x.png" \
   --size 16x16
-# --backend gl: a material at the mesh's uvs through its exported material function; refused on
-# another mapping, and for tiling, which exports no material function.
+# --backend gl: a material at the mesh's uvs through its exported material function (texton and
+# tiling); refused on another mapping.
 expect_ok "render-mesh --backend gl of a material, uv" "$stochtex" render-mesh \
   "$textures/../meshes/sphere.obj" --model "$models/rock.stx" -o "$models/rock_mesh_gl.pfm" \
   --size 24x16 --mapping uv --backend gl &&
@@ -1336,9 +1340,10 @@ expect_ok "render-mesh --backend gl of a material, uv" "$stochtex" render-mesh \
 expect_error "render-mesh --backend gl of a material, triplanar-linear" 1 "--mapping uv" \
   "$stochtex" render-mesh "$textures/../meshes/sphere.obj" --model "$models/rock.stx" \
   -o "$out/x.png" --size 16x16 --mapping triplanar-linear --backend gl
-expect_error "render-mesh --backend gl of a tiling material" 1 "--backend cpu" "$stochtex" \
-  render-mesh "$textures/../meshes/sphere.obj" --model "$models/material.stx" -o "$out/x.png" \
-  --size 16x16 --mapping uv --backend gl
+expect_ok "render-mesh --backend gl of a tiling material" "$stochtex" render-mesh \
+  "$textures/../meshes/sphere.obj" --model "$models/material.stx" \
+  -o "$models/material_mesh_gl.png" --size 16x16 --mapping uv --backend gl &&
+  expect_file "the gl backend's tiling material on a mesh" "$models/material_mesh_gl.png"
 
 # --- summary ------------------------------------------------------------------------------------
 

@@ -119,6 +119,17 @@ std::vector<MaterialCase> material_cases() {
       {"lrp", kRock, {{"cosines", 10}}, 256, {}, 32},
       {"lrp", {"albedo", "normal", "height"}, {{"cosines", 10}}, 256, {}, 32},
       {"gabor", kRock, {{"impulses", 64}, {"iterations", 20}}, 256, {}, 24},
+      // tiling keeps the normal map as two slopes: its groups' T^-1 in the shader (8 channels),
+      // with the artist controls (the slopes' radial group turned with their patches, the
+      // height-aware blend) and with 2 channels (within a vec4, still a material's function).
+      {"tiling", kRock, {}, 256, {}, 32},
+      {"tiling",
+       kRock,
+       {{"rotation", 180}, {"scale_jitter", 0.5}, {"height_blend", 0.1}},
+       256,
+       {},
+       32},
+      {"tiling", {"albedo", "height"}, {{"sharpness", 4}}, 256, {}, 32},
   };
 }
 
@@ -130,7 +141,7 @@ TEST(ExportMaterial, MapsMatchTheCpu) {
   const gl::Context context;
   for (const MaterialCase& c : material_cases()) {
     const Model model = rock(c.method, c.maps, c.params, c.side, c.options);
-    const bool derived = c.options.derive_normals;
+    const bool derived = c.options.derive_normals && method_info(c.method).derives_normals;
     ASSERT_EQ(model.maps()[1].derived_from, derived ? "height" : "") << c.method;
     const ShaderExport files = export_shader(model);
     for (const auto& [seed, scale] : {std::pair{2u, 1.0f}, std::pair{9u, 3.0f}}) {
@@ -158,12 +169,14 @@ TEST(ExportMaterial, EveryLanguageCompiles) {
   // texton beyond a vec4 (a private chunk index, which Metal passes by reference) and within one,
   // lrp, with derived normal maps, and gabor's float-only variant (its exact one keeps doubles,
   // GLSL only) with the normal map's slopes of its own (on a crop whose wrapped edges break the
-  // slopes' fit to the height's gradient).
+  // slopes' fit to the height's gradient), and tiling with every control (the per-patch arrays
+  // flattened for ESSL 3.00, which has no arrays of arrays).
   const std::vector<Model> models = {
       rock("texton", kRock, {{"support", 16}, {"iterations", 3}}, 256),
       rock("texton", {"albedo", "normal", "height"}, {{"support", 16}, {"iterations", 3}}, 256),
       rock("lrp", kRock, {{"cosines", 4}}, 256),
       rock("gabor", kRock, {{"impulses", 64}, {"iterations", 20}}, 32),
+      rock("tiling", kRock, {{"rotation", 90}, {"scale_jitter", 0.3}, {"height_blend", 0.1}}, 64),
   };
   for (std::size_t k = 0; k < models.size(); ++k)
     ASSERT_EQ(models[k].maps()[1].derived_from, k < 3 ? "height" : "");
@@ -277,8 +290,10 @@ TEST(ExportMaterial, RefusesWhatItCannotExport) {
     EXPECT_NE(what.find(part), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   };
-  // tiling's GPU twin has no tables of a material's maps yet (its export goes through the twin).
-  expect_sentence(refusal(rock("tiling", {"albedo", "roughness"}, {}, 64)), "tiling");
+  // tiling's fast variant reads an image's colour and alpha through its textures.
+  expect_sentence(refusal(rock("tiling", {"albedo", "roughness"}, {}, 64),
+                          {ShaderVariant::fast, ShaderLanguage::glsl}),
+                  "export it with --variant exact");
   // texton's fast variant reads one texture of at most 4 channels.
   const Model texton = rock("texton", kRock, {{"support", 16}, {"iterations", 3}}, 64);
   expect_sentence(refusal(texton, {ShaderVariant::fast, ShaderLanguage::glsl}),

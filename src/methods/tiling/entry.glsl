@@ -6,10 +6,9 @@ float tiling_level_of_detail(vec2 dpdx, vec2 dpdy) {
 // Steps 1-2 of Algorithm 1 at p (exemplar pixels, |p| below ~1e4) with the patches of `seed`, for
 // a footprint of width `width` at `level`, `level_blend` (which become T^-1's, tiling blend.glsl).
 vec4 tiling_blended_at(vec2 p, uint seed, float width, inout int level, inout float level_blend) {
-  vec2 skewed = vec2(p.x - p.y * TILING_INVERSE_SQRT3, 2.0 * TILING_INVERSE_SQRT3 * p.y) /
-                TILING_EDGE;
-  vec2 period = vec2(TILING_WIDTH, TILING_HEIGHT);
-  vec2 wrapped = p - period * floor(p / period);
+  vec2 skewed;
+  vec2 wrapped;
+  tiling_lattice_at(p, skewed, wrapped);
   return tiling_blended_gaussian(skewed, uvec2(0u), wrapped, seed, width, level, level_blend);
 }
 

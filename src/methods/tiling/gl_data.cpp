@@ -15,19 +15,38 @@
 
 namespace stochtex::gl {
 
+namespace {
+
+// The constants of the lattice and its patches (patches.glsl): the exemplar's size, the lattice
+// edge and the artist controls.
+std::string patch_constants(const tiling::TilingModel& model) {
+  const tiling::TilingData& d = model.data();
+  return "const int TILING_WIDTH = " + glsl_int(d.width) +
+         ";\nconst int TILING_HEIGHT = " + glsl_int(d.height) +
+         ";\nconst float TILING_EDGE = " + glsl_float(static_cast<float>(model.lattice_edge())) +
+         ";\nconst float TILING_ROTATION = " +
+         glsl_float(static_cast<float>(d.rotation * (std::numbers::pi / 180.0))) +
+         ";\nconst float TILING_SCALE_JITTER = " + glsl_float(static_cast<float>(d.scale_jitter)) +
+         ";\nconst float TILING_SHARPNESS = " + glsl_float(static_cast<float>(d.sharpness)) +
+         ";\nconst bool TILING_TRANSFORMED = " + (model.transformed() ? "true" : "false") + ";\n";
+}
+
+}  // namespace
+
 TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) {
   const bool exact = variant == ShaderVariant::exact;
   const tiling::TilingData& d = model.data();
   const tiling::TilingLayout& layout = model.layout();
   // This GLSL reads an image's colour and alpha (blend.glsl): the renderer takes other models in
-  // groups (renders_in_groups), exported shaders and meshes do not.
+  // groups (renders_in_groups) and export-shader as a material (material_export); the surface
+  // and mesh shaders do not.
   if (renders_in_groups(model))
     throw Error(ErrorCode::invalid_input,
-                "tiling: exported shaders and meshes take an image's colour and alpha (1 to 4 "
+                "tiling: the GL surface and mesh shaders take an image's colour and alpha (1 to 4 "
                 "channels), and this model's " +
                     std::to_string(d.channels) + " channels go through T^-1 in " +
                     std::to_string(layout.groups.size()) +
-                    " groups of their own; render it with `stochtex render` (either backend)");
+                    " groups of their own; render it with --backend cpu");
   TilingGlsl glsl;
   std::vector<int> widths;
   std::vector<int> heights;
@@ -56,9 +75,7 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) 
   };
   const auto flag = [](bool value) { return std::string(value ? "true" : "false"); };
   constant("int", "TILING_CHANNELS", glsl_int(d.channels));
-  constant("int", "TILING_WIDTH", glsl_int(d.width));
-  constant("int", "TILING_HEIGHT", glsl_int(d.height));
-  constant("float", "TILING_EDGE", glsl_float(static_cast<float>(model.lattice_edge())));
+  text += patch_constants(model);
   constant("int", "TILING_BLEND", glsl_int(static_cast<int>(d.blend)));
   constant("vec4", "TILING_BLEND_MEAN", glsl_vec4(d.blend_mean));
   constant("int", "TILING_LEVELS", glsl_int(model.level_count()));
@@ -66,11 +83,6 @@ TilingGlsl tiling_glsl(const tiling::TilingModel& model, ShaderVariant variant) 
   constant("bool", "TILING_HAS_ALPHA", flag(layout.has_alpha));
   constant("int", "TILING_COLOUR_CHANNELS", glsl_int(layout.colour_channels));
   constant("int", "TILING_FIRST_ALPHA_TABLE", glsl_int(layout.first_alpha_table));
-  constant("float", "TILING_ROTATION",
-           glsl_float(static_cast<float>(d.rotation * (std::numbers::pi / 180.0))));
-  constant("float", "TILING_SCALE_JITTER", glsl_float(static_cast<float>(d.scale_jitter)));
-  constant("float", "TILING_SHARPNESS", glsl_float(static_cast<float>(d.sharpness)));
-  constant("bool", "TILING_TRANSFORMED", flag(model.transformed()));
   constant("int", "TILING_LUT_SIZE", glsl_int(d.lut_size));
   constant("int", "TILING_TABLE_SIZE", glsl_int(d.table_size));
   text += glsl_array("float", "TILING_COLOUR_BASIS", std::span<const float>(d.colour_basis),
@@ -180,7 +192,8 @@ ExportParts fast_shader(const tiling::TilingModel& model) {
   const std::string library =
       defines + random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) +
       constants + reader + shader_source("methods/tiling/evaluate.glsl") +
-      shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/hardware.glsl") +
+      shader_source("methods/tiling/patches.glsl") + shader_source("methods/tiling/blend.glsl") +
+      shader_source("methods/tiling/hardware.glsl") +
       "#define stochtex_tiling tiling_at_level_of_detail\n" +
       shader_source("methods/tiling/entry.glsl") + "#undef stochtex_tiling\n" +
       shader_source("methods/tiling/fast_entry.glsl") + shader_source("gl/triplanar.glsl") +
@@ -231,7 +244,13 @@ bool renders_in_groups(const tiling::TilingModel& model) {
   return !model.layout().image_layout || model.channels() > 4;
 }
 
-TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model) {
+namespace {
+
+// Appends the groups' T^-1 to `glsl` (inverse_groups.glsl): their constants (TILING_GROUP_*, the
+// bases and means, the per-patch blend's controls) and each pyramid level's 1-D tables after its
+// data (the TILING_LEVEL_TABLES offsets). Throws a sentence for a group of a kind groups.glsl has
+// no case for (the 3-D table).
+void append_groups(const tiling::TilingModel& model, TilingGlsl& glsl) {
   const tiling::TilingData& d = model.data();
   const tiling::TilingLayout& layout = model.layout();
   std::vector<int> transforms;
@@ -255,7 +274,6 @@ TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model) {
     bases.push_back(group.first_basis);
     means.push_back(group.first_mean);
   }
-  TilingGlsl glsl;
   std::vector<int> level_tables;
   for (int level = 0; level < model.level_count(); ++level) {
     level_tables.push_back(static_cast<int>(glsl.data.size()));
@@ -280,9 +298,6 @@ TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model) {
     text += "const bool " + std::string(name) + " = " + (value ? "true" : "false") + ";\n";
   };
   flag("TILING_TURNED", turns_slopes(model));
-  if (blends_patches_apart(model))
-    text += "#define TILING_PATCH_INPUT\n#define TILING_PATCH_STRIDE " +
-            std::to_string(patch_stride(model)) + "\n";
   flag("TILING_SCALE_JITTER_ON", d.scale_jitter > 0.0);
   constant("TILING_HEIGHT_CHANNEL", std::max(d.height_channel, 0));
   text += "const float TILING_HEIGHT_DEPTH = " + glsl_float(static_cast<float>(d.height_blend)) +
@@ -302,12 +317,47 @@ TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model) {
   text +=
       glsl_array("float", "TILING_COLOUR_MEAN", std::span<const float>(d.colour_mean), glsl_float);
   array("TILING_LEVEL_TABLES", level_tables);
+}
+
+}  // namespace
+
+TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model) {
+  TilingGlsl glsl;
+  if (blends_patches_apart(model))
+    glsl.constants = "#define TILING_PATCH_INPUT\n#define TILING_PATCH_STRIDE " +
+                     std::to_string(patch_stride(model)) + "\n";
+  append_groups(model, glsl);
+  return glsl;
+}
+
+TilingGlsl tiling_material_glsl(const tiling::TilingModel& model) {
+  TilingGlsl glsl;
+  std::vector<int> widths;
+  std::vector<int> heights;
+  std::vector<int> texels;
+  for (int level = 0; level < model.level_count(); ++level) {
+    const tiling::MipLevel mip = model.level(level);
+    widths.push_back(mip.width);
+    heights.push_back(mip.height);
+    texels.push_back(static_cast<int>(glsl.data.size()));
+    glsl.data.insert(glsl.data.end(), mip.texels,
+                     mip.texels + static_cast<std::size_t>(mip.width) * mip.height *
+                                      static_cast<std::size_t>(model.channels()));
+  }
+  glsl.constants = patch_constants(model);
+  glsl.constants += glsl_array("int", "TILING_LEVEL_WIDTH", std::span<const int>(widths), glsl_int);
+  glsl.constants +=
+      glsl_array("int", "TILING_LEVEL_HEIGHT", std::span<const int>(heights), glsl_int);
+  glsl.constants +=
+      glsl_array("int", "TILING_LEVEL_TEXELS", std::span<const int>(texels), glsl_int);
+  append_groups(model, glsl);
   return glsl;
 }
 
 std::string tiling_groups_source(const TilingGlsl& glsl) {
   return "#version 450\n" + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
          data_reader(DataSource::storage_buffers) + shader_source("methods/tiling/evaluate.glsl") +
+         shader_source("methods/tiling/inverse_groups.glsl") +
          shader_source("methods/tiling/groups.glsl");
 }
 
@@ -315,12 +365,54 @@ std::string tiling_library_source(const TilingGlsl& glsl, DataSource source) {
   return random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
          data_reader(source) + shader_source("methods/tiling/evaluate.glsl") +
          shader_source("methods/tiling/exact_fetch.glsl") +
-         shader_source("methods/tiling/blend.glsl") + shader_source("methods/tiling/entry.glsl") +
-         shader_source("gl/triplanar.glsl") + shader_source("methods/tiling/triplanar.glsl");
+         shader_source("methods/tiling/patches.glsl") + shader_source("methods/tiling/blend.glsl") +
+         shader_source("methods/tiling/entry.glsl") + shader_source("gl/triplanar.glsl") +
+         shader_source("methods/tiling/triplanar.glsl");
 }
+
+namespace {
+
+// export-shader of a material (a model that renders_in_groups): tiling_channels (material.glsl),
+// which the material function of export_material.cpp calls; its data, each pyramid level's texels
+// of every channel and the groups' tables, in one float array.
+ExportParts material_export(const tiling::TilingModel& model) {
+  const TilingGlsl glsl = tiling_material_glsl(model);
+  std::vector<ShaderTexture> images;
+  images.push_back({"tiling_data", pack_rgba(glsl.data)});
+  const std::string library =
+      random_source() + glsl_constants(Twin<tiling::TilingModel>::kConstants) + glsl.constants +
+      data_reader(DataSource::textures) + shader_source("methods/tiling/evaluate.glsl") +
+      shader_source("methods/tiling/exact_fetch.glsl") +
+      shader_source("methods/tiling/patches.glsl") +
+      shader_source("methods/tiling/inverse_groups.glsl") +
+      shader_source("methods/tiling/material.glsl");
+  ExportParts parts{tiling::TilingModel::kMethodName,
+                    "histogram-preserving tiling",
+                    "Histogram-preserving tiling and blending of a material (" +
+                        std::to_string(model.channels()) + " channels)",
+                    library,
+                    std::move(images),
+                    "`tiling_data.exr` is one float array (the exemplar's pyramid, every channel, "
+                    "and each map's look-up tables) packed four floats\nper texel, 1024 texels "
+                    "per row. Keep |p| below ~1e4 for full float precision.\n"};
+  parts.channels_function = "tiling_channels";
+  return parts;
+}
+
+}  // namespace
 
 ExportParts Twin<tiling::TilingModel>::shader(const tiling::TilingModel& model,
                                               ShaderVariant variant) {
+  if (renders_in_groups(model)) {
+    if (variant == ShaderVariant::fast)
+      throw Error(ErrorCode::invalid_input,
+                  "tiling: the fast variant reads an image's colour and alpha through its "
+                  "textures, and this model's " +
+                      std::to_string(model.channels()) + " channels go through T^-1 in " +
+                      std::to_string(model.layout().groups.size()) +
+                      " groups of their own; export it with --variant exact");
+    return material_export(model);
+  }
   if (variant == ShaderVariant::fast) return fast_shader(model);
   const TilingGlsl glsl = tiling_glsl(model);
   std::vector<ShaderTexture> images;

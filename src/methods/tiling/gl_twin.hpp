@@ -54,6 +54,9 @@ int patch_stride(const tiling::TilingModel& model);
 // pyramid level's 1-D tables as `data` (the TILING_LEVEL_TABLES offsets). Throws a sentence for a
 // group of a kind groups.glsl has no case for (the 3-D table).
 TilingGlsl tiling_groups_glsl(const tiling::TilingModel& model);
+// An exported material's data and constants (material.glsl): each pyramid level's texels of every
+// channel (TILING_LEVEL_TEXELS, _WIDTH, _HEIGHT), the lattice's constants and the groups'.
+TilingGlsl tiling_material_glsl(const tiling::TilingModel& model);
 // The compute shader of the groups' T^-1: `#version`, kConstants, the constants, the storage
 // buffer reader, tiling evaluate.glsl and groups.glsl.
 std::string tiling_groups_source(const TilingGlsl& glsl);

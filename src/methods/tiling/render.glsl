@@ -25,7 +25,7 @@ uniform float filter_scale;
 #ifdef TILING_RESULT_LEVELS
 layout(std430, binding = 2) writeonly buffer ResultLevels { float result_levels[]; };
 #endif
-// With the patches kept apart (TILING_PATCH_OUTPUT: blend.glsl's tiling_patches), a chunk writes
+// With the patches kept apart (TILING_PATCH_OUTPUT: patches.glsl's tiling_patches), a chunk writes
 // each patch's channels instead, at pixel * TILING_PATCH_STRIDE + patch * TILING_RESULT_STRIDE,
 // and the first chunk the patches' weights, levels of detail and transforms (scale cos, scale
 // sin, scale) after the 3 patches' channels.
