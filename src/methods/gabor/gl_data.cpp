@@ -57,7 +57,7 @@ GaborGlsl gabor_glsl(const gabor::GaborModel& model, GlslPrecision precision) {
   }
   // 1 to 4 channels: a vec4 mean and a 4 x 4 array of the mixing matrix's rows, zero-padded
   // (noise.glsl); more: arrays of the channels' means and the channels^2 mixing matrix
-  // (noise_channels.glsl).
+  // (colour_channels.glsl).
   const int channels = model.channels();
   glsl.channels = channels;
   const bool beyond_vec4 = channels > 4;
@@ -115,8 +115,9 @@ std::string gabor_library_source(const GaborGlsl& glsl) {
          glsl.constants + reader +
          glsl_precision_variant(
              shader_source("methods/gabor/evaluate.glsl") +
-                 shader_source(glsl.channels > 4 ? "methods/gabor/noise_channels.glsl"
-                                                 : "methods/gabor/noise.glsl"),
+                 shader_source(glsl.channels > 4 ? "methods/gabor/colour_channels.glsl"
+                                                 : "methods/gabor/colour.glsl") +
+                 shader_source("methods/gabor/noise.glsl"),
              glsl.precision);
 }
 
@@ -190,7 +191,7 @@ ExportParts Twin<gabor::GaborModel>::shader(const gabor::GaborModel& model, Shad
                 : "The shader uses double precision\n(core since OpenGL 4.0) for positions "
                   "and cell corners, as the CPU reference does."),
       variant};
-  // Beyond 4 channels (a material), noise_channels.glsl's gabor_channels instead of the vec4
+  // Beyond 4 channels (a material), noise.glsl's gabor_channels instead of the vec4
   // entry point.
   if (model.channels() > 4) parts.channels_function = "gabor_channels";
   return parts;

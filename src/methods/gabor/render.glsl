@@ -19,11 +19,7 @@ uniform double scale;
 #endif
 uniform uint seed;
 uniform bool filtered;
-// The colour type of gabor_noise: vec4 (noise.glsl), or GABOR_CHANNELS floats beyond 4 channels
-// (noise_channels.glsl).
-#ifndef GABOR_COLOUR
-#define GABOR_COLOUR vec4
-#endif
+// gabor_noise's colour type, GABOR_COLOUR: colour.glsl's vec4 or colour_channels.glsl's array.
 
 void main() {
   ivec2 local_pixel = ivec2(gl_GlobalInvocationID.xy);
