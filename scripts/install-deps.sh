@@ -9,7 +9,7 @@ packages=(
   build-essential cmake pkg-config ninja-build clang-format
   libfftw3-dev libpng-dev libopenexr-dev libeigen3-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libtinyobjloader-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libhwy-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   glslang-dev spirv-tools libspirv-cross-c-shared-dev
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-dask python3-distributed

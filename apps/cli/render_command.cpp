@@ -11,6 +11,8 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "arguments.hpp"
 #include "commands.hpp"
@@ -68,6 +70,13 @@ void add_render_options(CLI::App* command, RenderSettings& settings, std::string
   command->add_option("--tile", settings.tile, "tile side in pixels (speed only, never the output)")
       ->capture_default_str()
       ->check(CLI::Range(1, 4096));
+  command
+      ->add_option(
+          "--cpu-target", settings.cpu_target,
+          "the CPU evaluators' instruction set: best (this machine's), reference (the "
+          "scalar evaluator), portable, sse4, avx2 or avx512; speed only, never the output")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"best", "reference", "portable", "sse4", "avx2", "avx512"}));
   command->add_flag("--no-filter", settings.no_filter,
                     "point-sample even when zoomed out (aliases)");
   command->add_option("--bit-depth", settings.bit_depth, "PNG output bits per channel")
@@ -89,6 +98,19 @@ void add_render_options(CLI::App* command, RenderSettings& settings, std::string
 }
 
 namespace {
+
+// Sets the CPU target named by --cpu-target; refuses one this machine cannot run.
+void use_cpu_target(const std::string& name) {
+  const std::vector<CpuTarget> available = available_cpu_targets();
+  if (name == "best") return set_cpu_target(available.back());
+  std::string names;
+  for (const CpuTarget target : available) {
+    if (cpu_target_name(target) == name) return set_cpu_target(target);
+    names += (names.empty() ? "" : ", ") + std::string(cpu_target_name(target));
+  }
+  throw std::invalid_argument("--cpu-target " + name + ": this machine cannot run it; it runs " +
+                              names);
+}
 
 // What a render writes: the grid of its region of the --size image and, for a tiled OpenEXR
 // output, the file's options (streamed set).
@@ -365,6 +387,7 @@ void render_to_file(const std::function<Model()>& make_model, const RenderSettin
   check_output_path(map_output(output, "map"), true, input);
   const RenderPlan plan = render_plan(settings, output);
   const int threads = render_threads(settings, plan);
+  use_cpu_target(settings.cpu_target);
   const Model model = make_model();
   check_map_outputs(model, plan, output, input);
   if (model.maps().empty()) check_output_channels(output, model.channels());

@@ -26,6 +26,7 @@ struct RenderSettings {
   bool tiled = false;
   bool mipmap = false;
   bool half = false;
+  std::string cpu_target = "best";  // a CpuTarget's name, or best
 };
 
 // -o (an image), --size (required), --origin, --scale, --seed, --region, the tiled OpenEXR options

@@ -6,6 +6,7 @@
 #include <functional>
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
@@ -55,6 +56,24 @@ struct RenderOptions {
 
 void render(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
             const RenderOptions& options = {});
+
+// The instruction sets the CPU evaluators run on (docs/design.md §4). By default the best one this
+// machine offers, picked at run time (Highway's dynamic dispatch). `reference` is the scalar
+// evaluator, the one the GLSL twins mirror; every other target computes each sample with the same
+// operations in the same order, one sample per SIMD lane, so every target gives the same bytes
+// (tests force each one).
+enum class CpuTarget { reference, portable, sse4, avx2, avx512 };
+
+// "reference", "portable" (Highway's fallback for a machine without SSE4: the vectorised
+// evaluators' loops, one lane wide), "sse4", "avx2" or "avx512".
+std::string_view cpu_target_name(CpuTarget target);
+// The targets this machine and build can run: reference first, the default (the best) last.
+std::vector<CpuTarget> available_cpu_targets();
+// The target evaluate() and render() use now.
+CpuTarget cpu_target();
+// Process-wide, for tests, benchmarks and checks; call it while no evaluation runs. Throws
+// std::invalid_argument (one sentence) for a target that available_cpu_targets() lacks.
+void set_cpu_target(CpuTarget target);
 
 // Throws std::invalid_argument, the sentence starting with `what`, unless the grid's scale and
 // origin are finite and every position it samples (pixel corners included) lies within

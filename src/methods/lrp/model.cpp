@@ -5,9 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/cpu_target.hpp"
 #include "core/hash.hpp"
 #include "methods/lrp/evaluate.hpp"
 #include "methods/lrp/params.hpp"
+#include "methods/lrp/simd.hpp"
 #include "methods/lrp/tables.hpp"
 #include "model/value_range.hpp"
 #include "stochtex/error.hpp"
@@ -18,8 +20,7 @@ namespace {
 
 // Limits on what a model may ask of the evaluator; beyond them a model file is rejected. Channels:
 // 1 to kMaxChannels (stochtex.hpp; a material's maps side by side); strata per channel: 1 to
-// kMaxStrataPerChannel (the parameter `strata`), which sizes the evaluator's stream table.
-constexpr int kMaxStrataPerChannel = 16;
+// kMaxStrataPerChannel (model.hpp).
 static_assert(kParams[1].name == "strata" && kParams[1].max_value == kMaxStrataPerChannel);
 constexpr double kMinSpacing = 0.25;  // Delta_S = T sqrt(J_S / (2 |S|)) >= 1/2 for any stratum
 constexpr double kMaxSpacing = 1e6;
@@ -180,8 +181,12 @@ void LrpModel::evaluate(std::span<const Vec2d> positions, std::span<const Footpr
   // One concrete loop per (channel count, filtering): accumulators stay in registers and the
   // point-sample loop carries no footprint work. Dispatch happens once per batch.
   const auto with_channels = [&]<int Channels>() {
-    if (footprints.empty())
+    if (footprints.empty()) {
+      if (simd_enabled() && evaluate_simd<Channels, false>(positions, footprints, seed, out))
+        return;
       return evaluate_typed<Channels, false>(positions, footprints, seed, out);
+    }
+    if (simd_enabled() && evaluate_simd<Channels, true>(positions, footprints, seed, out)) return;
     return evaluate_typed<Channels, true>(positions, footprints, seed, out);
   };
   switch (data_.channels) {
@@ -200,18 +205,40 @@ void LrpModel::evaluate(std::span<const Vec2d> positions, std::span<const Footpr
   }
 }
 
+std::array<std::uint32_t, kMaxChannels * kMaxStrataPerChannel> LrpModel::stratum_seeds(
+    std::uint32_t seed) const noexcept {
+  // Each stratum of each channel has its own random stream, so strata and channels are
+  // independent noises (equation 2; independent channels in the decorrelated colour space).
+  std::array<std::uint32_t, kMaxChannels * kMaxStrataPerChannel> seeds{};
+  for (std::size_t s = 0; s < runtime_strata_.size(); ++s)
+    seeds[s] = cell_key(channel_stream(runtime_strata_[s].channel),
+                        static_cast<std::int64_t>(s) % data_.strata, seed, Stream::phases);
+  return seeds;
+}
+
+template <int Channels, bool Filtered>
+void LrpModel::finish_sample(float (&noise)[Channels], std::span<const Vec2d> positions,
+                             std::span<const Footprint> footprints, std::size_t index,
+                             std::uint32_t seed, ImageView<float> out) const noexcept {
+  const int channels = Channels <= 4 ? Channels : data_.channels;
+  if (!data_.structure.empty())
+    add_structure(data_.structure, window_coefficients_, static_cast<float>(mean_envelope_),
+                  positions[index], Filtered ? &footprints[index] : nullptr, seed, channels, noise);
+  const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
+  const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
+  for (int c = 0; c < channels; ++c) {
+    float value = data_.mean[static_cast<std::size_t>(c)];
+    for (int k = 0; k < channels; ++k)
+      value += data_.colour_basis[static_cast<std::size_t>(c * channels + k)] * noise[k];
+    out.at(x, y, c) = value;
+  }
+}
+
 template <int Channels, bool Filtered>
 void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
                               std::span<const Footprint> footprints, std::uint32_t seed,
                               ImageView<float> out) const noexcept {
-  // Each stratum of each channel has its own random stream, so strata and channels are
-  // independent noises (equation 2; independent channels in the decorrelated colour space).
-  constexpr auto kMaxStrata = static_cast<std::size_t>(kMaxChannels * kMaxStrataPerChannel);
-  std::array<std::uint32_t, kMaxStrata> stratum_seeds{};
-  const int channels = Channels <= 4 ? Channels : data_.channels;
-  for (std::size_t s = 0; s < runtime_strata_.size(); ++s)
-    stratum_seeds[s] = cell_key(channel_stream(runtime_strata_[s].channel),
-                                static_cast<std::int64_t>(s) % data_.strata, seed, Stream::phases);
+  const auto seeds = stratum_seeds(seed);
   const float mean_envelope = static_cast<float>(mean_envelope_);
   const bool normalise = data_.normalise_envelope;
   const StratumTables tables{data_.substratum_first.data(), data_.substratum_count.data(),
@@ -232,7 +259,7 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
       const auto [sum, window_square] =
           stratum_sum<Filtered>(tables,
                                 {stratum.inverse_spacing, stratum.spacing_float,
-                                 stratum.first_substratum, stratum.cosines, stratum_seeds[s]},
+                                 stratum.first_substratum, stratum.cosines, seeds[s]},
                                 window_coefficients_, p, axes);
       float scale = stratum.amplitude;
       // The variance of equation (1) at x is A_S^2 J_S / 2 sum_i w_i(x)^2, which varies over a
@@ -242,18 +269,47 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
       if (normalise) scale *= std::sqrt(mean_envelope / window_square);
       noise[stratum.channel] += scale * sum;
     }
-    if (!data_.structure.empty())
-      add_structure(data_.structure, window_coefficients_, mean_envelope, p,
-                    Filtered ? &footprints[index] : nullptr, seed, channels, noise);
-    const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
-    const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-    for (int c = 0; c < channels; ++c) {
-      float value = data_.mean[static_cast<std::size_t>(c)];
-      for (int k = 0; k < channels; ++k)
-        value += data_.colour_basis[static_cast<std::size_t>(c * channels + k)] * noise[k];
-      out.at(x, y, c) = value;
+    finish_sample<Channels, Filtered>(noise, positions, footprints, index, seed, out);
+  }
+}
+
+template <int Channels, bool Filtered>
+bool LrpModel::evaluate_simd(std::span<const Vec2d> positions,
+                             std::span<const Footprint> footprints, std::uint32_t seed,
+                             ImageView<float> out) const noexcept {
+  const auto seeds = stratum_seeds(seed);
+  std::array<SimdStratum, kMaxChannels * kMaxStrataPerChannel> strata;
+  std::size_t count = 0;
+  for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
+    const RuntimeStratum& stratum = runtime_strata_[s];
+    if (stratum.amplitude == 0.0f) continue;
+    strata[count++] = {{stratum.inverse_spacing, stratum.spacing_float, stratum.first_substratum,
+                        stratum.cosines, seeds[s]},
+                       stratum.amplitude,
+                       stratum.channel};
+  }
+  const RandomStrata random{std::span(strata.data(), count),
+                            {data_.substratum_first.data(), data_.substratum_count.data(),
+                             data_.frequencies.data(), data_.weights.data()},
+                            &window_coefficients_,
+                            static_cast<float>(mean_envelope_),
+                            data_.normalise_envelope};
+  NodeCache cache;
+  if (!cache.layout(random.strata)) return false;
+  const int channels = Channels <= 4 ? Channels : data_.channels;
+  float batch[kSimdBatch * kMaxChannels];
+  for (std::size_t first = 0; first < positions.size(); first += kSimdBatch) {
+    const std::size_t size = std::min(kSimdBatch, positions.size() - first);
+    random_strata_noise(random, channels, positions.subspan(first, size),
+                        Filtered ? footprints.subspan(first, size) : footprints, cache, batch);
+    for (std::size_t i = 0; i < size; ++i) {
+      float noise[Channels] = {};
+      for (int c = 0; c < channels; ++c)
+        noise[c] = batch[i * kMaxChannels + static_cast<std::size_t>(c)];
+      finish_sample<Channels, Filtered>(noise, positions, footprints, first + i, seed, out);
     }
   }
+  return true;
 }
 
 }  // namespace stochtex::lrp

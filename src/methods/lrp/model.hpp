@@ -19,6 +19,10 @@
 
 namespace stochtex::lrp {
 
+// The most strata per channel (the parameter `strata`): it sizes the evaluator's stream table and
+// node cache.
+inline constexpr int kMaxStrataPerChannel = 16;
+
 // Spectral sampling of one stratum S of one channel.
 struct Stratum {
   int cosines = 0;  // J_S, also the number of sub-strata
@@ -70,6 +74,20 @@ class LrpModel {
   template <int Channels, bool Filtered>
   void evaluate_typed(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                       std::uint32_t seed, ImageView<float> out) const noexcept;
+  // The same samples with the random strata in SIMD lanes (simd.hpp); false, with nothing
+  // written, when the strata do not fit its node cache.
+  template <int Channels, bool Filtered>
+  bool evaluate_simd(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                     std::uint32_t seed, ImageView<float> out) const noexcept;
+  // Adds section 5's structure to `noise` (the random strata's sum at positions[index]) and
+  // writes mean + basis * noise to the output pixel `index`.
+  template <int Channels, bool Filtered>
+  void finish_sample(float (&noise)[Channels], std::span<const Vec2d> positions,
+                     std::span<const Footprint> footprints, std::size_t index, std::uint32_t seed,
+                     ImageView<float> out) const noexcept;
+  // The seed of each stratum's random stream for `seed`, in runtime_strata_'s order.
+  std::array<std::uint32_t, kMaxChannels * kMaxStrataPerChannel> stratum_seeds(
+      std::uint32_t seed) const noexcept;
 
   LrpData data_;
 

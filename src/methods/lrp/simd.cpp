@@ -1,0 +1,275 @@
+// LRP noise's random strata, one sample per SIMD lane (simd.hpp). Compiled once per SIMD target by
+// Highway's foreach_target.h; random_strata_noise dispatches to the best one at run time.
+// Every vector operation below is the scalar reference's (evaluate.hpp, model.cpp) in its order:
+// no fused multiply-add (the build sets -ffp-contract=off), the same constants, truncating
+// conversions, and lanes that skip a node keep their sums by selection.
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "methods/lrp/simd.cpp"
+#include "methods/lrp/simd.hpp"
+
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+HWY_BEFORE_NAMESPACE();
+namespace stochtex::lrp::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
+
+// cos_turns (evaluate.hpp) in every lane.
+HWY_INLINE VF cos_turns(DF df, VF t) {
+  const DI di;
+  t = hn::Sub(t, hn::ConvertTo(df, hn::ConvertTo(di, t)));
+  t = hn::Abs(t);
+  t = hn::IfThenElse(hn::Gt(t, hn::Set(df, 0.5f)), hn::Sub(hn::Set(df, 1.0f), t), t);
+  const auto upper = hn::Gt(t, hn::Set(df, 0.25f));
+  const VF sign = hn::IfThenElse(upper, hn::Set(df, -1.0f), hn::Set(df, 1.0f));
+  t = hn::IfThenElse(upper, hn::Sub(hn::Set(df, 0.5f), t), t);
+  const VF x = hn::Mul(hn::Set(df, kTwoPi), t);
+  const VF x2 = hn::Mul(x, x);
+  VF p = hn::Mul(x2, hn::Set(df, 1.0f / 479001600.0f));
+  p = hn::Mul(x2, hn::Add(hn::Set(df, -1.0f / 3628800.0f), p));
+  p = hn::Mul(x2, hn::Add(hn::Set(df, 1.0f / 40320.0f), p));
+  p = hn::Mul(x2, hn::Add(hn::Set(df, -1.0f / 720.0f), p));
+  p = hn::Mul(x2, hn::Add(hn::Set(df, 1.0f / 24.0f), p));
+  p = hn::Mul(x2, hn::Add(hn::Set(df, -1.0f / 2.0f), p));
+  p = hn::Add(hn::Set(df, 1.0f), p);
+  return hn::Mul(sign, p);
+}
+
+// window_from_square (window.hpp) in every lane; 0 where t <= 0.
+HWY_INLINE VF window(DF df, const std::array<float, kWindowTerms>& coefficients, VF r2) {
+  const VF t = hn::Sub(hn::Set(df, 1.0f), hn::Mul(r2, hn::Set(df, 1.0f / kWindowRadiusSquared)));
+  const auto inside = hn::Gt(t, hn::Zero(df));
+  VF sum = hn::Set(df, coefficients[kWindowTerms - 1]);
+  for (int m = kWindowTerms - 2; m >= 0; --m)
+    sum = hn::Add(hn::Mul(sum, t), hn::Set(df, coefficients[static_cast<std::size_t>(m)]));
+  const VF root = hn::Sqrt(hn::IfThenElse(inside, t, hn::Zero(df)));
+  return hn::IfThenElseZero(inside, hn::Mul(hn::Mul(sum, t), root));
+}
+
+// clamp_weight (evaluate.hpp) of the larger of |f.a| and |f.b| in every lane.
+HWY_INLINE VF clamp_weight(DF df, VF fx, VF fy, const VF (&axes)[4]) {
+  const VF along_a = hn::Abs(hn::Add(hn::Mul(fx, axes[0]), hn::Mul(fy, axes[1])));
+  const VF along_b = hn::Abs(hn::Add(hn::Mul(fx, axes[2]), hn::Mul(fy, axes[3])));
+  const VF cycles = hn::IfThenElse(hn::Gt(along_a, along_b), along_a, along_b);
+  const VF weight = hn::Mul(hn::Sub(hn::Set(df, kClampEnd), cycles),
+                            hn::Set(df, 1.0f / (kClampEnd - kClampStart)));
+  return hn::IfThenElse(
+      hn::Le(weight, hn::Zero(df)), hn::Zero(df),
+      hn::IfThenElse(hn::Ge(weight, hn::Set(df, 1.0f)), hn::Set(df, 1.0f), weight));
+}
+
+// sum_j a_j cos(2 pi f_j.(x - x_i) + phi_j) of one node in every lane (stratum_sum's `local`):
+// the list at `list` for all lanes (Uniform) or at list + offset[lane].
+template <bool Uniform, bool Filtered>
+HWY_INLINE VF node_sum(DF df, const float* list, const std::int32_t* offsets, std::uint32_t count,
+                       VF px, VF py, const VF (&axes)[4]) {
+  const DI di;
+  const auto offset = hn::Load(di, offsets);
+  VF local = hn::Zero(df);
+  for (std::uint32_t j = 0; j < count; ++j) {
+    VF fx, fy, phase, weight;
+    if constexpr (Uniform) {
+      fx = hn::Set(df, list[j]);
+      fy = hn::Set(df, list[count + j]);
+      phase = hn::Set(df, list[2 * count + j]);
+      weight = hn::Set(df, list[3 * count + j]);
+    } else {
+      fx = hn::GatherIndex(df, list + j, offset);
+      fy = hn::GatherIndex(df, list + count + j, offset);
+      phase = hn::GatherIndex(df, list + 2 * count + j, offset);
+      weight = hn::GatherIndex(df, list + 3 * count + j, offset);
+    }
+    VF c = cos_turns(df, hn::Add(hn::Add(hn::Mul(fx, px), hn::Mul(fy, py)), phase));
+    if constexpr (Filtered) c = hn::Mul(c, clamp_weight(df, fx, fy, axes));
+    local = hn::Add(local, hn::Mul(weight, c));
+  }
+  return local;
+}
+
+template <bool Filtered>
+void strata_lanes(const RandomStrata& strata, int channels, std::span<const Vec2d> positions,
+                  std::span<const Footprint> footprints, std::size_t first, NodeCache& cache,
+                  float* noise) {
+  const DF df;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const std::size_t count = std::min(lanes, positions.size() - first);
+  // Lanes past the end repeat the last position; their results are dropped.
+  const auto position = [&](std::size_t lane) { return first + std::min(lane, count - 1); };
+
+  VF axes[4] = {hn::Zero(df), hn::Zero(df), hn::Zero(df), hn::Zero(df)};
+  if constexpr (Filtered) {
+    HWY_ALIGN float axis[4][kMaxLanes];
+    for (std::size_t lane = 0; lane < lanes; ++lane) {
+      const Footprint& f = footprints[position(lane)];
+      axis[0][lane] = static_cast<float>(f.dpdx.x);
+      axis[1][lane] = static_cast<float>(f.dpdx.y);
+      axis[2][lane] = static_cast<float>(f.dpdy.x);
+      axis[3][lane] = static_cast<float>(f.dpdy.y);
+    }
+    for (int a = 0; a < 4; ++a) axes[a] = hn::Load(df, axis[a]);
+  }
+
+  HWY_ALIGN float channel_noise[kMaxChannels][kMaxLanes];
+  for (int c = 0; c < channels; ++c) hn::Store(hn::Zero(df), df, channel_noise[c]);
+
+  HWY_ALIGN float offset_x[kMaxLanes];
+  HWY_ALIGN float offset_y[kMaxLanes];
+  HWY_ALIGN float weight_lanes[kMaxLanes];
+  HWY_ALIGN std::int32_t list_offset[kMaxLanes];
+  std::int64_t node_x[kMaxLanes];
+  std::int64_t node_y[kMaxLanes];
+  for (std::size_t s = 0; s < strata.strata.size(); ++s) {
+    const SimdStratum& stratum = strata.strata[s];
+    const StratumDraw& draw = stratum.draw;
+    for (std::size_t lane = 0; lane < lanes; ++lane) {
+      const Vec2d p = positions[position(lane)];
+      const NearestNode node = nearest_node(p.x * draw.inverse_spacing, p.y * draw.inverse_spacing);
+      node_x[lane] = node.x;
+      node_y[lane] = node.y;
+      offset_x[lane] = node.offset_x;
+      offset_y[lane] = node.offset_y;
+    }
+    const VF ox = hn::Load(df, offset_x);
+    const VF oy = hn::Load(df, offset_y);
+    VF sum = hn::Zero(df);
+    VF window_square = hn::Zero(df);
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const VF rx = hn::Sub(ox, hn::Set(df, static_cast<float>(dx)));
+        const VF ry = hn::Sub(oy, hn::Set(df, static_cast<float>(dy)));
+        const VF w = window(df, *strata.window, hn::Add(hn::Mul(rx, rx), hn::Mul(ry, ry)));
+        hn::Store(w, df, weight_lanes);
+        const VF px = hn::Mul(rx, hn::Set(df, draw.spacing));
+        const VF py = hn::Mul(ry, hn::Set(df, draw.spacing));
+        // The lanes that see this node (w > 0), in passes of lanes whose nodes share the cache.
+        std::uint32_t remaining = 0;
+        for (std::size_t lane = 0; lane < lanes; ++lane)
+          if (weight_lanes[lane] > 0.0f) remaining |= 1u << lane;
+        while (remaining != 0) {
+          cache.next_pass();
+          HWY_ALIGN std::int32_t in_pass[kMaxLanes];
+          std::int32_t first_offset = -1;
+          bool uniform = true;
+          for (std::size_t lane = 0; lane < lanes; ++lane) {
+            in_pass[lane] = 0;
+            list_offset[lane] = 0;
+            if ((remaining & (1u << lane)) == 0) continue;
+            const std::int32_t found =
+                cache.find(s, stratum, strata.tables, node_x[lane] + dx, node_y[lane] + dy);
+            if (found < 0) continue;
+            in_pass[lane] = -1;
+            list_offset[lane] = found;
+            remaining &= ~(1u << lane);
+            if (first_offset < 0) first_offset = found;
+            uniform = uniform && found == first_offset;
+          }
+          const VF local = uniform
+                               ? node_sum<true, Filtered>(df, cache.data() + first_offset,
+                                                          list_offset, draw.cosines, px, py, axes)
+                               : node_sum<false, Filtered>(df, cache.data(), list_offset,
+                                                           draw.cosines, px, py, axes);
+          const auto take = hn::RebindMask(df, hn::Ne(hn::Load(di, in_pass), hn::Zero(di)));
+          sum = hn::IfThenElse(take, hn::Add(sum, hn::Mul(w, local)), sum);
+          window_square =
+              hn::IfThenElse(take, hn::Add(window_square, hn::Mul(w, w)), window_square);
+        }
+      }
+    }
+    VF scale = hn::Set(df, stratum.amplitude);
+    if (strata.normalise)
+      scale = hn::Mul(scale, hn::Sqrt(hn::Div(hn::Set(df, strata.mean_envelope), window_square)));
+    float* lane_noise = channel_noise[stratum.channel];
+    hn::Store(hn::Add(hn::Load(df, lane_noise), hn::Mul(scale, sum)), df, lane_noise);
+  }
+  for (std::size_t lane = 0; lane < count; ++lane)
+    for (int c = 0; c < channels; ++c)
+      noise[(first + lane) * kMaxChannels + static_cast<std::size_t>(c)] = channel_noise[c][lane];
+}
+
+void RandomStrataNoise(const RandomStrata& strata, int channels, std::span<const Vec2d> positions,
+                       std::span<const Footprint> footprints, NodeCache& cache, float* noise) {
+  const std::size_t lanes = hn::Lanes(DF());
+  for (std::size_t first = 0; first < positions.size(); first += lanes) {
+    if (footprints.empty())
+      strata_lanes<false>(strata, channels, positions, footprints, first, cache, noise);
+    else
+      strata_lanes<true>(strata, channels, positions, footprints, first, cache, noise);
+  }
+}
+
+}  // namespace stochtex::lrp::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace stochtex::lrp {
+
+HWY_EXPORT(RandomStrataNoise);
+
+void random_strata_noise(const RandomStrata& strata, int channels, std::span<const Vec2d> positions,
+                         std::span<const Footprint> footprints, NodeCache& cache,
+                         float* noise) noexcept {
+  HWY_DYNAMIC_DISPATCH(RandomStrataNoise)(strata, channels, positions, footprints, cache, noise);
+}
+
+bool NodeCache::layout(std::span<const SimdStratum> strata) noexcept {
+  std::size_t cosines = 0;
+  for (const SimdStratum& stratum : strata) cosines += stratum.draw.cosines;
+  if (strata.empty() || strata.size() > first_slot_.size()) return false;
+  std::size_t slots = kMaxSlotsPerStratum;
+  while (slots > 1 && (slots * 4 * cosines > kFloats || slots * strata.size() > kMaxSlots))
+    slots /= 2;
+  if (slots * 4 * cosines > kFloats) return false;
+  slots_ = static_cast<std::uint32_t>(slots);
+  std::uint32_t next_float = 0;
+  for (std::size_t s = 0; s < strata.size(); ++s) {
+    first_slot_[s] = static_cast<std::uint32_t>(s * slots);
+    first_float_[s] = next_float;
+    next_float += static_cast<std::uint32_t>(slots * 4 * strata[s].draw.cosines);
+  }
+  std::fill(found_in_.begin(), found_in_.end(), 0u);
+  pass_ = 1;
+  return true;
+}
+
+std::int32_t NodeCache::find(std::size_t s, const SimdStratum& stratum, const StratumTables& tables,
+                             std::int64_t x, std::int64_t y) noexcept {
+  const auto slot_in_stratum = static_cast<std::uint32_t>(
+      (static_cast<std::uint64_t>(x) + 7u * static_cast<std::uint64_t>(y)) & (slots_ - 1u));
+  const std::uint32_t slot = first_slot_[s] + slot_in_stratum;
+  const std::uint32_t cosines = stratum.draw.cosines;
+  const std::uint32_t offset = first_float_[s] + slot_in_stratum * 4u * cosines;
+  const bool resident = found_in_[slot] != 0 && x_[slot] == x && y_[slot] == y;
+  if (!resident) {
+    if (found_in_[slot] == pass_) return -1;
+    // stratum_sum's draws for this node (evaluate.hpp), into fx, fy, phase, weight.
+    float* list = floats_.data() + offset;
+    CounterRng rng(cell_key(x, y, stratum.draw.stream, Stream::phases));
+    for (std::uint32_t j = 0; j < cosines; ++j) {
+      const std::uint32_t draw = rng.next();
+      const std::uint32_t k = stratum.draw.first_substratum + j;
+      const std::uint32_t pick =
+          tables.substratum_first[k] +
+          static_cast<std::uint32_t>(
+              (static_cast<std::uint64_t>(draw & kPickMask) * tables.substratum_count[k]) >>
+              kPickBits);
+      list[j] = tables.frequencies[2 * pick];
+      list[cosines + j] = tables.frequencies[2 * pick + 1];
+      list[2 * cosines + j] = static_cast<float>(draw >> kPickBits) * kPhaseStep;
+      list[3 * cosines + j] = tables.weights[pick];
+    }
+    x_[slot] = x;
+    y_[slot] = y;
+  }
+  found_in_[slot] = pass_;
+  return static_cast<std::int32_t>(offset);
+}
+
+}  // namespace stochtex::lrp
+#endif  // HWY_ONCE

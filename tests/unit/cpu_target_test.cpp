@@ -1,0 +1,143 @@
+// The CPU targets (render.hpp's CpuTarget, docs/design.md §4): every SIMD target Highway can run
+// on this machine gives the scalar reference's bytes, forced one after the other as FastNoise2's
+// cross-ISA tests do, for every method: renders at scale 1 (point samples and filtered) and zoomed
+// out, far from the origin, grids whose width is no multiple of any lane count, and scattered
+// positions with footprints of their own (the lanes of one batch then see different lattice
+// cells).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "stochtex/io.hpp"
+#include "stochtex/stochtex.hpp"
+#include "test_support.hpp"
+
+namespace stochtex {
+namespace {
+
+using test_support::same_bytes;
+
+// The best target again after each test: the setting is process-wide.
+class CpuTargets : public testing::Test {
+ protected:
+  void TearDown() override { set_cpu_target(available_cpu_targets().back()); }
+};
+
+ImageF corpus_crop(const std::string& name, int side) {
+  const ImageF image = read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/" + name);
+  ImageF crop(side, side, image.channels());
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      for (int c = 0; c < image.channels(); ++c) crop.at(x, y, c) = image.at(x, y, c);
+  return crop;
+}
+
+ImageF colour_exemplar() {
+  return corpus_crop("grass_lawn_128.png", 64);
+}
+ImageF grey_exemplar() {
+  return corpus_crop("sand_height_grey_512.png", 64);
+}
+// 6 channels: a material's albedo and normal maps.
+ImageF material_exemplar() {
+  const ImageF maps = test_support::material_exemplar("rock_sandstone", {"albedo", "normal"});
+  ImageF crop(64, 64, maps.channels());
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      for (int c = 0; c < maps.channels(); ++c) crop.at(x, y, c) = maps.at(x, y, c);
+  return crop;
+}
+
+struct Case {
+  std::string name;
+  std::function<Model()> make;
+};
+
+std::vector<Case> cases() {
+  const auto model = [](std::string method, ImageF (*exemplar)(), ParamValues params) {
+    return [=] { return analyze(method, exemplar().view(), params, 5); };
+  };
+  return {
+      {"lrp grey", model("lrp", grey_exemplar, {{"cosines", 24}})},
+      {"lrp colour", model("lrp", colour_exemplar, {{"cosines", 24}})},
+      {"lrp section 5",
+       model("lrp", colour_exemplar, {{"cosines", 24}, {"ratio", 0.3}, {"turbulence", 2}})},
+      {"lrp material", model("lrp", material_exemplar, {{"cosines", 12}})},
+      {"texton colour", model("texton", colour_exemplar, {{"support", 12}, {"iterations", 10}})},
+      {"tiling colour", model("tiling", colour_exemplar, {})},
+      {"gabor colour", model("gabor", colour_exemplar, {{"impulses", 64}, {"iterations", 20}})},
+  };
+}
+
+// The renders and scattered evaluations compared across targets.
+std::vector<ImageF> outputs(const Model& model) {
+  std::vector<ImageF> images;
+  const auto render_grid = [&](const Grid& grid, bool filter) {
+    ImageF out(grid.width, grid.height, model.channels());
+    RenderOptions options;
+    options.threads = 1;
+    options.filter = filter;
+    render(model, grid, 9, out.view(), options);
+    images.push_back(std::move(out));
+  };
+  render_grid({{1e7 + 0.3, -2.5e6}, 1.0, 37, 29}, false);
+  render_grid({{-40.25, 17.5}, 1.0, 37, 29}, true);
+  render_grid({{12.0, -300.0}, 6.0, 23, 19}, true);
+
+  std::mt19937 engine(4);
+  std::uniform_real_distribution<double> place(-200.0, 200.0);
+  std::uniform_real_distribution<double> axis(-4.0, 4.0);
+  std::vector<Vec2d> positions(301);
+  std::vector<Footprint> footprints(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    positions[i] = {place(engine), place(engine)};
+    footprints[i] = {{axis(engine), axis(engine)}, {axis(engine), axis(engine)}};
+  }
+  for (const bool filtered : {false, true}) {
+    ImageF out(1, static_cast<int>(positions.size()), model.channels());
+    evaluate(model, positions,
+             filtered ? std::span<const Footprint>(footprints) : std::span<const Footprint>(), 3,
+             out.view());
+    images.push_back(std::move(out));
+  }
+  return images;
+}
+
+TEST_F(CpuTargets, TheReferenceComesFirstAndTheBestLast) {
+  const std::vector<CpuTarget> targets = available_cpu_targets();
+  ASSERT_FALSE(targets.empty());
+  EXPECT_EQ(targets.front(), CpuTarget::reference);
+  EXPECT_EQ(cpu_target(), targets.back());
+  for (const CpuTarget target : targets) {
+    set_cpu_target(target);
+    EXPECT_EQ(cpu_target(), target) << cpu_target_name(target);
+  }
+}
+
+TEST_F(CpuTargets, EveryTargetGivesTheReferencesBytes) {
+  const std::vector<CpuTarget> targets = available_cpu_targets();
+  // An x86-64 machine runs SSE4 at least: the test must compare a vector target.
+  ASSERT_GE(targets.size(), 3u);
+  for (const Case& c : cases()) {
+    const Model model = c.make();
+    set_cpu_target(CpuTarget::reference);
+    const std::vector<ImageF> reference = outputs(model);
+    for (const CpuTarget target : targets) {
+      if (target == CpuTarget::reference) continue;
+      set_cpu_target(target);
+      const std::vector<ImageF> images = outputs(model);
+      for (std::size_t i = 0; i < images.size(); ++i)
+        EXPECT_TRUE(same_bytes(reference[i], images[i]))
+            << c.name << ", " << cpu_target_name(target) << ", output " << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace stochtex
