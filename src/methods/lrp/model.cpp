@@ -294,20 +294,32 @@ bool LrpModel::evaluate_simd(std::span<const Vec2d> positions,
                             &window_coefficients_,
                             static_cast<float>(mean_envelope_),
                             data_.normalise_envelope};
-  NodeCache cache;
-  if (!cache.layout(random.strata)) return false;
+  const std::unique_ptr<NodeCache> cache = NodeCache::make(random.strata);
+  if (!cache) return false;
   const int channels = Channels <= 4 ? Channels : data_.channels;
   float batch[kSimdBatch * kMaxChannels];
-  for (std::size_t first = 0; first < positions.size(); first += kSimdBatch) {
-    const std::size_t size = std::min(kSimdBatch, positions.size() - first);
+  const auto run = [&](std::size_t first, std::size_t size) {
     random_strata_noise(random, channels, positions.subspan(first, size),
-                        Filtered ? footprints.subspan(first, size) : footprints, cache, batch);
+                        Filtered ? footprints.subspan(first, size) : footprints, *cache, batch);
     for (std::size_t i = 0; i < size; ++i) {
       float noise[Channels] = {};
       for (int c = 0; c < channels; ++c)
         noise[c] = batch[i * kMaxChannels + static_cast<std::size_t>(c)];
       finish_sample<Channels, Filtered>(noise, positions, footprints, first + i, seed, out);
     }
+  };
+  // A grid's samples (a render tile: row-major, out.width per row) are taken in strips
+  // kSimdStrip wide, top to bottom, so the nodes a strip sees stay in the cache from row to row
+  // even zoomed out; any other batch in chunks. Samples are independent: the order changes no
+  // value.
+  const auto width = static_cast<std::size_t>(out.width);
+  if (width >= 2 * kSimdStrip && positions.size() % width == 0) {
+    for (std::size_t x = 0; x < width; x += kSimdStrip)
+      for (std::size_t row = 0; row < positions.size(); row += width)
+        run(row + x, std::min(kSimdStrip, width - x));
+  } else {
+    for (std::size_t first = 0; first < positions.size(); first += kSimdBatch)
+      run(first, std::min(kSimdBatch, positions.size() - first));
   }
   return true;
 }

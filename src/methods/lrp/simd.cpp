@@ -64,32 +64,73 @@ HWY_INLINE VF clamp_weight(DF df, VF fx, VF fy, const VF (&axes)[4]) {
       hn::IfThenElse(hn::Ge(weight, hn::Set(df, 1.0f)), hn::Set(df, 1.0f), weight));
 }
 
-// sum_j a_j cos(2 pi f_j.(x - x_i) + phi_j) of one node in every lane (stratum_sum's `local`):
-// the list at `list` for all lanes (Uniform) or at list + offset[lane].
-template <bool Uniform, bool Filtered>
-HWY_INLINE VF node_sum(DF df, const float* list, const std::int32_t* offsets, std::uint32_t count,
-                       VF px, VF py, const VF (&axes)[4]) {
+// At most this many distinct nodes in one pass are read by selection between broadcasts; more
+// are gathered (a gather of 16 lanes costs more than the cosine it feeds).
+constexpr int kMaxBlendedNodes = 3;
+
+// The lists a pass reads: list `which[lane]` of `lists` for each lane, at data + offset[lane].
+struct PassLists {
+  const float* data;
+  int lists;
+  const float* list[kMaxBlendedNodes];
+  const std::int32_t* which;
+  const std::int32_t* offset;
+};
+
+// sum_j a_j cos(2 pi f_j.(x - x_i) + phi_j) of one node in every lane (stratum_sum's `local`).
+// Lists: 1 = one list for every lane, 2 or 3 = selected per lane, 0 = gathered per lane.
+template <int Lists, bool Filtered>
+HWY_INLINE VF node_sum(DF df, const PassLists& pass, std::uint32_t count, VF px, VF py,
+                       const VF (&axes)[4]) {
   const DI di;
-  const auto offset = hn::Load(di, offsets);
+  const auto offset = hn::Load(di, pass.offset);
+  const auto which = hn::Load(di, pass.which);
+  const auto second = hn::RebindMask(df, hn::Eq(which, hn::Set(di, 1)));
+  const auto third = hn::RebindMask(df, hn::Eq(which, hn::Set(di, 2)));
+  const auto field = [&](std::uint32_t at) {
+    if constexpr (Lists == 0) {
+      return hn::GatherIndex(df, pass.data + at, offset);
+    } else {
+      VF value = hn::Set(df, pass.list[0][at]);
+      if constexpr (Lists >= 2)
+        value = hn::IfThenElse(second, hn::Set(df, pass.list[1][at]), value);
+      if constexpr (Lists >= 3) value = hn::IfThenElse(third, hn::Set(df, pass.list[2][at]), value);
+      return value;
+    }
+  };
   VF local = hn::Zero(df);
   for (std::uint32_t j = 0; j < count; ++j) {
-    VF fx, fy, phase, weight;
-    if constexpr (Uniform) {
-      fx = hn::Set(df, list[j]);
-      fy = hn::Set(df, list[count + j]);
-      phase = hn::Set(df, list[2 * count + j]);
-      weight = hn::Set(df, list[3 * count + j]);
-    } else {
-      fx = hn::GatherIndex(df, list + j, offset);
-      fy = hn::GatherIndex(df, list + count + j, offset);
-      phase = hn::GatherIndex(df, list + 2 * count + j, offset);
-      weight = hn::GatherIndex(df, list + 3 * count + j, offset);
+    const VF fx = field(j);
+    const VF fy = field(count + j);
+    VF clamp = hn::Set(df, 1.0f);
+    if constexpr (Filtered) {
+      // A cosine faded out in every lane adds +-0 to `local`, which starts at +0 and so is never
+      // -0: skipping it changes no bit.
+      clamp = clamp_weight(df, fx, fy, axes);
+      if (hn::AllTrue(df, hn::Eq(clamp, hn::Zero(df)))) continue;
     }
+    const VF phase = field(2 * count + j);
+    const VF weight = field(3 * count + j);
     VF c = cos_turns(df, hn::Add(hn::Add(hn::Mul(fx, px), hn::Mul(fy, py)), phase));
-    if constexpr (Filtered) c = hn::Mul(c, clamp_weight(df, fx, fy, axes));
+    if constexpr (Filtered) c = hn::Mul(c, clamp);
     local = hn::Add(local, hn::Mul(weight, c));
   }
   return local;
+}
+
+template <bool Filtered>
+HWY_INLINE VF node_sum(DF df, const PassLists& pass, std::uint32_t count, VF px, VF py,
+                       const VF (&axes)[4]) {
+  switch (pass.lists) {
+    case 1:
+      return node_sum<1, Filtered>(df, pass, count, px, py, axes);
+    case 2:
+      return node_sum<2, Filtered>(df, pass, count, px, py, axes);
+    case 3:
+      return node_sum<3, Filtered>(df, pass, count, px, py, axes);
+    default:
+      return node_sum<0, Filtered>(df, pass, count, px, py, axes);
+  }
 }
 
 template <bool Filtered>
@@ -155,26 +196,37 @@ void strata_lanes(const RandomStrata& strata, int channels, std::span<const Vec2
         while (remaining != 0) {
           cache.next_pass();
           HWY_ALIGN std::int32_t in_pass[kMaxLanes];
-          std::int32_t first_offset = -1;
-          bool uniform = true;
+          HWY_ALIGN std::int32_t which[kMaxLanes];
+          PassLists pass{cache.data(), 0, {}, which, list_offset};
+          std::int32_t distinct[kMaxLanes];
           for (std::size_t lane = 0; lane < lanes; ++lane) {
             in_pass[lane] = 0;
             list_offset[lane] = 0;
+            which[lane] = 0;
             if ((remaining & (1u << lane)) == 0) continue;
-            const std::int32_t found =
-                cache.find(s, stratum, strata.tables, node_x[lane] + dx, node_y[lane] + dy);
+            // Neighbouring lanes mostly share a node: one look-up per run of them.
+            const bool same_node = lane > 0 && in_pass[lane - 1] != 0 &&
+                                   node_x[lane] == node_x[lane - 1] &&
+                                   node_y[lane] == node_y[lane - 1];
+            const std::int32_t found = same_node ? list_offset[lane - 1]
+                                                 : cache.find(s, stratum, strata.tables,
+                                                              node_x[lane] + dx, node_y[lane] + dy);
             if (found < 0) continue;
             in_pass[lane] = -1;
             list_offset[lane] = found;
             remaining &= ~(1u << lane);
-            if (first_offset < 0) first_offset = found;
-            uniform = uniform && found == first_offset;
+            int list = 0;
+            while (list < pass.lists && distinct[list] != found) ++list;
+            if (list == pass.lists) distinct[pass.lists++] = found;
+            which[lane] = list;
           }
-          const VF local = uniform
-                               ? node_sum<true, Filtered>(df, cache.data() + first_offset,
-                                                          list_offset, draw.cosines, px, py, axes)
-                               : node_sum<false, Filtered>(df, cache.data(), list_offset,
-                                                           draw.cosines, px, py, axes);
+          if (pass.lists <= kMaxBlendedNodes) {
+            for (int list = 0; list < pass.lists; ++list)
+              pass.list[list] = cache.data() + distinct[list];
+          } else {
+            pass.lists = 0;
+          }
+          const VF local = node_sum<Filtered>(df, pass, draw.cosines, px, py, axes);
           const auto take = hn::RebindMask(df, hn::Ne(hn::Load(di, in_pass), hn::Zero(di)));
           sum = hn::IfThenElse(take, hn::Add(sum, hn::Mul(w, local)), sum);
           window_square =
@@ -218,36 +270,40 @@ void random_strata_noise(const RandomStrata& strata, int channels, std::span<con
   HWY_DYNAMIC_DISPATCH(RandomStrataNoise)(strata, channels, positions, footprints, cache, noise);
 }
 
-bool NodeCache::layout(std::span<const SimdStratum> strata) noexcept {
+std::unique_ptr<NodeCache> NodeCache::make(std::span<const SimdStratum> strata) noexcept {
+  constexpr std::size_t kMaxWidth = 32;
+  constexpr std::size_t kMaxFloats = std::size_t{1} << 20;  // 4 MiB
   std::size_t cosines = 0;
   for (const SimdStratum& stratum : strata) cosines += stratum.draw.cosines;
-  if (strata.empty() || strata.size() > first_slot_.size()) return false;
-  std::size_t slots = kMaxSlotsPerStratum;
-  while (slots > 1 && (slots * 4 * cosines > kFloats || slots * strata.size() > kMaxSlots))
-    slots /= 2;
-  if (slots * 4 * cosines > kFloats) return false;
-  slots_ = static_cast<std::uint32_t>(slots);
-  std::uint32_t next_float = 0;
-  for (std::size_t s = 0; s < strata.size(); ++s) {
-    first_slot_[s] = static_cast<std::uint32_t>(s * slots);
-    first_float_[s] = next_float;
-    next_float += static_cast<std::uint32_t>(slots * 4 * strata[s].draw.cosines);
+  std::size_t width = kMaxWidth;
+  while (width >= 4 && width * 4 * 4 * cosines > kMaxFloats) width /= 2;
+  if (width < 4) return nullptr;
+  try {
+    auto cache = std::make_unique<NodeCache>();
+    cache->width_ = static_cast<std::uint32_t>(width);
+    const std::size_t slots = width * 4;
+    cache->slots_.resize(slots * strata.size());
+    std::uint32_t next_float = 0;
+    for (const SimdStratum& stratum : strata) {
+      cache->first_float_.push_back(next_float);
+      next_float += static_cast<std::uint32_t>(slots * 4 * stratum.draw.cosines);
+    }
+    cache->floats_.resize(next_float);
+    return cache;
+  } catch (const std::bad_alloc&) {
+    return nullptr;
   }
-  std::fill(found_in_.begin(), found_in_.end(), 0u);
-  pass_ = 1;
-  return true;
 }
 
 std::int32_t NodeCache::find(std::size_t s, const SimdStratum& stratum, const StratumTables& tables,
                              std::int64_t x, std::int64_t y) noexcept {
-  const auto slot_in_stratum = static_cast<std::uint32_t>(
-      (static_cast<std::uint64_t>(x) + 7u * static_cast<std::uint64_t>(y)) & (slots_ - 1u));
-  const std::uint32_t slot = first_slot_[s] + slot_in_stratum;
+  const std::uint32_t slot_in_stratum = (static_cast<std::uint32_t>(x) & (width_ - 1u)) +
+                                        width_ * (static_cast<std::uint32_t>(y) & 3u);
+  Slot& slot = slots_[s * width_ * 4 + slot_in_stratum];
   const std::uint32_t cosines = stratum.draw.cosines;
   const std::uint32_t offset = first_float_[s] + slot_in_stratum * 4u * cosines;
-  const bool resident = found_in_[slot] != 0 && x_[slot] == x && y_[slot] == y;
-  if (!resident) {
-    if (found_in_[slot] == pass_) return -1;
+  if (slot.found_in == 0 || slot.x != x || slot.y != y) {
+    if (slot.found_in == pass_) return -1;
     // stratum_sum's draws for this node (evaluate.hpp), into fx, fy, phase, weight.
     float* list = floats_.data() + offset;
     CounterRng rng(cell_key(x, y, stratum.draw.stream, Stream::phases));
@@ -264,10 +320,10 @@ std::int32_t NodeCache::find(std::size_t s, const SimdStratum& stratum, const St
       list[2 * cosines + j] = static_cast<float>(draw >> kPickBits) * kPhaseStep;
       list[3 * cosines + j] = tables.weights[pick];
     }
-    x_[slot] = x;
-    y_[slot] = y;
+    slot.x = x;
+    slot.y = y;
   }
-  found_in_[slot] = pass_;
+  slot.found_in = pass_;
   return static_cast<std::int32_t>(offset);
 }
 

@@ -9,10 +9,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
+#include <vector>
 
 #include "methods/lrp/evaluate.hpp"
-#include "methods/lrp/model.hpp"
 #include "methods/lrp/window.hpp"
 #include "stochtex/model.hpp"
 
@@ -34,19 +35,14 @@ struct RandomStrata {
 };
 
 // The cosines of recently seen lattice nodes, kept for one evaluate() call (a render tile): node
-// (x, y) of stratum s lives in slot (x + 7 y) mod `slots` of its stratum, as the lists
-// fx[J_S], fy[J_S], phase[J_S], weight[J_S] (StratumSum's draw, pick and table reads). 7 rows
-// apart, the nodes around a row of samples never share a slot.
+// (x, y) of stratum s lives in slot (x mod W) + W (y mod 4) of its stratum's W x 4 slots, as the
+// lists fx[J_S], fy[J_S], phase[J_S], weight[J_S] (stratum_sum's draws, picks and table reads).
+// The nodes around a row of samples, up to W wide and 4 high, never share a slot.
 class NodeCache {
  public:
-  static constexpr std::size_t kFloats = 16384;  // 64 KiB
-  static constexpr std::size_t kMaxSlots = 1024;
-  static constexpr std::size_t kMaxSlotsPerStratum = 64;
-
-  // Lays the slots out for `strata` (the cache starts empty); false when one node of every
-  // stratum does not fit (J above about 1,300 cosines over all channels): the caller then takes
-  // the scalar reference.
-  bool layout(std::span<const SimdStratum> strata) noexcept;
+  // A cache laid out for `strata`, or null when it cannot be allocated or W would fall below 4
+  // (beyond 16,384 cosines over all channels): the caller then takes the scalar reference.
+  static std::unique_ptr<NodeCache> make(std::span<const SimdStratum> strata) noexcept;
 
   // Starts a pass: nodes found in it stay until the next pass starts.
   void next_pass() noexcept { ++pass_; }
@@ -57,22 +53,26 @@ class NodeCache {
   const float* data() const noexcept { return floats_.data(); }
 
  private:
-  std::array<float, kFloats> floats_;
-  std::array<std::int64_t, kMaxSlots> x_;
-  std::array<std::int64_t, kMaxSlots> y_;
-  std::array<std::uint64_t, kMaxSlots> found_in_;  // the pass that found it; 0 = empty
-  std::array<std::uint32_t, kMaxChannels * kMaxStrataPerChannel> first_slot_;
-  std::array<std::uint32_t, kMaxChannels * kMaxStrataPerChannel> first_float_;
-  std::uint32_t slots_ = 0;  // per stratum, a power of two
+  struct Slot {
+    std::int64_t x = 0;
+    std::int64_t y = 0;
+    std::uint64_t found_in = 0;  // the pass that found it; 0 = empty
+  };
+  std::vector<float> floats_;
+  std::vector<Slot> slots_;
+  std::vector<std::uint32_t> first_float_;  // per stratum
+  std::uint32_t width_ = 0;                 // W, a power of two
   std::uint64_t pass_ = 1;
 };
 
-// The most samples one call of add_random_strata takes.
+// The most samples one call of random_strata_noise takes, and the width of the strips a grid is
+// taken in.
 inline constexpr std::size_t kSimdBatch = 64;
+inline constexpr std::size_t kSimdStrip = 16;
 
 // noise[i * kMaxChannels + c] = the sum of the random strata of channel c at positions[i] (at
 // most kSimdBatch positions), channels 0 to `channels` - 1, as LrpModel::evaluate_typed sums them
-// (bit for bit); footprints empty for point samples. `cache` has been laid out for the strata.
+// (bit for bit); footprints empty for point samples. `cache` was made for the strata.
 void random_strata_noise(const RandomStrata& strata, int channels, std::span<const Vec2d> positions,
                          std::span<const Footprint> footprints, NodeCache& cache,
                          float* noise) noexcept;
