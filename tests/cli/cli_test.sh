@@ -241,6 +241,20 @@ if [[ -s $models/s6.pfm ]] && ! cmp -s "$models/t1.pfm" "$models/s6.pfm"; then p
   fail "different seeds" "the renders are identical"
 fi
 
+# Every CPU target gives the scalar reference's bytes (tests/unit/cpu_target_test.cpp forces each).
+expect_ok "analyze lrp" "$stochtex" analyze "$exemplar" -m lrp -p cosines=12 -o "$models/lrp.stx"
+for target in reference best; do
+  expect_ok "render --cpu-target $target" "$stochtex" render "$models/lrp.stx" \
+    -o "$models/cpu_$target.pfm" --size 40x30 --scale 3 --seed 4 --cpu-target "$target"
+done
+if [[ -s $models/cpu_best.pfm ]] && cmp -s "$models/cpu_reference.pfm" "$models/cpu_best.pfm"; then
+  pass
+else
+  fail "--cpu-target reference and best" "the renders differ"
+fi
+expect_parse_error "unknown --cpu-target" "$stochtex" render "$model" -o "$out/x.png" "${size[@]}" \
+  --cpu-target neon
+
 # The OpenGL backend (llvmpipe without a GPU): same grid and seed, same picture as the CPU.
 expect_ok "render --backend gl" "$stochtex" render "$model" -o "$models/gl.png" --size 48x40 \
   --seed 5 --backend gl && expect_file "render --backend gl writes the image" "$models/gl.png"
