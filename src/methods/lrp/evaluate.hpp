@@ -79,6 +79,21 @@ struct StratumTables {
   const float* weights;      // one amplitude factor per frequency, or nullptr for 1
 };
 
+// The frequency that `draw` picks from sub-stratum k: its low kPickBits bits, uniformly by
+// multiply-shift (section 4.3; bias <= count / 2^20).
+inline std::uint32_t pick_frequency(const StratumTables& tables, std::uint32_t k,
+                                    std::uint32_t draw) noexcept {
+  return tables.substratum_first[k] +
+         static_cast<std::uint32_t>(
+             (static_cast<std::uint64_t>(draw & kPickMask) * tables.substratum_count[k]) >>
+             kPickBits);
+}
+
+// The phase in turns that `draw` gives: its top 32 - kPickBits bits, on a grid of kPhaseStep.
+inline float draw_phase(std::uint32_t draw) noexcept {
+  return static_cast<float>(draw >> kPickBits) * kPhaseStep;
+}
+
 // Lattice spacing, cosine count and sub-strata of one random stratum, and its random stream.
 struct StratumDraw {
   double inverse_spacing;
@@ -123,15 +138,10 @@ inline StratumSum stratum_sum(const StratumTables& tables, const StratumDraw& st
         // 1/4096 turn grid), its low kPickBits = 20 bits pick one frequency of sub-stratum j
         // uniformly by multiply-shift (section 4.3; bias <= count / 2^20).
         const std::uint32_t draw = rng.next();
-        const std::uint32_t k = stratum.first_substratum + j;
-        const std::uint32_t pick =
-            tables.substratum_first[k] +
-            static_cast<std::uint32_t>(
-                (static_cast<std::uint64_t>(draw & kPickMask) * tables.substratum_count[k]) >>
-                kPickBits);
+        const std::uint32_t pick = pick_frequency(tables, stratum.first_substratum + j, draw);
         const float fx = tables.frequencies[2 * pick];
         const float fy = tables.frequencies[2 * pick + 1];
-        const float phase = static_cast<float>(draw >> kPickBits) * kPhaseStep;
+        const float phase = draw_phase(draw);
         float c = cos_turns(fx * px + fy * py + phase);
         if constexpr (Filtered) {
           const float along_a = std::abs(fx * axes[0] + fy * axes[1]);

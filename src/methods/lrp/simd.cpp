@@ -309,15 +309,10 @@ std::int32_t NodeCache::find(std::size_t s, const SimdStratum& stratum, const St
     CounterRng rng(cell_key(x, y, stratum.draw.stream, Stream::phases));
     for (std::uint32_t j = 0; j < cosines; ++j) {
       const std::uint32_t draw = rng.next();
-      const std::uint32_t k = stratum.draw.first_substratum + j;
-      const std::uint32_t pick =
-          tables.substratum_first[k] +
-          static_cast<std::uint32_t>(
-              (static_cast<std::uint64_t>(draw & kPickMask) * tables.substratum_count[k]) >>
-              kPickBits);
+      const std::uint32_t pick = pick_frequency(tables, stratum.draw.first_substratum + j, draw);
       list[j] = tables.frequencies[2 * pick];
       list[cosines + j] = tables.frequencies[2 * pick + 1];
-      list[2 * cosines + j] = static_cast<float>(draw >> kPickBits) * kPhaseStep;
+      list[2 * cosines + j] = draw_phase(draw);
       list[3 * cosines + j] = tables.weights[pick];
     }
     slot.x = x;
