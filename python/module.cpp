@@ -340,6 +340,34 @@ PYBIND11_MODULE(_stochtex, m) {
       py::arg("exemplar"), py::arg("width"), py::arg("height"), py::arg("seed") = 0,
       "The exemplar's Gaussian version (ADSN) at width x height, float32 HxWxC.");
   m.def(
+      "cpu_targets",
+      [] {
+        std::vector<std::string> names;
+        for (const CpuTarget target : available_cpu_targets())
+          names.emplace_back(cpu_target_name(target));
+        return names;
+      },
+      "The CPU evaluators' instruction sets this machine runs: 'reference' (the scalar "
+      "evaluator) first, the default (the best) last; every one gives the same bytes.");
+  m.def(
+      "cpu_target", [] { return std::string(cpu_target_name(cpu_target())); },
+      "The CPU target evaluation uses now.");
+  m.def(
+      "set_cpu_target",
+      [](const std::string& name) {
+        const std::vector<CpuTarget> targets = available_cpu_targets();
+        for (const CpuTarget target : targets)
+          if (cpu_target_name(target) == name) return set_cpu_target(target);
+        std::string names;
+        for (const CpuTarget target : targets)
+          names += (names.empty() ? "" : ", ") + std::string(cpu_target_name(target));
+        throw py::value_error("set_cpu_target: this machine cannot run '" + name + "'; it runs " +
+                              names);
+      },
+      py::arg("name"),
+      "Forces a CPU target for every later evaluation in the process (speed only, never the "
+      "output); call it while no render runs.");
+  m.def(
       "mix",
       [](const py::array& a, const py::array& b, const py::object& mask, std::uint32_t seed,
          const py::kwargs& params) {

@@ -5,6 +5,8 @@
     image = model.render(512, 512, seed=1)              # 512x512xC float32
 """
 
-from ._stochtex import Model, analyze, analyze_material, compare, gaussian, load, methods, mix
+from ._stochtex import (Model, analyze, analyze_material, compare, cpu_target, cpu_targets,
+                        gaussian, load, methods, mix, set_cpu_target)
 
-__all__ = ["Model", "analyze", "analyze_material", "compare", "gaussian", "load", "methods", "mix"]
+__all__ = ["Model", "analyze", "analyze_material", "compare", "cpu_target", "cpu_targets",
+           "gaussian", "load", "methods", "mix", "set_cpu_target"]

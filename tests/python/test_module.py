@@ -81,6 +81,23 @@ def test_render_is_deterministic_whatever_the_threads(texton_model):
                                                            seed=10))
 
 
+def test_every_cpu_target_renders_the_same_bytes(exemplar):
+    model = stochtex.analyze(exemplar, "lrp", cosines=12)
+    targets = stochtex.cpu_targets()
+    assert targets[0] == "reference" and stochtex.cpu_target() == targets[-1]
+    try:
+        renders = []
+        for target in targets:
+            stochtex.set_cpu_target(target)
+            assert stochtex.cpu_target() == target
+            renders.append(model.render(37, 29, origin=(-5, 8), scale=3, seed=2, threads=1))
+        assert all(numpy.array_equal(renders[0], r) for r in renders[1:])
+        with pytest.raises(ValueError, match="cannot run 'neon'"):
+            stochtex.set_cpu_target("neon")
+    finally:
+        stochtex.set_cpu_target(targets[-1])
+
+
 def test_offset_chunks_equal_the_whole_render(texton_model):
     whole = texton_model.render(70, 50, origin=(1, 2), scale=1.5, seed=4)
     chunk = texton_model.render(30, 20, origin=(1, 2), scale=1.5, seed=4, offset=(33, 17))
