@@ -72,11 +72,51 @@ void draw_impulses(const ImpulseCache& cache, std::int64_t x, std::int64_t y, st
   }
 }
 
-// Adds the kernels of the n impulses of `list` at offset (offset_x, offset_y) from their cell's
-// corner to `sum`, in their order (KernelShape::at, one impulse per lane).
+// The impulses of one sample found within the kernel's support and not yet evaluated, in the
+// reference's order: their offsets dx, dy from p, envelopes, frequencies and phases. Fewer than
+// one vector's worth wait for the next cell, so the exp and cos polynomials run on full vectors.
+struct Pending {
+  static constexpr std::size_t kFields = 6;
+  HWY_ALIGN float field[kFields][2 * kMaxLanes] = {};
+  std::size_t count = 0;
+};
+
+// KernelShape::at's value for the first `count` pending impulses, one per lane, added to `sum` in
+// their order.
+template <bool Filtered>
+float evaluate_pending(const KernelShape& shape, const Pending& pending, std::size_t count,
+                       float sum) {
+  const DF df;
+  const VF dx = hn::Load(df, pending.field[0]);
+  const VF dy = hn::Load(df, pending.field[1]);
+  VF wx = hn::Load(df, pending.field[3]);
+  VF wy = hn::Load(df, pending.field[4]);
+  VF exponent = hn::Neg(hn::Load(df, pending.field[2]));
+  if constexpr (Filtered) {
+    const VF attenuation = hn::Add(hn::Add(hn::Mul(hn::Mul(hn::Set(df, shape.dxx), wx), wx),
+                                           hn::Mul(hn::Mul(hn::Set(df, shape.dxy), wx), wy)),
+                                   hn::Mul(hn::Mul(hn::Set(df, shape.dyy), wy), wy));
+    exponent = hn::Sub(exponent, attenuation);
+    const VF mapped_x =
+        hn::Add(hn::Mul(hn::Set(df, shape.fxx), wx), hn::Mul(hn::Set(df, shape.fxy), wy));
+    wy = hn::Add(hn::Mul(hn::Set(df, shape.fxy), wx), hn::Mul(hn::Set(df, shape.fyy), wy));
+    wx = mapped_x;
+  }
+  // Unfiltered, the reference subtracts an attenuation of +0, which leaves every value as it is.
+  const VF argument =
+      hn::Add(hn::Add(hn::Mul(wx, dx), hn::Mul(wy, dy)), hn::Load(df, pending.field[5]));
+  HWY_ALIGN float values[kMaxLanes] = {};
+  hn::Store(hn::Mul(ExpFloat(df, exponent), CosTurns(df, argument)), df, values);
+  for (std::size_t i = 0; i < count; ++i) sum += values[i];
+  return sum;
+}
+
+// Appends the impulses of `list` (n of them) within the kernel's support at offset
+// (offset_x, offset_y) from their cell's corner to `pending`, in their order, and evaluates each
+// full vector of them into `sum`.
 template <bool Filtered>
 float add_kernels(const KernelShape& shape, const float* list, std::uint32_t n, float offset_x,
-                  float offset_y, float sum) {
+                  float offset_y, Pending& pending, float sum) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   const VF ox = hn::Set(df, offset_x);
@@ -84,7 +124,6 @@ float add_kernels(const KernelShape& shape, const float* list, std::uint32_t n, 
   const VF ex = hn::Set(df, shape.ex);
   const VF exy = hn::Set(df, shape.exy);
   const VF ey = hn::Set(df, shape.ey);
-  HWY_ALIGN float values[kMaxLanes];
   for (std::uint32_t j = 0; j < n; j += static_cast<std::uint32_t>(lanes)) {
     const VF dx = hn::Sub(ox, hn::Load(df, list + j));
     const VF dy = hn::Sub(oy, hn::Load(df, list + kCapacity + j));
@@ -93,38 +132,29 @@ float add_kernels(const KernelShape& shape, const float* list, std::uint32_t n, 
                 hn::Mul(hn::Mul(ey, dy), dy));
     const auto inside = hn::And(hn::FirstN(df, n - j), hn::Lt(envelope, hn::Set(df, kPiF)));
     if (hn::AllFalse(df, inside)) continue;
-    VF wx = hn::Load(df, list + 2 * kCapacity + j);
-    VF wy = hn::Load(df, list + 3 * kCapacity + j);
-    VF exponent = hn::Neg(envelope);
-    if constexpr (Filtered) {
-      const VF dxx = hn::Set(df, shape.dxx);
-      const VF dxy = hn::Set(df, shape.dxy);
-      const VF dyy = hn::Set(df, shape.dyy);
-      const VF fxx = hn::Set(df, shape.fxx);
-      const VF fxy = hn::Set(df, shape.fxy);
-      const VF fyy = hn::Set(df, shape.fyy);
-      const VF attenuation =
-          hn::Add(hn::Add(hn::Mul(hn::Mul(dxx, wx), wx), hn::Mul(hn::Mul(dxy, wx), wy)),
-                  hn::Mul(hn::Mul(dyy, wy), wy));
-      exponent = hn::Sub(exponent, attenuation);
-      const VF mapped_x = hn::Add(hn::Mul(fxx, wx), hn::Mul(fxy, wy));
-      wy = hn::Add(hn::Mul(fxy, wx), hn::Mul(fyy, wy));
-      wx = mapped_x;
-    }
-    // Unfiltered, the reference subtracts an attenuation of +0, which leaves every value as it is.
-    const VF argument =
-        hn::Add(hn::Add(hn::Mul(wx, dx), hn::Mul(wy, dy)), hn::Load(df, list + 4 * kCapacity + j));
-    const VF value = hn::Mul(ExpFloat(df, exponent), CosTurns(df, argument));
-    hn::StoreU(hn::Compress(value, inside), df, values);
-    const std::size_t count = hn::CountTrue(df, inside);
-    for (std::size_t i = 0; i < count; ++i) sum += values[i];
+    const VF fields[Pending::kFields] = {dx,
+                                         dy,
+                                         envelope,
+                                         hn::Load(df, list + 2 * kCapacity + j),
+                                         hn::Load(df, list + 3 * kCapacity + j),
+                                         hn::Load(df, list + 4 * kCapacity + j)};
+    for (std::size_t f = 0; f < Pending::kFields; ++f)
+      hn::StoreU(hn::Compress(fields[f], inside), df, pending.field[f] + pending.count);
+    pending.count += hn::CountTrue(df, inside);
+    if (pending.count < lanes) continue;
+    sum = evaluate_pending<Filtered>(shape, pending, lanes, sum);
+    pending.count -= lanes;
+    for (std::size_t f = 0; f < Pending::kFields; ++f)
+      hn::Store(hn::LoadU(df, pending.field[f] + lanes), df, pending.field[f]);
   }
   return sum;
 }
 
-float ImpulseSum(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells, Vec2d p,
-                 double cell_size) {
+template <bool Filtered>
+float impulse_sum_typed(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells,
+                        Vec2d p, double cell_size) {
   float sum = 0.0f;
+  Pending pending;
   for (std::int64_t cell_y = cells.first_y; cell_y <= cells.last_y; ++cell_y) {
     const float offset_y = cell_offset(p.y, cell_y, cell_size);
     for (std::int64_t cell_x = cells.first_x; cell_x <= cells.last_x; ++cell_x) {
@@ -146,21 +176,24 @@ float ImpulseSum(ImpulseCache& cache, const KernelShape& shape, const CellRange&
           cache.count[slot] = count;
         }
       }
-      if (count > kCapacity) {
-        for (std::uint32_t first = 0; first < count; first += kCapacity) {
-          const std::uint32_t block = std::min<std::uint32_t>(kCapacity, count - first);
-          draw_impulses(cache, cell_x, cell_y, first, block, cache.scratch);
-          sum = shape.filtered
-                    ? add_kernels<true>(shape, cache.scratch, block, offset_x, offset_y, sum)
-                    : add_kernels<false>(shape, cache.scratch, block, offset_x, offset_y, sum);
-        }
+      if (count <= kCapacity) {
+        sum = add_kernels<Filtered>(shape, list, count, offset_x, offset_y, pending, sum);
         continue;
       }
-      sum = shape.filtered ? add_kernels<true>(shape, list, count, offset_x, offset_y, sum)
-                           : add_kernels<false>(shape, list, count, offset_x, offset_y, sum);
+      for (std::uint32_t first = 0; first < count; first += kCapacity) {
+        const std::uint32_t block = std::min<std::uint32_t>(kCapacity, count - first);
+        draw_impulses(cache, cell_x, cell_y, first, block, cache.scratch);
+        sum = add_kernels<Filtered>(shape, cache.scratch, block, offset_x, offset_y, pending, sum);
+      }
     }
   }
-  return sum;
+  return pending.count == 0 ? sum : evaluate_pending<Filtered>(shape, pending, pending.count, sum);
+}
+
+float ImpulseSum(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells, Vec2d p,
+                 double cell_size) {
+  return shape.filtered ? impulse_sum_typed<true>(cache, shape, cells, p, cell_size)
+                        : impulse_sum_typed<false>(cache, shape, cells, p, cell_size);
 }
 
 }  // namespace stochtex::gabor::HWY_NAMESPACE
