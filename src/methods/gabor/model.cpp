@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -377,10 +378,14 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
     std::optional<texton::CellCache> cells;
     int cached_level = -1;
     std::uint32_t level_seed = 0;
+    // A render's samples share one footprint: the filter is derived again only when the footprint
+    // changes (bit for bit, so the result is the same).
+    KernelFilter filter = kernel_filter(grid, footprints.empty() ? nullptr : &footprints[0]);
     for (std::size_t index = 0; index < positions.size(); ++index) {
       const Vec2d p = positions[index];
-      const KernelFilter filter =
-          kernel_filter(grid, footprints.empty() ? nullptr : &footprints[index]);
+      if (index > 0 && !footprints.empty() &&
+          std::memcmp(&footprints[index], &footprints[index - 1], sizeof(Footprint)) != 0)
+        filter = kernel_filter(grid, &footprints[index]);
       if (filter.skip) continue;
       const int level = filter.level;
       const double cell_size = std::ldexp(grid.cell_size, level);
