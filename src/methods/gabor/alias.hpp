@@ -63,14 +63,25 @@ inline void build_alias_table(std::span<const double> weights, std::span<float> 
     probability[i] = alias[i] != i ? static_cast<float>(scaled[i]) : 1.0f;
 }
 
+// The column of a draw: the word's multiply-shift onto [0, count).
+inline std::uint32_t alias_column(std::uint32_t word, std::uint32_t count) noexcept {
+  return static_cast<std::uint32_t>((static_cast<std::uint64_t>(word) * count) >> 32u);
+}
+
+// The entry picked by a column word and a coin: the column's own index or its alias.
+inline std::uint32_t alias_pick(const float* probability, const std::uint32_t* alias,
+                                std::uint32_t count, std::uint32_t word, float coin) noexcept {
+  const std::uint32_t column = alias_column(word, count);
+  return coin < probability[column] ? column : alias[column];
+}
+
 // One draw: a uniform column, then the column's own index or its alias. Two generator draws, each
 // in its own statement (hash.hpp: argument evaluation order is unspecified).
 inline std::uint32_t draw_alias(const float* probability, const std::uint32_t* alias,
                                 std::uint32_t count, CounterRng& rng) noexcept {
   const std::uint32_t word = rng.next();
-  const auto column = static_cast<std::uint32_t>((static_cast<std::uint64_t>(word) * count) >> 32u);
   const float coin = rng.uniform();
-  return coin < probability[column] ? column : alias[column];
+  return alias_pick(probability, alias, count, word, coin);
 }
 
 }  // namespace stochtex::gabor

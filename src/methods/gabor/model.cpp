@@ -3,15 +3,19 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "core/cpu_target.hpp"
 #include "core/hash.hpp"
 #include "core/surface_process.hpp"
 #include "methods/gabor/alias.hpp"
+#include "methods/gabor/evaluate.hpp"
 #include "methods/gabor/params.hpp"
+#include "methods/gabor/simd.hpp"
 #include "methods/texton/evaluate.hpp"
 #include "model/value_range.hpp"
 #include "stochtex/error.hpp"
@@ -32,21 +36,6 @@ static_assert(kParams[1].name == "impulses", "the evaluator reads the impulse bu
 constexpr std::array<const char*, 5> kReportNames = {"sparseness", "fit_error",
                                                      "offdiagonality_independent",
                                                      "offdiagonality_pca", "offdiagonality_rgb"};
-
-// The kernel of one grid filtered by one footprint, as the evaluator uses it: envelope
-// exp(-x^T E x), frequency map omega' = F omega, attenuation exp(-omega^T D omega), amplitude
-// gain, the radius the envelope reaches and the thinning level. Shared by the planar and the
-// surface evaluators (the latter with the footprint projected on the tangent plane).
-struct KernelFilter {
-  double e00, e01, e11;
-  double f00 = 1.0, f01 = 0.0, f11 = 1.0;
-  double d00 = 0.0, d01 = 0.0, d11 = 0.0;
-  double gain = 1.0;
-  double reach = 0.0;
-  bool filtered = false;
-  bool skip = true;  // the filtered grid adds nothing at this footprint
-  int level = 0;
-};
 
 KernelFilter kernel_filter(const GaborModel::Grid& grid, const Footprint* footprint) {
   const double a2 = static_cast<double>(grid.bandwidth) * grid.bandwidth;
@@ -126,23 +115,6 @@ KernelFilter kernel_filter(const GaborModel::Grid& grid, const Footprint* footpr
   return k;
 }
 
-// The kernel parameters of one grid (section 6.2): its frequencies and alias table.
-struct GridKernels {
-  const float* frequency_x;
-  const float* frequency_y;
-  const float* probability;
-  const std::uint32_t* alias;
-  std::uint32_t count;
-
-  // One impulse's kernel: a frequency by the alias method, then a uniform phase, in this order.
-  void draw(CounterRng& rng, float& wx, float& wy, float& phase) const noexcept {
-    const std::uint32_t k = draw_alias(probability, alias, count, rng);
-    phase = rng.uniform();
-    wx = frequency_x[k];
-    wy = frequency_y[k];
-  }
-};
-
 GridKernels grid_kernels(const GaborModel& model, const GaborModel::Grid& grid) {
   return {model.frequency_x().data() + grid.first, model.frequency_y().data() + grid.first,
           model.alias_probability().data() + grid.first, model.alias_index().data() + grid.first,
@@ -154,42 +126,6 @@ float& batch_pixel(ImageView<float> out, std::size_t index, int c) {
   const auto width = static_cast<std::size_t>(out.width);
   return out.at(static_cast<int>(index % width), static_cast<int>(index / width), c);
 }
-
-// KernelFilter in float, for the inner loop.
-struct KernelShape {
-  float ex, exy, ey;
-  float fxx, fxy, fyy;
-  float dxx, dxy, dyy;
-  bool filtered;
-
-  explicit KernelShape(const KernelFilter& k)
-      : ex(static_cast<float>(k.e00)),
-        exy(static_cast<float>(2.0 * k.e01)),
-        ey(static_cast<float>(k.e11)),
-        fxx(static_cast<float>(k.f00)),
-        fxy(static_cast<float>(k.f01)),
-        fyy(static_cast<float>(k.f11)),
-        dxx(static_cast<float>(k.d00)),
-        dxy(static_cast<float>(2.0 * k.d01)),
-        dyy(static_cast<float>(k.d11)),
-        filtered(k.filtered) {}
-
-  // The filtered kernel of frequency (wx, wy) and phase at offset (dx, dy) = x - x_i, into
-  // `value`; false where the envelope is truncated (beyond e^-pi).
-  bool at(float wx, float wy, float phase, float dx, float dy, float& value) const noexcept {
-    const float envelope = ex * dx * dx + exy * dx * dy + ey * dy * dy;
-    if (envelope >= kPiF) return false;
-    float attenuation = 0.0f;
-    if (filtered) {
-      attenuation = dxx * wx * wx + dxy * wx * wy + dyy * wy * wy;
-      const float mapped_x = fxx * wx + fxy * wy;
-      wy = fxy * wx + fyy * wy;
-      wx = mapped_x;
-    }
-    value = std::exp(-envelope - attenuation) * std::cos(kTwoPiF * (wx * dx + wy * dy + phase));
-    return true;
-  }
-};
 
 }  // namespace
 
@@ -433,49 +369,57 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
 
   // Grid-major: all samples of the batch visit one grid before the next, so one cell cache serves
   // them and the sum per sample runs over grids, cells and impulses in a fixed order (the output
-  // does not depend on the batch).
+  // does not depend on the batch). The vectorised twin (simd.hpp) returns the same sums.
+  const bool simd = simd_enabled();
+  ImpulseCache impulses;
   for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
     const Grid& grid = grids_[grid_index];
     const GridKernels kernels = grid_kernels(*this, grid);
     std::optional<texton::CellCache> cells;
     int cached_level = -1;
     std::uint32_t level_seed = 0;
+    // A render's samples share one footprint: the filter is derived again only when the footprint
+    // changes (bit for bit, so the result is the same).
+    KernelFilter filter = kernel_filter(grid, footprints.empty() ? nullptr : &footprints[0]);
     for (std::size_t index = 0; index < positions.size(); ++index) {
       const Vec2d p = positions[index];
-      const KernelFilter filter =
-          kernel_filter(grid, footprints.empty() ? nullptr : &footprints[index]);
+      if (index > 0 && !footprints.empty() &&
+          std::memcmp(&footprints[index], &footprints[index - 1], sizeof(Footprint)) != 0)
+        filter = kernel_filter(grid, &footprints[index]);
       if (filter.skip) continue;
       const int level = filter.level;
+      const double cell_size = std::ldexp(grid.cell_size, level);
+      const auto cell_size_f = static_cast<float>(cell_size);
       if (level != cached_level) {
         cached_level = level;
         level_seed = cell_key(static_cast<std::int64_t>(grid_index), level, seed, Stream::kernels);
-        cells.emplace(level_seed, grid.cell_count);
+        if (simd)
+          impulses.start(kernels, grid.cell_count, level_seed, cell_size_f);
+        else
+          cells.emplace(level_seed, grid.cell_count);
       }
-      const double cell_size = std::ldexp(grid.cell_size, level);
-      const auto cell_size_f = static_cast<float>(cell_size);
       const KernelShape shape(filter);
+      const CellRange range = cell_range(p, filter.reach, cell_size);
       float sum = 0.0f;
-      // Cells meeting p + [-reach, reach]^2; 64-bit indices, offsets from the cell corner taken in
-      // double before going to float, so p = 1e7 is as precise as p = 0 (docs/design.md §4).
-      const auto first_x = static_cast<std::int64_t>(std::floor((p.x - filter.reach) / cell_size));
-      const auto last_x = static_cast<std::int64_t>(std::floor((p.x + filter.reach) / cell_size));
-      const auto first_y = static_cast<std::int64_t>(std::floor((p.y - filter.reach) / cell_size));
-      const auto last_y = static_cast<std::int64_t>(std::floor((p.y + filter.reach) / cell_size));
-      for (std::int64_t cell_y = first_y; cell_y <= last_y; ++cell_y) {
-        const auto offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * cell_size);
-        for (std::int64_t cell_x = first_x; cell_x <= last_x; ++cell_x) {
-          const auto offset_x = static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size);
-          // The kernel parameters of the cell's impulses come in the impulses' order from their
-          // own stream, so cached positions and fresh parameters stay paired.
-          CounterRng kernel_rng(cell_key(cell_x, cell_y, level_seed, Stream::kernels));
-          cells->for_each_point(cell_x, cell_y, [&](float u, float v) {
-            float wx, wy, phase;
-            kernels.draw(kernel_rng, wx, wy, phase);
-            float value;
-            if (shape.at(wx, wy, phase, offset_x - u * cell_size_f, offset_y - v * cell_size_f,
-                         value))
-              sum += value;
-          });
+      if (simd) {
+        sum = impulse_sum(impulses, shape, range, p, cell_size);
+      } else {
+        for (std::int64_t cell_y = range.first_y; cell_y <= range.last_y; ++cell_y) {
+          const float offset_y = cell_offset(p.y, cell_y, cell_size);
+          for (std::int64_t cell_x = range.first_x; cell_x <= range.last_x; ++cell_x) {
+            const float offset_x = cell_offset(p.x, cell_x, cell_size);
+            // The kernel parameters of the cell's impulses come in the impulses' order from their
+            // own stream, so cached positions and fresh parameters stay paired.
+            CounterRng kernel_rng(cell_key(cell_x, cell_y, level_seed, Stream::kernels));
+            cells->for_each_point(cell_x, cell_y, [&](float u, float v) {
+              float wx, wy, phase;
+              kernels.draw(kernel_rng, wx, wy, phase);
+              float value;
+              if (shape.at(wx, wy, phase, offset_x - u * cell_size_f, offset_y - v * cell_size_f,
+                           value))
+                sum += value;
+            });
+          }
         }
       }
       pixel(index, grid.channel) +=

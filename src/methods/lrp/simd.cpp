@@ -11,35 +11,17 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "core/simd_math.hpp"
+
 HWY_BEFORE_NAMESPACE();
 namespace stochtex::lrp::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
+using stochtex::HWY_NAMESPACE::CosTurns;
 
 using DF = hn::ScalableTag<float>;
 using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
-
-// cos_turns (evaluate.hpp) in every lane.
-HWY_INLINE VF cos_turns(DF df, VF t) {
-  const DI di;
-  t = hn::Sub(t, hn::ConvertTo(df, hn::ConvertTo(di, t)));
-  t = hn::Abs(t);
-  t = hn::IfThenElse(hn::Gt(t, hn::Set(df, 0.5f)), hn::Sub(hn::Set(df, 1.0f), t), t);
-  const auto upper = hn::Gt(t, hn::Set(df, 0.25f));
-  const VF sign = hn::IfThenElse(upper, hn::Set(df, -1.0f), hn::Set(df, 1.0f));
-  t = hn::IfThenElse(upper, hn::Sub(hn::Set(df, 0.5f), t), t);
-  const VF x = hn::Mul(hn::Set(df, kTwoPi), t);
-  const VF x2 = hn::Mul(x, x);
-  VF p = hn::Mul(x2, hn::Set(df, 1.0f / 479001600.0f));
-  p = hn::Mul(x2, hn::Add(hn::Set(df, -1.0f / 3628800.0f), p));
-  p = hn::Mul(x2, hn::Add(hn::Set(df, 1.0f / 40320.0f), p));
-  p = hn::Mul(x2, hn::Add(hn::Set(df, -1.0f / 720.0f), p));
-  p = hn::Mul(x2, hn::Add(hn::Set(df, 1.0f / 24.0f), p));
-  p = hn::Mul(x2, hn::Add(hn::Set(df, -1.0f / 2.0f), p));
-  p = hn::Add(hn::Set(df, 1.0f), p);
-  return hn::Mul(sign, p);
-}
 
 // window_from_square (window.hpp) in every lane; 0 where t <= 0.
 HWY_INLINE VF window(DF df, const std::array<float, kWindowTerms>& coefficients, VF r2) {
@@ -111,7 +93,7 @@ HWY_INLINE VF node_sum(DF df, const PassLists& pass, std::uint32_t count, VF px,
     }
     const VF phase = field(2 * count + j);
     const VF weight = field(3 * count + j);
-    VF c = cos_turns(df, hn::Add(hn::Add(hn::Mul(fx, px), hn::Mul(fy, py)), phase));
+    VF c = CosTurns(df, hn::Add(hn::Add(hn::Mul(fx, px), hn::Mul(fy, py)), phase));
     if constexpr (Filtered) c = hn::Mul(c, clamp);
     local = hn::Add(local, hn::Mul(weight, c));
   }

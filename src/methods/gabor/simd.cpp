@@ -1,0 +1,213 @@
+// Gabor noise's kernel sums, one impulse per SIMD lane (simd.hpp). Compiled once per SIMD target by
+// Highway's foreach_target.h; impulse_sum dispatches to the best one at run time. Every vector
+// operation below is the scalar reference's (evaluate.hpp, model.cpp, core/hash.hpp) in its order:
+// no fused multiply-add (the build sets -ffp-contract=off), the same constants, truncating
+// conversions; the values of one sample are then added in the reference's order.
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "methods/gabor/simd.cpp"
+#include "methods/gabor/simd.hpp"
+
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "core/simd_math.hpp"
+
+HWY_BEFORE_NAMESPACE();
+namespace stochtex::gabor::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+using stochtex::HWY_NAMESPACE::CosTurns;
+using stochtex::HWY_NAMESPACE::CounterDraw;
+using stochtex::HWY_NAMESPACE::ExpFloat;
+using stochtex::HWY_NAMESPACE::UniformFromDraw;
+
+using DF = hn::ScalableTag<float>;
+using DU = hn::RebindToUnsigned<DF>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VU = hn::Vec<DU>;
+using VI = hn::Vec<DI>;
+constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
+constexpr std::size_t kCapacity = ImpulseCache::kCapacity;
+
+// Impulses first .. first + n - 1 of cell (x, y) into `list` (simd.hpp's five lists): the draws of
+// texton::CellCache (positions, after the count's `chunks` uniforms) and of GridKernels::draw
+// (column word, coin, phase: three draws per impulse), each impulse's draws by their counters.
+void draw_impulses(const ImpulseCache& cache, std::int64_t x, std::int64_t y, std::uint32_t first,
+                   std::uint32_t n, float* list) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  const std::uint32_t points = cell_key(x, y, cache.level_seed, Stream::points);
+  const std::uint32_t kernels = cell_key(x, y, cache.level_seed, Stream::kernels);
+  const VU chunks = hn::Set(du, cache.cell_count->chunks());
+  const VF cell_size = hn::Set(df, cache.cell_size);
+  const GridKernels& grid = cache.kernels;
+  HWY_ALIGN std::uint32_t words[kMaxLanes];
+  HWY_ALIGN std::int32_t columns[kMaxLanes];
+  for (std::uint32_t j = 0; j < n; j += static_cast<std::uint32_t>(lanes)) {
+    const VU index = hn::Iota(du, first + j);
+    const VU position = hn::Add(chunks, hn::Add(index, index));
+    const VF u = UniformFromDraw(df, CounterDraw(du, points, position));
+    const VF v = UniformFromDraw(df, CounterDraw(du, points, hn::Add(position, hn::Set(du, 1u))));
+    const VU kernel = hn::Mul(index, hn::Set(du, 3u));
+    hn::Store(CounterDraw(du, kernels, kernel), du, words);
+    const VF coin = UniformFromDraw(df, CounterDraw(du, kernels, hn::Add(kernel, hn::Set(du, 1u))));
+    const VF phase =
+        UniformFromDraw(df, CounterDraw(du, kernels, hn::Add(kernel, hn::Set(du, 2u))));
+    hn::Store(hn::Mul(u, cell_size), df, list + j);
+    hn::Store(hn::Mul(v, cell_size), df, list + kCapacity + j);
+    hn::Store(phase, df, list + 4 * kCapacity + j);
+    // alias_pick in every lane; the columns' 32 x 32-bit high products one lane at a time.
+    for (std::size_t lane = 0; lane < lanes; ++lane)
+      columns[lane] = static_cast<std::int32_t>(alias_column(words[lane], grid.count));
+    const VI column = hn::Load(di, columns);
+    const auto keep =
+        hn::RebindMask(di, hn::Lt(coin, hn::GatherIndex(df, grid.probability, column)));
+    const VI pick =
+        hn::IfThenElse(keep, column, hn::BitCast(di, hn::GatherIndex(du, grid.alias, column)));
+    hn::Store(hn::GatherIndex(df, grid.frequency_x, pick), df, list + 2 * kCapacity + j);
+    hn::Store(hn::GatherIndex(df, grid.frequency_y, pick), df, list + 3 * kCapacity + j);
+  }
+}
+
+// The impulses of one sample found within the kernel's support and not yet evaluated, in the
+// reference's order: their offsets dx, dy from p, envelopes, frequencies and phases. Fewer than
+// one vector's worth wait for the next cell, so the exp and cos polynomials run on full vectors.
+struct Pending {
+  static constexpr std::size_t kFields = 6;
+  HWY_ALIGN float field[kFields][2 * kMaxLanes] = {};
+  std::size_t count = 0;
+};
+
+// KernelShape::at's value for the first `count` pending impulses, one per lane, added to `sum` in
+// their order.
+template <bool Filtered>
+float evaluate_pending(const KernelShape& shape, const Pending& pending, std::size_t count,
+                       float sum) {
+  const DF df;
+  const VF dx = hn::Load(df, pending.field[0]);
+  const VF dy = hn::Load(df, pending.field[1]);
+  VF wx = hn::Load(df, pending.field[3]);
+  VF wy = hn::Load(df, pending.field[4]);
+  VF exponent = hn::Neg(hn::Load(df, pending.field[2]));
+  if constexpr (Filtered) {
+    const VF attenuation = hn::Add(hn::Add(hn::Mul(hn::Mul(hn::Set(df, shape.dxx), wx), wx),
+                                           hn::Mul(hn::Mul(hn::Set(df, shape.dxy), wx), wy)),
+                                   hn::Mul(hn::Mul(hn::Set(df, shape.dyy), wy), wy));
+    exponent = hn::Sub(exponent, attenuation);
+    const VF mapped_x =
+        hn::Add(hn::Mul(hn::Set(df, shape.fxx), wx), hn::Mul(hn::Set(df, shape.fxy), wy));
+    wy = hn::Add(hn::Mul(hn::Set(df, shape.fxy), wx), hn::Mul(hn::Set(df, shape.fyy), wy));
+    wx = mapped_x;
+  }
+  // Unfiltered, the reference subtracts an attenuation of +0, which leaves every value as it is.
+  const VF argument =
+      hn::Add(hn::Add(hn::Mul(wx, dx), hn::Mul(wy, dy)), hn::Load(df, pending.field[5]));
+  HWY_ALIGN float values[kMaxLanes] = {};
+  hn::Store(hn::Mul(ExpFloat(df, exponent), CosTurns(df, argument)), df, values);
+  for (std::size_t i = 0; i < count; ++i) sum += values[i];
+  return sum;
+}
+
+// Appends the impulses of `list` (n of them) within the kernel's support at offset
+// (offset_x, offset_y) from their cell's corner to `pending`, in their order, and evaluates each
+// full vector of them into `sum`.
+template <bool Filtered>
+float add_kernels(const KernelShape& shape, const float* list, std::uint32_t n, float offset_x,
+                  float offset_y, Pending& pending, float sum) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  const VF ox = hn::Set(df, offset_x);
+  const VF oy = hn::Set(df, offset_y);
+  const VF ex = hn::Set(df, shape.ex);
+  const VF exy = hn::Set(df, shape.exy);
+  const VF ey = hn::Set(df, shape.ey);
+  for (std::uint32_t j = 0; j < n; j += static_cast<std::uint32_t>(lanes)) {
+    const VF dx = hn::Sub(ox, hn::Load(df, list + j));
+    const VF dy = hn::Sub(oy, hn::Load(df, list + kCapacity + j));
+    const VF envelope =
+        hn::Add(hn::Add(hn::Mul(hn::Mul(ex, dx), dx), hn::Mul(hn::Mul(exy, dx), dy)),
+                hn::Mul(hn::Mul(ey, dy), dy));
+    const auto inside = hn::And(hn::FirstN(df, n - j), hn::Lt(envelope, hn::Set(df, kPiF)));
+    if (hn::AllFalse(df, inside)) continue;
+    const VF fields[Pending::kFields] = {dx,
+                                         dy,
+                                         envelope,
+                                         hn::Load(df, list + 2 * kCapacity + j),
+                                         hn::Load(df, list + 3 * kCapacity + j),
+                                         hn::Load(df, list + 4 * kCapacity + j)};
+    for (std::size_t f = 0; f < Pending::kFields; ++f)
+      hn::StoreU(hn::Compress(fields[f], inside), df, pending.field[f] + pending.count);
+    pending.count += hn::CountTrue(df, inside);
+    if (pending.count < lanes) continue;
+    sum = evaluate_pending<Filtered>(shape, pending, lanes, sum);
+    pending.count -= lanes;
+    for (std::size_t f = 0; f < Pending::kFields; ++f)
+      hn::Store(hn::LoadU(df, pending.field[f] + lanes), df, pending.field[f]);
+  }
+  return sum;
+}
+
+template <bool Filtered>
+float impulse_sum_typed(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells,
+                        Vec2d p, double cell_size) {
+  float sum = 0.0f;
+  Pending pending;
+  for (std::int64_t cell_y = cells.first_y; cell_y <= cells.last_y; ++cell_y) {
+    const float offset_y = cell_offset(p.y, cell_y, cell_size);
+    for (std::int64_t cell_x = cells.first_x; cell_x <= cells.last_x; ++cell_x) {
+      const float offset_x = cell_offset(p.x, cell_x, cell_size);
+      const auto slot = static_cast<std::size_t>((static_cast<std::uint64_t>(cell_x) & 7u) |
+                                                 ((static_cast<std::uint64_t>(cell_y) & 3u) << 3u));
+      std::uint32_t count;
+      float* list = cache.lists[slot];
+      if (cache.valid[slot] && cache.x[slot] == cell_x && cache.y[slot] == cell_y) {
+        count = cache.count[slot];
+      } else {
+        CounterRng rng(cell_key(cell_x, cell_y, cache.level_seed, Stream::points));
+        count = (*cache.cell_count)(rng);
+        if (count <= kCapacity) {
+          draw_impulses(cache, cell_x, cell_y, 0, count, list);
+          cache.valid[slot] = true;
+          cache.x[slot] = cell_x;
+          cache.y[slot] = cell_y;
+          cache.count[slot] = count;
+        }
+      }
+      if (count <= kCapacity) {
+        sum = add_kernels<Filtered>(shape, list, count, offset_x, offset_y, pending, sum);
+        continue;
+      }
+      for (std::uint32_t first = 0; first < count; first += kCapacity) {
+        const std::uint32_t block = std::min<std::uint32_t>(kCapacity, count - first);
+        draw_impulses(cache, cell_x, cell_y, first, block, cache.scratch);
+        sum = add_kernels<Filtered>(shape, cache.scratch, block, offset_x, offset_y, pending, sum);
+      }
+    }
+  }
+  return pending.count == 0 ? sum : evaluate_pending<Filtered>(shape, pending, pending.count, sum);
+}
+
+float ImpulseSum(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells, Vec2d p,
+                 double cell_size) {
+  return shape.filtered ? impulse_sum_typed<true>(cache, shape, cells, p, cell_size)
+                        : impulse_sum_typed<false>(cache, shape, cells, p, cell_size);
+}
+
+}  // namespace stochtex::gabor::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace stochtex::gabor {
+
+HWY_EXPORT(ImpulseSum);
+
+float impulse_sum(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells, Vec2d p,
+                  double cell_size) noexcept {
+  return HWY_DYNAMIC_DISPATCH(ImpulseSum)(cache, shape, cells, p, cell_size);
+}
+
+}  // namespace stochtex::gabor
+#endif  // HWY_ONCE

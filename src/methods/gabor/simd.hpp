@@ -1,0 +1,59 @@
+#pragma once
+// The vectorised evaluator of bandwidth-quantised Gabor noise (GaborModel::evaluate): one grid's
+// kernel sum at one sample, the scalar reference's `sum`, bit for bit (docs/design.md §4). What it
+// adds: the impulses of a Poisson cell (its count, positions and alias-table kernels, section 6.2)
+// are drawn once, 4 to 16 at a time, into a cache that every later sample seeing the cell shares,
+// and the kernels of a cell are evaluated 4 to 16 impulses at a time, one impulse per lane, with
+// the scalar reference's operations. Only the sum runs in scalar order: the values of the impulses
+// within the kernel's support are added one by one, in the cell and impulse order of the
+// reference.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/poisson.hpp"
+#include "methods/gabor/evaluate.hpp"
+#include "stochtex/model.hpp"
+
+namespace stochtex::gabor {
+
+// The impulses of the recently seen cells of one grid at one thinning level, kept for one
+// evaluate() call (a render tile). Cell (x, y) lives in slot (x mod 8) + 8 (y mod 4): the cells
+// around a sample (at most 4 x 4 at the default density) never share a slot. A slot holds the
+// lists u * cell_size, v * cell_size, omega_x, omega_y and phase of its cell's impulses, in the
+// reference's order; cells of more than kCapacity impulses are drawn block by block at each use.
+struct ImpulseCache {
+  static constexpr std::uint32_t kSlots = 32;
+  static constexpr std::uint32_t kCapacity = 128;  // a multiple of every lane count
+  static constexpr std::size_t kLists = 5;
+
+  // The grid, its cell-count sampler, the level's random stream and cell side whose cells the
+  // cache holds from now on; the cache starts empty.
+  void start(const GridKernels& grid_kernels, const PoissonSampler& grid_cell_count,
+             std::uint32_t grid_level_seed, float grid_cell_size) noexcept {
+    kernels = grid_kernels;
+    cell_count = &grid_cell_count;
+    level_seed = grid_level_seed;
+    cell_size = grid_cell_size;
+    for (bool& v : valid) v = false;
+  }
+
+  GridKernels kernels{};
+  const PoissonSampler* cell_count = nullptr;
+  std::uint32_t level_seed = 0;
+  float cell_size = 0.0f;
+  bool valid[kSlots] = {};
+  std::int64_t x[kSlots];
+  std::int64_t y[kSlots];
+  std::uint32_t count[kSlots];
+  alignas(64) float lists[kSlots][kLists * kCapacity];
+  alignas(64) float scratch[kLists * kCapacity];  // a block of a cell too large for a slot
+};
+
+// sum_i g_i(p - x_i) over the impulses of `cells` within the kernel's support, as
+// GaborModel::evaluate's scalar loop sums them (bit for bit); `cache` was started for the grid
+// and level, `cell_size` is its cell side in double.
+float impulse_sum(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells, Vec2d p,
+                  double cell_size) noexcept;
+
+}  // namespace stochtex::gabor
