@@ -359,8 +359,10 @@ PYBIND11_MODULE(_stochtex, m) {
         for (const CpuTarget target : targets)
           if (cpu_target_name(target) == name) return set_cpu_target(target);
         std::string names;
-        for (const CpuTarget target : targets)
-          names += (names.empty() ? "" : ", ") + std::string(cpu_target_name(target));
+        for (const CpuTarget target : targets) {
+          if (!names.empty()) names += ", ";
+          names += cpu_target_name(target);
+        }
         throw py::value_error("set_cpu_target: this machine cannot run '" + name + "'; it runs " +
                               names);
       },

@@ -106,7 +106,8 @@ void use_cpu_target(const std::string& name) {
   std::string names;
   for (const CpuTarget target : available) {
     if (cpu_target_name(target) == name) return set_cpu_target(target);
-    names += (names.empty() ? "" : ", ") + std::string(cpu_target_name(target));
+    if (!names.empty()) names += ", ";
+    names += cpu_target_name(target);
   }
   throw std::invalid_argument("--cpu-target " + name + ": this machine cannot run it; it runs " +
                               names);
