@@ -71,6 +71,12 @@ std::vector<Case> cases() {
       {"lrp material", model("lrp", material_exemplar, {{"cosines", 12}})},
       {"texton colour", model("texton", colour_exemplar, {{"support", 12}, {"iterations", 10}})},
       {"tiling colour", model("tiling", colour_exemplar, {})},
+      {"tiling grey", model("tiling", grey_exemplar, {})},
+      {"tiling decorrelated colour", model("tiling", colour_exemplar, {{"transport", 1}})},
+      {"tiling variance blend", model("tiling", colour_exemplar, {{"blend", 1}})},
+      {"tiling linear blend", model("tiling", grey_exemplar, {{"blend", 2}})},
+      {"tiling material", model("tiling", material_exemplar, {})},
+      {"tiling rotation", model("tiling", colour_exemplar, {{"rotation", 30}})},
       {"gabor colour", model("gabor", colour_exemplar, {{"impulses", 64}, {"iterations", 20}})},
   };
 }
