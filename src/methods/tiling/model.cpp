@@ -104,21 +104,30 @@ std::vector<KernelRow> prefilter_kernel(int size, double residual_deviation) {
 }
 
 // out[i] = sum_a K[i][a] in[a] along one axis of a table with `stride` floats between cells and
-// `count` independent lines, each line's origin given by line_origin(line).
+// `count` independent lines, each line's origin given by line_origin(line). Each sum adds its
+// terms in the order of a; the sums of a block of lines and components run side by side (a
+// model load is bound by this loop: one sum at a time waits on every addition).
 template <typename Origin>
 void apply_kernel(const std::vector<KernelRow>& rows, const std::vector<float>& in,
                   std::vector<float>& out, std::size_t stride, std::size_t lines, int components,
                   Origin line_origin) {
-  for (std::size_t line = 0; line < lines; ++line) {
-    const std::size_t origin = line_origin(line);
-    for (std::size_t i = 0; i < rows.size(); ++i)
-      for (int c = 0; c < components; ++c) {
-        double sum = 0.0;
-        for (std::size_t k = 0; k < rows[i].weights.size(); ++k)
-          sum += rows[i].weights[k] *
-                 in[origin + (static_cast<std::size_t>(rows[i].first) + k) * stride + c];
-        out[origin + i * stride + c] = static_cast<float>(sum);
+  constexpr std::size_t kBlock = 8;
+  std::array<std::size_t, kBlock * 3> origins{};
+  std::array<double, kBlock * 3> sums{};
+  for (std::size_t line = 0; line < lines; line += kBlock) {
+    std::size_t chains = 0;
+    for (std::size_t l = line; l < std::min(line + kBlock, lines); ++l)
+      for (int c = 0; c < components; ++c) origins[chains++] = line_origin(l) + c;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      std::fill_n(sums.begin(), chains, 0.0);
+      const float* from = in.data() + static_cast<std::size_t>(rows[i].first) * stride;
+      for (std::size_t k = 0; k < rows[i].weights.size(); ++k) {
+        const float weight = rows[i].weights[k];  // a float product, added in double
+        for (std::size_t j = 0; j < chains; ++j) sums[j] += weight * from[origins[j] + k * stride];
       }
+      for (std::size_t j = 0; j < chains; ++j)
+        out[origins[j] + i * stride] = static_cast<float>(sums[j]);
+    }
   }
 }
 
