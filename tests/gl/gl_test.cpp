@@ -173,7 +173,7 @@ struct MethodCase {
 };
 
 // Tolerance as for texton (TextonMatchesTheCpuReference). tiling: GLSL's erf is Abramowitz-Stegun
-// 7.1.26 (error 1.5e-7; the C++ uses std::erf) before the table look-up; lrp: the same polynomial
+// 7.1.26 (error 1.5e-7; the C++ a rational one) before the table look-up; lrp: the same polynomial
 // cosine and window in both. Measured maxima 1e-5 and 2e-6 over these cases.
 TEST(Gl, TilingAndLrpMatchTheCpuReference) {
   const std::vector<MethodCase> cases = {

@@ -75,7 +75,7 @@ float largest_difference(const Model& model, GlSurfaceEvaluator& evaluator,
 }
 
 // The renderers' parity bound (TilingAndLrpMatchTheCpuReference: 1e-4, GLSL's erf polynomial
-// against std::erf; float positions and weights here against the CPU's double).
+// against the C++ rational erf; float positions and weights here against the CPU's double).
 TEST(GlSurface, TilingTriplanarMatchesTheCpuReference) {
   struct Case {
     const char* exemplar;

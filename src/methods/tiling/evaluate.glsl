@@ -11,7 +11,8 @@ vec4 tiling_texture_fetch(float x, float y, mat2 patch_matrix);
 vec3 tiling_texture_lut(vec3 g, int level);
 #endif
 
-// erf to 1.5e-7 (Abramowitz & Stegun 7.1.26): GLSL has none; the C++ uses std::erf.
+// erf to 1.5e-7 (Abramowitz & Stegun 7.1.26): GLSL has none; the C++ uses its own rational erf
+// (erf_rational, evaluate.hpp).
 float tiling_erf(float x) {
   float t = 1.0 / (1.0 + 0.3275911 * abs(x));
   float y = 1.0 - (((((1.061405429 * t - 1.453152027) * t) + 1.421413741) * t - 0.284496736) * t +

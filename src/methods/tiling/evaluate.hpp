@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 
 #include "core/hash.hpp"
@@ -221,9 +223,32 @@ inline void fetch_bilinear(const MipLevel& level, int channels, float x, float y
               w01 * r1[x0 * channels + c] + w11 * r1[x1 * channels + c];
 }
 
+// erf(x) to 1e-7 (tested), with IEEE operations only, so that the vectorised evaluator (simd.cpp)
+// repeats it bit for bit, which libm's erff has no twin for: the odd rational x P(x^2) / Q(x^2) of
+// Eigen's generic_fast_erf_float (also XLA's ErfImpl32), clamped to [-4, 4] where erf is +-1 in
+// float, evaluated in double (6.5e-8 from erf there; 4.4e-7 in float).
+inline constexpr double kErfNumerator[] = {
+    -2.72614225801306e-10, 2.77068142495902e-08,  -2.10102402082508e-06, -5.69250639462346e-05,
+    -7.34990630326855e-04, -2.95459980854025e-03, -1.60960333262415e-02};
+inline constexpr double kErfDenominator[] = {-1.45660718464996e-05, -2.13374055278905e-04,
+                                             -1.68282697438203e-03, -7.37332916720468e-03,
+                                             -1.42647390514189e-02};
+inline constexpr double kErfClamp = 4.0;
+
+inline float erf_rational(float x) noexcept {
+  double t = x;
+  t = t < -kErfClamp ? -kErfClamp : (t > kErfClamp ? kErfClamp : t);
+  const double t2 = t * t;
+  double p = kErfNumerator[0];
+  for (std::size_t i = 1; i < std::size(kErfNumerator); ++i) p = p * t2 + kErfNumerator[i];
+  double q = kErfDenominator[0];
+  for (std::size_t i = 1; i < std::size(kErfDenominator); ++i) q = q * t2 + kErfDenominator[i];
+  return static_cast<float>(t * p / q);
+}
+
 // Eq. (22): the Gaussian value g of eq. (20) mapped to the uniform look-up-table parameter U.
 inline float gaussian_to_uniform(float g) noexcept {
-  return 0.5f + 0.5f * std::erf((g - kGaussianMean) * kErfScale);
+  return 0.5f + 0.5f * erf_rational((g - kGaussianMean) * kErfScale);
 }
 
 // Linear interpolation in a table of `size` >= 2 cells centred on (k + 1/2) / size, clamped at

@@ -7,9 +7,11 @@
 #include <stdexcept>
 
 #include "core/colour_statistics.hpp"
+#include "core/cpu_target.hpp"
 #include "core/level_of_detail.hpp"
 #include "core/triplanar.hpp"
 #include "methods/tiling/params.hpp"
+#include "methods/tiling/simd.hpp"
 #include "model/value_range.hpp"
 #include "stochtex/error.hpp"
 
@@ -102,21 +104,30 @@ std::vector<KernelRow> prefilter_kernel(int size, double residual_deviation) {
 }
 
 // out[i] = sum_a K[i][a] in[a] along one axis of a table with `stride` floats between cells and
-// `count` independent lines, each line's origin given by line_origin(line).
+// `count` independent lines, each line's origin given by line_origin(line). Each sum adds its
+// terms in the order of a; the sums of a block of lines and components run side by side (a
+// model load is bound by this loop: one sum at a time waits on every addition).
 template <typename Origin>
 void apply_kernel(const std::vector<KernelRow>& rows, const std::vector<float>& in,
                   std::vector<float>& out, std::size_t stride, std::size_t lines, int components,
                   Origin line_origin) {
-  for (std::size_t line = 0; line < lines; ++line) {
-    const std::size_t origin = line_origin(line);
-    for (std::size_t i = 0; i < rows.size(); ++i)
-      for (int c = 0; c < components; ++c) {
-        double sum = 0.0;
-        for (std::size_t k = 0; k < rows[i].weights.size(); ++k)
-          sum += rows[i].weights[k] *
-                 in[origin + (static_cast<std::size_t>(rows[i].first) + k) * stride + c];
-        out[origin + i * stride + c] = static_cast<float>(sum);
+  constexpr std::size_t kBlock = 8;
+  std::array<std::size_t, kBlock * 3> origins{};
+  std::array<double, kBlock * 3> sums{};
+  for (std::size_t line = 0; line < lines; line += kBlock) {
+    std::size_t chains = 0;
+    for (std::size_t l = line; l < std::min(line + kBlock, lines); ++l)
+      for (int c = 0; c < components; ++c) origins[chains++] = line_origin(l) + c;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      std::fill_n(sums.begin(), chains, 0.0);
+      const float* from = in.data() + static_cast<std::size_t>(rows[i].first) * stride;
+      for (std::size_t k = 0; k < rows[i].weights.size(); ++k) {
+        const float weight = rows[i].weights[k];  // a float product, added in double
+        for (std::size_t j = 0; j < chains; ++j) sums[j] += weight * from[origins[j] + k * stride];
       }
+      for (std::size_t j = 0; j < chains; ++j)
+        out[origins[j] + i * stride] = static_cast<float>(sums[j]);
+    }
   }
 }
 
@@ -252,16 +263,23 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
   std::vector<int> heights;
   std::vector<std::vector<float>> texels =
       build_pyramid(d.gaussian, d.width, d.height, d.channels, widths, heights);
-  for (std::size_t l = 0; l < texels.size(); ++l)
-    levels_.push_back({widths[l], heights[l], std::move(texels[l])});
+  for (std::size_t l = 0; l < texels.size(); ++l) {
+    levels_.push_back({widths[l], heights[l], pyramid_.size()});
+    pyramid_.insert(pyramid_.end(), texels[l].begin(), texels[l].end());
+  }
+  simd_ready_ = !transformed() && d.sharpness == 1.0 && d.height_blend == 0.0 &&
+                !has_radial_group_ && level_count() <= kSimdMaxLevels &&
+                pyramid_.size() < std::size_t{1} << 31;
   if (d.blend != Blend::histogram) return;
 
   // T^-1 prefiltered per level (see prefilter_kernel); the residual deviation differs per channel.
+  lut_floats_ = d.lut.size();
+  table_floats_ = d.tables.size();
   const std::vector<double> base_variance =
-      level_variances(levels_.front().texels, d.width, d.height, d.channels);
+      level_variances(texels.front(), d.width, d.height, d.channels);
   for (std::size_t l = 0; l < levels_.size(); ++l) {
     const std::vector<double> variance =
-        level_variances(levels_[l].texels, levels_[l].width, levels_[l].height, d.channels);
+        level_variances(texels[l], levels_[l].width, levels_[l].height, d.channels);
     const auto residual = [&](int channel) {
       return l == 0 ? 0.0 : std::sqrt(std::max(0.0, base_variance[channel] - variance[channel]));
     };
@@ -298,16 +316,19 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
                      1, 1, [&](std::size_t) { return static_cast<std::size_t>(t) * size; });
       }
     }
-    level_luts_.push_back(std::move(lut));
-    level_tables_.push_back(std::move(tables));
+    level_luts_.insert(level_luts_.end(), lut.begin(), lut.end());
+    level_tables_.insert(level_tables_.end(), tables.begin(), tables.end());
   }
+  simd_ready_ = simd_ready_ && level_luts_.size() < std::size_t{1} << 31 &&
+                level_tables_.size() < std::size_t{1} << 31;
 }
 
 MipLevel TilingModel::level(int index) const {
   const PyramidLevel& level = levels_[static_cast<std::size_t>(index)];
-  return {
-      level.width, level.height, static_cast<float>(static_cast<double>(level.width) / data_.width),
-      static_cast<float>(static_cast<double>(level.height) / data_.height), level.texels.data()};
+  return {level.width, level.height,
+          static_cast<float>(static_cast<double>(level.width) / data_.width),
+          static_cast<float>(static_cast<double>(level.height) / data_.height),
+          pyramid_.data() + level.first};
 }
 
 TilingModel TilingModel::from_record(const ModelRecord& record, const std::string& source) {
@@ -553,14 +574,14 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
 }
 
 void TilingModel::inverse_at_level(const float* g, int level, float* out) const noexcept {
-  const std::vector<float>& tables = level_tables_[static_cast<std::size_t>(level)];
+  const std::span<const float> tables = level_tables(level);
   const int size = data_.table_size;
   for (const TableGroup& group : layout_.groups) {
     const float* gg = g + group.first;
     float* o = out + group.first;
     if (group.transform == GroupTransform::lut) {
       // Trilinear fetch of the 3-D table at U of eq. (22), [z][y][x][colour] layout.
-      const std::vector<float>& lut = level_luts_[static_cast<std::size_t>(level)];
+      const std::span<const float> lut = level_lut(level);
       const int n = data_.lut_size;
       int cell[3];
       float t[3];
@@ -630,6 +651,7 @@ void TilingModel::inverse_transform(const float* g, LevelOfDetail lod, float* ou
 
 void TilingModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                            std::uint32_t seed, ImageView<float> out) const noexcept {
+  if (simd_ready_ && simd_enabled()) return evaluate_simd(positions, footprints, seed, out);
   for (std::size_t index = 0; index < positions.size(); ++index) {
     float g[kMaxChannels];
     const LevelOfDetail lod = blended_gaussian(
@@ -638,6 +660,67 @@ void TilingModel::evaluate(std::span<const Vec2d> positions, std::span<const Foo
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
     inverse_transform(g, lod, &out.at(x, y, 0));
+  }
+}
+
+SimdTiling TilingModel::simd_tiling() const noexcept {
+  SimdTiling m;
+  m.channels = data_.channels;
+  m.width = data_.width;
+  m.height = data_.height;
+  m.edge = edge_;
+  m.linear = data_.blend == Blend::linear;
+  m.inverse = data_.blend == Blend::histogram;
+  m.blend_mean = data_.blend_mean.data();
+  m.pyramid = pyramid_.data();
+  m.level_count = level_count();
+  for (int l = 0; l < m.level_count; ++l) {
+    const MipLevel mip = level(l);
+    const auto i = static_cast<std::size_t>(l);
+    m.level_width[i] = mip.width;
+    m.level_height[i] = mip.height;
+    m.level_first[i] = static_cast<std::int32_t>(levels_[i].first);
+    m.texels_per_pixel_x[i] = mip.texels_per_pixel_x;
+    m.texels_per_pixel_y[i] = mip.texels_per_pixel_y;
+  }
+  m.groups = layout_.groups;
+  m.lut_size = data_.lut_size;
+  m.table_size = data_.table_size;
+  m.luts = level_luts_.data();
+  m.lut_floats = static_cast<std::int32_t>(lut_floats_);
+  m.tables = level_tables_.data();
+  m.table_floats = static_cast<std::int32_t>(table_floats_);
+  m.colour_basis = data_.colour_basis.data();
+  m.colour_mean = data_.colour_mean.data();
+  return m;
+}
+
+void TilingModel::evaluate_simd(std::span<const Vec2d> positions,
+                                std::span<const Footprint> footprints, std::uint32_t seed,
+                                ImageView<float> out) const noexcept {
+  const SimdTiling m = simd_tiling();
+  std::int32_t levels[kSimdBatch];
+  float blends[kSimdBatch];
+  // A render's footprints repeat: the level of detail of the last one is kept.
+  Footprint last{};
+  LevelOfDetail last_lod = level_of_detail(&last);
+  for (std::size_t first = 0; first < positions.size(); first += kSimdBatch) {
+    const std::size_t size = std::min(kSimdBatch, positions.size() - first);
+    for (std::size_t i = 0; i < size; ++i) {
+      LevelOfDetail lod;
+      if (!footprints.empty()) {
+        const Footprint& f = footprints[first + i];
+        if (f.dpdx.x != last.dpdx.x || f.dpdx.y != last.dpdx.y || f.dpdy.x != last.dpdy.x ||
+            f.dpdy.y != last.dpdy.y) {
+          last = f;
+          last_lod = level_of_detail(&f);
+        }
+        lod = last_lod;
+      }
+      levels[i] = lod.level;
+      blends[i] = lod.blend;
+    }
+    evaluate_lanes(m, positions.subspan(first, size), levels, blends, seed, out, first);
   }
 }
 

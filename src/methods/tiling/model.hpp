@@ -22,6 +22,8 @@
 
 namespace stochtex::tiling {
 
+struct SimdTiling;
+
 enum class Transport { sliced = 0, per_channel = 1 };
 // The blending operator (section 3): histogram-preserving (eq. 18), variance-preserving (eq. 8,
 // exact for Gaussian inputs: the fast path of section 6.1) or linear (eq. 3, a baseline).
@@ -127,14 +129,12 @@ class TilingModel {
   // the model has none (no T^-1 at all for the variance and linear blends). For the GLSL twin of
   // the evaluator (gl_data.cpp).
   std::span<const float> level_lut(int index) const {
-    const auto i = static_cast<std::size_t>(index);
-    return i < level_luts_.size() ? std::span<const float>(level_luts_[i])
-                                  : std::span<const float>();
+    return std::span<const float>(level_luts_)
+        .subspan(static_cast<std::size_t>(index) * lut_floats_, lut_floats_);
   }
   std::span<const float> level_tables(int index) const {
-    const auto i = static_cast<std::size_t>(index);
-    return i < level_tables_.size() ? std::span<const float>(level_tables_[i])
-                                    : std::span<const float>();
+    return std::span<const float>(level_tables_)
+        .subspan(static_cast<std::size_t>(index) * table_floats_, table_floats_);
   }
 
   // Algorithm 1 at each position, filtered by the footprint when it is wider than a pixel.
@@ -186,20 +186,33 @@ class TilingModel {
 
  private:
   void inverse_at_level(const float* g, int level, float* out) const noexcept;
+  // evaluate's vectorised path (simd.hpp), when simd_ready_.
+  SimdTiling simd_tiling() const noexcept;
+  void evaluate_simd(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                     std::uint32_t seed, ImageView<float> out) const noexcept;
 
   TilingData data_;
   TilingLayout layout_;
   double edge_ = 0.0;
-  // Derived at construction.
+  // Derived at construction. Every level's texels in one array, and every level's tables in one
+  // array, so that the vectorised evaluator reads any level of a lane by one index.
   struct PyramidLevel {
     int width = 0;
     int height = 0;
-    std::vector<float> texels;
+    std::size_t first = 0;  // its texels in pyramid_
   };
   std::vector<PyramidLevel> levels_;
-  bool has_radial_group_ = false;               // a normal map's slopes, turned with their patches
-  std::vector<std::vector<float>> level_luts_;  // per level: lut_size^3 x 3, or empty
-  std::vector<std::vector<float>> level_tables_;  // per level: table_count x table_size, or empty
+  std::vector<float> pyramid_;
+  bool has_radial_group_ = false;  // a normal map's slopes, turned with their patches
+  // Level l's 3-D table (lut_size^3 x 3) at l * lut_floats_ and 1-D tables (table_count x
+  // table_size) at l * table_floats_; no level has any without T^-1 (variance and linear blends).
+  std::vector<float> level_luts_;
+  std::vector<float> level_tables_;
+  std::size_t lut_floats_ = 0;
+  std::size_t table_floats_ = 0;
+  // The vectorised evaluator takes this model: the paper's operator (no artist control, no
+  // radial group) and every index within int32.
+  bool simd_ready_ = false;
 };
 
 }  // namespace stochtex::tiling
