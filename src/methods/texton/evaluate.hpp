@@ -36,49 +36,23 @@ inline double bspline(int degree, double x) {
 // Interpolation weights of the texton's B-spline kernel psi of order Order (eq. 3 and section 10)
 // at continuous texel coordinate u (texel i is centred on the integer i): returns the first texel
 // read and fills Order + 1 weights.
+#include "methods/texton/bspline_weights.inc"
+
 template <int Order>
 struct BsplineKernel {
   static constexpr int kTaps = Order + 1;
 
   static int weights(float u, float* w) noexcept {
-    if constexpr (Order == 0) {
-      w[0] = 1.0f;
-      return static_cast<int>(std::floor(u + 0.5f));
-    } else {
-      const float cell = std::floor(u);
-      const float t = u - cell;
-      const int first = static_cast<int>(cell) - (Order - 1) / 2;
-      if constexpr (Order == 1) {
-        w[0] = 1.0f - t;
-        w[1] = t;
-      } else if constexpr (Order == 3) {
-        const float s = 1.0f - t;
-        const float t2 = t * t;
-        const float t3 = t2 * t;
-        w[0] = s * s * s * (1.0f / 6.0f);
-        w[1] = (4.0f - 6.0f * t2 + 3.0f * t3) * (1.0f / 6.0f);
-        w[2] = (1.0f + 3.0f * t + 3.0f * t2 - 3.0f * t3) * (1.0f / 6.0f);
-        w[3] = t3 * (1.0f / 6.0f);
-      } else {
-        static_assert(Order == 5, "texton interpolation orders are 0, 1, 3 and 5");
-        const float s = 1.0f - t;
-        const float t2 = t * t;
-        const float t3 = t2 * t;
-        const float t4 = t3 * t;
-        const float t5 = t4 * t;
-        w[0] = s * s * s * s * s * (1.0f / 120.0f);
-        w[1] = (26.0f - 50.0f * t + 20.0f * t2 + 20.0f * t3 - 20.0f * t4 + 5.0f * t5) *
-               (1.0f / 120.0f);
-        w[2] = (66.0f - 60.0f * t2 + 30.0f * t4 - 10.0f * t5) * (1.0f / 120.0f);
-        w[3] = (26.0f + 50.0f * t + 20.0f * t2 - 20.0f * t3 - 20.0f * t4 + 10.0f * t5) *
-               (1.0f / 120.0f);
-        w[4] =
-            (1.0f + 5.0f * t + 10.0f * t2 + 10.0f * t3 + 5.0f * t4 - 5.0f * t5) * (1.0f / 120.0f);
-        w[5] = t5 * (1.0f / 120.0f);
-      }
-      return first;
-    }
+    return bspline_weights<Order>(ScalarOps{}, u, w);
   }
+
+ private:
+  struct ScalarOps {
+    static float constant(float c) noexcept { return c; }
+    static float floor(float v) noexcept { return std::floor(v); }
+    static int to_int(float v) noexcept { return static_cast<int>(v); }
+    static int int_constant(int i) noexcept { return i; }
+  };
 };
 
 // Adds weight * h_level(d) to acc, where h_level is the (prefiltered) texton of one pyramid level
@@ -179,21 +153,36 @@ class FilteredTexton {
   // the texton whose pyramid starts at `pyramid`.
   void add(const PyramidLevel* pyramid, float dx, float dy, float weight,
            float (&acc)[Channels]) const noexcept {
+    for_each_probe(
+        pyramid, weight, [&](const PyramidLevel& level, const Probe& probe, float probe_weight) {
+          accumulate_texton<Order, Channels>(level, probe.shifted ? dx + probe.x : dx,
+                                             probe.shifted ? dy + probe.y : dy, probe_weight, acc);
+        });
+  }
+
+  // A probe of the footprint: the texton read at (dx, dy) + (x, y) when shifted, else at (dx, dy).
+  struct Probe {
+    bool shifted;
+    float x;
+    float y;
+  };
+
+  // Calls read(level, probe, weight) for each pyramid level and probe that add() sums, in its
+  // order: add() for floats, the vectorised evaluator (simd.cpp) for a vector of samples.
+  template <typename Read>
+  void for_each_probe(const PyramidLevel* pyramid, float weight, Read&& read) const noexcept {
     const PyramidLevel& fine = pyramid[fine_level_];
     if (filter_.probes == 1 && filter_.level_blend == 0.0f) {
-      accumulate_texton<Order, Channels>(fine, dx, dy, weight, acc);
+      read(fine, Probe{false, 0.0f, 0.0f}, weight);
       return;
     }
     const PyramidLevel& coarse = pyramid[coarse_level_];
     const float probe_weight = weight * probe_weight_;
     for (int k = 0; k < filter_.probes; ++k) {
       const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(filter_.probes);
-      const float px = dx + shift * filter_.probe_x;
-      const float py = dy + shift * filter_.probe_y;
-      accumulate_texton<Order, Channels>(fine, px, py, probe_weight * (1.0f - filter_.level_blend),
-                                         acc);
-      if (filter_.level_blend > 0.0f)
-        accumulate_texton<Order, Channels>(coarse, px, py, probe_weight * filter_.level_blend, acc);
+      const Probe probe{true, shift * filter_.probe_x, shift * filter_.probe_y};
+      read(fine, probe, probe_weight * (1.0f - filter_.level_blend));
+      if (filter_.level_blend > 0.0f) read(coarse, probe, probe_weight * filter_.level_blend);
     }
   }
 
@@ -229,10 +218,10 @@ class CellCache {
   // Calls f(u, v) for each point of the cell, (u, v) in [0, 1)^2 relative to the cell corner.
   template <typename F>
   void for_each_point(std::int64_t cell_x, std::int64_t cell_y, F&& f) noexcept {
-    const auto slot =
-        static_cast<std::size_t>((static_cast<std::uint64_t>(cell_x) * 0x9e3779b97f4a7c15ull ^
-                                  static_cast<std::uint64_t>(cell_y) * 0xc2b2ae3d27d4eb4full) >>
-                                 59);
+    // Cell (x, y) lives in slot (x mod 8, y mod 4): the cells a batch visits together, a window of
+    // at most 8 x 4 neighbours, never evict one another.
+    const auto slot = static_cast<std::size_t>((static_cast<std::uint64_t>(cell_x) & 7u) |
+                                               (static_cast<std::uint64_t>(cell_y) & 3u) << 3);
     Entry& entry = entries_[slot];
     if (!entry.valid || entry.x != cell_x || entry.y != cell_y) {
       CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
@@ -266,7 +255,7 @@ class CellCache {
     float u[kMaxPoints];
     float v[kMaxPoints];
   };
-  static_assert(kEntries == 32, "the slot index takes the top 5 bits of the hash");
+  static_assert(kEntries == 32, "the slot index is (x mod 8, y mod 4)");
 
   std::uint32_t seed_;
   const PoissonSampler& count_;
