@@ -33,11 +33,61 @@ inline double bspline(int degree, double x) {
   return sum / factorial;
 }
 
+// Most probes along the major axis of an anisotropic footprint, as GPU 8x anisotropic filtering.
+inline constexpr int kMaxProbes = 8;
+// The level of detail of a footprint of width w is log2(w) - kLodBias (core/level_of_detail.hpp).
+
+// How a footprint is filtered (section 5): the pyramid level(s) and the probes along the major
+// axis, as GPU trilinear + anisotropic filtering would choose them. Default = point sample.
+struct FilterSetup {
+  int level = 0;
+  float level_blend = 0.0f;  // weight of level + 1
+  int probes = 1;
+  float probe_x = 0.0f;  // distance between probes, exemplar pixels
+  float probe_y = 0.0f;
+  float fade = 1.0f;  // beyond the coarsest level, the fluctuation is faded towards the mean
+};
+
+inline FilterSetup filter_setup(const Footprint& footprint, int top_level) noexcept {
+  FilterSetup setup;
+  const double length_x = std::hypot(footprint.dpdx.x, footprint.dpdx.y);
+  const double length_y = std::hypot(footprint.dpdy.x, footprint.dpdy.y);
+  const double major = std::max(length_x, length_y);
+  const double minor = std::min(length_x, length_y);
+  if (!(major > 1.0)) return setup;
+  setup.probes =
+      static_cast<int>(std::min<double>(kMaxProbes, std::ceil(major / std::max(minor, 1.0))));
+  const double width = std::max({major / setup.probes, minor, 1.0});
+  double lod = std::max(0.0, std::log2(width) - kLodBias);
+  if (lod >= top_level) {
+    // Beyond the coarsest level the texton is a single blob: the filtered fluctuation decays like
+    // 1 / width (the variance of a box-filtered noise of finite correlation length falls as
+    // 1 / area), so it is faded towards the mean.
+    setup.fade = static_cast<float>(std::exp2(top_level - lod));
+    lod = top_level;
+  }
+  setup.level = std::min(static_cast<int>(lod), top_level);
+  setup.level_blend = setup.level == top_level ? 0.0f : static_cast<float>(lod - setup.level);
+  const Vec2d axis = length_x >= length_y ? footprint.dpdx : footprint.dpdy;
+  setup.probe_x = static_cast<float>(axis.x / setup.probes);
+  setup.probe_y = static_cast<float>(axis.y / setup.probes);
+  return setup;
+}
+
+// A probe of a footprint: the texton read at (dx, dy) + (x, y) when shifted, else at (dx, dy).
+struct ProbeShift {
+  bool shifted;
+  float x;
+  float y;
+};
+
+// The pieces of the evaluator that the scalar reference and the vectorised evaluator (simd.cpp)
+// share, source for source: bspline_weights and for_each_read.
+#include "methods/texton/kernel.inc"
+
 // Interpolation weights of the texton's B-spline kernel psi of order Order (eq. 3 and section 10)
 // at continuous texel coordinate u (texel i is centred on the integer i): returns the first texel
 // read and fills Order + 1 weights.
-#include "methods/texton/bspline_weights.inc"
-
 template <int Order>
 struct BsplineKernel {
   static constexpr int kTaps = Order + 1;
@@ -81,47 +131,6 @@ inline void accumulate_texton(const PyramidLevel& level, float dx, float dy, flo
   }
 }
 
-// Most probes along the major axis of an anisotropic footprint, as GPU 8x anisotropic filtering.
-inline constexpr int kMaxProbes = 8;
-// The level of detail of a footprint of width w is log2(w) - kLodBias (core/level_of_detail.hpp).
-
-// How a footprint is filtered (section 5): the pyramid level(s) and the probes along the major
-// axis, as GPU trilinear + anisotropic filtering would choose them. Default = point sample.
-struct FilterSetup {
-  int level = 0;
-  float level_blend = 0.0f;  // weight of level + 1
-  int probes = 1;
-  float probe_x = 0.0f;  // distance between probes, exemplar pixels
-  float probe_y = 0.0f;
-  float fade = 1.0f;  // beyond the coarsest level, the fluctuation is faded towards the mean
-};
-
-inline FilterSetup filter_setup(const Footprint& footprint, int top_level) noexcept {
-  FilterSetup setup;
-  const double length_x = std::hypot(footprint.dpdx.x, footprint.dpdx.y);
-  const double length_y = std::hypot(footprint.dpdy.x, footprint.dpdy.y);
-  const double major = std::max(length_x, length_y);
-  const double minor = std::min(length_x, length_y);
-  if (!(major > 1.0)) return setup;
-  setup.probes =
-      static_cast<int>(std::min<double>(kMaxProbes, std::ceil(major / std::max(minor, 1.0))));
-  const double width = std::max({major / setup.probes, minor, 1.0});
-  double lod = std::max(0.0, std::log2(width) - kLodBias);
-  if (lod >= top_level) {
-    // Beyond the coarsest level the texton is a single blob: the filtered fluctuation decays like
-    // 1 / width (the variance of a box-filtered noise of finite correlation length falls as
-    // 1 / area), so it is faded towards the mean.
-    setup.fade = static_cast<float>(std::exp2(top_level - lod));
-    lod = top_level;
-  }
-  setup.level = std::min(static_cast<int>(lod), top_level);
-  setup.level_blend = setup.level == top_level ? 0.0f : static_cast<float>(lod - setup.level);
-  const Vec2d axis = length_x >= length_y ? footprint.dpdx : footprint.dpdy;
-  setup.probe_x = static_cast<float>(axis.x / setup.probes);
-  setup.probe_y = static_cast<float>(axis.y / setup.probes);
-  return setup;
-}
-
 // The texton filtered for one footprint (section 5), summed at impact offsets: the pyramid
 // level(s) and probes that filter_setup chose. The planar evaluator, the surface evaluator
 // (docs/surface.md) and texton noise mixing (each impulse its own texton, same support and order)
@@ -153,38 +162,19 @@ class FilteredTexton {
   // the texton whose pyramid starts at `pyramid`.
   void add(const PyramidLevel* pyramid, float dx, float dy, float weight,
            float (&acc)[Channels]) const noexcept {
-    for_each_probe(
-        pyramid, weight, [&](const PyramidLevel& level, const Probe& probe, float probe_weight) {
-          accumulate_texton<Order, Channels>(level, probe.shifted ? dx + probe.x : dx,
-                                             probe.shifted ? dy + probe.y : dy, probe_weight, acc);
-        });
+    for_each_read(filter_, pyramid[fine_level_], pyramid[coarse_level_], probe_weight_, weight,
+                  [&](const PyramidLevel& level, const ProbeShift& shift, float read_weight) {
+                    accumulate_texton<Order, Channels>(level, shift.shifted ? dx + shift.x : dx,
+                                                       shift.shifted ? dy + shift.y : dy,
+                                                       read_weight, acc);
+                  });
   }
 
-  // A probe of the footprint: the texton read at (dx, dy) + (x, y) when shifted, else at (dx, dy).
-  struct Probe {
-    bool shifted;
-    float x;
-    float y;
-  };
-
-  // Calls read(level, probe, weight) for each pyramid level and probe that add() sums, in its
-  // order: add() for floats, the vectorised evaluator (simd.cpp) for a vector of samples.
-  template <typename Read>
-  void for_each_probe(const PyramidLevel* pyramid, float weight, Read&& read) const noexcept {
-    const PyramidLevel& fine = pyramid[fine_level_];
-    if (filter_.probes == 1 && filter_.level_blend == 0.0f) {
-      read(fine, Probe{false, 0.0f, 0.0f}, weight);
-      return;
-    }
-    const PyramidLevel& coarse = pyramid[coarse_level_];
-    const float probe_weight = weight * probe_weight_;
-    for (int k = 0; k < filter_.probes; ++k) {
-      const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(filter_.probes);
-      const Probe probe{true, shift * filter_.probe_x, shift * filter_.probe_y};
-      read(fine, probe, probe_weight * (1.0f - filter_.level_blend));
-      if (filter_.level_blend > 0.0f) read(coarse, probe, probe_weight * filter_.level_blend);
-    }
-  }
+  // What add() passes to for_each_read, for the vectorised evaluator's instance of it.
+  const FilterSetup& filter() const noexcept { return filter_; }
+  int fine_level() const noexcept { return fine_level_; }
+  int coarse_level() const noexcept { return coarse_level_; }
+  float probe_weight() const noexcept { return probe_weight_; }
 
   // The noise's value from the sum: (acc - offset) * scale + mean, with constant = mean - offset
   // * scale, and `fade` (filter_setup) scaling the fluctuation only.
@@ -215,9 +205,16 @@ class CellCache {
   CellCache(std::uint32_t seed, const PoissonSampler& count) noexcept
       : seed_(seed), count_(count) {}
 
-  // Calls f(u, v) for each point of the cell, (u, v) in [0, 1)^2 relative to the cell corner.
-  template <typename F>
-  void for_each_point(std::int64_t cell_x, std::int64_t cell_y, F&& f) noexcept {
+  // The points of a cell in the cache: (u[i], v[i]) in [0, 1)^2 relative to the cell corner,
+  // i < count; u and v are null when the cell holds more than kMaxPoints points.
+  struct Points {
+    const float* u;
+    const float* v;
+    std::uint32_t count;
+  };
+
+  // The points of the cell, drawn into the cache if absent.
+  Points points(std::int64_t cell_x, std::int64_t cell_y) noexcept {
     // Cell (x, y) lives in slot (x mod 8, y mod 4): the cells a batch visits together, a window of
     // at most 8 x 4 neighbours, never evict one another.
     const auto slot = static_cast<std::size_t>((static_cast<std::uint64_t>(cell_x) & 7u) |
@@ -226,14 +223,7 @@ class CellCache {
     if (!entry.valid || entry.x != cell_x || entry.y != cell_y) {
       CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
       const std::uint32_t impacts = count_(rng);
-      if (impacts > kMaxPoints) {
-        for (std::uint32_t i = 0; i < impacts; ++i) {
-          const float u = rng.uniform();
-          const float v = rng.uniform();
-          f(u, v);
-        }
-        return;
-      }
+      if (impacts > kMaxPoints) return {nullptr, nullptr, impacts};
       entry.valid = true;
       entry.x = cell_x;
       entry.y = cell_y;
@@ -243,7 +233,25 @@ class CellCache {
         entry.v[i] = rng.uniform();
       }
     }
-    for (std::uint32_t i = 0; i < entry.count; ++i) f(entry.u[i], entry.v[i]);
+    return {entry.u, entry.v, entry.count};
+  }
+
+  // Calls f(u, v) for each point of the cell, (u, v) in [0, 1)^2 relative to the cell corner.
+  template <typename F>
+  void for_each_point(std::int64_t cell_x, std::int64_t cell_y, F&& f) noexcept {
+    const Points cached = points(cell_x, cell_y);
+    if (cached.u != nullptr) {
+      for (std::uint32_t i = 0; i < cached.count; ++i) f(cached.u[i], cached.v[i]);
+      return;
+    }
+    // Too many to keep: the count's draws again, then the points'.
+    CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
+    count_(rng);
+    for (std::uint32_t i = 0; i < cached.count; ++i) {
+      const float u = rng.uniform();
+      const float v = rng.uniform();
+      f(u, v);
+    }
   }
 
  private:
@@ -304,6 +312,14 @@ inline void with_order_and_channels(int order, int channels, F&& f) noexcept {
 struct Impulse {
   const PyramidLevel* pyramid;
   float weight;
+};
+
+// The impulses of texton noise: every point scatters the one texton with weight 1.
+struct OneTexton {
+  const PyramidLevel* pyramid;
+  Impulse operator()(std::int64_t, std::int64_t, std::uint32_t, float, float) const noexcept {
+    return {pyramid, 1.0f};
+  }
 };
 
 // The shot-noise sum at p (eq. 1), filtered as section 5 says: the impulses of the grid cells that

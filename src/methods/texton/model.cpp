@@ -45,6 +45,11 @@ std::vector<PyramidLevel> build_pyramid(std::span<const float> coefficients, int
           out.coefficients[(static_cast<std::size_t>(y + kPadding) * out.stride + x + kPadding) *
                                lanes +
                            c] = current[(static_cast<std::size_t>(y) * size + x) * channels + c];
+    const std::size_t plane = static_cast<std::size_t>(out.stride) * out.stride;
+    out.planes.resize(plane * lanes);
+    for (std::size_t texel = 0; texel < plane; ++texel)
+      for (std::size_t c = 0; c < static_cast<std::size_t>(lanes); ++c)
+        out.planes[c * plane + texel] = out.coefficients[texel * lanes + c];
     levels.push_back(std::move(out));
     if (size == 1) break;
     const int next_size = (size + 1) / 2;
@@ -159,11 +164,8 @@ void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
                                  std::span<const Footprint> footprints, std::uint32_t seed,
                                  ImageView<float> out) const noexcept {
   CellCache cells(seed, cell_count_);
-  const auto one_texton = [this](std::int64_t, std::int64_t, std::uint32_t, float, float) {
-    return Impulse{pyramid_.data(), 1.0f};
-  };
   shot_noise<Order, Channels>(
-      positions, footprints, pyramid_, cell_size_, cells, one_texton,
+      positions, footprints, pyramid_, cell_size_, cells, OneTexton{pyramid_.data()},
       [&](std::size_t index, const FilteredTexton<Order, Channels>& texton,
           const float(&acc)[Channels]) {
         const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));

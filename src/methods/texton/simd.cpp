@@ -14,6 +14,8 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <limits>
+
 HWY_BEFORE_NAMESPACE();
 namespace stochtex::texton::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
@@ -24,9 +26,9 @@ using VF = hn::Vec<DF>;
 using VI = hn::Vec<DI>;
 using MF = hn::Mask<DF>;
 constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
-static_assert(kMaxLanes <= 32, "lane sets are 32-bit masks");
+static_assert(kMaxLanes < 32, "lane sets are 32-bit masks");
 
-#include "methods/texton/bspline_weights.inc"
+#include "methods/texton/kernel.inc"
 
 // bspline_weights' operations in every lane.
 struct VectorOps {
@@ -36,32 +38,33 @@ struct VectorOps {
   static VI int_constant(int i) { return hn::Set(DI(), i); }
 };
 
-// The texels of one tap in every lane: values[c] = level.coefficients[index + c] (index per lane,
-// 0 for lanes outside `inside`). When the lanes read consecutive texels (neighbouring samples of
-// a grid at the level's spacing), a few loads replace Channels gathers: the same values.
+// The texels of one tap in every lane: values[c] = channel c of texel index[lane] (0 in lanes
+// outside `inside`) of the planes at `planes`, `plane` floats apart. When the lanes read texels
+// `step` apart (1 or 2: neighbouring samples of a grid at the level's spacing or at twice it), one
+// or two vector loads per channel replace a gather and give the same values.
 template <int Channels>
-HWY_INLINE void load_texels(const float* coefficients, VI index, bool consecutive, MF inside,
+HWY_INLINE void load_texels(const float* planes, std::size_t plane, VI index, int step, MF inside,
                             VF (&values)[Channels]) {
   const DF df;
   const DI di;
-  if (consecutive) {
-    const float* first = coefficients + hn::GetLane(index);
-    if constexpr (Channels == 1) {
-      values[0] = hn::LoadU(df, first);
-      return;
-    } else if constexpr (Channels == 2) {
-      hn::LoadInterleaved2(df, first, values[0], values[1]);
-      return;
-    } else if constexpr (Channels == 3) {
-      hn::LoadInterleaved3(df, first, values[0], values[1], values[2]);
-      return;
-    } else if constexpr (Channels == 4) {
-      hn::LoadInterleaved4(df, first, values[0], values[1], values[2], values[3]);
-      return;
-    }
+  if (step == 1) {
+    const float* first = planes + hn::GetLane(index);
+    for (int c = 0; c < Channels; ++c) values[c] = hn::LoadU(df, first + c * plane);
+    return;
   }
+#if HWY_TARGET != HWY_SCALAR  // one lane: a step is always 1
+  if (step == 2) {
+    const float* first = planes + hn::GetLane(index);
+    for (int c = 0; c < Channels; ++c) {
+      const VF even = hn::LoadU(df, first + c * plane);
+      const VF odd = hn::LoadU(df, first + c * plane + hn::Lanes(df));
+      values[c] = hn::ConcatEven(df, odd, even);
+    }
+    return;
+  }
+#endif
   const VI safe = hn::IfThenElseZero(hn::RebindMask(di, inside), index);
-  for (int c = 0; c < Channels; ++c) values[c] = hn::GatherIndex(df, coefficients + c, safe);
+  for (int c = 0; c < Channels; ++c) values[c] = hn::GatherIndex(df, planes + c * plane, safe);
 }
 
 // accumulate_texton (evaluate.hpp) in the lanes of `lanes`: adds weight * h_level(dx, dy).
@@ -82,30 +85,74 @@ HWY_INLINE void accumulate_lanes(const PyramidLevel& level, VF dx, VF dy, float 
   const VI x0 = bspline_weights<Order>(VectorOps{}, (dx - first_texel) * inverse_spacing, wx);
   const VI y0 = bspline_weights<Order>(VectorOps{}, (dy - first_texel) * inverse_spacing, wy);
   const VI padding = hn::Set(di, kPadding);
-  const VI base =
-      ((y0 + padding) * hn::Set(di, level.stride) + (x0 + padding)) * hn::Set(di, Channels);
-  // Consecutive texels in every lane, and every tap's loads within the level.
-  const std::int32_t row = level.stride * Channels;
-  const std::int32_t first = hn::GetLane(base);
-  const auto lane_count = static_cast<std::int32_t>(hn::Lanes(df));
-  const bool consecutive =
-      hn::AllTrue(di, hn::Eq(base, hn::Iota(di, 0) * hn::Set(di, Channels) + hn::Set(di, first))) &&
-      first >= 0 &&
-      static_cast<std::size_t>(first + (kTaps - 1) * (row + Channels) + lane_count * Channels) <=
-          level.coefficients.size();
-  const float* coefficients = level.coefficients.data();
+  const VI texel = (y0 + padding) * hn::Set(di, level.stride) + (x0 + padding);
+  // Lane l reads texel first + step * l (step 1 or 2, else 0: gathers), every tap within a plane.
+  const auto plane =
+      static_cast<std::size_t>(level.stride) * static_cast<std::size_t>(level.stride);
+  const std::int32_t first = hn::GetLane(texel);
+  const auto spaced = [&](std::int32_t step) HWY_ATTR {
+    return first >= 0 &&
+           static_cast<std::size_t>(first + (kTaps - 1) * (level.stride + 1) +
+                                    step * static_cast<std::int32_t>(hn::Lanes(df))) <= plane &&
+           hn::AllTrue(di, hn::Eq(texel, hn::Set(di, first) + hn::Iota(di, 0) * hn::Set(di, step)));
+  };
+  const int step = spaced(1) ? 1 : spaced(2) ? 2 : 0;
   const VF w_lanes = hn::Set(df, weight);
   for (int j = 0; j < kTaps; ++j) {
     const VF weight_row = w_lanes * wy[j];
     for (int i = 0; i < kTaps; ++i) {
       const VF w = hn::IfThenElseZero(inside, weight_row * wx[i]);
       VF values[Channels];
-      load_texels<Channels>(coefficients, base + hn::Set(di, j * row + i * Channels), consecutive,
-                            inside, values);
+      load_texels<Channels>(level.planes.data(), plane, texel + hn::Set(di, j * level.stride + i),
+                            step, inside, values);
       for (int c = 0; c < Channels; ++c) acc[c] = acc[c] + w * values[c];
     }
   }
 }
+
+// The sums of one vector of samples: sum_impulses' acc in every lane.
+template <int Order, int Channels>
+struct LaneSums {
+  const FilteredTexton<Order, Channels>& texton;
+  const ImpulseSource& impulses;
+  float cell_size;
+  VF acc[Channels];
+
+  // for_each_read's `read`: one texton read in the lanes of `lanes`.
+  struct Read {
+    VF dx, dy;
+    MF lanes;
+    VF (&acc)[Channels];
+    HWY_INLINE void operator()(const PyramidLevel& level, const ProbeShift& shift,
+                               float weight) const {
+      const DF df;
+      if (shift.shifted)
+        accumulate_lanes<Order, Channels>(level, dx + hn::Set(df, shift.x),
+                                          dy + hn::Set(df, shift.y), weight, lanes, acc);
+      else
+        accumulate_lanes<Order, Channels>(level, dx, dy, weight, lanes, acc);
+    }
+  };
+
+  // Point `index` (u, v) of cell (cell_x, cell_y), for the lanes of `lanes` at offsets (ox, oy)
+  // from the cell corner. `near` bounds u * cell_size and v * cell_size: outside it the point is
+  // beyond the reach of every lane (the reads would all add nothing) and is passed over.
+  HWY_INLINE void point(std::int64_t cell_x, std::int64_t cell_y, std::uint32_t index, float u,
+                        float v, VF ox, VF oy, MF lanes, const float (&near)[4]) {
+    const DF df;
+    const float impact_x = u * cell_size;
+    const float impact_y = v * cell_size;
+    if (impact_x < near[0] || impact_x > near[1] || impact_y < near[2] || impact_y > near[3])
+      return;
+    const Impulse impulse = impulses.impulse == nullptr
+                                ? Impulse{impulses.pyramid, 1.0f}
+                                : impulses.impulse(impulses.context, cell_x, cell_y, index, u, v);
+    const Read read{ox - hn::Set(df, impact_x), oy - hn::Set(df, impact_y), lanes, acc};
+    HWY_NAMESPACE::for_each_read(texton.filter(), impulse.pyramid[texton.fine_level()],
+                                 impulse.pyramid[texton.coarse_level()], texton.probe_weight(),
+                                 impulse.weight, read);
+  }
+};
 
 // The cells of the grid that a lane's sum visits (sum_impulses): [x0, x1] x [y0, y1].
 struct CellRange {
@@ -125,8 +172,9 @@ void sum_lanes(std::span<const Vec2d> positions, std::size_t first,
   const DI di;
   const std::size_t lanes = hn::Lanes(df);
   const std::size_t count = std::min(lanes, positions.size() - first);
-  const float cell_size_float = static_cast<float>(cell_size);
   const double reach = texton.reach();
+  // Beyond reach + 1 pixel of every lane, a point reads nothing, whatever the float rounding.
+  const float far = static_cast<float>(reach) + 1.0f;
   Vec2d p[kMaxLanes];
   CellRange range[kMaxLanes];
   for (std::size_t lane = 0; lane < lanes; ++lane) {
@@ -136,13 +184,13 @@ void sum_lanes(std::span<const Vec2d> positions, std::size_t first,
                    static_cast<std::int64_t>(std::floor((p[lane].y - reach) / cell_size)),
                    static_cast<std::int64_t>(std::floor((p[lane].y + reach) / cell_size))};
   }
-  VF acc[Channels];
-  for (int c = 0; c < Channels; ++c) acc[c] = hn::Zero(df);
+  LaneSums<Order, Channels> sums{texton, impulses, static_cast<float>(cell_size), {}};
+  for (int c = 0; c < Channels; ++c) sums.acc[c] = hn::Zero(df);
   HWY_ALIGN float offset_x[kMaxLanes];
   HWY_ALIGN float offset_y[kMaxLanes];
-  HWY_ALIGN std::int32_t takes_row[kMaxLanes];
   HWY_ALIGN std::int32_t takes_cell[kMaxLanes];
-  std::uint32_t remaining = count == 32 ? ~0u : (1u << count) - 1u;
+  bool takes_row[kMaxLanes];
+  std::uint32_t remaining = (1u << count) - 1u;
   while (remaining != 0) {
     const CellRange& lead = range[static_cast<std::size_t>(__builtin_ctz(remaining))];
     std::uint32_t pass = 0;
@@ -158,48 +206,51 @@ void sum_lanes(std::span<const Vec2d> positions, std::size_t first,
     }
     remaining &= ~pass;
     for (std::int64_t cell_y = all.y0; cell_y <= all.y1; ++cell_y) {
+      float near[4];  // the bounds LaneSums::point passes over points beyond
+      near[2] = std::numeric_limits<float>::max();
+      near[3] = std::numeric_limits<float>::lowest();
       for (std::size_t lane = 0; lane < lanes; ++lane) {
         offset_y[lane] = static_cast<float>(p[lane].y - static_cast<double>(cell_y) * cell_size);
         takes_row[lane] =
-            (pass >> lane & 1u) != 0 && range[lane].y0 <= cell_y && cell_y <= range[lane].y1 ? -1
-                                                                                             : 0;
+            (pass >> lane & 1u) != 0 && range[lane].y0 <= cell_y && cell_y <= range[lane].y1;
+        if (!takes_row[lane]) continue;
+        near[2] = std::min(near[2], offset_y[lane] - far);
+        near[3] = std::max(near[3], offset_y[lane] + far);
       }
       const VF oy = hn::Load(df, offset_y);
       for (std::int64_t cell_x = all.x0; cell_x <= all.x1; ++cell_x) {
-        bool any = false;
+        near[0] = std::numeric_limits<float>::max();
+        near[1] = std::numeric_limits<float>::lowest();
         for (std::size_t lane = 0; lane < lanes; ++lane) {
           offset_x[lane] = static_cast<float>(p[lane].x - static_cast<double>(cell_x) * cell_size);
-          takes_cell[lane] =
-              range[lane].x0 <= cell_x && cell_x <= range[lane].x1 ? takes_row[lane] : 0;
-          any = any || takes_cell[lane] != 0;
+          const bool takes =
+              takes_row[lane] && range[lane].x0 <= cell_x && cell_x <= range[lane].x1;
+          takes_cell[lane] = takes ? -1 : 0;
+          if (!takes) continue;
+          near[0] = std::min(near[0], offset_x[lane] - far);
+          near[1] = std::max(near[1], offset_x[lane] + far);
         }
-        if (!any) continue;
+        if (near[0] > near[1]) continue;  // no lane takes the cell
         const MF in_cell = hn::RebindMask(df, hn::Ne(hn::Load(di, takes_cell), hn::Zero(di)));
         const VF ox = hn::Load(df, offset_x);
-        std::uint32_t index = 0;
-        cells.for_each_point(cell_x, cell_y, [&](float u, float v) {
-          const Impulse impulse = impulses.impulse(impulses.context, cell_x, cell_y, index++, u, v);
-          const VF dx = ox - hn::Set(df, u * cell_size_float);
-          const VF dy = oy - hn::Set(df, v * cell_size_float);
-          texton.for_each_probe(
-              impulse.pyramid, impulse.weight,
-              [&](const PyramidLevel& level, const auto& probe, float weight) {
-                if (probe.shifted)
-                  accumulate_lanes<Order, Channels>(level, dx + hn::Set(df, probe.x),
-                                                    dy + hn::Set(df, probe.y), weight, in_cell,
-                                                    acc);
-                else
-                  accumulate_lanes<Order, Channels>(level, dx, dy, weight, in_cell, acc);
-              });
-        });
+        const CellCache::Points points = cells.points(cell_x, cell_y);
+        if (points.u != nullptr) {
+          for (std::uint32_t i = 0; i < points.count; ++i)
+            sums.point(cell_x, cell_y, i, points.u[i], points.v[i], ox, oy, in_cell, near);
+        } else {
+          std::uint32_t index = 0;
+          cells.for_each_point(cell_x, cell_y, [&](float u, float v) HWY_ATTR {
+            sums.point(cell_x, cell_y, index++, u, v, ox, oy, in_cell, near);
+          });
+        }
       }
     }
   }
-  HWY_ALIGN float sums[Channels][kMaxLanes];
-  for (int c = 0; c < Channels; ++c) hn::Store(acc[c], df, sums[c]);
+  HWY_ALIGN float lane_sums[Channels][kMaxLanes];
+  for (int c = 0; c < Channels; ++c) hn::Store(sums.acc[c], df, lane_sums[c]);
   for (std::size_t lane = 0; lane < count; ++lane)
     for (int c = 0; c < Channels; ++c)
-      acc_out[(first + lane) * Channels + static_cast<std::size_t>(c)] = sums[c][lane];
+      acc_out[(first + lane) * Channels + static_cast<std::size_t>(c)] = lane_sums[c][lane];
 }
 
 void SumImpulses(int order, int lanes, std::span<const Vec2d> positions,

@@ -22,11 +22,13 @@
 namespace stochtex::texton {
 
 // The impulse of a Poisson point for the vectorised evaluator: impulse(context, cell_x, cell_y,
-// index in the cell, u, v), sum_impulses' `impulses` behind a function pointer.
+// index in the cell, u, v), sum_impulses' `impulses` behind a function pointer; or, when impulse
+// is null, OneTexton{pyramid}'s.
 struct ImpulseSource {
   const void* context;
   Impulse (*impulse)(const void* context, std::int64_t cell_x, std::int64_t cell_y,
                      std::uint32_t index, float u, float v);
+  const PyramidLevel* pyramid;
 };
 
 // The most samples one call of sum_impulses_simd takes.
@@ -58,11 +60,13 @@ void shot_noise(std::span<const Vec2d> positions, std::span<const Footprint> foo
     return footprints.empty() ||
            std::memcmp(&footprints[a], &footprints[b], sizeof(Footprint)) == 0;
   };
-  const ImpulseSource source{
-      &impulses, [](const void* context, std::int64_t cell_x, std::int64_t cell_y,
-                    std::uint32_t index, float u, float v) {
-        return (*static_cast<const Impulses*>(context))(cell_x, cell_y, index, u, v);
-      }};
+  ImpulseSource source{
+      &impulses,
+      [](const void* context, std::int64_t cell_x, std::int64_t cell_y, std::uint32_t index,
+         float u,
+         float v) { return (*static_cast<const Impulses*>(context))(cell_x, cell_y, index, u, v); },
+      nullptr};
+  if constexpr (std::is_same_v<Impulses, OneTexton>) source = {nullptr, nullptr, impulses.pyramid};
   const bool simd = simd_enabled();
   float batch[kSimdBatch * Channels];
   for (std::size_t first = 0; first < positions.size();) {
