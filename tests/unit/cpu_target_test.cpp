@@ -54,6 +54,26 @@ ImageF material_exemplar() {
   return crop;
 }
 
+// Texton noise mixing from the colour exemplar's two halves, along a ramp.
+Model texton_mix_model() {
+  const ImageF exemplar = colour_exemplar();
+  ImageF a(32, 64, 3);
+  ImageF b(32, 64, 3);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 32; ++x)
+      for (int c = 0; c < 3; ++c) {
+        a.at(x, y, c) = exemplar.at(x, y, c);
+        b.at(x, y, c) = exemplar.at(x + 32, y, c);
+      }
+  MixInputs inputs;
+  inputs.a = a.view();
+  inputs.b = b.view();
+  return mix(
+      inputs,
+      {{"support", 12}, {"iterations", 10}, {"steps", 4}, {"ramp_start", -30}, {"ramp_end", 30}},
+      5);
+}
+
 struct Case {
   std::string name;
   std::function<Model()> make;
@@ -70,6 +90,19 @@ std::vector<Case> cases() {
        model("lrp", colour_exemplar, {{"cosines", 24}, {"ratio", 0.3}, {"turbulence", 2}})},
       {"lrp material", model("lrp", material_exemplar, {{"cosines", 12}})},
       {"texton colour", model("texton", colour_exemplar, {{"support", 12}, {"iterations", 10}})},
+      {"texton grey", model("texton", grey_exemplar, {{"support", 12}, {"iterations", 10}})},
+      {"texton material",
+       model("texton", material_exemplar, {{"support", 12}, {"iterations", 10}})},
+      {"texton nearest",
+       model("texton", colour_exemplar, {{"support", 12}, {"iterations", 10}, {"order", 0}})},
+      {"texton cubic",
+       model("texton", grey_exemplar, {{"support", 13}, {"iterations", 10}, {"order", 3}})},
+      {"texton quintic",
+       model("texton", colour_exemplar, {{"support", 12}, {"iterations", 10}, {"order", 5}})},
+      // Cells of more points than the cell cache keeps.
+      {"texton mni 600",
+       model("texton", grey_exemplar, {{"support", 12}, {"iterations", 10}, {"mni", 600}})},
+      {"texton_mix", texton_mix_model},
       {"tiling colour", model("tiling", colour_exemplar, {})},
       {"tiling grey", model("tiling", grey_exemplar, {})},
       {"tiling decorrelated colour", model("tiling", colour_exemplar, {{"transport", 1}})},
@@ -99,6 +132,9 @@ std::vector<ImageF> outputs(const Model& model) {
   render_grid({{1e7 + 0.3, -2.5e6}, 1.0, 37, 29}, false);
   render_grid({{-40.25, 17.5}, 1.0, 37, 29}, true);
   render_grid({{12.0, -300.0}, 6.0, 23, 19}, true);
+  // Zoomed out by 8 and 2: levels whose texels the samples meet 1 or 2 apart.
+  render_grid({{-5000.5, 77.0}, 8.0, 35, 9}, true);
+  render_grid({{3.0, 2.0}, 2.0, 33, 17}, true);
 
   std::mt19937 engine(4);
   std::uniform_real_distribution<double> place(-200.0, 200.0);
@@ -116,6 +152,19 @@ std::vector<ImageF> outputs(const Model& model) {
              out.view());
     images.push_back(std::move(out));
   }
+  // One anisotropic footprint (several probes) shared by scattered positions and by a grid's.
+  const std::vector<Footprint> shared(positions.size(), Footprint{{3.0, 1.0}, {-0.5, 0.7}});
+  ImageF scattered(1, static_cast<int>(positions.size()), model.channels());
+  evaluate(model, positions, shared, 3, scattered.view());
+  images.push_back(std::move(scattered));
+  std::vector<Vec2d> row_major;
+  for (int y = 0; y < 7; ++y)
+    for (int x = 0; x < 43; ++x) row_major.push_back({-60.3 + 2.0 * x, 25.1 + 2.0 * y});
+  ImageF grid(43, 7, model.channels());
+  evaluate(model, row_major,
+           std::vector<Footprint>(row_major.size(), Footprint{{2.0, 0.0}, {0.0, 0.5}}), 3,
+           grid.view());
+  images.push_back(std::move(grid));
   return images;
 }
 

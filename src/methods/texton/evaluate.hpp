@@ -33,80 +33,6 @@ inline double bspline(int degree, double x) {
   return sum / factorial;
 }
 
-// Interpolation weights of the texton's B-spline kernel psi of order Order (eq. 3 and section 10)
-// at continuous texel coordinate u (texel i is centred on the integer i): returns the first texel
-// read and fills Order + 1 weights.
-template <int Order>
-struct BsplineKernel {
-  static constexpr int kTaps = Order + 1;
-
-  static int weights(float u, float* w) noexcept {
-    if constexpr (Order == 0) {
-      w[0] = 1.0f;
-      return static_cast<int>(std::floor(u + 0.5f));
-    } else {
-      const float cell = std::floor(u);
-      const float t = u - cell;
-      const int first = static_cast<int>(cell) - (Order - 1) / 2;
-      if constexpr (Order == 1) {
-        w[0] = 1.0f - t;
-        w[1] = t;
-      } else if constexpr (Order == 3) {
-        const float s = 1.0f - t;
-        const float t2 = t * t;
-        const float t3 = t2 * t;
-        w[0] = s * s * s * (1.0f / 6.0f);
-        w[1] = (4.0f - 6.0f * t2 + 3.0f * t3) * (1.0f / 6.0f);
-        w[2] = (1.0f + 3.0f * t + 3.0f * t2 - 3.0f * t3) * (1.0f / 6.0f);
-        w[3] = t3 * (1.0f / 6.0f);
-      } else {
-        static_assert(Order == 5, "texton interpolation orders are 0, 1, 3 and 5");
-        const float s = 1.0f - t;
-        const float t2 = t * t;
-        const float t3 = t2 * t;
-        const float t4 = t3 * t;
-        const float t5 = t4 * t;
-        w[0] = s * s * s * s * s * (1.0f / 120.0f);
-        w[1] = (26.0f - 50.0f * t + 20.0f * t2 + 20.0f * t3 - 20.0f * t4 + 5.0f * t5) *
-               (1.0f / 120.0f);
-        w[2] = (66.0f - 60.0f * t2 + 30.0f * t4 - 10.0f * t5) * (1.0f / 120.0f);
-        w[3] = (26.0f + 50.0f * t + 20.0f * t2 - 20.0f * t3 - 20.0f * t4 + 10.0f * t5) *
-               (1.0f / 120.0f);
-        w[4] =
-            (1.0f + 5.0f * t + 10.0f * t2 + 10.0f * t3 + 5.0f * t4 - 5.0f * t5) * (1.0f / 120.0f);
-        w[5] = t5 * (1.0f / 120.0f);
-      }
-      return first;
-    }
-  }
-};
-
-// Adds weight * h_level(d) to acc, where h_level is the (prefiltered) texton of one pyramid level
-// and d the offset from the impact point in exemplar pixels. Zero outside the level's support.
-// The channel count is a template parameter so that `acc` stays in registers.
-template <int Order, int Channels>
-inline void accumulate_texton(const PyramidLevel& level, float dx, float dy, float weight,
-                              float (&acc)[Channels]) noexcept {
-  constexpr int channels = Channels;
-  if (std::abs(dx) >= level.half_width || std::abs(dy) >= level.half_width) return;
-  constexpr int kTaps = BsplineKernel<Order>::kTaps;
-  float wx[kTaps];
-  float wy[kTaps];
-  const float inverse_spacing = 1.0f / level.spacing;
-  const int x0 = BsplineKernel<Order>::weights((dx - level.first_texel) * inverse_spacing, wx);
-  const int y0 = BsplineKernel<Order>::weights((dy - level.first_texel) * inverse_spacing, wy);
-  const float* base =
-      level.coefficients.data() +
-      (static_cast<std::ptrdiff_t>(y0 + kPadding) * level.stride + (x0 + kPadding)) * channels;
-  for (int j = 0; j < kTaps; ++j) {
-    const float* row = base + static_cast<std::ptrdiff_t>(j) * level.stride * channels;
-    for (int i = 0; i < kTaps; ++i) {
-      const float w = weight * wy[j] * wx[i];
-      for (int c = 0; c < channels; ++c) acc[c] += w * row[i * channels + c];
-    }
-  }
-}
-
 // Most probes along the major axis of an anisotropic footprint, as GPU 8x anisotropic filtering.
 inline constexpr int kMaxProbes = 8;
 // The level of detail of a footprint of width w is log2(w) - kLodBias (core/level_of_detail.hpp).
@@ -148,6 +74,63 @@ inline FilterSetup filter_setup(const Footprint& footprint, int top_level) noexc
   return setup;
 }
 
+// A probe of a footprint: the texton read at (dx, dy) + (x, y) when shifted, else at (dx, dy).
+struct ProbeShift {
+  bool shifted;
+  float x;
+  float y;
+};
+
+// The pieces of the evaluator that the scalar reference and the vectorised evaluator (simd.cpp)
+// share, source for source: bspline_weights and for_each_read.
+#include "methods/texton/kernel.inc"
+
+// Interpolation weights of the texton's B-spline kernel psi of order Order (eq. 3 and section 10)
+// at continuous texel coordinate u (texel i is centred on the integer i): returns the first texel
+// read and fills Order + 1 weights.
+template <int Order>
+struct BsplineKernel {
+  static constexpr int kTaps = Order + 1;
+
+  static int weights(float u, float* w) noexcept {
+    return bspline_weights<Order>(ScalarOps{}, u, w);
+  }
+
+ private:
+  struct ScalarOps {
+    static float constant(float c) noexcept { return c; }
+    static float floor(float v) noexcept { return std::floor(v); }
+    static int to_int(float v) noexcept { return static_cast<int>(v); }
+    static int int_constant(int i) noexcept { return i; }
+  };
+};
+
+// Adds weight * h_level(d) to acc, where h_level is the (prefiltered) texton of one pyramid level
+// and d the offset from the impact point in exemplar pixels. Zero outside the level's support.
+// The channel count is a template parameter so that `acc` stays in registers.
+template <int Order, int Channels>
+inline void accumulate_texton(const PyramidLevel& level, float dx, float dy, float weight,
+                              float (&acc)[Channels]) noexcept {
+  constexpr int channels = Channels;
+  if (std::abs(dx) >= level.half_width || std::abs(dy) >= level.half_width) return;
+  constexpr int kTaps = BsplineKernel<Order>::kTaps;
+  float wx[kTaps];
+  float wy[kTaps];
+  const float inverse_spacing = 1.0f / level.spacing;
+  const int x0 = BsplineKernel<Order>::weights((dx - level.first_texel) * inverse_spacing, wx);
+  const int y0 = BsplineKernel<Order>::weights((dy - level.first_texel) * inverse_spacing, wy);
+  const float* base =
+      level.coefficients.data() +
+      (static_cast<std::ptrdiff_t>(y0 + kPadding) * level.stride + (x0 + kPadding)) * channels;
+  for (int j = 0; j < kTaps; ++j) {
+    const float* row = base + static_cast<std::ptrdiff_t>(j) * level.stride * channels;
+    for (int i = 0; i < kTaps; ++i) {
+      const float w = weight * wy[j] * wx[i];
+      for (int c = 0; c < channels; ++c) acc[c] += w * row[i * channels + c];
+    }
+  }
+}
+
 // The texton filtered for one footprint (section 5), summed at impact offsets: the pyramid
 // level(s) and probes that filter_setup chose. The planar evaluator, the surface evaluator
 // (docs/surface.md) and texton noise mixing (each impulse its own texton, same support and order)
@@ -179,23 +162,19 @@ class FilteredTexton {
   // the texton whose pyramid starts at `pyramid`.
   void add(const PyramidLevel* pyramid, float dx, float dy, float weight,
            float (&acc)[Channels]) const noexcept {
-    const PyramidLevel& fine = pyramid[fine_level_];
-    if (filter_.probes == 1 && filter_.level_blend == 0.0f) {
-      accumulate_texton<Order, Channels>(fine, dx, dy, weight, acc);
-      return;
-    }
-    const PyramidLevel& coarse = pyramid[coarse_level_];
-    const float probe_weight = weight * probe_weight_;
-    for (int k = 0; k < filter_.probes; ++k) {
-      const float shift = static_cast<float>(k) + 0.5f - 0.5f * static_cast<float>(filter_.probes);
-      const float px = dx + shift * filter_.probe_x;
-      const float py = dy + shift * filter_.probe_y;
-      accumulate_texton<Order, Channels>(fine, px, py, probe_weight * (1.0f - filter_.level_blend),
-                                         acc);
-      if (filter_.level_blend > 0.0f)
-        accumulate_texton<Order, Channels>(coarse, px, py, probe_weight * filter_.level_blend, acc);
-    }
+    for_each_read(filter_, pyramid[fine_level_], pyramid[coarse_level_], probe_weight_, weight,
+                  [&](const PyramidLevel& level, const ProbeShift& shift, float read_weight) {
+                    accumulate_texton<Order, Channels>(level, shift.shifted ? dx + shift.x : dx,
+                                                       shift.shifted ? dy + shift.y : dy,
+                                                       read_weight, acc);
+                  });
   }
+
+  // What add() passes to for_each_read, for the vectorised evaluator's instance of it.
+  const FilterSetup& filter() const noexcept { return filter_; }
+  int fine_level() const noexcept { return fine_level_; }
+  int coarse_level() const noexcept { return coarse_level_; }
+  float probe_weight() const noexcept { return probe_weight_; }
 
   // The noise's value from the sum: (acc - offset) * scale + mean, with constant = mean - offset
   // * scale, and `fade` (filter_setup) scaling the fluctuation only.
@@ -226,25 +205,25 @@ class CellCache {
   CellCache(std::uint32_t seed, const PoissonSampler& count) noexcept
       : seed_(seed), count_(count) {}
 
-  // Calls f(u, v) for each point of the cell, (u, v) in [0, 1)^2 relative to the cell corner.
-  template <typename F>
-  void for_each_point(std::int64_t cell_x, std::int64_t cell_y, F&& f) noexcept {
-    const auto slot =
-        static_cast<std::size_t>((static_cast<std::uint64_t>(cell_x) * 0x9e3779b97f4a7c15ull ^
-                                  static_cast<std::uint64_t>(cell_y) * 0xc2b2ae3d27d4eb4full) >>
-                                 59);
+  // The points of a cell in the cache: (u[i], v[i]) in [0, 1)^2 relative to the cell corner,
+  // i < count; u and v are null when the cell holds more than kMaxPoints points.
+  struct Points {
+    const float* u;
+    const float* v;
+    std::uint32_t count;
+  };
+
+  // The points of the cell, drawn into the cache if absent.
+  Points points(std::int64_t cell_x, std::int64_t cell_y) noexcept {
+    // Cell (x, y) lives in slot (x mod 8, y mod 4): the cells a batch visits together, a window of
+    // at most 8 x 4 neighbours, never evict one another.
+    const auto slot = static_cast<std::size_t>((static_cast<std::uint64_t>(cell_x) & 7u) |
+                                               (static_cast<std::uint64_t>(cell_y) & 3u) << 3);
     Entry& entry = entries_[slot];
     if (!entry.valid || entry.x != cell_x || entry.y != cell_y) {
       CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
       const std::uint32_t impacts = count_(rng);
-      if (impacts > kMaxPoints) {
-        for (std::uint32_t i = 0; i < impacts; ++i) {
-          const float u = rng.uniform();
-          const float v = rng.uniform();
-          f(u, v);
-        }
-        return;
-      }
+      if (impacts > kMaxPoints) return {nullptr, nullptr, impacts};
       entry.valid = true;
       entry.x = cell_x;
       entry.y = cell_y;
@@ -254,7 +233,25 @@ class CellCache {
         entry.v[i] = rng.uniform();
       }
     }
-    for (std::uint32_t i = 0; i < entry.count; ++i) f(entry.u[i], entry.v[i]);
+    return {entry.u, entry.v, entry.count};
+  }
+
+  // Calls f(u, v) for each point of the cell, (u, v) in [0, 1)^2 relative to the cell corner.
+  template <typename F>
+  void for_each_point(std::int64_t cell_x, std::int64_t cell_y, F&& f) noexcept {
+    const Points cached = points(cell_x, cell_y);
+    if (cached.u != nullptr) {
+      for (std::uint32_t i = 0; i < cached.count; ++i) f(cached.u[i], cached.v[i]);
+      return;
+    }
+    // Too many to keep: the count's draws again, then the points'.
+    CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
+    count_(rng);
+    for (std::uint32_t i = 0; i < cached.count; ++i) {
+      const float u = rng.uniform();
+      const float v = rng.uniform();
+      f(u, v);
+    }
   }
 
  private:
@@ -266,7 +263,7 @@ class CellCache {
     float u[kMaxPoints];
     float v[kMaxPoints];
   };
-  static_assert(kEntries == 32, "the slot index takes the top 5 bits of the hash");
+  static_assert(kEntries == 32, "the slot index is (x mod 8, y mod 4)");
 
   std::uint32_t seed_;
   const PoissonSampler& count_;
@@ -315,6 +312,14 @@ inline void with_order_and_channels(int order, int channels, F&& f) noexcept {
 struct Impulse {
   const PyramidLevel* pyramid;
   float weight;
+};
+
+// The impulses of texton noise: every point scatters the one texton with weight 1.
+struct OneTexton {
+  const PyramidLevel* pyramid;
+  Impulse operator()(std::int64_t, std::int64_t, std::uint32_t, float, float) const noexcept {
+    return {pyramid, 1.0f};
+  }
 };
 
 // The shot-noise sum at p (eq. 1), filtered as section 5 says: the impulses of the grid cells that

@@ -8,6 +8,7 @@
 #include "core/surface_process.hpp"
 #include "methods/texton/evaluate.hpp"
 #include "methods/texton/params.hpp"
+#include "methods/texton/simd.hpp"
 #include "model/value_range.hpp"
 #include "stochtex/error.hpp"
 
@@ -44,6 +45,11 @@ std::vector<PyramidLevel> build_pyramid(std::span<const float> coefficients, int
           out.coefficients[(static_cast<std::size_t>(y + kPadding) * out.stride + x + kPadding) *
                                lanes +
                            c] = current[(static_cast<std::size_t>(y) * size + x) * channels + c];
+    const std::size_t plane = static_cast<std::size_t>(out.stride) * out.stride;
+    out.planes.resize(plane * lanes);
+    for (std::size_t texel = 0; texel < plane; ++texel)
+      for (std::size_t c = 0; c < static_cast<std::size_t>(lanes); ++c)
+        out.planes[c * plane + texel] = out.coefficients[texel * lanes + c];
     levels.push_back(std::move(out));
     if (size == 1) break;
     const int next_size = (size + 1) / 2;
@@ -157,23 +163,19 @@ template <int Order, int Channels>
 void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
                                  std::span<const Footprint> footprints, std::uint32_t seed,
                                  ImageView<float> out) const noexcept {
-  const int top_level = static_cast<int>(pyramid_.size()) - 1;
   CellCache cells(seed, cell_count_);
-  const auto one_texton = [this](std::int64_t, std::int64_t, std::uint32_t, float, float) {
-    return Impulse{pyramid_.data(), 1.0f};
-  };
-  for (std::size_t index = 0; index < positions.size(); ++index) {
-    const FilteredTexton<Order, Channels> texton(
-        pyramid_, footprints.empty() ? FilterSetup{} : filter_setup(footprints[index], top_level));
-    float acc[Channels] = {};
-    sum_impulses<Order, Channels>(positions[index], texton, cell_size_, cells, one_texton, acc);
-    const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
-    const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-    // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2). Channels is the lane count
-    // (texton_lanes): the channels beyond the model's are zero padding.
-    for (int c = 0; c < channels_; ++c)
-      out.at(x, y, c) = texton.output(acc[c], inverse_sqrt_intensity_, constant_term_[c], mean_[c]);
-  }
+  shot_noise<Order, Channels>(
+      positions, footprints, pyramid_, cell_size_, cells, OneTexton{pyramid_.data()},
+      [&](std::size_t index, const FilteredTexton<Order, Channels>& texton,
+          const float(&acc)[Channels]) {
+        const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
+        const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
+        // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2). Channels is the lane count
+        // (texton_lanes): the channels beyond the model's are zero padding.
+        for (int c = 0; c < channels_; ++c)
+          out.at(x, y, c) =
+              texton.output(acc[c], inverse_sqrt_intensity_, constant_term_[c], mean_[c]);
+      });
 }
 
 SurfaceConstants TextonModel::surface_constants(double surface_mni) const {

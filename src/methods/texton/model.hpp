@@ -48,6 +48,7 @@ struct PyramidLevel {
   float first_texel = 0;  // position of texel 0 relative to the texton centre, exemplar pixels
   float half_width = 0;   // the kernel h_level vanishes where |y|_inf >= half_width
   std::vector<float> coefficients;  // padded, (stride x stride x texton_lanes(channels))
+  std::vector<float> planes;  // the same texels channel by channel: lanes planes of stride x stride
 };
 
 class TextonModel {

@@ -6,6 +6,7 @@
 
 #include "core/hash.hpp"
 #include "methods/texton/evaluate.hpp"
+#include "methods/texton/simd.hpp"
 #include "model/value_range.hpp"
 #include "stochtex/error.hpp"
 
@@ -155,7 +156,6 @@ void TextonMixModel::evaluate_typed(std::span<const Vec2d> positions,
                                     ImageView<float> out) const noexcept {
   const texton::TextonModel& shape = shapes_.front();
   const double cell_size = shape.cell_size();
-  const int top_level = static_cast<int>(shape.pyramid().size()) - 1;
   const double last_step = params_.steps - 1;
   texton::CellCache cells(seed, shape.cell_count());
   // Section 7: impulse x_j uses the texton of the region its centre falls in (rho(x_j) rounded to
@@ -171,21 +171,19 @@ void TextonMixModel::evaluate_typed(std::span<const Vec2d> positions,
     const float sign = (pcg_hash(key ^ pcg_hash(index)) >> 31u) != 0u ? -1.0f : 1.0f;
     return texton::Impulse{shapes_[step].pyramid().data(), sign};
   };
-  for (std::size_t index = 0; index < positions.size(); ++index) {
-    const Vec2d p = positions[index];
-    const texton::FilteredTexton<Order, Channels> texton(
-        shape.pyramid(), footprints.empty() ? texton::FilterSetup{}
-                                            : texton::filter_setup(footprints[index], top_level));
-    float acc[Channels] = {};
-    texton::sum_impulses<Order, Channels>(p, texton, cell_size, cells, region_texton, acc);
-    // The mean interpolated with the field at the evaluation point (section 7).
-    const auto rho = static_cast<float>(field_.rho(p.x, p.y));
-    const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
-    const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-    for (int c = 0; c < Channels; ++c)
-      out.at(x, y, c) = (1.0f - rho) * mean_a_[c] + rho * mean_b_[c] +
-                        texton.fade() * acc[c] * shape.inverse_sqrt_intensity();
-  }
+  texton::shot_noise<Order, Channels>(
+      positions, footprints, shape.pyramid(), cell_size, cells, region_texton,
+      [&](std::size_t index, const texton::FilteredTexton<Order, Channels>& texton,
+          const float(&acc)[Channels]) {
+        const Vec2d p = positions[index];
+        // The mean interpolated with the field at the evaluation point (section 7).
+        const auto rho = static_cast<float>(field_.rho(p.x, p.y));
+        const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
+        const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
+        for (int c = 0; c < Channels; ++c)
+          out.at(x, y, c) = (1.0f - rho) * mean_a_[c] + rho * mean_b_[c] +
+                            texton.fade() * acc[c] * shape.inverse_sqrt_intensity();
+      });
 }
 
 }  // namespace stochtex::texton_mix
