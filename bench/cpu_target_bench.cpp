@@ -5,7 +5,7 @@
 //   zoom     1 = point samples at scale 1, 8 = filtered at scale 8 (zoomed out),
 //   colour   0 = grey, 1 = colour,
 // one row per combination in one run, so the ratios compare like with like. ns_per_sample is
-// wall-clock time per output pixel of a 128² render.
+// wall-clock time per output pixel of a 128² render. BM_CpuThreads: 1 and 2 threads on 512².
 
 #include <benchmark/benchmark.h>
 
@@ -64,7 +64,31 @@ void evaluate_benchmark(benchmark::State& state, const std::string& method) {
   set_cpu_target(available_cpu_targets().back());
 }
 
-// One family per registered method: BM_CpuEvaluate/<method>/simd:S/threads:T/zoom:Z/colour:C.
+// Two threads against one on a larger render (512², colour, the best target): a 128² render is
+// 4 tiles of 64², and starting the second thread weighs on its fraction of a millisecond.
+void threads_benchmark(benchmark::State& state, const std::string& method) {
+  const auto threads = static_cast<int>(state.range(0));
+  const auto zoom = static_cast<double>(state.range(1));
+  const Model* model = nullptr;
+  try {
+    model = &default_model(method, true);
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  state.SetLabel(std::string(cpu_target_name(cpu_target())));
+  RenderOptions options;
+  options.threads = threads;
+  options.filter = zoom > 1.0;
+  constexpr int kLargeSide = 512;
+  const Grid grid{{0.0, 0.0}, zoom, kLargeSide, kLargeSide};
+  ImageF out(kLargeSide, kLargeSide, model->channels());
+  time_samples(state, std::int64_t{kLargeSide} * kLargeSide,
+               [&] { render(*model, grid, 7, out.view(), options); });
+}
+
+// One family per registered method: BM_CpuEvaluate/<method>/simd:S/threads:T/zoom:Z/colour:C and
+// BM_CpuThreads/<method>/threads:T/zoom:Z.
 [[maybe_unused]] const bool registered = [] {
   for (const MethodInfo& method : methods()) {
     const std::string name(method.name);
@@ -73,6 +97,13 @@ void evaluate_benchmark(benchmark::State& state, const std::string& method) {
         [name](benchmark::State& state) { evaluate_benchmark(state, name); })
         ->ArgNames({"simd", "threads", "zoom", "colour"})
         ->ArgsProduct({{0, 1}, {1, 2}, {1, 8}, {0, 1}})
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(
+        ("BM_CpuThreads/" + name).c_str(),
+        [name](benchmark::State& state) { threads_benchmark(state, name); })
+        ->ArgNames({"threads", "zoom"})
+        ->ArgsProduct({{1, 2}, {1, 8}})
         ->UseRealTime()
         ->Unit(benchmark::kMillisecond);
   }

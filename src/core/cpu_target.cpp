@@ -2,6 +2,10 @@
 
 #include <hwy/targets.h>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -31,7 +35,20 @@ std::int64_t machine_targets() {
   return targets;
 }
 
+#if defined(__x86_64__) || defined(__i386__)
+__attribute__((target("avx"))) void zero_upper() noexcept {
+  _mm256_zeroupper();
+}
+#endif
+
 }  // namespace
+
+void end_simd_call() noexcept {
+#if defined(__x86_64__) || defined(__i386__)
+  static const bool avx = (machine_targets() & (HWY_AVX2 | HWY_AVX3)) != 0;
+  if (avx) zero_upper();
+#endif
+}
 
 bool simd_enabled() noexcept {
   return !reference_forced.load(std::memory_order_relaxed);

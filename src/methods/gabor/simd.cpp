@@ -11,6 +11,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "core/cpu_target.hpp"
 #include "core/simd_math.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -206,7 +207,9 @@ HWY_EXPORT(ImpulseSum);
 
 float impulse_sum(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells, Vec2d p,
                   double cell_size) noexcept {
-  return HWY_DYNAMIC_DISPATCH(ImpulseSum)(cache, shape, cells, p, cell_size);
+  const float sum = HWY_DYNAMIC_DISPATCH(ImpulseSum)(cache, shape, cells, p, cell_size);
+  end_simd_call();
+  return sum;
 }
 
 }  // namespace stochtex::gabor

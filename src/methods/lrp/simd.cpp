@@ -11,6 +11,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "core/cpu_target.hpp"
 #include "core/simd_math.hpp"
 
 HWY_BEFORE_NAMESPACE();
@@ -250,6 +251,7 @@ void random_strata_noise(const RandomStrata& strata, int channels, std::span<con
                          std::span<const Footprint> footprints, NodeCache& cache,
                          float* noise) noexcept {
   HWY_DYNAMIC_DISPATCH(RandomStrataNoise)(strata, channels, positions, footprints, cache, noise);
+  end_simd_call();
 }
 
 std::unique_ptr<NodeCache> NodeCache::make(std::span<const SimdStratum> strata) noexcept {

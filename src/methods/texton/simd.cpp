@@ -16,6 +16,8 @@
 
 #include <limits>
 
+#include "core/cpu_target.hpp"
+
 HWY_BEFORE_NAMESPACE();
 namespace stochtex::texton::HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
@@ -277,6 +279,7 @@ void sum_impulses_simd(int order, int lanes, std::span<const Vec2d> positions,
                        float* acc) noexcept {
   HWY_DYNAMIC_DISPATCH(SumImpulses)
   (order, lanes, positions, shape, filter, cell_size, cells, impulses, acc);
+  end_simd_call();
 }
 
 }  // namespace stochtex::texton

@@ -13,6 +13,7 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include "core/cpu_target.hpp"
 #include "core/hash.hpp"
 #include "methods/tiling/evaluate.hpp"
 
@@ -426,6 +427,7 @@ void evaluate_lanes(const SimdTiling& model, std::span<const Vec2d> positions,
                     const std::int32_t* levels, const float* blends, std::uint32_t seed,
                     ImageView<float> out, std::size_t first) noexcept {
   HWY_DYNAMIC_DISPATCH(EvaluateLanes)(model, positions, levels, blends, seed, out, first);
+  end_simd_call();
 }
 
 }  // namespace stochtex::tiling
