@@ -71,6 +71,9 @@ std::string_view cpu_target_name(CpuTarget target);
 std::vector<CpuTarget> available_cpu_targets();
 // The target evaluate() and render() use now.
 CpuTarget cpu_target();
+// The target of available_cpu_targets() named `name` (cpu_target_name's names); throws
+// std::invalid_argument, one sentence listing this machine's targets, for any other name.
+CpuTarget available_cpu_target(std::string_view name);
 // Process-wide, for tests, benchmarks and checks; call it while no evaluation runs. Throws
 // std::invalid_argument (one sentence) for a target that available_cpu_targets() lacks.
 void set_cpu_target(CpuTarget target);

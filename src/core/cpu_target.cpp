@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "stochtex/render.hpp"
 
@@ -85,6 +86,18 @@ CpuTarget cpu_target() {
   for (const auto& [target, bit] : kHighwayTargets)
     if ((bit & best) != 0) return target;
   return CpuTarget::reference;
+}
+
+CpuTarget available_cpu_target(std::string_view name) {
+  const std::vector<CpuTarget> targets = available_cpu_targets();
+  std::string names;
+  for (const CpuTarget target : targets) {
+    if (cpu_target_name(target) == name) return target;
+    if (!names.empty()) names += ", ";
+    names += cpu_target_name(target);
+  }
+  throw std::invalid_argument("this machine cannot run '" + std::string(name) +
+                              "'; its CPU targets are " + names);
 }
 
 void set_cpu_target(CpuTarget target) {

@@ -179,6 +179,19 @@ TEST_F(CpuTargets, TheReferenceComesFirstAndTheBestLast) {
   }
 }
 
+TEST_F(CpuTargets, NamesFindTheTargetsThisMachineRuns) {
+  for (const CpuTarget target : available_cpu_targets())
+    EXPECT_EQ(available_cpu_target(cpu_target_name(target)), target);
+  try {
+    available_cpu_target("neon");
+    ADD_FAILURE() << "an unknown target was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot run 'neon'; its CPU targets are reference"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(CpuTargets, EveryTargetGivesTheReferencesBytes) {
   const std::vector<CpuTarget> targets = available_cpu_targets();
   // An x86-64 machine runs SSE4 at least: the test must compare a vector target.
