@@ -312,19 +312,36 @@ PYBIND11_MODULE(_stochtex, m) {
       "Every method with its parameters: names, defaults, ranges, help, choices.");
   m.def(
       "compare",
-      [](const py::array& exemplar, const py::array& image) {
+      [](const py::array& exemplar, const py::object& images) {
         const ImageF reference = exemplar_from_array(exemplar, "the exemplar array");
-        const ImageF synthesis = image_from_array(image, "the image array");
+        // One array, or a list of renders of one model with different seeds.
+        std::vector<py::array> arrays;
+        if (py::isinstance<py::array>(images))
+          arrays.push_back(images.cast<py::array>());
+        else
+          for (const py::handle item : images) arrays.push_back(py::cast<py::array>(item));
+        if (arrays.empty()) throw py::value_error("compare needs at least one image array");
+        const auto name = [&](std::size_t i) {
+          return arrays.size() == 1 ? std::string("the image array")
+                                    : "image array " + std::to_string(i);
+        };
+        std::vector<ImageF> syntheses;
+        for (std::size_t i = 0; i < arrays.size(); ++i)
+          syntheses.push_back(image_from_array(arrays[i], name(i)));
         const std::string json = [&] {
           py::gil_scoped_release release;
-          return comparison_json(compare_checked(reference.view(), "the exemplar array",
-                                                 synthesis.view(), "the image array"))
-              .dump();
+          Comparison comparison(reference.view());
+          for (std::size_t i = 0; i < syntheses.size(); ++i)
+            add_checked(comparison, reference.view(), "the exemplar array", syntheses[i].view(),
+                        name(i));
+          return comparison_json(comparison.report()).dump();
         }();
         return parse_json(json);
       },
       py::arg("exemplar"), py::arg("image"),
-      "The measures of `stochtex compare --json` for an image against its exemplar.");
+      "The measures of `stochtex compare --json` for an image against its exemplar; a list of "
+      "images (one model, different seeds) gives their mean measures and the averaged spectral "
+      "error.");
   m.def(
       "gaussian",
       [](const py::array& exemplar, int width, int height, std::uint32_t seed) {

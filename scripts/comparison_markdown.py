@@ -14,6 +14,7 @@ from pathlib import Path
 
 MEASURES = [  # key, column title, format
     ("spectral_error", "spectral", "{:.3f}"),
+    ("averaged_spectral_error", "averaged", "{:.3f}"),
     ("histogram_error", "colour SW2", "{:.4f}"),
     ("covariance_error", "covariance", "{:.3f}"),
     ("nonstationarity", "non-stat.", "{:.3f}"),
@@ -84,6 +85,7 @@ All errors compare the synthesis with the exemplar (docs/design.md §8); lower i
 | column | measure |
 |---|---|
 | spectral | relative L1 distance of Welch power spectra (Hann-windowed crops). The Gaussian version's value is what an ideal Gaussian texture scores: texton, lrp and gabor aim at that level, not at 0 |
+| averaged | the same distance for the Welch spectrum averaged over the renders of {seeds} seeds: what is left is the synthesis's bias (its expected spectrum differs from the exemplar's), and the difference to "spectral" is one render's shot noise. The Gaussian version's value is the exemplar's own estimator noise |
 | colour SW2 | sliced Wasserstein-2 distance of the pixel colours (64 fixed directions). "floor" is the exemplar's top half against its bottom half |
 | covariance | relative Frobenius distance of the colour covariance matrices |
 | non-stat. | non-stationarity: coefficient of variation, over 4×4-sample blocks, of the per-sample variance across 8 seeds on a 64×64 grid of point samples 2 exemplar pixels apart. The Gaussian version is exactly stationary, so its value is the estimator's own noise; a method well above it shows its lattice |
@@ -100,7 +102,7 @@ version's value means no lattice shows at this measure's resolution.
 Times are thread CPU times, which other work sharing the cores changes little (the run used all
 cores for independent (exemplar, method) pairs). How the per-sample costs compare with the papers'
 GPU claims, and why, is in [docs/performance.md](performance.md#cpu-the-four-methods-side-by-side).
-""".format(w=settings["width"], h=settings["height"]))
+""".format(w=settings["width"], h=settings["height"], seeds=settings["averaged_seeds"]))
 
     # Summary per category: mean of each measure over the category's exemplars.
     out.append("## Summary per category\n")
@@ -162,8 +164,8 @@ GPU claims, and why, is in [docs/performance.md](performance.md#cpu-the-four-met
         for synthesis in exemplar["syntheses"]:
             out.append("| {} | {} |".format(label(synthesis["name"]), " | ".join(
                 value(synthesis, key, form) for key, _, form in MEASURES)))
-        out.append("| floor | | {:.4f} |{}\n".format(exemplar["histogram_error_floor"],
-                                                   " |" * (len(MEASURES) - 2)))
+        out.append("| floor | | | {:.4f} |{}\n".format(exemplar["histogram_error_floor"],
+                                                     " |" * (len(MEASURES) - 3)))
     print("\n".join(out))
 
 

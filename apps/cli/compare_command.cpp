@@ -1,11 +1,14 @@
-// `stochtex compare EXEMPLAR IMAGE`: the quality measures of docs/design.md §8 (the rows of
-// report/measures.hpp that have a compare label), beside an ADSN sample's and the exemplar's
-// floor where the measure has them.
+// `stochtex compare EXEMPLAR IMAGE...`: the quality measures of docs/design.md §8 (the rows of
+// report/measures.hpp that have a compare label), beside ADSN samples' and the exemplar's floor
+// where the measure has them. Several images (renders of one model with different seeds) give the
+// mean of each measure and the error of their averaged spectrum (bias apart from shot noise).
 
 #include <fmt/core.h>
 
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "arguments.hpp"
 #include "commands.hpp"
@@ -18,9 +21,13 @@ namespace stochtex::cli {
 namespace {
 
 void print_text(const ComparisonReport& report) {
-  fmt::print("{:<28}{:>12}{:>12}{:>12}\n", "measure", "image", "ADSN", "floor");
+  if (report.images > 1)
+    fmt::print("{} images, each beside its own ADSN sample: the means of their measures\n",
+               report.images);
+  fmt::print("{:<28}{:>12}{:>12}{:>12}\n", "measure", report.images > 1 ? "images" : "image",
+             "ADSN", "floor");
   for (const Measure& measure : measures()) {
-    if (measure.compare_label.empty()) continue;
+    if (measure.compare_label.empty() || (measure.several_renders && report.images < 2)) continue;
     std::string line =
         fmt::format("{:<28}{:>12.4f}", measure.compare_label, report.image.*measure.value);
     if (!measure.adsn_key.empty()) {
@@ -33,8 +40,12 @@ void print_text(const ComparisonReport& report) {
 }
 
 nlohmann::ordered_json json(const ComparisonReport& report, const std::string& exemplar,
-                            const std::string& image) {
-  nlohmann::ordered_json doc{{"exemplar", exemplar}, {"image", image}};
+                            const std::vector<std::string>& images) {
+  nlohmann::ordered_json doc{{"exemplar", exemplar}};
+  if (images.size() == 1)
+    doc["image"] = images.front();
+  else
+    doc["images"] = images;
   doc.update(comparison_json(report));
   return doc;
 }
@@ -44,21 +55,28 @@ nlohmann::ordered_json json(const ComparisonReport& report, const std::string& e
 Command add_compare_command(CLI::App& app) {
   struct Options {
     std::string exemplar;
-    std::string image;
+    std::vector<std::string> images;
     bool json = false;
   };
   auto options = std::make_shared<Options>();
-  auto* command = app.add_subcommand("compare", "quality of IMAGE against EXEMPLAR");
+  auto* command = app.add_subcommand(
+      "compare",
+      "quality of IMAGE against EXEMPLAR; several IMAGEs (one model, different seeds) also give "
+      "the error of their averaged spectrum, which tells bias from shot noise");
   command->add_option("EXEMPLAR", options->exemplar, "the exemplar")->required();
-  command->add_option("IMAGE", options->image, "the synthesised image")->required();
+  command->add_option("IMAGE", options->images, "the synthesised image(s), all of one size")
+      ->required();
   command->add_flag("--json", options->json, "print one JSON document");
   return {command, [options] {
             const ImageF exemplar = load_exemplar(options->exemplar);
-            const ImageF image = read_image(options->image);
-            const ComparisonReport report =
-                compare_checked(exemplar.view(), options->exemplar, image.view(), options->image);
+            Comparison comparison(exemplar.view());
+            for (const std::string& path : options->images) {
+              const ImageF image = read_image(path);
+              add_checked(comparison, exemplar.view(), options->exemplar, image.view(), path);
+            }
+            const ComparisonReport report = comparison.report();
             if (options->json)
-              fmt::print("{}\n", json(report, options->exemplar, options->image).dump(2));
+              fmt::print("{}\n", json(report, options->exemplar, options->images).dump(2));
             else
               print_text(report);
             return 0;

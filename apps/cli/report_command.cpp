@@ -100,14 +100,15 @@ double process_cpu_seconds() {
   return seconds(usage.ru_utime) + seconds(usage.ru_stime);
 }
 
-// Writes a synthesis's picture files: DIR/NAME/KIND.png, KIND_spectrum.png, KIND_histogram.png
-// and, when asked, DIR/thumbnails/NAME_KIND.png.
+// Writes a synthesis's picture files: DIR/NAME/KIND.png, KIND_spectrum.png,
+// KIND_spectrum_averaged.png, KIND_histogram.png and, when asked, DIR/thumbnails/NAME_KIND.png.
 void write_pictures(const fs::path& folder, const std::string& name, const Pictures& pictures,
                     int thumbnail) {
   const fs::path own = folder / name;
   const std::string kind(pictures.kind);
   write_image(own / (kind + ".png"), pictures.image);
   write_image(own / (kind + "_spectrum.png"), pictures.spectrum.view());
+  write_image(own / (kind + "_spectrum_averaged.png"), pictures.averaged_spectrum.view());
   write_image(own / (kind + "_histogram.png"), pictures.histogram.view());
   if (thumbnail > 0)
     write_image(folder / "thumbnails" / (name + "_" + kind + ".png"),

@@ -75,8 +75,13 @@ std::string exemplar_page(const ExemplarResults& exemplar, const ReportSettings&
   const auto failed = [&](std::size_t k) {
     return k > 0 && exemplar.outcomes[k - 1].error.has_value();
   };
-  const std::array<std::pair<std::string_view, std::string_view>, 3> rows{
-      {{"image", ""}, {"power spectrum (log)", "_spectrum"}, {"colour histogram", "_histogram"}}};
+  const std::string averaged =
+      fmt::format("power spectrum averaged over {} seeds (log)", settings.averaged_seeds);
+  const std::array<std::pair<std::string_view, std::string_view>, 4> rows{
+      {{"image", ""},
+       {"power spectrum (log)", "_spectrum"},
+       {averaged, "_spectrum_averaged"},
+       {"colour histogram", "_histogram"}}};
   for (const auto& [title, suffix] : rows) {
     page += fmt::format("<tr><th class=\"name\">{}</th>", title);
     for (std::size_t k = 0; k < kinds.size(); ++k) {
@@ -85,7 +90,7 @@ std::string exemplar_page(const ExemplarResults& exemplar, const ReportSettings&
                             html_escape(*exemplar.outcomes[k - 1].error));
         continue;
       }
-      const bool spectrum = suffix == "_spectrum";
+      const bool spectrum = suffix.starts_with("_spectrum");
       page += fmt::format(
           "<td class=\"pictures\"><img src=\"{}/{}{}.png\" alt=\"{} {}\"{}></td>", exemplar.name,
           kinds[k], suffix, kinds[k], title,
@@ -96,7 +101,11 @@ std::string exemplar_page(const ExemplarResults& exemplar, const ReportSettings&
   page += "</table>\n<p class=\"help\">Spectra: Welch estimates on " +
           fmt::format("{0}&times;{0}", exemplar.crop) +
           " crops, DC at the centre, log scale from the exemplar's 1% quantile (black) to its "
-          "maximum (white), the same for every picture. Histograms: the exemplar's per-channel "
+          "maximum (white), the same for every picture. The averaged spectra are the mean of " +
+          fmt::format("{}", settings.averaged_seeds) + " renders (seeds " +
+          fmt::format("{}&ndash;{}", settings.seed, settings.seed + settings.averaged_seeds - 1) +
+          "): what differs from the exemplar's there is the synthesis's bias, not its shot "
+          "noise. Histograms: the exemplar's per-channel "
           "histogram as pale areas, the synthesis's as lines, on the same axes.</p>\n"
           "<table>\n<tr><th class=\"name\"></th>";
   for (const Measure& measure : measures()) page += fmt::format("<th>{}</th>", measure.title);

@@ -38,6 +38,7 @@ std::string summary_json(const ReportRun& run) {
                                         {{"width", settings.width},
                                          {"height", settings.height},
                                          {"seed", settings.seed},
+                                         {"averaged_seeds", settings.averaged_seeds},
                                          {"methods", run.methods},
                                          {"threads", run.threads},
                                          {"stationarity_side", settings.stationarity_side},

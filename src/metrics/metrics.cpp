@@ -361,33 +361,83 @@ double histogram_error_floor(ImageView<const float> exemplar) {
       exemplar.sub(0, top_height, exemplar.width, exemplar.height - top_height));
 }
 
-ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,
-                                std::uint32_t seed) {
-  require_pixels(exemplar, "compare_images");
-  require_pixels(image, "compare_images");
-  require_same_channels(image, exemplar, "compare_images");
+Comparison::Comparison(ImageView<const float> exemplar, std::uint32_t seed)
+    : exemplar_(exemplar), seed_(seed) {
+  require_pixels(exemplar, "Comparison");
+}
+
+void Comparison::add(ImageView<const float> image) {
+  require_pixels(image, "Comparison::add");
+  require_same_channels(image, exemplar_, "Comparison::add");
+  if (images_ > 0 && (image.width != width_ || image.height != height_))
+    throw std::invalid_argument("Comparison::add: the image is " + std::to_string(image.width) +
+                                "x" + std::to_string(image.height) + ", the first was " +
+                                std::to_string(width_) + "x" + std::to_string(height_) +
+                                "; compare renders of one size");
   const auto pixels = [](ImageView<const float> v) {
     return static_cast<std::uint64_t>(v.width) * static_cast<std::uint64_t>(v.height);
   };
-  check_memory_budget(compare_peak_bytes(pixels(exemplar), pixels(image), image.channels),
+  check_memory_budget(compare_peak_bytes(pixels(exemplar_), pixels(image), image.channels),
                       "comparing a " + std::to_string(image.width) + "x" +
                           std::to_string(image.height) + " image with a " +
-                          std::to_string(exemplar.width) + "x" + std::to_string(exemplar.height) +
+                          std::to_string(exemplar_.width) + "x" + std::to_string(exemplar_.height) +
                           " exemplar",
                       "compare crops of them");
-  ComparisonReport report;
-  report.crop = welch_crop_size(exemplar, image);
-  const ImageF gaussian = adsn(exemplar, image.width, image.height, seed);
-  report.image.spectral_error = spectral_error(image, exemplar, report.crop);
-  report.adsn.spectral_error = spectral_error(gaussian.view(), exemplar, report.crop);
-  report.image.histogram_error = sliced_wasserstein(image, exemplar);
-  report.adsn.histogram_error = sliced_wasserstein(gaussian.view(), exemplar);
-  report.histogram_error_floor = histogram_error_floor(exemplar);
-  const ColourStatistics exemplar_statistics = colour_statistics(exemplar);
+  if (images_ == 0) {
+    width_ = image.width;
+    height_ = image.height;
+    crop_ = welch_crop_size(exemplar_, image);
+    exemplar_statistics_ = colour_statistics(exemplar_);
+    histogram_error_floor_ = histogram_error_floor(exemplar_);
+    exemplar_spectrum_ = welch_power_spectrum(exemplar_, crop_);
+    image_spectrum_sum_.assign(exemplar_spectrum_.size(), 0.0);
+    adsn_spectrum_sum_.assign(exemplar_spectrum_.size(), 0.0);
+  }
+  const ImageF gaussian =
+      adsn(exemplar_, image.width, image.height, seed_ + static_cast<std::uint32_t>(images_));
+  const auto measure = [&](ImageView<const float> synthesis, Quality& sum,
+                           std::vector<double>& spectrum_sum) {
+    const std::vector<double> spectrum = welch_power_spectrum(synthesis, crop_);
+    sum.spectral_error += relative_l1_distance(spectrum, exemplar_spectrum_);
+    for (std::size_t i = 0; i < spectrum.size(); ++i) spectrum_sum[i] += spectrum[i];
+    sum.histogram_error += sliced_wasserstein(synthesis, exemplar_);
+  };
+  measure(image, image_sum_, image_spectrum_sum_);
+  measure(gaussian.view(), adsn_sum_, adsn_spectrum_sum_);
   const ColourStatistics image_statistics = colour_statistics(image);
-  report.image.mean_error = mean_error(image_statistics, exemplar_statistics);
-  report.image.covariance_error = covariance_error(image_statistics, exemplar_statistics);
+  image_sum_.mean_error += mean_error(image_statistics, exemplar_statistics_);
+  image_sum_.covariance_error += covariance_error(image_statistics, exemplar_statistics_);
+  ++images_;
+}
+
+ComparisonReport Comparison::report() const {
+  if (images_ == 0) throw std::logic_error("Comparison::report: no image was added");
+  const double count = static_cast<double>(images_);
+  const auto mean = [&](const Quality& sum, const std::vector<double>& spectrum_sum) {
+    Quality quality;
+    quality.spectral_error = sum.spectral_error / count;
+    quality.histogram_error = sum.histogram_error / count;
+    quality.mean_error = sum.mean_error / count;
+    quality.covariance_error = sum.covariance_error / count;
+    std::vector<double> averaged(spectrum_sum.size());
+    for (std::size_t i = 0; i < averaged.size(); ++i) averaged[i] = spectrum_sum[i] / count;
+    quality.averaged_spectral_error = relative_l1_distance(averaged, exemplar_spectrum_);
+    return quality;
+  };
+  ComparisonReport report;
+  report.crop = crop_;
+  report.images = images_;
+  report.image = mean(image_sum_, image_spectrum_sum_);
+  report.adsn = mean(adsn_sum_, adsn_spectrum_sum_);
+  report.histogram_error_floor = histogram_error_floor_;
   return report;
+}
+
+ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,
+                                std::uint32_t seed) {
+  Comparison comparison(exemplar, seed);
+  comparison.add(image);
+  return comparison.report();
 }
 
 }  // namespace stochtex

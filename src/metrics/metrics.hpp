@@ -88,7 +88,10 @@ double variance_nonstationarity(std::span<const ImageView<const float>> renders,
 // (report/measures.hpp) read them. Each caller fills the measures it takes: compare_images the
 // first four, `stochtex report` all of them (the times for methods only, not for ADSN).
 struct Quality {
-  double spectral_error = 0.0;    // relative L1 distance of Welch spectra
+  double spectral_error = 0.0;  // relative L1 distance of Welch spectra
+  // The relative L1 distance of the Welch spectrum averaged over several renders (seeds): the
+  // bias of the expected spectrum, with the shot noise of one render averaged away.
+  double averaged_spectral_error = 0.0;
   double histogram_error = 0.0;   // sliced Wasserstein-2 distance of pixel colours
   double mean_error = 0.0;        // |mean - exemplar mean|
   double covariance_error = 0.0;  // relative Frobenius distance of colour covariances
@@ -103,13 +106,48 @@ double histogram_error_floor(ImageView<const float> exemplar);
 
 struct ComparisonReport {
   int crop = 0;
-  Quality image;  // image vs exemplar: spectral, histogram, mean and covariance errors
-  Quality adsn;   // an ADSN sample of the exemplar (same size) vs exemplar: spectral, histogram
+  int images = 0;  // the syntheses measured; image holds the means of their measures
+  Quality image;   // image vs exemplar: spectral, histogram, mean and covariance errors
+  Quality adsn;    // ADSN samples of the exemplar (same size, as many) vs exemplar
   double histogram_error_floor = 0;  // exemplar top half vs bottom half
 };
-// The full `stochtex compare` report; the ADSN sample (adsn(exemplar, image size, seed)) uses
-// `seed`. The images must have the same channel count and sides of at least 2 pixels. Throws
-// std::invalid_argument, before any work, when compare_peak_bytes exceeds the memory budget.
+
+// `stochtex compare`: one or several syntheses of one model (renders of one size with different
+// seeds) against the exemplar. Each image is measured on add(), and only running sums are kept,
+// so memory stays at one image and one ADSN sample whatever the count. The report gives the mean
+// of each measure over the images, and the averaged spectral error: the error of their mean
+// Welch spectrum, which keeps the bias of the synthesis's expected spectrum and loses most of its
+// shot noise (that falls as 1 / sqrt(images)). Image k (from 0) is set beside an ADSN sample
+// adsn(exemplar, image size, seed + k), measured the same way. Throws std::invalid_argument on an
+// empty image, another channel count or size than the first image's, and, before any work, when
+// compare_peak_bytes exceeds the memory budget.
+class Comparison {
+ public:
+  explicit Comparison(ImageView<const float> exemplar, std::uint32_t seed = 1);
+  void add(ImageView<const float> image);
+  // Throws std::logic_error before the first add().
+  ComparisonReport report() const;
+  int images() const { return images_; }
+  int width() const { return width_; }  // the first image's size (0 before it)
+  int height() const { return height_; }
+
+ private:
+  ImageView<const float> exemplar_;
+  std::uint32_t seed_ = 1;
+  ColourStatistics exemplar_statistics_;
+  double histogram_error_floor_ = 0.0;
+  int width_ = 0;
+  int height_ = 0;
+  int crop_ = 0;
+  int images_ = 0;
+  std::vector<double> exemplar_spectrum_;
+  Quality image_sum_;
+  Quality adsn_sum_;
+  std::vector<double> image_spectrum_sum_;
+  std::vector<double> adsn_spectrum_sum_;
+};
+
+// One image: Comparison(exemplar, seed) with the image added.
 ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,
                                 std::uint32_t seed = 1);
 

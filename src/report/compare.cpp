@@ -7,8 +7,9 @@
 
 namespace stochtex {
 
-ComparisonReport compare_checked(ImageView<const float> exemplar, const std::string& exemplar_name,
-                                 ImageView<const float> image, const std::string& image_name) {
+void add_checked(Comparison& comparison, ImageView<const float> exemplar,
+                 const std::string& exemplar_name, ImageView<const float> image,
+                 const std::string& image_name) {
   // The measures need crops of at least 2x2 pixels and finite values (NaN measures would print
   // as JSON nulls): anything else is refused with a sentence naming the file (§9).
   if (image.width < 2 || image.height < 2)
@@ -26,13 +27,20 @@ ComparisonReport compare_checked(ImageView<const float> exemplar, const std::str
                 "'" + image_name + "' has " + std::to_string(image.channels) +
                     " channels but the exemplar '" + exemplar_name + "' has " +
                     std::to_string(exemplar.channels) + "; compare images of the same kind");
-  return compare_images(exemplar, image);
+  if (comparison.images() > 0 &&
+      (image.width != comparison.width() || image.height != comparison.height()))
+    throw Error(ErrorCode::invalid_input,
+                "'" + image_name + "' is " + std::to_string(image.width) + "x" +
+                    std::to_string(image.height) + " pixels but the first image is " +
+                    std::to_string(comparison.width()) + "x" + std::to_string(comparison.height()) +
+                    "; compare several renders of one size (one model, different seeds)");
+  comparison.add(image);
 }
 
 nlohmann::ordered_json comparison_json(const ComparisonReport& report) {
   nlohmann::ordered_json doc{{"welch_crop", report.crop}};
   for (const Measure& measure : measures()) {
-    if (measure.compare_label.empty()) continue;
+    if (measure.compare_label.empty() || (measure.several_renders && report.images < 2)) continue;
     doc[std::string(measure.key)] = report.image.*measure.value;
     if (!measure.adsn_key.empty()) doc[std::string(measure.adsn_key)] = report.adsn.*measure.value;
     if (!measure.floor_key.empty())

@@ -26,6 +26,8 @@ double thread_cpu_seconds() {
 void check_settings(const ReportSettings& settings) {
   if (settings.width < 2 || settings.height < 2)
     throw std::invalid_argument("the report's images must be at least 2x2 pixels");
+  if (settings.averaged_seeds < 1)
+    throw std::invalid_argument("the report's averaged spectrum needs at least one seed");
   if (settings.stationarity_seeds < 2 || settings.stationarity_block < 1 ||
       settings.stationarity_side < settings.stationarity_block || settings.stationarity_step < 1)
     throw std::invalid_argument("the report's stationarity grid is inconsistent");
@@ -54,6 +56,22 @@ void draw_pictures(Synthesis& synthesis, const ExemplarReference& reference,
   synthesis.histogram_picture =
       histogram_picture(histogram, reference.histogram, settings.histogram_width,
                         settings.histogram_height, reference.histogram_top);
+}
+
+// The averaged spectral error and its picture: the Welch spectra of the synthesis's image and of
+// `others` (the same synthesis with the next seeds) averaged.
+void average_spectra(Synthesis& synthesis, const std::vector<ImageF>& others,
+                     const ExemplarReference& reference) {
+  std::vector<double> mean = welch_power_spectrum(synthesis.image.view(), reference.crop);
+  for (const ImageF& other : others) {
+    const std::vector<double> spectrum = welch_power_spectrum(other.view(), reference.crop);
+    for (std::size_t i = 0; i < mean.size(); ++i) mean[i] += spectrum[i];
+  }
+  const double count = static_cast<double>(others.size() + 1);
+  for (double& power : mean) power /= count;
+  synthesis.quality.averaged_spectral_error = relative_l1_distance(mean, reference.spectrum);
+  synthesis.averaged_spectrum_picture =
+      spectrum_picture(mean, reference.crop, reference.spectrum_range);
 }
 
 double nonstationarity(const std::vector<ImageF>& renders, const ReportSettings& settings) {
@@ -96,6 +114,11 @@ Synthesis measure_gaussian(ImageView<const float> exemplar, const ExemplarRefere
   synthesis.name = "gaussian";
   synthesis.image = adsn(exemplar, settings.width, settings.height, settings.seed);
   synthesis.quality = measure_quality(synthesis.image.view(), reference);
+  std::vector<ImageF> others;
+  for (int k = 1; k < settings.averaged_seeds; ++k)
+    others.push_back(adsn(exemplar, settings.width, settings.height,
+                          settings.seed + static_cast<std::uint32_t>(k)));
+  average_spectra(synthesis, others, reference);
   // ADSN on the stationarity grid: samples of a larger ADSN image, step pixels apart.
   const int step = settings.stationarity_step;
   const int side = settings.stationarity_side;
@@ -135,6 +158,14 @@ Synthesis measure_method(std::string_view method, ImageView<const float> exempla
   synthesis.quality = measure_quality(synthesis.image.view(), reference);
   synthesis.quality.analysis_seconds = analysis_seconds;
   synthesis.quality.ns_per_sample = ns_per_sample;
+  std::vector<ImageF> others;
+  for (int k = 1; k < settings.averaged_seeds; ++k) {
+    ImageF other(settings.width, settings.height, model.channels());
+    render(model, Grid{{0.0, 0.0}, 1.0, settings.width, settings.height},
+           settings.seed + static_cast<std::uint32_t>(k), other.view(), one_thread);
+    others.push_back(std::move(other));
+  }
+  average_spectra(synthesis, others, reference);
 
   // Point samples, so that the variance measured is the method's own and not its filtering's.
   one_thread.filter = false;

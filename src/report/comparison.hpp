@@ -21,6 +21,9 @@ struct ReportSettings {
   int width = 256;  // the size of every synthesis
   int height = 256;
   std::uint32_t seed = 1;  // the render seed (analysis uses seed 0, the CLI's default)
+  // The averaged spectral error: the Welch spectrum averaged over renders (ADSN samples) of the
+  // seeds seed, seed + 1, ..., seed + averaged_seeds - 1.
+  int averaged_seeds = 4;
   // Stationarity: `stationarity_seeds` point-sampled renders of `stationarity_side`^2 samples
   // spaced `stationarity_step` exemplar pixels apart, their per-pixel variance averaged over
   // blocks of `stationarity_block`^2 samples (variance_nonstationarity).
@@ -57,6 +60,7 @@ struct Synthesis {
   ImageF image;      // settings.width x settings.height
   Quality quality;   // all measures; the analysis and render times are 0 for ADSN
   ImageF spectrum_picture;
+  ImageF averaged_spectrum_picture;  // of the spectrum averaged over settings.averaged_seeds
   ImageF histogram_picture;
 };
 

@@ -20,10 +20,10 @@ int measure_all(std::vector<ExemplarResults>& exemplars, const std::vector<std::
     exemplar.crop = reference.crop;
     exemplar.histogram_error_floor = reference.histogram_error_floor;
     callbacks.pictures(exemplar, {"exemplar", exemplar.image.view(), reference.spectrum_picture,
-                                  reference.histogram_picture});
+                                  reference.spectrum_picture, reference.histogram_picture});
     const Synthesis gaussian = measure_gaussian(exemplar.image.view(), reference, settings);
     callbacks.pictures(exemplar, {gaussian.name, gaussian.image.view(), gaussian.spectrum_picture,
-                                  gaussian.histogram_picture});
+                                  gaussian.averaged_spectrum_picture, gaussian.histogram_picture});
     exemplar.outcomes.resize(1 + methods.size());
     exemplar.outcomes[0].name = gaussian.name;
     exemplar.outcomes[0].quality = gaussian.quality;
@@ -57,8 +57,9 @@ int measure_all(std::vector<ExemplarResults>& exemplars, const std::vector<std::
     try {
       const Synthesis synthesis =
           measure_method(method, exemplar.image.view(), references[tasks[t].exemplar], settings);
-      callbacks.pictures(exemplar, {method, synthesis.image.view(), synthesis.spectrum_picture,
-                                    synthesis.histogram_picture});
+      callbacks.pictures(exemplar,
+                         {method, synthesis.image.view(), synthesis.spectrum_picture,
+                          synthesis.averaged_spectrum_picture, synthesis.histogram_picture});
       outcome.quality = synthesis.quality;
     } catch (const std::exception& e) {
       outcome.error = e.what();

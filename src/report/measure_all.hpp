@@ -36,6 +36,7 @@ struct Pictures {
   std::string_view kind;
   ImageView<const float> image;
   const ImageF& spectrum;
+  const ImageF& averaged_spectrum;  // the exemplar's own spectrum for "exemplar"
   const ImageF& histogram;
 };
 

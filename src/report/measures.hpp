@@ -21,6 +21,8 @@ struct Measure {
   std::string_view format;         // {fmt} format of the report's cells
   double Quality::*value;          // where the measured number is
   bool method_only;                // no value for the Gaussian version (timings)
+  bool several_renders;            // a measure of renders with several seeds together: compare
+                                   // shows it only when given several images
 };
 
 // The measures in the order of every output.

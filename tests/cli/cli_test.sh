@@ -227,6 +227,22 @@ expect_ok "gaussian" "$stochtex" gaussian "$exemplar" -o "$models/gaussian.png" 
   expect_file "gaussian writes the image" "$models/gaussian.png"
 expect_ok "compare" "$stochtex" compare "$exemplar" "$models/gaussian.png"
 expect_json "compare --json" "$stochtex" compare "$exemplar" "$models/gaussian.png" --json
+expect_ok "gaussian seed 2" "$stochtex" gaussian "$exemplar" -o "$models/gaussian2.png" \
+  --size 128x128 --seed 2
+capture "$stochtex" compare "$exemplar" "$models/gaussian.png" "$models/gaussian2.png" --json
+if [[ $status -ne 0 ]] || ! python3 -c '
+import json, sys
+d = json.load(sys.stdin)
+assert d["images"] == [sys.argv[1], sys.argv[2]]
+assert "averaged_spectral_error" in d and "averaged_spectral_error_adsn" in d
+assert d["averaged_spectral_error"] < d["spectral_error"]' "$models/gaussian.png" \
+  "$models/gaussian2.png" <"$work/stdout"; then
+  fail "compare of two renders" "no averaged spectral error below the single ones in its JSON"
+else
+  pass
+fi
+expect_error "compare renders of two sizes" 1 "first image is 128x128" \
+  "$stochtex" compare "$exemplar" "$models/gaussian.png" "$models/render.png"
 
 # The output is a pure function of (model, grid, seed): threads and tiles change nothing.
 expect_ok "render seed 5, 1 thread" "$stochtex" render "$model" -o "$models/t1.pfm" "${size[@]}" \

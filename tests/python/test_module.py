@@ -161,6 +161,11 @@ def test_info_methods_compare_gaussian(exemplar, texton_model):
     assert numbers["welch_crop"] == 16
     assert {"spectral_error", "spectral_error_adsn", "histogram_error",
             "histogram_error_floor"} <= set(numbers)
+    several = stochtex.compare(exemplar, [gaussian, stochtex.gaussian(exemplar, 48, 40, seed=2)])
+    assert several["averaged_spectral_error"] < several["spectral_error"]
+    assert "averaged_spectral_error" not in numbers
+    with pytest.raises(ValueError, match="first image is 48x40"):
+        stochtex.compare(exemplar, [gaussian, gaussian[:32]])
     with pytest.raises(ValueError, match="channels"):
         stochtex.compare(exemplar, gaussian[:, :, :1])
     with pytest.raises(ValueError, match="NaN"):
