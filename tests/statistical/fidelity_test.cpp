@@ -1,0 +1,158 @@
+// Issue 20, fidelity on the shipped photos: every method at its default parameters against the
+// exemplar's Gaussian version (ADSN), on every `gaussian` and `stochastic` exemplar of
+// data/exemplars/ATTRIBUTION.md. The measure is the one the issue states its aims in: the spectral
+// error of `stochtex compare` (Welch spectra, docs/design.md §8) of a 1024² render divided by the
+// error of compare's ADSN sample (seed 1, same size), averaged over the render seeds 1 and 2.
+//
+// The tolerance is measured here, per exemplar: the same ratio for ADSN samples of 8 other seeds
+// spreads by sigma (the exemplar's own Welch estimate has 9 crops for a 256² exemplar, so an ideal
+// Gaussian method's ratio strays from 1 by itself: 0.78 to 1.31 measured on wood and rock). The
+// mean of two renders may exceed the aim by 2 sigma / sqrt(2). The colour covariance error, mean
+// of the two renders, may exceed the ADSN samples' mean by 2 of their deviations / sqrt(2), plus
+// 0.005 for exemplars whose ADSN covariance barely varies.
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <regex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/image_io.hpp"
+#include "metrics/metrics.hpp"
+#include "spectral/adsn.hpp"
+#include "statistics.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex {
+namespace {
+
+constexpr int kSide = 1024;
+constexpr std::uint32_t kCompareSeed = 1;  // compare's ADSN sample
+constexpr int kNoiseSeeds = 8;             // ADSN samples measuring the ratio's own spread
+
+// The aims of issue 20: spectral error / ADSN's at the defaults.
+const std::map<std::string, double, std::less<>> kAims = {
+    {"texton", 1.2}, {"lrp", 1.5}, {"gabor", 1.25}, {"tiling", 1.5}};
+
+// Where a method does not reach its aim: the measured level it must keep, and why (the method
+// pages' "Fidelity on the shipped exemplars (issue 20)" sections give the measurements).
+struct Shortfall {
+  double bound;
+  const char* why;
+};
+const std::map<std::pair<std::string, std::string>, Shortfall> kShortfalls = {};
+
+struct Case {
+  std::string method;
+  std::string exemplar;  // file name in data/exemplars
+};
+void PrintTo(const Case& test, std::ostream* out) {
+  *out << test.method << " on " << test.exemplar;
+}
+
+// The `gaussian` and `stochastic` exemplars of the corpus table, in its order.
+std::vector<std::string> gaussian_model_exemplars() {
+  std::ifstream table(std::string(STOCHTEX_TEXTURE_DIR) + "/ATTRIBUTION.md");
+  const std::regex row(R"(^\| `([^`]+\.png)` \| [^|]+ \| (gaussian|stochastic) \|)");
+  std::vector<std::string> names;
+  std::smatch match;
+  for (std::string line; std::getline(table, line);)
+    if (std::regex_search(line, match, row)) names.push_back(match[1]);
+  return names;
+}
+
+std::vector<Case> cases() {
+  std::vector<Case> all;
+  for (const auto& [method, aim] : kAims)
+    for (const std::string& exemplar : gaussian_model_exemplars())
+      all.push_back({method, exemplar});
+  return all;
+}
+
+class Fidelity : public ::testing::TestWithParam<Case> {};
+
+TEST_P(Fidelity, SpectrumAndCovarianceAtTheGaussianLevel) {
+  const Case& test = GetParam();
+  const ImageF exemplar = read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/" + test.exemplar);
+  const ImageF compared = adsn(exemplar.view(), kSide, kSide, kCompareSeed);
+  const int crop = welch_crop_size(exemplar.view(), compared.view());
+  const std::vector<double> target = welch_power_spectrum(exemplar.view(), crop);
+  const ColourStatistics target_statistics = colour_statistics(exemplar.view());
+  const auto spectral_error = [&](const ImageF& image) {
+    return relative_l1_distance(welch_power_spectrum(image.view(), crop), target);
+  };
+  const double adsn_error = spectral_error(compared);
+
+  std::vector<double> noise_ratios;
+  std::vector<double> noise_covariances;
+  for (int k = 0; k < kNoiseSeeds; ++k) {
+    const ImageF sample = adsn(exemplar.view(), kSide, kSide, 100u + static_cast<std::uint32_t>(k));
+    noise_ratios.push_back(spectral_error(sample) / adsn_error);
+    noise_covariances.push_back(
+        covariance_error(colour_statistics(sample.view()), target_statistics));
+  }
+  const test_support::Sample ratio_noise = test_support::summarise(noise_ratios);
+  const test_support::Sample covariance_noise = test_support::summarise(noise_covariances);
+
+  const Model model = analyze(test.method, exemplar.view(), {}, 0, test.exemplar);
+  std::vector<double> ratios;
+  std::vector<double> covariances;
+  std::vector<double> mean_spectrum(target.size(), 0.0);
+  for (const std::uint32_t seed : {1u, 2u}) {
+    ImageF render_image(kSide, kSide, model.channels());
+    render(model, Grid{{0.0, 0.0}, 1.0, kSide, kSide}, seed, render_image.view());
+    const std::vector<double> spectrum = welch_power_spectrum(render_image.view(), crop);
+    for (std::size_t i = 0; i < spectrum.size(); ++i) mean_spectrum[i] += 0.5 * spectrum[i];
+    ratios.push_back(relative_l1_distance(spectrum, target) / adsn_error);
+    covariances.push_back(
+        covariance_error(colour_statistics(render_image.view()), target_statistics));
+  }
+  const double ratio = 0.5 * (ratios[0] + ratios[1]);
+  const double covariance = 0.5 * (covariances[0] + covariances[1]);
+
+  const auto shortfall = kShortfalls.find({test.method, test.exemplar});
+  const double aim = kAims.find(test.method)->second;
+  const double level = shortfall == kShortfalls.end() ? aim : shortfall->second.bound;
+  const double ratio_bound = level + 2.0 * ratio_noise.deviation / std::sqrt(2.0);
+  const double covariance_bound =
+      covariance_noise.mean + 2.0 * covariance_noise.deviation / std::sqrt(2.0) + 0.005;
+  // One line per case for scripts/fidelity.sh, which writes docs/fidelity.md from them.
+  const nlohmann::ordered_json line{
+      {"method", test.method},
+      {"exemplar", test.exemplar},
+      {"ratios", ratios},
+      {"averaged_ratio", relative_l1_distance(mean_spectrum, target) / adsn_error},
+      {"aim", aim},
+      {"ratio_bound", ratio_bound},
+      {"adsn_ratio_mean", ratio_noise.mean},
+      {"adsn_ratio_deviation", ratio_noise.deviation},
+      {"covariances", covariances},
+      {"covariance_bound", covariance_bound},
+      {"adsn_covariance_mean", covariance_noise.mean},
+      {"adsn_covariance_deviation", covariance_noise.deviation},
+      {"shortfall", shortfall == kShortfalls.end() ? "" : shortfall->second.why}};
+  std::printf("fidelity %s\n", line.dump().c_str());
+  EXPECT_LE(ratio, ratio_bound) << test.method << " on " << test.exemplar;
+  EXPECT_LE(covariance, covariance_bound) << test.method << " on " << test.exemplar;
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, Fidelity, ::testing::ValuesIn(cases()),
+                         [](const auto& test_case) {
+                           std::string name =
+                               test_case.param.method + "_" + test_case.param.exemplar;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace stochtex
