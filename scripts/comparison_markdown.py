@@ -143,8 +143,11 @@ GPU claims, and why, is in [docs/performance.md](performance.md#cpu-the-four-met
 
     out.append("## Per exemplar\n")
     out.append(
-        "Thumbnails are {}-pixel reductions of the {}×{} renders.\n".format(
-            96, settings["width"], settings["height"]))
+        "Thumbnails are {}-pixel reductions of the {}×{} renders. Below them, the log power "
+        "spectra (DC at the centre, one scale per exemplar): the exemplar's, then each "
+        "synthesis's averaged over {} seeds, where what still differs from the exemplar's is "
+        "bias, not shot noise.\n".format(96, settings["width"], settings["height"],
+                                          settings["averaged_seeds"]))
     for exemplar in summary["exemplars"]:
         name = exemplar["name"]
         category, content = corpus.get(name, ("?", ""))
@@ -152,13 +155,21 @@ GPU claims, and why, is in [docs/performance.md](performance.md#cpu-the-four-met
         out.append("{}×{}, {} channel(s), {}: {}.\n".format(
             exemplar["width"], exemplar["height"], exemplar["channels"], category, content))
         cells = []
+        spectra = []
         for kind in kinds:
             source = Path(thumbnails) / "{}_{}.png".format(name, kind)
             shutil.copyfile(source, Path(images) / source.name)
             cells.append("![{}]({}/{})".format(kind, link, source.name))
+            # The report's pictures of the spectrum averaged over its seeds (the exemplar's own
+            # spectrum for the exemplar), beside the same exemplar's, on one log scale.
+            spectrum = Path(thumbnails).parent / name / "{}_spectrum_averaged.png".format(kind)
+            copy = "{}_{}_spectrum.png".format(name, kind)
+            shutil.copyfile(spectrum, Path(images) / copy)
+            spectra.append("![{} averaged spectrum]({}/{})".format(kind, link, copy))
         out.append("| exemplar | " + " | ".join(label(k) for k in kinds[1:]) + " |")
         out.append("|---" * len(kinds) + "|")
-        out.append("| " + " | ".join(cells) + " |\n")
+        out.append("| " + " | ".join(cells) + " |")
+        out.append("| " + " | ".join(spectra) + " |\n")
         out.append("| | " + " | ".join(title for _, title, _ in MEASURES) + " |")
         out.append("|---" * (len(MEASURES) + 1) + "|")
         for synthesis in exemplar["syntheses"]:
