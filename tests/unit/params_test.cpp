@@ -31,7 +31,7 @@ TEST(Registry, ListsTextonWithDescribedParameters) {
     EXPECT_LE(param.default_value, param.max_value) << param.name;
   }
   const ParamValues defaults = resolve_params("texton", ParamValues{});
-  EXPECT_EQ(defaults.at("support"), 128);
+  EXPECT_EQ(defaults.at("support"), 0);  // chosen from the exemplar: texton::texton_support
   EXPECT_EQ(defaults.at("order"), 1);
   EXPECT_EQ(defaults.at("iterations"), 50);
   EXPECT_EQ(defaults.at("mni"), 30);
