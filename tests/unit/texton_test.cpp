@@ -156,6 +156,8 @@ TEST(TextonSupport, TheDefaultTakesTheWholeExemplarUpTo256AndCrops128Beyond) {
   EXPECT_EQ(texton::texton_support(0, 512, 512), 128);
   EXPECT_EQ(texton::texton_support(64, 512, 512), 64);
   EXPECT_EQ(texton::texton_support(1024, 300, 200), 200);
+  // 0 or 2 to 1024: 1 is refused with the parameters.
+  EXPECT_THROW(resolve_params("texton", ParamValues{{"support", 1}}), std::invalid_argument);
   ImageF exemplar(40, 24, 1);
   std::uint32_t state = 5;
   for (float& value : exemplar.pixels()) {

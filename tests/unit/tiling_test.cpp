@@ -660,8 +660,8 @@ TEST(TilingAnalysis, AutomaticTileRadiusFollowsTheExemplarsLargestPeriods) {
                              0.3f * std::cos(6.2831853f * static_cast<float>(x + y) / 64.0f) +
                              0.02f * std::cos(6.2831853f * static_cast<float>(x + 2 * y) / 5.0f);
   EXPECT_NEAR(auto_tile_radius(diagonal.view()), 0.5 / std::sqrt(2.0), 1e-12);
-  // The model uses and its file names the radius chosen; an explicit radius is kept and one below
-  // kMinTileRadius (other than 0) is refused.
+  // The model uses and its file names the radius chosen; an explicit radius is kept, and one
+  // below 0.05 other than 0 is refused with the parameters.
   const Model chosen = analyse(large);
   EXPECT_EQ(tiling_of(chosen).data().tile_radius, 0.5);
   EXPECT_EQ(deserialize_model(serialize_model(chosen), "chosen.stx").params().at("tile_radius"),
@@ -669,6 +669,8 @@ TEST(TilingAnalysis, AutomaticTileRadiusFollowsTheExemplarsLargestPeriods) {
   const Model given = analyse(fine, {{"tile_radius", 0.8}});
   EXPECT_EQ(tiling_of(given).data().tile_radius, 0.8);
   EXPECT_THROW(analyse(fine, {{"tile_radius", 0.01}}), std::invalid_argument);
+  EXPECT_THROW(resolve_params("tiling", ParamValues{{"tile_radius", 0.01}}), std::invalid_argument);
+  EXPECT_EQ(resolve_params("tiling", ParamValues{{"tile_radius", 0}}).at("tile_radius"), 0.0);
 }
 
 TEST(TilingTriplanar, AnAxisNormalIsThePlanarNoiseAndABlendKeepsTheRange) {

@@ -37,10 +37,10 @@ inline constexpr std::array<ParamChoice, 4> kOrders = {
     {{"nearest", 0}, {"bilinear", 1}, {"cubic", 3}, {"quintic", 5}}};
 
 inline constexpr std::array<ParamField<Params>, 4> kFields = {{
-    number_field<&Params::support>(
-        "support", 0, 1024,
+    chosen_number_field<&Params::support>(
+        "support", 2, 1024,
         "side of the square support S of the texton coefficients, in exemplar pixels (section "
-        "4.2), 2 to 1024, clamped to the exemplar's smaller side; 0: the whole exemplar when its "
+        "4.2), clamped to the exemplar's smaller side; 0: the whole exemplar when its "
         "smaller side is at most 256, else 128"),
     choice_field<&Params::order>(
         "order", kOrders,

@@ -383,9 +383,6 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
   data.channels = exemplar.channels;
   data.width = exemplar.width;
   data.height = exemplar.height;
-  if (params.tile_radius != 0.0 && !(params.tile_radius >= kMinTileRadius))
-    throw std::invalid_argument(
-        "tiling's tile_radius is 0 (chosen from the exemplar) or 0.05 to 4 exemplar sides");
   data.tile_radius = params.tile_radius == 0.0 ? auto_tile_radius(exemplar) : params.tile_radius;
   data.transport = params.transport;
   data.lut_size = params.lut_size;

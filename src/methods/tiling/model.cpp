@@ -231,7 +231,7 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
     throw std::invalid_argument("tiling: channels must be 1 to " + std::to_string(kMaxChannels));
   if (d.width < 2 || d.height < 2 || d.width > kMaxExemplarSide || d.height > kMaxExemplarSide)
     throw std::invalid_argument("tiling: the exemplar sides must be 2 to 65536 pixels");
-  if (!(d.tile_radius >= kMinTileRadius && d.tile_radius <= kParams[0].max_value))
+  if (!(d.tile_radius >= kParams[0].min_value && d.tile_radius <= kParams[0].max_value))
     throw std::invalid_argument("tiling: tile_radius is out of range");
   if (d.lut_size < 2 || d.lut_size > 64 || d.table_size < 16 || d.table_size > 65536)
     throw std::invalid_argument("tiling: look-up table size out of range");

@@ -11,10 +11,6 @@
 
 namespace stochtex::tiling {
 
-// tile_radius 0 asks the analysis to choose the radius from the exemplar's spectrum
-// (auto_tile_radius in analysis.hpp); an explicit radius is kMinTileRadius to the field's maximum.
-inline constexpr double kMinTileRadius = 0.05;
-
 struct Params {
   double tile_radius = 0.0;
   Transport transport = Transport::sliced;
@@ -36,10 +32,10 @@ inline constexpr std::array<ParamChoice, 3> kBlends = {
     {{"histogram", 0}, {"variance", 1}, {"linear", 2}}};
 
 inline constexpr std::array<ParamField<Params>, 11> kFields = {{
-    number_field<&Params::tile_radius>(
-        "tile_radius", 0.0, 4.0,
+    chosen_number_field<&Params::tile_radius>(
+        "tile_radius", 0.05, 4.0,
         "radius of the hexagonal tiles (the edge of the triangle lattice) as a fraction of the "
-        "exemplar's smaller side, 0.05 to 4; section 5.3 uses about one half. 0: chosen from the "
+        "exemplar's smaller side; section 5.3 uses about one half. 0: chosen from the "
         "exemplar's spectrum, the smallest radius whose tile diameter spans the periods of all "
         "but 0.5% of its power, at least 1/4 and at most 1/2 (a tile as wide as the exemplar)"),
     choice_field<&Params::transport>(
