@@ -188,10 +188,13 @@ ParamValues resolve_params(std::string_view method, const ParamValues& given) {
       if (!find_choice(param, [number = value](const ParamChoice& c) { return c.value == number; }))
         throw std::invalid_argument(where + " must be " + choices_sentence(param) + ", not " +
                                     format_number(value));
+    } else if (param.zero_chooses && value == 0.0) {
+      // 0: the analysis chooses the value from the exemplar.
     } else if (!std::isfinite(value) || value < param.min_value || value > param.max_value) {
-      throw std::invalid_argument(where + " must be between " + format_number(param.min_value) +
-                                  " and " + format_number(param.max_value) + ", not " +
-                                  format_number(value));
+      throw std::invalid_argument(where + " must be " +
+                                  (param.zero_chooses ? "0 (chosen from the exemplar) or " : "") +
+                                  "between " + format_number(param.min_value) + " and " +
+                                  format_number(param.max_value) + ", not " + format_number(value));
     } else if (param.integer && value != std::floor(value)) {
       throw std::invalid_argument(where + " must be an integer, not " + format_number(value));
     }
@@ -251,6 +254,7 @@ std::string methods_json() {
       nlohmann::ordered_json param{{"name", p.name},       {"default", p.default_value},
                                    {"min", p.min_value},   {"max", p.max_value},
                                    {"integer", p.integer}, {"help", p.help}};
+      if (p.zero_chooses) param["zero_chooses"] = true;
       if (!p.choices.empty()) {
         auto allowed = nlohmann::ordered_json::array();
         auto choices = nlohmann::ordered_json::array();

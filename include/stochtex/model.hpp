@@ -50,6 +50,7 @@ struct ParamInfo {
   bool integer;
   std::string_view help;
   std::span<const ParamChoice> choices = {};  // when not empty, the only accepted values
+  bool zero_chooses = false;  // 0 is accepted too: the analysis chooses the value from the exemplar
 };
 
 using ParamValues = std::map<std::string, double, std::less<>>;

@@ -75,6 +75,16 @@ constexpr auto number_field(std::string_view name, double min_value, double max_
   return param_detail::field<Member>({name, 0.0, min_value, max_value, false, help});
 }
 
+// A numeric field accepting [min_value, max_value], or 0 (its default), which asks the analysis
+// to choose the value from the exemplar.
+template <auto Member>
+constexpr auto chosen_number_field(std::string_view name, double min_value, double max_value,
+                                   std::string_view help) {
+  using T = typename param_detail::MemberOf<Member>::Type;
+  static_assert(std::is_same_v<T, int> || std::is_same_v<T, double>, "a number is int or double");
+  return param_detail::field<Member>({name, 0.0, min_value, max_value, false, help, {}, true});
+}
+
 // An enumeration, switch or other field accepting only `choices`, by name or by number.
 template <auto Member>
 constexpr auto choice_field(std::string_view name, std::span<const ParamChoice> choices,

@@ -27,11 +27,14 @@ TEST(Registry, ListsTextonWithDescribedParameters) {
   EXPECT_EQ(info.name, "texton");
   for (const auto& param : info.params) {
     EXPECT_FALSE(param.help.empty()) << param.name;
-    EXPECT_GE(param.default_value, param.min_value) << param.name;
+    // A default of 0 is the analysis' choice where the field takes it (support).
+    if (!(param.zero_chooses && param.default_value == 0.0)) {
+      EXPECT_GE(param.default_value, param.min_value) << param.name;
+    }
     EXPECT_LE(param.default_value, param.max_value) << param.name;
   }
   const ParamValues defaults = resolve_params("texton", ParamValues{});
-  EXPECT_EQ(defaults.at("support"), 128);
+  EXPECT_EQ(defaults.at("support"), 0);  // chosen from the exemplar: texton::texton_support
   EXPECT_EQ(defaults.at("order"), 1);
   EXPECT_EQ(defaults.at("iterations"), 50);
   EXPECT_EQ(defaults.at("mni"), 30);

@@ -12,6 +12,7 @@
 
 #include "methods/texton/evaluate.hpp"
 #include "methods/texton/model.hpp"
+#include "methods/texton/params.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/stochtex.hpp"
 #include "stochtex/surface.hpp"
@@ -144,6 +145,31 @@ TEST(TextonChannels, RegistryTakesUpToSixteenChannels) {
       ++checked;
     }
   EXPECT_EQ(checked, 1);
+}
+
+TEST(TextonSupport, TheDefaultTakesTheWholeExemplarUpTo256AndCrops128Beyond) {
+  // support = 0 (the default): no support crop up to kWholeSupportMax, the earlier 128 beyond;
+  // an explicit support is clamped to the smaller side as before.
+  EXPECT_EQ(texton::texton_support(0, 128, 128), 128);
+  EXPECT_EQ(texton::texton_support(0, 256, 300), 256);
+  EXPECT_EQ(texton::texton_support(0, 257, 512), texton::kCroppedSupport);
+  EXPECT_EQ(texton::texton_support(0, 512, 512), 128);
+  EXPECT_EQ(texton::texton_support(64, 512, 512), 64);
+  EXPECT_EQ(texton::texton_support(1024, 300, 200), 200);
+  // 0 or 2 to 1024: 1 is refused with the parameters.
+  EXPECT_THROW(resolve_params("texton", ParamValues{{"support", 1}}), std::invalid_argument);
+  ImageF exemplar(40, 24, 1);
+  std::uint32_t state = 5;
+  for (float& value : exemplar.pixels()) {
+    state = state * 1664525u + 1013904223u;
+    value = static_cast<float>(state >> 8) / 16777216.0f;
+  }
+  const Model model = analyze("texton", exemplar.view(), {{"iterations", 2}}, 1);
+  EXPECT_EQ(std::get<texton::TextonModel>(model.data().model).support(), 24);
+  // The file names the side used, and loads.
+  const Model loaded = deserialize_model(serialize_model(model), "texton.stx");
+  EXPECT_EQ(loaded.params().at("support"), 24);
+  EXPECT_EQ(std::get<texton::TextonModel>(loaded.data().model).support(), 24);
 }
 
 }  // namespace

@@ -633,6 +633,46 @@ TEST(TilingAnalysis, StationarityPreprocessingRemovesPeriodsLongerThanATile) {
   EXPECT_GT(without, 10.0 * with);
 }
 
+TEST(TilingAnalysis, AutomaticTileRadiusFollowsTheExemplarsLargestPeriods) {
+  // tile_radius = 0 (the default) chooses the radius from the spectrum. Fine white noise spreads
+  // its power evenly over the frequencies, so the lowest 0.5% lie below about 0.04 cycles per
+  // pixel: a diameter of 25 pixels, radius 0.1 of a side of 128, raised to the floor of 1/4. A
+  // cosine of period side (60% of the power) needs a tile as wide as the exemplar: radius 1/2.
+  std::mt19937 engine(5);
+  std::normal_distribution<float> noise(0.0f, 0.1f);
+  ImageF fine(128, 128, 3);
+  ImageF large(128, 128, 3);
+  for (int y = 0; y < 128; ++y)
+    for (int x = 0; x < 128; ++x)
+      for (int c = 0; c < 3; ++c) {
+        fine.at(x, y, c) = 0.5f + noise(engine);
+        large.at(x, y, c) =
+            fine.at(x, y, c) + 0.15f * std::cos(6.2831853f * static_cast<float>(x) / 128.0f);
+      }
+  EXPECT_EQ(auto_tile_radius(fine.view()), kAutoTileRadiusMin);
+  EXPECT_EQ(auto_tile_radius(large.view()), 0.5);
+  // Between the two: a diagonal cosine of frequency (1, 1) / side and nothing lower needs a
+  // diameter of side / sqrt(2), radius 1 / (2 sqrt(2)).
+  ImageF diagonal(64, 64, 1);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      diagonal.at(x, y, 0) = 0.5f +
+                             0.3f * std::cos(6.2831853f * static_cast<float>(x + y) / 64.0f) +
+                             0.02f * std::cos(6.2831853f * static_cast<float>(x + 2 * y) / 5.0f);
+  EXPECT_NEAR(auto_tile_radius(diagonal.view()), 0.5 / std::sqrt(2.0), 1e-12);
+  // The model uses and its file names the radius chosen; an explicit radius is kept, and one
+  // below 0.05 other than 0 is refused with the parameters.
+  const Model chosen = analyse(large);
+  EXPECT_EQ(tiling_of(chosen).data().tile_radius, 0.5);
+  EXPECT_EQ(deserialize_model(serialize_model(chosen), "chosen.stx").params().at("tile_radius"),
+            0.5);
+  const Model given = analyse(fine, {{"tile_radius", 0.8}});
+  EXPECT_EQ(tiling_of(given).data().tile_radius, 0.8);
+  EXPECT_THROW(analyse(fine, {{"tile_radius", 0.01}}), std::invalid_argument);
+  EXPECT_THROW(resolve_params("tiling", ParamValues{{"tile_radius", 0.01}}), std::invalid_argument);
+  EXPECT_EQ(resolve_params("tiling", ParamValues{{"tile_radius", 0}}).at("tile_radius"), 0.0);
+}
+
 TEST(TilingTriplanar, AnAxisNormalIsThePlanarNoiseAndABlendKeepsTheRange) {
   const Model model = analyse(structured_exemplar(48, 3, 13));
   const TilingModel& tiling = tiling_of(model);

@@ -113,7 +113,7 @@ TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::
   const std::vector<double> target = channel_covariance(periodic.view(), mean);
   std::vector<float> coefficients = texton_coefficients(
       fft, normalised_kernel_spectrum(fft, periodic.view(), mean), target, params, seed, progress);
-  const int support = std::min({params.support, exemplar.width, exemplar.height});
+  const int support = texton_support(params.support, exemplar.width, exemplar.height);
   return TextonModel(exemplar.channels, support, params.order, params.mni, std::move(coefficients),
                      std::move(mean));
 }
@@ -125,7 +125,7 @@ std::vector<float> texton_coefficients(
   const int width = fft.width();
   const int height = fft.height();
   const int channels = static_cast<int>(kernel_spectrum.size());
-  const int support = std::min({params.support, width, height});
+  const int support = texton_support(params.support, width, height);
   const int order = params.order;
   const int iterations = params.iterations;
   const std::size_t pixels = fft.image_size();

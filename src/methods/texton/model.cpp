@@ -138,6 +138,8 @@ ModelRecord TextonModel::to_record(const ParamValues& params) const {
   ModelRecord record;
   record.method = std::string(kMethodName);
   record.params = params;
+  // The side used, also when the exemplar chose it (support = 0): `stochtex info` shows it.
+  record.params["support"] = support_;
   record.scalars = {
       {"channels", channels_}, {"support", support_}, {"order", order_}, {"mni", mean_impacts_}};
   record.arrays.push_back({"texton", {support_, support_, channels_}, coefficients_});

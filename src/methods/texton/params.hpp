@@ -3,14 +3,29 @@
 // (methods/param_record.hpp). The record feeds the CLI (`-p name=value`), the model file and
 // docs/methods/texton.md.
 
+#include <algorithm>
 #include <array>
 
 #include "methods/param_record.hpp"
 
 namespace stochtex::texton {
 
+// support 0 (the default) lets the exemplar decide: its whole smaller side when that is at most
+// kWholeSupportMax (no support crop: Algorithm 1's support projection is the identity), else
+// kCroppedSupport. docs/methods/texton.md, "Fidelity on the shipped exemplars", has the
+// measurements.
+inline constexpr int kWholeSupportMax = 256;
+inline constexpr int kCroppedSupport = 128;
+
+// The side of the texton for a `support` parameter and a width x height exemplar.
+constexpr int texton_support(int support, int width, int height) {
+  const int side = std::min(width, height);
+  if (support == 0) return side <= kWholeSupportMax ? side : kCroppedSupport;
+  return std::min(support, side);
+}
+
 struct Params {
-  int support = 128;
+  int support = 0;
   int order = 1;
   int iterations = 50;
   double mni = 30;
@@ -22,10 +37,11 @@ inline constexpr std::array<ParamChoice, 4> kOrders = {
     {{"nearest", 0}, {"bilinear", 1}, {"cubic", 3}, {"quintic", 5}}};
 
 inline constexpr std::array<ParamField<Params>, 4> kFields = {{
-    number_field<&Params::support>(
+    chosen_number_field<&Params::support>(
         "support", 2, 1024,
         "side of the square support S of the texton coefficients, in exemplar pixels (section "
-        "4.2); clamped to the exemplar's smaller side"),
+        "4.2), clamped to the exemplar's smaller side; 0: the whole exemplar when its "
+        "smaller side is at most 256, else 128"),
     choice_field<&Params::order>(
         "order", kOrders,
         "B-spline interpolation order k of the texton: nearest (k = 0), bilinear (k = 1, the "

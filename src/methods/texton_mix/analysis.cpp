@@ -77,7 +77,7 @@ TextonMixModel analyze(ImageView<const float> a, ImageView<const float> b, const
   }
 
   // tau_rho = (1 - rho) tau_0 + rho t_B, each through Algorithm 1 from the same initialisation.
-  const int support = std::min({params.texton.support, width, height});
+  const int support = texton::texton_support(params.texton.support, width, height);
   std::vector<float> textons;
   textons.reserve(static_cast<std::size_t>(params.steps) * support * support * channels);
   Spectra tau(static_cast<std::size_t>(channels), std::vector<Complex>(fft.spectrum_size()));
@@ -105,11 +105,14 @@ Model mix(const MixInputs& inputs, const ParamValues& params, std::uint32_t seed
   const texton_mix::Params typed = params_from_values(kFields, resolved);
   const ImageView<const float> a = inputs.a;
   const ImageView<const float> b = inputs.b;
-  check_memory_budget(mix_peak_bytes(std::min(a.width, b.width), std::min(a.height, b.height),
-                                     a.channels, typed.steps, typed.texton.support),
-                      "mixing the exemplars '" + inputs.a_name + "' and '" + inputs.b_name +
-                          "' into " + std::to_string(typed.steps) + " textons",
-                      "crop or downscale the exemplars, or lower --steps or -p support");
+  check_memory_budget(
+      mix_peak_bytes(std::min(a.width, b.width), std::min(a.height, b.height), a.channels,
+                     typed.steps,
+                     texton::texton_support(typed.texton.support, std::min(a.width, b.width),
+                                            std::min(a.height, b.height))),
+      "mixing the exemplars '" + inputs.a_name + "' and '" + inputs.b_name + "' into " +
+          std::to_string(typed.steps) + " textons",
+      "crop or downscale the exemplars, or lower --steps or -p support");
   validate_exemplar(a, inputs.a_name);
   validate_exemplar(b, inputs.b_name);
   if (a.channels != b.channels)
@@ -146,7 +149,8 @@ Model mix(const MixInputs& inputs, const ParamValues& params, std::uint32_t seed
                   "cannot mix '" + inputs.a_name + "' and '" + inputs.b_name + "': " + e.what());
     }
   }();
-  return Model(std::make_shared<const ModelData>(ModelData{std::move(resolved), std::move(model), {}}));
+  return Model(
+      std::make_shared<const ModelData>(ModelData{std::move(resolved), std::move(model), {}}));
 }
 
 }  // namespace stochtex

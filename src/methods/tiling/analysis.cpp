@@ -9,6 +9,8 @@
 #include "core/colour_statistics.hpp"
 #include "core/hash.hpp"
 #include "methods/tiling/evaluate.hpp"
+#include "spectral/fft.hpp"
+#include "spectral/periodic.hpp"
 #include "spectral/principal_components.hpp"
 
 namespace stochtex::tiling {
@@ -306,6 +308,63 @@ std::vector<GroupSpec> material_groups(std::span<const MapInfo> maps, const Para
 
 }  // namespace
 
+double auto_tile_radius(ImageView<const float> exemplar) {
+  const ImageF periodic = periodic_component(exemplar);
+  const int width = exemplar.width;
+  const int height = exemplar.height;
+  const Fft2d fft(width, height);
+  const int half = fft.spectrum_width();
+  // Power per half-plane frequency, each channel's power summed to 1 (the mean left out).
+  std::vector<double> power(fft.spectrum_size(), 0.0);
+  std::vector<float> plane(fft.image_size());
+  std::vector<std::complex<float>> spectrum(fft.spectrum_size());
+  const std::vector<double> means = channel_means(periodic.view());
+  for (int c = 0; c < exemplar.channels; ++c) {
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        plane[static_cast<std::size_t>(y) * width + x] =
+            static_cast<float>(periodic.at(x, y, c) - means[c]);
+    fft.forward(plane, spectrum);
+    std::vector<double> channel_power(spectrum.size());
+    double total = 0.0;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < half; ++x) {
+        // Columns 1 .. ceil(width / 2) - 1 stand for their Hermitian mirror too.
+        const double weight = x == 0 || 2 * x == width ? 1.0 : 2.0;
+        const std::size_t i = static_cast<std::size_t>(y) * half + x;
+        channel_power[i] = i == 0 ? 0.0 : weight * std::norm(spectrum[i]);
+        total += channel_power[i];
+      }
+    if (total > 0.0)
+      for (std::size_t i = 0; i < power.size(); ++i) power[i] += channel_power[i] / total;
+  }
+  std::vector<std::pair<double, double>> by_frequency;  // (|f| in cycles per pixel, power)
+  double total = 0.0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < half; ++x) {
+      const double p = power[static_cast<std::size_t>(y) * half + x];
+      if (p <= 0.0) continue;
+      const double fy = static_cast<double>(std::min(y, height - y)) / height;
+      by_frequency.emplace_back(std::hypot(static_cast<double>(x) / width, fy), p);
+      total += p;
+    }
+  const double side = std::min(width, height);
+  if (total <= 0.0) return 0.5;  // a constant exemplar: any tile captures it
+  std::sort(by_frequency.begin(), by_frequency.end());
+  // The lowest frequency f at which the power below and at f exceeds the leak: periods longer
+  // than 1 / f hold at most kAutoTileLeak, and a tile of diameter 1 / f spans them.
+  double below = 0.0;
+  double frequency = by_frequency.back().first;
+  for (const auto& [f, p] : by_frequency) {
+    below += p;
+    if (below > kAutoTileLeak * total) {
+      frequency = f;
+      break;
+    }
+  }
+  return std::clamp(0.5 / (frequency * side), kAutoTileRadiusMin, 0.5);
+}
+
 TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed,
                     std::span<const MapInfo> maps) {
   const auto height_map = std::find_if(maps.begin(), maps.end(), [](const MapInfo& map) {
@@ -324,7 +383,7 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
   data.channels = exemplar.channels;
   data.width = exemplar.width;
   data.height = exemplar.height;
-  data.tile_radius = params.tile_radius;
+  data.tile_radius = params.tile_radius == 0.0 ? auto_tile_radius(exemplar) : params.tile_radius;
   data.transport = params.transport;
   data.lut_size = params.lut_size;
   data.table_size = params.table_size;

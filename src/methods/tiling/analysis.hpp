@@ -40,6 +40,17 @@ void gaussianise_1d(std::span<const float> values, std::span<float> gaussian,
 void gaussianise_radial(std::span<const float> slopes, std::span<float> gaussian,
                         std::span<float> table);
 
+// The tile radius chosen from the exemplar (tile_radius = 0). Section 5.3 asks the tiles to capture
+// the exemplar's frequency content: the blend multiplies the exemplar's covariance by the overlap
+// of the tiles' weights, which fades over about a tile, so periods longer than a tile's diameter
+// are lost. The radius returned is the smallest edge e (a fraction of the smaller side) such that
+// at most kAutoTileLeak of the power of the exemplar's periodic component (each channel weighted
+// by its own power) lies at periods longer than 2 e, clamped to [kAutoTileRadiusMin, 1/2]: a
+// larger tile than the exemplar's width would repeat its content within one tile.
+inline constexpr double kAutoTileLeak = 0.005;
+inline constexpr double kAutoTileRadiusMin = 0.25;
+double auto_tile_radius(ImageView<const float> exemplar);
+
 // Histogram-preserving tiling and blending analysis. `maps`: a material's layout (issue 18), whose
 // maps go through T and T^-1 in groups of their own (material_groups in analysis.cpp).
 TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed,

@@ -417,6 +417,8 @@ ModelRecord TilingModel::to_record(const ParamValues& params) const {
   ModelRecord record;
   record.method = std::string(kMethodName);
   record.params = params;
+  // The radius used, also when the analysis chose it (tile_radius = 0): `stochtex info` shows it.
+  record.params["tile_radius"] = d.tile_radius;
   record.scalars = {{"channels", d.channels},
                     {"width", d.width},
                     {"height", d.height},

@@ -12,7 +12,7 @@
 namespace stochtex::tiling {
 
 struct Params {
-  double tile_radius = 0.5;
+  double tile_radius = 0.0;
   Transport transport = Transport::sliced;
   int iterations = 64;
   int lut_size = 32;
@@ -32,10 +32,12 @@ inline constexpr std::array<ParamChoice, 3> kBlends = {
     {{"histogram", 0}, {"variance", 1}, {"linear", 2}}};
 
 inline constexpr std::array<ParamField<Params>, 11> kFields = {{
-    number_field<&Params::tile_radius>(
+    chosen_number_field<&Params::tile_radius>(
         "tile_radius", 0.05, 4.0,
         "radius of the hexagonal tiles (the edge of the triangle lattice) as a fraction of the "
-        "exemplar's smaller side; section 5.3 uses about one half"),
+        "exemplar's smaller side; section 5.3 uses about one half. 0: chosen from the "
+        "exemplar's spectrum, the smallest radius whose tile diameter spans the periods of all "
+        "but 0.5% of its power, at least 1/4 and at most 1/2 (a tile as wide as the exemplar)"),
     choice_field<&Params::transport>(
         "transport", kTransports,
         "Gaussianisation T: sliced, iterated sliced optimal transport in colour space (sections "
