@@ -9,10 +9,12 @@
 // Gaussian method's ratio strays from 1 by itself: 0.78 to 1.31 measured on wood and rock). The
 // mean of two renders may exceed the aim by 2 sigma / sqrt(2). The colour covariance error, mean
 // of the two renders, may exceed the ADSN samples' mean by 2 of their deviations / sqrt(2), plus
-// 0.005 for exemplars whose ADSN covariance barely varies.
+// 0.005 for exemplars whose ADSN covariance barely varies. Tiling's colour histogram error (sliced
+// W2, mean of the two renders) must stay at most that of compare's ADSN sample.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -39,17 +41,46 @@ constexpr int kSide = 1024;
 constexpr std::uint32_t kCompareSeed = 1;  // compare's ADSN sample
 constexpr int kNoiseSeeds = 8;             // ADSN samples measuring the ratio's own spread
 
-// The aims of issue 20: spectral error / ADSN's at the defaults.
-const std::map<std::string, double, std::less<>> kAims = {
-    {"texton", 1.2}, {"lrp", 1.5}, {"gabor", 1.25}, {"tiling", 1.5}};
-
-// Where a method does not reach its aim: the measured level it must keep, and why (the method
-// pages' "Fidelity on the shipped exemplars (issue 20)" sections give the measurements).
-struct Shortfall {
-  double bound;
-  const char* why;
+// The aims of issue 20 at the defaults: spectral error / ADSN's, and for the Gaussian-model
+// methods the colour covariance at ADSN's level. Tiling copies the exemplar's own pixels: it has no
+// spectral aim in the issue (1.5 holds it near the others) and must keep the colour histogram (its
+// sliced W2 distance to the exemplar at most ADSN's) instead of a Gaussian covariance.
+struct Aim {
+  double spectral;
+  bool gaussian_model;
+  // Where one render's covariance fluctuates more than an ADSN sample's by the method's nature,
+  // the level the mean of two renders may reach (0: ADSN's), and why.
+  double covariance_fluctuation = 0.0;
+  const char* covariance_why = "";
 };
-const std::map<std::pair<std::string, std::string>, Shortfall> kShortfalls = {};
+const std::map<std::string, Aim, std::less<>> kAims = {
+    {"texton",
+     {1.2, true, 0.06,
+      "a sparse Poisson process of MNI 30 impacts: one 1024² render's overall variance moves "
+      "by a few percent with the seed. Over 8 seeds per exemplar the per-render covariance error "
+      "averages 0.021-0.047 (sd 0.012-0.026), against ADSN's 0.002-0.026, while the covariance "
+      "averaged over the 8 renders is within 0.025 of the exemplar's, or at ADSN's own bias "
+      "(brushed aluminium 0.047, ADSN 0.059; wood 0.44, ADSN 0.45: the periodic component's): "
+      "unbiased, but fluctuating (docs/methods/texton.md)"}},
+    {"lrp", {1.5, true}},
+    {"gabor", {1.25, true}},
+    {"tiling", {1.5, false}}};
+
+// Where a method does not reach an aim: the measured level it must keep instead (0: the aim
+// holds for that measure), and why. The method pages' "Fidelity on the shipped exemplars
+// (issue 20)" sections give the measurements.
+struct Shortfall {
+  double spectral = 0.0;
+  double covariance = 0.0;
+  const char* why = "";
+};
+const std::map<std::pair<std::string, std::string>, Shortfall> kShortfalls = {
+    {{"tiling", "wood_planks_256.png"},
+     {3.0, 0.0,
+      "measured 2.62 and 3.31 (averaged 2.96): the exemplar is not tileable (the steps across its "
+      "borders are 5.6 and 7.1 times the step between neighbouring pixels) and the patches wrap, "
+      "so renders hold straight seams; the lowest Welch band has +172% of the exemplar's power "
+      "(ADSN +18%), and tiles of radius 2 only bring it to +126% (docs/methods/tiling.md)"}}};
 
 struct Case {
   std::string method;
@@ -82,6 +113,7 @@ class Fidelity : public ::testing::TestWithParam<Case> {};
 
 TEST_P(Fidelity, SpectrumAndCovarianceAtTheGaussianLevel) {
   const Case& test = GetParam();
+  const Aim& aim = kAims.find(test.method)->second;
   const ImageF exemplar = read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/" + test.exemplar);
   const ImageF compared = adsn(exemplar.view(), kSide, kSide, kCompareSeed);
   const int crop = welch_crop_size(exemplar.view(), compared.view());
@@ -106,6 +138,7 @@ TEST_P(Fidelity, SpectrumAndCovarianceAtTheGaussianLevel) {
   const Model model = analyze(test.method, exemplar.view(), {}, 0, test.exemplar);
   std::vector<double> ratios;
   std::vector<double> covariances;
+  std::vector<double> histograms;  // sliced W2 to the exemplar, for tiling
   std::vector<double> mean_spectrum(target.size(), 0.0);
   for (const std::uint32_t seed : {1u, 2u}) {
     ImageF render_image(kSide, kSide, model.channels());
@@ -115,34 +148,52 @@ TEST_P(Fidelity, SpectrumAndCovarianceAtTheGaussianLevel) {
     ratios.push_back(relative_l1_distance(spectrum, target) / adsn_error);
     covariances.push_back(
         covariance_error(colour_statistics(render_image.view()), target_statistics));
+    if (!aim.gaussian_model)
+      histograms.push_back(sliced_wasserstein(render_image.view(), exemplar.view()));
   }
   const double ratio = 0.5 * (ratios[0] + ratios[1]);
   const double covariance = 0.5 * (covariances[0] + covariances[1]);
 
-  const auto shortfall = kShortfalls.find({test.method, test.exemplar});
-  const double aim = kAims.find(test.method)->second;
-  const double level = shortfall == kShortfalls.end() ? aim : shortfall->second.bound;
-  const double ratio_bound = level + 2.0 * ratio_noise.deviation / std::sqrt(2.0);
+  const auto found = kShortfalls.find({test.method, test.exemplar});
+  const Shortfall shortfall = found == kShortfalls.end() ? Shortfall{} : found->second;
+  const double ratio_level = shortfall.spectral > 0.0 ? shortfall.spectral : aim.spectral;
+  const double ratio_bound = ratio_level + 2.0 * ratio_noise.deviation / std::sqrt(2.0);
   const double covariance_bound =
-      covariance_noise.mean + 2.0 * covariance_noise.deviation / std::sqrt(2.0) + 0.005;
+      shortfall.covariance > 0.0
+          ? shortfall.covariance
+          : std::max(
+                aim.covariance_fluctuation,
+                covariance_noise.mean + 2.0 * covariance_noise.deviation / std::sqrt(2.0) + 0.005);
   // One line per case for scripts/fidelity.sh, which writes docs/fidelity.md from them.
-  const nlohmann::ordered_json line{
+  nlohmann::ordered_json line{
       {"method", test.method},
       {"exemplar", test.exemplar},
       {"ratios", ratios},
       {"averaged_ratio", relative_l1_distance(mean_spectrum, target) / adsn_error},
-      {"aim", aim},
+      {"aim", aim.spectral},
       {"ratio_bound", ratio_bound},
       {"adsn_ratio_mean", ratio_noise.mean},
       {"adsn_ratio_deviation", ratio_noise.deviation},
       {"covariances", covariances},
-      {"covariance_bound", covariance_bound},
       {"adsn_covariance_mean", covariance_noise.mean},
       {"adsn_covariance_deviation", covariance_noise.deviation},
-      {"shortfall", shortfall == kShortfalls.end() ? "" : shortfall->second.why}};
-  std::printf("fidelity %s\n", line.dump().c_str());
+      {"shortfall", shortfall.why}};
   EXPECT_LE(ratio, ratio_bound) << test.method << " on " << test.exemplar;
-  EXPECT_LE(covariance, covariance_bound) << test.method << " on " << test.exemplar;
+  if (aim.gaussian_model) {
+    line["covariance_bound"] = covariance_bound;
+    if (aim.covariance_fluctuation > 0.0) {
+      line["covariance_fluctuation"] = aim.covariance_fluctuation;
+      line["covariance_why"] = aim.covariance_why;
+    }
+    EXPECT_LE(covariance, covariance_bound) << test.method << " on " << test.exemplar;
+  } else {
+    const double histogram = 0.5 * (histograms[0] + histograms[1]);
+    const double adsn_histogram = sliced_wasserstein(compared.view(), exemplar.view());
+    line["histograms"] = histograms;
+    line["adsn_histogram"] = adsn_histogram;
+    EXPECT_LE(histogram, adsn_histogram) << test.method << " on " << test.exemplar;
+  }
+  std::printf("fidelity %s\n", line.dump().c_str());
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, Fidelity, ::testing::ValuesIn(cases()),
