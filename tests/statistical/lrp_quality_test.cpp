@@ -80,13 +80,14 @@ TEST(LrpQuality, SpectrumAndCovarianceAgainstAdsnAsCosinesGrow) {
       // with a wrong A_S the error was 0.2-0.45).
       EXPECT_LT(covariance, 0.08) << name << " J " << cosines;
     }
-    // The error falls as J grows (measured 0.55 -> 0.21 and 0.25 -> 0.16): J = 100 lies below
+    // The error falls as J grows (measured 0.31 -> 0.18 and 0.29 -> 0.12): J = 100 lies below
     // J = 10 by more than 3 standard deviations of a difference (3 sqrt(2) sigma). With one
     // amplitude per stratum as published (`amplitudes=0`) the curve is flat (0.43-0.72).
     EXPECT_LT(errors.back(), errors.front() - 3.0 * std::sqrt(2.0) * kSigma) << name;
-    // ... and approaches the ADSN level: within twice it (measured 1.5-1.8 times) plus 4 sigma.
-    // The published constant amplitudes land at 4-5 times the ADSN level and fail this.
-    EXPECT_LT(errors.back(), 2.0 * adsn_error + 4.0 * kSigma) << name;
+    // ... and approaches the ADSN level: within 1.6 times it (measured 1.58 and 1.25 times; 1.8
+    // and 2.5 before the spacing floor, the closed support and DC of issue 20) plus 4 sigma. The
+    // published constant amplitudes land at 4-5 times the ADSN level and fail this.
+    EXPECT_LT(errors.back(), 1.6 * adsn_error + 4.0 * kSigma) << name;
     EXPECT_LT(errors.back(), 0.85 * white_error) << name;
   }
 }
@@ -192,18 +193,30 @@ TEST(LrpFiltering, MinifiedRenderAgainstTheSupersampledReference) {
   const Model model = analyze("lrp", exemplar.view(), {{"cosines", 20}}, 0);
   constexpr int kSize = 48;
   constexpr int kRepeats = 3;
-  for (const double scale : {4.0, 8.0}) {
+  for (const int scale : {4, 8}) {
+    // The exemplar's own variance over that of its scale x scale box averages: what the
+    // unfiltered render (all the variance) keeps over the supersampled one for a faithful model.
+    ImageF boxed(exemplar.width() / scale, exemplar.height() / scale, 1);
+    for (int y = 0; y < boxed.height(); ++y)
+      for (int x = 0; x < boxed.width(); ++x) {
+        double sum = 0.0;
+        for (int dy = 0; dy < scale; ++dy)
+          for (int dx = 0; dx < scale; ++dx) sum += exemplar.at(x * scale + dx, y * scale + dy, 0);
+        boxed.at(x, y, 0) = static_cast<float>(sum / (scale * scale));
+      }
+    const double box_ratio = colour_statistics(exemplar.view()).covariance[0] /
+                             colour_statistics(boxed.view()).covariance[0];
     double variance[3] = {};  // filtered, unfiltered, reference
     double spectral[2] = {};  // filtered, unfiltered, against the reference
     for (std::uint32_t seed = 1; seed <= kRepeats; ++seed) {
-      const Grid grid{{0.0, 0.0}, scale, kSize, kSize};
+      const Grid grid{{0.0, 0.0}, double(scale), kSize, kSize};
       ImageF images[3] = {ImageF(kSize, kSize, 1), ImageF(kSize, kSize, 1),
                           ImageF(kSize, kSize, 1)};
       RenderOptions options;
       render(model, grid, seed, images[0].view(), options);
       options.filter = false;
       render(model, grid, seed, images[1].view(), options);
-      options.supersample = static_cast<int>(2.0 * scale);
+      options.supersample = 2 * scale;
       render(model, grid, seed, images[2].view(), options);
       for (int i = 0; i < 3; ++i)
         variance[i] += colour_statistics(images[i].view()).covariance[0] / kRepeats;
@@ -211,16 +224,18 @@ TEST(LrpFiltering, MinifiedRenderAgainstTheSupersampledReference) {
         spectral[i] += spectral_error(images[i].view(), images[2].view(), 16) / kRepeats;
     }
     std::cout << "scale " << scale << ": variance filtered " << variance[0] << ", unfiltered "
-              << variance[1] << ", supersampled " << variance[2]
-              << "; spectral error vs supersampled: filtered " << spectral[0] << ", unfiltered "
-              << spectral[1] << "\n";
-    // Measured (3 seeds): filtered variance 1.34 and 1.52 times the reference at scales 4 and
-    // 8, unfiltered 4.9 and 10.8; spectral error 0.42 and 0.53 against 3.8 and 9.7. The clamped
-    // render must stay far closer to the reference than the aliased one and keep no more than
-    // twice its variance (a clamp that does nothing gives the unfiltered numbers).
+              << variance[1] << ", supersampled " << variance[2] << " (exemplar, all over box "
+              << box_ratio << "); spectral error vs supersampled: filtered " << spectral[0]
+              << ", unfiltered " << spectral[1] << "\n";
+    // Measured (3 seeds): filtered variance 1.44 and 1.48 times the reference at scales 4 and
+    // 8, unfiltered 3.95 and 7.9 (the exemplar's box ratios: 4.16 and 9.03); spectral error 0.44
+    // and 0.53 against 2.9 and 6.8. The clamped render must stay far closer to the reference than
+    // the aliased one and keep no more than twice its variance (a clamp that does nothing gives
+    // the unfiltered numbers); the supersampled reference must keep what a box keeps of the
+    // exemplar, within 25% (a reference that does not filter gives a ratio of 1).
     EXPECT_LT(variance[0], 2.0 * variance[2]) << "scale " << scale;
     EXPECT_GT(variance[0], variance[2]) << "scale " << scale;
-    EXPECT_GT(variance[1], 4.0 * variance[2]) << "scale " << scale;
+    EXPECT_NEAR(variance[1] / variance[2], box_ratio, 0.25 * box_ratio) << "scale " << scale;
     EXPECT_LT(spectral[0], 0.25 * spectral[1]) << "scale " << scale;
   }
 }

@@ -359,7 +359,8 @@ double window_energy_radius(double fraction) {
 }
 
 std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
-                                     int cosines, bool shaped, std::uint32_t key) {
+                                     int cosines, bool shaped, double min_spacing,
+                                     std::uint32_t key) {
   check_spectrum_size(size);
   if (power.size() != static_cast<std::size_t>(size) * size)
     throw std::invalid_argument("lrp: the power spectrum does not have size x size values");
@@ -424,6 +425,19 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
     }
   }
 
+  // With shaped amplitudes, DC's power (variance below the estimate's resolution, see analyze)
+  // joins the strongest stratum as one more frequency: its weight carries that power, and a
+  // cosine of frequency 0 with a random phase is a random offset per lattice node.
+  Bin dc;
+  dc.self_paired = true;
+  dc.power = power[0];
+  if (shaped && dc.power > 0.0 && std::isfinite(dc.power) && stratum_count > 0) {
+    pair_power[0] = dc.power;
+    auto& strongest = members[0];
+    strongest.insert(std::find_if(strongest.begin(), strongest.end(),
+                                  [&](const Bin* bin) { return bin->power < dc.power; }),
+                     &dc);
+  }
   const double radial_energy = window_radial_energy();
   const double unit_radius = window_energy_radius(kErosionEnergy);
   std::vector<char> inside(static_cast<std::size_t>(size) * size);
@@ -437,10 +451,18 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
   // the strata) rather than inside each stratum: a neighbouring stratum's power is close to this
   // one's, so leaking into it is what the window does to any spectrum, while eroding each
   // stratum's boundary concentrates the draws on a few inner frequencies (docs/methods/lrp.md).
-  std::vector<double> support_distance_squared;
+  // The support is closed before it is eroded: DC (zero in the estimate only because each crop's
+  // mean is removed) and the isolated weakest frequencies left out of every stratum (speckle of a
+  // noisy Welch estimate: about 4% of the bins of a flat one) are holes, not gaps of the target,
+  // and eroding around each of them swept out nearly the whole plane (docs/methods/lrp.md,
+  // issue 20). A closing by delta fills the holes narrower than 2 delta and keeps the outside of
+  // a ring target: `support_gap_squared` is each bin's squared distance to the support.
+  std::vector<double> support_gap_squared;
   if (shaped) {
     for (std::size_t i = 0; i < kept; ++i) mark(bins[i]);
-    support_distance_squared = periodic_distance_squared(inside, size);
+    inside[0] = 1;
+    for (char& bin : inside) bin = bin ? 0 : 1;
+    support_gap_squared = periodic_distance_squared(inside, size);
   }
   for (int s = 0; s < strata; ++s) {
     StratumPlan& plan = plans[static_cast<std::size_t>(s)];
@@ -459,14 +481,19 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
       continue;
     }
     for (const Bin* bin : stratum) {
-      plan.energy += bin->power * energy_scale;
+      plan.energy += bin->power * (bin == &dc ? 1.0 : energy_scale);
       plan.bins += bin->self_paired ? 1 : 2;
     }
     plan.highest_power = stratum.front()->power;
     plan.lowest_power = stratum.back()->power;
     // Delta_S = T sqrt(J_S) / sqrt(2 |S|) (section 4.3): J_S spectral footprints of radius
     // 1 / Delta_S cover the stratum's area |S| / T^2 with a slight overlap.
-    plan.sampling.spacing = static_cast<float>(size * std::sqrt(j_s / (2.0 * plan.bins)));
+    // Our floor (parameter `spacing`, docs/methods/lrp.md): the footprint of radius 1 / Delta_S
+    // blurs a wide stratum of the weak, high frequencies (Delta_S of 3-6 pixels, a footprint of
+    // a sixth of the plane) far outside the target, while a sample costs 9 J_S cosines whatever
+    // Delta_S.
+    plan.sampling.spacing =
+        static_cast<float>(std::max(min_spacing, size * std::sqrt(j_s / (2.0 * plan.bins))));
     // Equation (3) with the energy per unit area: the variance of n_S, averaged over a lattice
     // cell, is A_S^2 J_S / 2 * 2 pi int r w^2 (the mean of sum_i w^2(|x - x_i| / Delta_S)); the
     // paper's Delta_S^2 converts its per-window energy and cancels here.
@@ -475,10 +502,22 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
 
     // Erosion (section 4.3) by delta = unit_radius / Delta_S cycles per pixel, in bins.
     plan.erosion_radius = unit_radius * size / plan.sampling.spacing;
+    std::vector<double> distance_squared;
+    if (shaped) {
+      // Depth in the closed support: the distance to the outside of the support dilated by delta,
+      // less delta.
+      const double reach = plan.erosion_radius * plan.erosion_radius;
+      for (std::size_t i = 0; i < inside.size(); ++i)
+        inside[i] = support_gap_squared[i] <= reach ? 1 : 0;
+      distance_squared = periodic_distance_squared(inside, size);
+      for (double& value : distance_squared) {
+        const double depth = std::max(0.0, std::sqrt(value) - plan.erosion_radius);
+        value = depth * depth;
+      }
+    }
     std::fill(inside.begin(), inside.end(), char{0});
     for (const Bin* bin : stratum) mark(*bin);
-    const std::vector<double> distance_squared =
-        shaped ? support_distance_squared : periodic_distance_squared(inside, size);
+    if (!shaped) distance_squared = periodic_distance_squared(inside, size);
     std::vector<std::pair<double, const Bin*>> by_depth;
     for (const Bin* bin : stratum)
       by_depth.emplace_back(std::sqrt(distance_squared[static_cast<std::size_t>(bin->index)]), bin);
@@ -624,18 +663,28 @@ LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uin
     // Welch's estimate has the variance of the Hann-weighted pixels; the noise gets the
     // component's exact variance. A component without variance (grey exemplar stored as RGB)
     // gets a zero spectrum, hence silent strata.
-    const double scale =
-        sum > 0.0 && variances[k] > 1e-12 * variances.sum() ? variances[k] / sum : 0.0;
+    const bool silent = !(sum > 0.0 && variances[k] > 1e-12 * variances.sum());
+    // The estimate's own variance is its mean power (metrics.hpp). With shaped amplitudes, the
+    // variance it misses (below its resolution 1 / T, removed with each crop's mean: two thirds of
+    // wood_planks_256's) goes to DC, which plan_strata gives to the strongest stratum, instead of
+    // raising every frequency (docs/methods/lrp.md, issue 20).
+    const double estimated = sum / (static_cast<double>(size) * size);
+    // Not with fixed phases: R is measured at the estimate's resolution too (section 5.1), and at
+    // r = 1 the random strata must stay silent.
+    const bool below_resolution =
+        shaped && fixed_cosines == 0 && !silent && variances[k] > estimated;
+    const double scale = silent ? 0.0 : below_resolution ? estimated / sum : variances[k] / sum;
     for (double& value : power) value *= scale;
+    if (below_resolution) power[0] = variances[k] - estimated;
     if (fixed_cosines > 0) {
       // Turbulence follows the whole spectrum of the strongest channel (section 5.2).
       if (variances[k] == variances.maxCoeff()) turbulence_power = power;
       regions.push_back(fixed_phase_region(component.view(), size, ratio));
       remove_region(power, regions.back());
     }
-    append_channel(data,
-                   plan_strata(power, size, strata, std::max(1, cosines - fixed_cosines), shaped,
-                               cell_key(channel_stream(k), 0, seed, Stream::analysis)));
+    append_channel(
+        data, plan_strata(power, size, strata, std::max(1, cosines - fixed_cosines), shaped,
+                          params.spacing, cell_key(channel_stream(k), 0, seed, Stream::analysis)));
   }
   if (fixed_cosines > 0) {
     data.structure = reduce_structure(regions, fixed_cosines, data.colour_basis);
@@ -661,8 +710,9 @@ LrpModel analyze_spectrum(const SpectrumTarget& target, const Params& params, st
   data.normalise_envelope = params.envelope;
   data.mean = {static_cast<float>(target.mean)};
   data.colour_basis = {1.0f};
-  append_channel(data, plan_strata(target.power, target.size, data.strata, params.cosines,
-                                   params.amplitudes, cell_key(0, 0, seed, Stream::analysis)));
+  append_channel(
+      data, plan_strata(target.power, target.size, data.strata, params.cosines, params.amplitudes,
+                        params.spacing, cell_key(0, 0, seed, Stream::analysis)));
   for (float& f : data.frequencies) f /= static_cast<float>(target.size);
   return LrpModel(std::move(data));
 }

@@ -56,10 +56,11 @@ int welch_size(int width, int height);
 // 2-D window's spectrum |W-hat|^2 (W(x) = w(|x|)), by numerical Hankel transform (section 4.3).
 double window_energy_radius(double fraction);
 // Sections 4.2-4.3 for one channel: `power` is a SpectrumTarget's power (size x size). `shaped`:
-// per-frequency amplitudes (parameter `amplitudes`). `key` seeds the k-means initialisation of
-// each stratum.
+// per-frequency amplitudes (parameter `amplitudes`). `min_spacing`: the floor on Delta_S in pixels
+// (parameter `spacing`; 0 as published). `key` seeds the k-means initialisation of each stratum.
 std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
-                                     int cosines, bool shaped, std::uint32_t key);
+                                     int cosines, bool shaped, double min_spacing,
+                                     std::uint32_t key);
 
 // The model of an exemplar: PCA-decorrelated channels, Welch spectrum of each, strata.
 LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uint32_t seed);

@@ -15,6 +15,7 @@ struct Params {
   int strata = 4;
   bool envelope = true;
   bool amplitudes = true;
+  double spacing = 24;
   double ratio = 0;
   double turbulence = 0;
   bool placement = true;
@@ -22,7 +23,7 @@ struct Params {
   bool operator==(const Params&) const = default;
 };
 
-inline constexpr std::array<ParamField<Params>, 7> kFields = {{
+inline constexpr std::array<ParamField<Params>, 8> kFields = {{
     number_field<&Params::cosines>(
         "cosines", 1, 2000,
         "cosine budget J per channel (sections 4.1, 6.3): each stratum gets J_S = J / L cosines "
@@ -40,6 +41,11 @@ inline constexpr std::array<ParamField<Params>, 7> kFields = {{
         "on: each frequency's amplitude follows the target's power inside its sub-stratum, so the "
         "expected spectrum follows the target within a stratum (our addition, "
         "docs/methods/lrp.md); off: one amplitude A_S per stratum (equation 3 as published)"),
+    number_field<&Params::spacing>(
+        "spacing", 0, 1024,
+        "smallest lattice spacing Delta_S in pixels (our floor on section 4.3's Delta_S, "
+        "docs/methods/lrp.md): a wider spacing narrows each cosine's spectral footprint at no "
+        "cost per sample; 0: Delta_S as published"),
     number_field<&Params::ratio>(
         "ratio", 0, 1,
         "energy ratio r of the fixed-phase region R (section 5.1): the highest-power frequencies "
