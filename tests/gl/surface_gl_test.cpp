@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/hash.hpp"
@@ -158,15 +159,16 @@ TEST(GlSurface, GaborSurfaceNoiseMatchesTheCpuReference) {
 
 // Linear triplanar mapping (triplanar_linear.glsl) calls each method's planar GLSL on the three
 // axis planes, as the CPU calls evaluate(). Measured maxima over 600 points of a sphere of radius
-// 120 at sharpness 4 and the footprints below: texton 6.0e-7, tiling 1.7e-6, gabor 1.4e-6 (float
-// positions and weights against double); bound 3x the largest.
+// 120 at sharpness 4 and the footprints below (float positions and weights against double): texton
+// 6.0e-7, tiling 5.2e-6 (1.7e-6 at the tile radius 1/2 of the earlier default; the radius chosen
+// from this exemplar, 0.354, puts more lattice vertices in float), gabor 1.4e-6; bounds 3x each.
 TEST(GlSurface, LinearTriplanarMatchesTheCpuReference) {
   const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
-  const std::vector<Model> models = {
-      analyze("texton", exemplar.view(), {{"support", 24}}, 0),
-      analyze("tiling", exemplar.view(), {}, 0),
-      analyze("gabor", exemplar.view(), {{"impulses", 64}, {"iterations", 30}}, 0)};
-  for (const Model& model : models) {
+  const std::vector<std::pair<Model, float>> models = {
+      {analyze("texton", exemplar.view(), {{"support", 24}}, 0), 2e-6f},
+      {analyze("tiling", exemplar.view(), {}, 0), 1.6e-5f},
+      {analyze("gabor", exemplar.view(), {{"impulses", 64}, {"iterations", 30}}, 0), 4.5e-6f}};
+  for (const auto& [model, bound] : models) {
     GlSurfaceEvaluator evaluator(model);
     // sphere_points' tangents lie in the (y,z) plane wherever |n_x| < 0.9, so there the projected
     // footprint is exactly `footprint` long: 3.3, not 3, keeps texton's probe count off a jump.
@@ -178,7 +180,7 @@ TEST(GlSurface, LinearTriplanarMatchesTheCpuReference) {
       const float worst = largest_difference(model, evaluator, points, options);
       std::cout << model.method() << " triplanar-linear footprint " << footprint
                 << ": max |cpu - gl| = " << worst << "\n";
-      EXPECT_LT(worst, 5e-6f) << model.method() << " footprint " << footprint;
+      EXPECT_LT(worst, bound) << model.method() << " footprint " << footprint;
     }
   }
 }
