@@ -15,8 +15,9 @@ enum class ColourSpace { independent = 0, pca = 1, rgb = 2 };
 struct Params {
   double kappa = 1.0 / 256.0;
   int impulses = 1024;
-  ColourSpace colour_space = ColourSpace::independent;
+  ColourSpace colour_space = ColourSpace::pca;
   int iterations = 300;
+  double weighting = 0.25;
 
   bool operator==(const Params&) const = default;
 };
@@ -24,7 +25,7 @@ struct Params {
 inline constexpr std::array<ParamChoice, 3> kColourSpaces = {
     {{"independent", 0}, {"pca", 1}, {"rgb", 2}}};
 
-inline constexpr std::array<ParamField<Params>, 4> kFields = {{
+inline constexpr std::array<ParamField<Params>, 5> kFields = {{
     number_field<&Params::kappa>(
         "kappa", 1.0 / 65536.0, 1.0,
         "relative regularisation: nu = kappa nu_max in the basis pursuit denoising of eq. (8); "
@@ -36,12 +37,18 @@ inline constexpr std::array<ParamField<Params>, 4> kFields = {{
         "with it"),
     choice_field<&Params::colour_space>(
         "colour_space", kColourSpaces,
-        "colour space of the independent channel synthesis (section 7): independent, maximally "
-        "independent (approximate joint diagonalisation); pca, PCA; rgb, RGB"),
+        "colour space of the independent channel synthesis (section 7): pca, PCA (orthogonal: the "
+        "channels' power spectra sum to the exemplar's, docs); independent, maximally independent "
+        "(approximate joint diagonalisation, the paper's); rgb, RGB"),
     number_field<&Params::iterations>(
         "iterations", 1, 100000,
         "most FISTA iterations per step of the kappa homotopy (section 5.3); the last step stops "
         "earlier when the duality gap certifies the objective within 1% of its optimum"),
+    number_field<&Params::weighting>(
+        "weighting", 0.0, 1.0,
+        "exponent gamma of the data weights of the fit, (smoothed periodogram)^-gamma: 0 is the "
+        "paper's unweighted eq. (8), which drops the weak, diffuse part of a spectrum; 1/2 makes "
+        "the l1 shrinkage proportional to the local spectrum level (docs)"),
 }};
 
 inline constexpr auto kParams = param_infos(kFields);
