@@ -150,7 +150,7 @@ TEST(Params, ValuesAreWrittenByName) {
   EXPECT_EQ(format_param("gabor", "kappa", 1.0 / 256.0), "0.00390625");
   const std::string text = methods_text();
   EXPECT_NE(text.find("-p blend=histogram "), std::string::npos);
-  EXPECT_NE(text.find("-p colour_space=independent "), std::string::npos);
+  EXPECT_NE(text.find("-p colour_space=pca "), std::string::npos);
   EXPECT_NE(text.find("-p mni=30 "), std::string::npos);
   const auto json = nlohmann::json::parse(methods_json());
   for (const auto& method : json)
