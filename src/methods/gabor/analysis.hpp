@@ -32,7 +32,8 @@ namespace stochtex::gabor {
 // FFT convolutions, one per band.
 class GaussianDictionary {
  public:
-  GaussianDictionary(int width, int height);
+  // The narrowest band spans `narrowest` bins (1: down to one bin, the paper's dictionary).
+  GaussianDictionary(int width, int height, int narrowest = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }

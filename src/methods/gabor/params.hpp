@@ -13,11 +13,12 @@ namespace stochtex::gabor {
 enum class ColourSpace { independent = 0, pca = 1, rgb = 2 };
 
 struct Params {
-  double kappa = 1.0 / 256.0;
+  double kappa = 1.0 / 1024.0;
   int impulses = 1024;
   ColourSpace colour_space = ColourSpace::pca;
   int iterations = 300;
   double weighting = 0.25;
+  int narrowest = 0;
 
   bool operator==(const Params&) const = default;
 };
@@ -25,7 +26,7 @@ struct Params {
 inline constexpr std::array<ParamChoice, 3> kColourSpaces = {
     {{"independent", 0}, {"pca", 1}, {"rgb", 2}}};
 
-inline constexpr std::array<ParamField<Params>, 5> kFields = {{
+inline constexpr std::array<ParamField<Params>, 6> kFields = {{
     number_field<&Params::kappa>(
         "kappa", 1.0 / 65536.0, 1.0,
         "relative regularisation: nu = kappa nu_max in the basis pursuit denoising of eq. (8); "
@@ -49,6 +50,13 @@ inline constexpr std::array<ParamField<Params>, 5> kFields = {{
         "exponent gamma of the data weights of the fit, (smoothed periodogram)^-gamma: 0 is the "
         "paper's unweighted eq. (8), which drops the weak, diffuse part of a spectrum; 1/2 makes "
         "the l1 shrinkage proportional to the local spectrum level (docs)"),
+    number_field<&Params::narrowest>(
+        "narrowest", 0, 64,
+        "FWHM of the dictionary's narrowest band, in frequency bins of the exemplar (section 4.3): "
+        "1 is the paper's (down to one bin); 0 chooses per channel: 4 bins, or 1 when the 4-bin "
+        "fit stays above the periodogram's noise level (a spectrum with sharp features). One-bin "
+        "Gaussians fitted to a diffuse spectrum's periodogram noise become kernels hundreds of "
+        "pixels wide, too few per render for the impulse budget (docs)"),
 }};
 
 inline constexpr auto kParams = param_infos(kFields);
