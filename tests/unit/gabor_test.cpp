@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <numeric>
 #include <random>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "methods/gabor/edit_analysis.hpp"
 #include "methods/gabor/model.hpp"
 #include "model/model_data.hpp"
+#include "spectral/periodic.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
@@ -558,6 +560,32 @@ TEST(GaborAnalysis, NarrowestBandIsChosenFromTheSpectrum) {
   EXPECT_EQ(finest(diffuse, 1), 6);
   EXPECT_LE(finest(peaked, 4), 4);
   EXPECT_LE(finest(diffuse, 16), 2);
+}
+
+TEST(GaborAnalysis, RenormalisedNoiseHasThePeriodogramsVariance) {
+  // A diffuse 64² grey exemplar at a coarse kappa: the l1 shrinkage lowers the fitted variance;
+  // renormalise (the default) restores the periodic component's variance, as ADSN has it.
+  std::mt19937 engine(12);
+  std::normal_distribution<float> normal(0.5f, 0.1f);
+  ImageF exemplar(64, 64, 1);
+  for (float& v : exemplar.pixels()) v = normal(engine);
+  const ImageF periodic = periodic_component(exemplar.view());
+  std::vector<float> plane(periodic.pixels().begin(), periodic.pixels().end());
+  const double mean =
+      std::accumulate(plane.begin(), plane.end(), 0.0) / static_cast<double>(plane.size());
+  for (float& v : plane) v = static_cast<float>(v - mean);
+  const std::vector<float> spectrum = periodogram(plane, 64, 64);
+  const double target = std::accumulate(spectrum.begin(), spectrum.end(), 0.0);
+  const auto variance = [&](double renormalise) {
+    const Model model =
+        analyze("gabor", exemplar.view(), {{"kappa", 1.0 / 16.0}, {"renormalise", renormalise}}, 1);
+    double sum = 0.0;
+    for (const GaussianComponent& g : std::get<GaborModel>(model.data().model).gaussians())
+      sum += g.variance;
+    return sum;
+  };
+  EXPECT_LT(variance(0.0), 0.97 * target);
+  EXPECT_NEAR(variance(1.0), target, 1e-4 * target);
 }
 
 TEST(GaborEdit, TransformsTheSelectedGaussiansOnly) {

@@ -199,7 +199,7 @@ TEST(Params, TypedRecordsRoundTripThroughValues) {
                                    tiling::Blend::linear, true});
   expect_round_trip("lrp", lrp::kFields, lrp::Params{20, 2, false, false, 0.3, 4.5, false});
   expect_round_trip("gabor", gabor::kFields,
-                    gabor::Params{1.0 / 64.0, 256, gabor::ColourSpace::rgb, 50, 0.5});
+                    gabor::Params{1.0 / 64.0, 256, gabor::ColourSpace::rgb, 50, 0.5, 2, false});
   expect_round_trip("texton_mix", texton_mix::kFields,
                     texton_mix::Params{{64, 3, 10, 12.5}, 9, -5, 300, 0.5, -2, 4});
 }

@@ -764,17 +764,26 @@ GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::u
           double target_variance = 0.0;
           for (const float v : targets[k]) target_variance += v;
           for (std::size_t i = 0; i < weights.size(); ++i) targets[k][i] *= weights[i];
+          const auto fitted_variance = [&] {
+            double variance = 0.0;
+            for (const GaussianComponent& g : fits[k].gaussians) variance += g.variance;
+            return variance;
+          };
           if (params.narrowest > 0) {
             fits[k] = fit_channel(k, params.narrowest, weights, targets[k], 0.0, 1.0);
-            return;
+          } else {
+            // Automatic: the dictionary down to kAutoNarrowest bins first; the full one (one
+            // bin) when that fit inflates the variance (features narrower than its Gaussians).
+            fits[k] = fit_channel(k, kAutoNarrowest, weights, targets[k], 0.0, kAutoCoarseShare);
+            if (fitted_variance() > kAutoVarianceExcess * target_variance)
+              fits[k] = fit_channel(k, 1, weights, targets[k], kAutoCoarseShare, 1.0);
           }
-          // Automatic: the dictionary down to kAutoNarrowest bins first; the full one (one bin)
-          // when that fit inflates the variance (features narrower than its Gaussians).
-          fits[k] = fit_channel(k, kAutoNarrowest, weights, targets[k], 0.0, kAutoCoarseShare);
-          double variance = 0.0;
-          for (const GaussianComponent& g : fits[k].gaussians) variance += g.variance;
-          if (variance > kAutoVarianceExcess * target_variance)
-            fits[k] = fit_channel(k, 1, weights, targets[k], kAutoCoarseShare, 1.0);
+          // The channel's noise gets its periodogram's variance (the periodic component's, as
+          // ADSN's); the fit error reports the fit itself.
+          const double variance = fitted_variance();
+          if (params.renormalise && variance > 0.0)
+            for (GaussianComponent& g : fits[k].gaussians)
+              g.variance = static_cast<float>(g.variance * (target_variance / variance));
         });
   } catch (...) {
     if (cancellation) std::rethrow_exception(cancellation);

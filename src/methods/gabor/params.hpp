@@ -19,6 +19,7 @@ struct Params {
   int iterations = 300;
   double weighting = 0.25;
   int narrowest = 0;
+  bool renormalise = true;
 
   bool operator==(const Params&) const = default;
 };
@@ -26,7 +27,7 @@ struct Params {
 inline constexpr std::array<ParamChoice, 3> kColourSpaces = {
     {{"independent", 0}, {"pca", 1}, {"rgb", 2}}};
 
-inline constexpr std::array<ParamField<Params>, 6> kFields = {{
+inline constexpr std::array<ParamField<Params>, 7> kFields = {{
     number_field<&Params::kappa>(
         "kappa", 1.0 / 65536.0, 1.0,
         "relative regularisation: nu = kappa nu_max in the basis pursuit denoising of eq. (8); "
@@ -57,6 +58,11 @@ inline constexpr std::array<ParamField<Params>, 6> kFields = {{
         "fit stays above the periodogram's noise level (a spectrum with sharp features). One-bin "
         "Gaussians fitted to a diffuse spectrum's periodogram noise become kernels hundreds of "
         "pixels wide, too few per render for the impulse budget (docs)"),
+    choice_field<&Params::renormalise>(
+        "renormalise", kSwitch,
+        "on: each synthesis channel's Gaussians are scaled together so that its noise has the "
+        "variance of its periodogram, as ADSN's (our addition: the l1 shrinkage lowers it, a fit "
+        "coarser than the spectrum's features raises it; docs); off: as fitted (the paper)"),
 }};
 
 inline constexpr auto kParams = param_infos(kFields);
