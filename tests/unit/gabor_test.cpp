@@ -10,6 +10,7 @@
 #include <numbers>
 #include <numeric>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "core/hash.hpp"
@@ -104,6 +105,30 @@ std::vector<std::vector<float>> place(const GaussianDictionary& dictionary,
   return alpha;
 }
 
+// The certificate: the primal value at the stop exceeds the optimum (approached here by a much
+// longer run) by no more than the gap reported at the stop.
+void expect_gap_certifies(const GaussianDictionary& dictionary, std::span<const float> target,
+                          const SpectrumFit& fit, FitOptions options) {
+  options.kappa = fit.nu / fit.nu_max;
+  options.gap_tolerance = 1e-5;
+  options.max_iterations = 6000;
+  const SpectrumFit optimum = fit_spectrum(dictionary, target, options);
+  EXPECT_GE(fit.primal - optimum.primal, -1e-6 * fit.primal);
+  EXPECT_LE(fit.primal - optimum.primal, fit.gap + 1e-6 * fit.primal);
+}
+
+// Each known atom's coefficient (a side x side plane) within `tolerance` of its value.
+void expect_atoms(const SpectrumFit& fit, const std::vector<KnownAtom>& atoms, int side,
+                  double tolerance) {
+  for (const KnownAtom& atom : atoms) {
+    const float found =
+        fit.alpha[static_cast<std::size_t>(atom.band_index)]
+                 [static_cast<std::size_t>((atom.y + side) % side) * side + (atom.x + side) % side];
+    EXPECT_NEAR(found, atom.coefficient, tolerance * atom.coefficient)
+        << "band " << atom.band_index << " at " << atom.x << ", " << atom.y;
+  }
+}
+
 TEST(GaborFit, RecoversKnownGaussiansAndTheGapCertifiesTheStop) {
   const GaussianDictionary dictionary(64, 64);
   ASSERT_EQ(dictionary.band_count(), 7);  // FWHM 64, 32, ..., 1 bins
@@ -139,23 +164,10 @@ TEST(GaborFit, RecoversKnownGaussiansAndTheGapCertifiesTheStop) {
       if (truth[static_cast<std::size_t>(b)][i] == 0.0f) elsewhere += value;
     }
   EXPECT_LT(elsewhere, 0.02 * total);
-  for (const KnownAtom& atom : atoms) {
-    const float found =
-        fit.alpha[static_cast<std::size_t>(atom.band_index)]
-                 [static_cast<std::size_t>((atom.y + 64) % 64) * 64 + (atom.x + 64) % 64];
-    EXPECT_NEAR(found, atom.coefficient, 0.03 * atom.coefficient)
-        << "band " << atom.band_index << " at " << atom.x << ", " << atom.y;
-  }
+  expect_atoms(fit, atoms, 64, 0.03);
   EXPECT_LT(fit.residual_norm, 0.01 * fit.target_norm);
 
-  // The certificate: the primal value at the stop exceeds the optimum (approached here by a much
-  // longer run) by no more than the gap reported at the stop.
-  options.kappa = fit.nu / fit.nu_max;
-  options.gap_tolerance = 1e-5;
-  options.max_iterations = 6000;
-  const SpectrumFit optimum = fit_spectrum(dictionary, target, options);
-  EXPECT_GE(fit.primal - optimum.primal, -1e-6 * fit.primal);
-  EXPECT_LE(fit.primal - optimum.primal, fit.gap + 1e-6 * fit.primal);
+  expect_gap_certifies(dictionary, target, fit, options);
 }
 
 double squared_norm(const std::vector<float>& values) {
@@ -215,22 +227,11 @@ TEST(GaborFit, WeightedFitConvergesWithPerCoefficientSteps) {
     if (gamma == 1.0) {
       EXPECT_TRUE(fit.converged);
       EXPECT_LE(fit.gap, 1e-3 * fit.primal);
-      options.kappa = fit.nu / fit.nu_max;
-      options.gap_tolerance = 1e-5;
-      options.max_iterations = 6000;
-      const SpectrumFit optimum = fit_spectrum(dictionary, target, options);
-      EXPECT_GE(fit.primal - optimum.primal, -1e-6 * fit.primal);
-      EXPECT_LE(fit.primal - optimum.primal, fit.gap + 1e-6 * fit.primal);
+      expect_gap_certifies(dictionary, target, fit, options);
       continue;
     }
     EXPECT_LT(fit.residual_norm, 0.02 * fit.target_norm);
-    for (const KnownAtom& atom : atoms) {
-      const float found =
-          fit.alpha[static_cast<std::size_t>(atom.band_index)]
-                   [static_cast<std::size_t>((atom.y + 64) % 64) * 64 + (atom.x + 64) % 64];
-      EXPECT_NEAR(found, atom.coefficient, 0.05 * atom.coefficient)
-          << "band " << atom.band_index << " at " << atom.x << ", " << atom.y;
-    }
+    expect_atoms(fit, atoms, 64, 0.05);
   }
 }
 
