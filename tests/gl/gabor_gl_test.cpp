@@ -26,12 +26,18 @@ namespace {
 
 using namespace gl_test;
 
-const Model& gabor_model(const std::string& exemplar_name, double impulses) {
+// The model of an exemplar at the default parameters but the impulse budget (and `narrowest`
+// when it is given).
+const Model& gabor_model(const std::string& exemplar_name, double impulses,
+                         double narrowest = -1.0) {
   static std::map<std::string, Model> models;
-  const std::string key = exemplar_name + std::to_string(impulses);
+  const std::string key =
+      exemplar_name + std::to_string(impulses) + " " + std::to_string(narrowest);
   if (!models.contains(key)) {
     const ImageF exemplar = read_image(kTextureDir + "/" + exemplar_name);
-    models[key] = analyze("gabor", exemplar.view(), {{"impulses", impulses}}, 0);
+    ParamValues params{{"impulses", impulses}};
+    if (narrowest >= 0.0) params["narrowest"] = narrowest;
+    models[key] = analyze("gabor", exemplar.view(), params, 0);
   }
   return models[key];
 }
@@ -249,6 +255,12 @@ TEST(GlGabor, FloatPathMatchesTheCpuReference) {
   // far origins are as close as the near ones. The bounds leave room for GPUs' less accurate
   // exp and cos (the double path's parity test allows 1e-4 absolute, about 5e-4 of these
   // images' deviation); a wrong cell or offset (a shift of 0.25 pixel) gives 0.1 RMS, 0.4 max.
+  // The bounds allow no kernel that the float and double offsets put on opposite sides of the
+  // truncation cut (a jump of e^-pi times its amplitude, section "GPU" of docs/methods/gabor.md):
+  // metal's model at the defaults of issue 20 (narrowest band chosen: 4 bins) has one, at pixel
+  // (39, 0) of the scale-16 case (0.0035 apart, 0.04 of the deviation; the CPU and the double GL
+  // path agree). The models keep the one-bin dictionary (narrowest = 1) the bounds were measured
+  // with; the flip is a known limit of the float path, not a wrong cell or offset.
   const std::vector<GaborCase> cases = {
       {"grass_lawn_128.png", {{0.25, 0.0}, 1.0, 48, 48}},
       {"grass_lawn_128.png", {{1e7, -1e7}, 1.0, 48, 48}},
@@ -259,7 +271,7 @@ TEST(GlGabor, FloatPathMatchesTheCpuReference) {
       {"metal_grey_256.png", {{-1e7, 1e7}, 1.0, 48, 48}},
   };
   for (const auto& c : cases) {
-    const Model& model = gabor_model(c.exemplar, 256);
+    const Model& model = gabor_model(c.exemplar, 256, 1.0);
     const ImageF cpu = render_cpu(model, c.grid, 5);
     const ImageF exact = render_gpu(model, c.grid, 5);
     const ImageF fast = render_float(model, c.grid, 5);

@@ -8,7 +8,9 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <numeric>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "core/hash.hpp"
@@ -17,6 +19,7 @@
 #include "methods/gabor/edit_analysis.hpp"
 #include "methods/gabor/model.hpp"
 #include "model/model_data.hpp"
+#include "spectral/periodic.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
@@ -102,6 +105,30 @@ std::vector<std::vector<float>> place(const GaussianDictionary& dictionary,
   return alpha;
 }
 
+// The certificate: the primal value at the stop exceeds the optimum (approached here by a much
+// longer run) by no more than the gap reported at the stop.
+void expect_gap_certifies(const GaussianDictionary& dictionary, std::span<const float> target,
+                          const SpectrumFit& fit, FitOptions options) {
+  options.kappa = fit.nu / fit.nu_max;
+  options.gap_tolerance = 1e-5;
+  options.max_iterations = 6000;
+  const SpectrumFit optimum = fit_spectrum(dictionary, target, options);
+  EXPECT_GE(fit.primal - optimum.primal, -1e-6 * fit.primal);
+  EXPECT_LE(fit.primal - optimum.primal, fit.gap + 1e-6 * fit.primal);
+}
+
+// Each known atom's coefficient (a side x side plane) within `tolerance` of its value.
+void expect_atoms(const SpectrumFit& fit, const std::vector<KnownAtom>& atoms, int side,
+                  double tolerance) {
+  for (const KnownAtom& atom : atoms) {
+    const float found =
+        fit.alpha[static_cast<std::size_t>(atom.band_index)]
+                 [static_cast<std::size_t>((atom.y + side) % side) * side + (atom.x + side) % side];
+    EXPECT_NEAR(found, atom.coefficient, tolerance * atom.coefficient)
+        << "band " << atom.band_index << " at " << atom.x << ", " << atom.y;
+  }
+}
+
 TEST(GaborFit, RecoversKnownGaussiansAndTheGapCertifiesTheStop) {
   const GaussianDictionary dictionary(64, 64);
   ASSERT_EQ(dictionary.band_count(), 7);  // FWHM 64, 32, ..., 1 bins
@@ -137,29 +164,75 @@ TEST(GaborFit, RecoversKnownGaussiansAndTheGapCertifiesTheStop) {
       if (truth[static_cast<std::size_t>(b)][i] == 0.0f) elsewhere += value;
     }
   EXPECT_LT(elsewhere, 0.02 * total);
-  for (const KnownAtom& atom : atoms) {
-    const float found =
-        fit.alpha[static_cast<std::size_t>(atom.band_index)]
-                 [static_cast<std::size_t>((atom.y + 64) % 64) * 64 + (atom.x + 64) % 64];
-    EXPECT_NEAR(found, atom.coefficient, 0.03 * atom.coefficient)
-        << "band " << atom.band_index << " at " << atom.x << ", " << atom.y;
-  }
+  expect_atoms(fit, atoms, 64, 0.03);
   EXPECT_LT(fit.residual_norm, 0.01 * fit.target_norm);
 
-  // The certificate: the primal value at the stop exceeds the optimum (approached here by a much
-  // longer run) by no more than the gap reported at the stop.
-  options.kappa = fit.nu / fit.nu_max;
-  options.gap_tolerance = 1e-5;
-  options.max_iterations = 6000;
-  const SpectrumFit optimum = fit_spectrum(dictionary, target, options);
-  EXPECT_GE(fit.primal - optimum.primal, -1e-6 * fit.primal);
-  EXPECT_LE(fit.primal - optimum.primal, fit.gap + 1e-6 * fit.primal);
+  expect_gap_certifies(dictionary, target, fit, options);
 }
 
 double squared_norm(const std::vector<float>& values) {
   double sum = 0.0;
   for (const float v : values) sum += static_cast<double>(v) * v;
   return sum;
+}
+
+TEST(GaborFit, WeightsFollowTheSmoothedPeriodogramLevel) {
+  constexpr int n = 64;
+  std::vector<float> periodogram(static_cast<std::size_t>(n) * n, 1.0f);
+  EXPECT_TRUE(spectrum_weights(periodogram, n, n, 0.0).empty());  // the paper's unweighted fit
+  for (const float w : spectrum_weights(periodogram, n, n, 0.25)) EXPECT_NEAR(w, 1.0f, 1e-5f);
+  // Two levels, 1 and 1/16 (rows 0-31 and 32-63); then a zero quarter, floored at 1e-6 of the
+  // peak. Far from the borders (several smoothing widths) the weight is (level / peak)^-gamma.
+  for (int y = n / 2; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      periodogram[static_cast<std::size_t>(y) * n + x] = x < n / 2 ? 1.0f / 16.0f : 0.0f;
+  const std::vector<float> weights = spectrum_weights(periodogram, n, n, 0.25);
+  const auto at = [&](int x, int y) { return weights[static_cast<std::size_t>(y) * n + x]; };
+  EXPECT_NEAR(at(16, 16), 1.0f, 1e-3f);
+  EXPECT_NEAR(at(16, 48), 2.0f, 2e-3f);                  // 16^(1/4)
+  EXPECT_NEAR(at(48, 48), std::pow(1e6f, 0.25f), 0.5f);  // the floor
+  // In between the weight rises smoothly (a Gaussian of 2 bins): no jump of a factor 2 at once.
+  for (int y = 24; y < 40; ++y) {
+    EXPECT_GE(at(16, y + 1), at(16, y) * 0.999f);
+    EXPECT_LT(at(16, y + 1), at(16, y) * 1.6f);
+  }
+}
+
+TEST(GaborFit, WeightedFitConvergesWithPerCoefficientSteps) {
+  // The known Gaussians of RecoversKnownGaussians..., fitted through data weights. The diagonal
+  // preconditioner lets every coefficient move at its own pace: with gamma = 1 (relative errors:
+  // weights over three orders of magnitude) the fit reaches the gap tolerance, and the gap
+  // certifies it against a longer run; with the default gamma = 1/4 it finds the atoms (the
+  // l1 shrinkage of gamma = 1's weights moves them). The reported norms are the unweighted ones.
+  const std::vector<KnownAtom> atoms = {
+      {2, 16, 16, 2.0f}, {4, -20, 8, 1.0f}, {6, 5, -12, 0.5f}, {6, 24, -24, 0.25f}};
+  for (const double gamma : {1.0, 0.25}) {
+    GaussianDictionary dictionary(64, 64);
+    std::vector<float> spectrum;
+    dictionary.apply(place(dictionary, atoms), spectrum);
+    std::vector<float> weights = spectrum_weights(spectrum, 64, 64, gamma);
+    const float spread = *std::max_element(weights.begin(), weights.end()) /
+                         *std::min_element(weights.begin(), weights.end());
+    EXPECT_GT(spread, gamma == 1.0 ? 1000.0f : 5.0f);
+    std::vector<float> target = spectrum;
+    for (std::size_t i = 0; i < target.size(); ++i) target[i] *= weights[i];
+    dictionary.set_weights(std::move(weights));
+
+    FitOptions options;
+    options.kappa = 1.0 / 1024.0;
+    options.max_iterations = 3000;
+    options.gap_tolerance = 1e-3;
+    const SpectrumFit fit = fit_spectrum(dictionary, target, options);
+    EXPECT_NEAR(fit.target_norm, std::sqrt(squared_norm(spectrum)), 1e-5 * fit.target_norm);
+    if (gamma == 1.0) {
+      EXPECT_TRUE(fit.converged);
+      EXPECT_LE(fit.gap, 1e-3 * fit.primal);
+      expect_gap_certifies(dictionary, target, fit, options);
+      continue;
+    }
+    EXPECT_LT(fit.residual_norm, 0.02 * fit.target_norm);
+    expect_atoms(fit, atoms, 64, 0.05);
+  }
 }
 
 TEST(GaborFit, DualityGapIsZeroOnlyAtTheOptimum) {
@@ -454,6 +527,66 @@ TEST(GaborAnalysis, ReportsSparsenessFitErrorAndOffDiagonality) {
   EXPECT_GT(report.offdiagonality_rgb, 0.3);
   EXPECT_LT(report.offdiagonality_pca, report.offdiagonality_rgb);
   EXPECT_LE(report.offdiagonality_independent, report.offdiagonality_pca * 1.0001);
+}
+
+int finest_band(const Model& model) {
+  int finest = 0;
+  for (const GaussianComponent& g : std::get<GaborModel>(model.data().model).gaussians())
+    finest = std::max(finest, g.band);
+  return finest;
+}
+
+TEST(GaborAnalysis, NarrowestBandIsChosenFromTheSpectrum) {
+  // 64² grey exemplars: white noise (a diffuse spectrum) and the same noise under a strong wave
+  // on a frequency bin (a one-bin peak). Band b spans 64 / 2^b bins: 4 bins is band 4, 1 bin
+  // band 6.
+  std::mt19937 engine(11);
+  std::normal_distribution<float> normal(0.5f, 0.1f);
+  ImageF diffuse(64, 64, 1);
+  ImageF peaked(64, 64, 1);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      diffuse.at(x, y, 0) = normal(engine);
+      peaked.at(x, y, 0) = diffuse.at(x, y, 0) +
+                           0.3f * static_cast<float>(std::cos(2.0 * std::numbers::pi * 5 * x / 64));
+    }
+  const auto finest = [&](const ImageF& exemplar, double narrowest) {
+    return finest_band(analyze("gabor", exemplar.view(), {{"narrowest", narrowest}}, 1));
+  };
+  // Automatic (the default): the diffuse spectrum keeps the 4-bin dictionary; the peak's 4-bin
+  // fit inflates the variance, so it is fitted down to one bin.
+  EXPECT_LE(finest(diffuse, 0), 4);
+  EXPECT_EQ(finest(peaked, 0), 6);
+  // Fixed: 1 is the paper's dictionary, whose one-bin Gaussians fit the periodogram's noise.
+  EXPECT_EQ(finest(diffuse, 1), 6);
+  EXPECT_LE(finest(peaked, 4), 4);
+  EXPECT_LE(finest(diffuse, 16), 2);
+}
+
+TEST(GaborAnalysis, RenormalisedNoiseHasThePeriodogramsVariance) {
+  // A diffuse 64² grey exemplar at a coarse kappa: the l1 shrinkage lowers the fitted variance;
+  // renormalise (the default) restores the periodic component's variance, as ADSN has it.
+  std::mt19937 engine(12);
+  std::normal_distribution<float> normal(0.5f, 0.1f);
+  ImageF exemplar(64, 64, 1);
+  for (float& v : exemplar.pixels()) v = normal(engine);
+  const ImageF periodic = periodic_component(exemplar.view());
+  std::vector<float> plane(periodic.pixels().begin(), periodic.pixels().end());
+  const double mean =
+      std::accumulate(plane.begin(), plane.end(), 0.0) / static_cast<double>(plane.size());
+  for (float& v : plane) v = static_cast<float>(v - mean);
+  const std::vector<float> spectrum = periodogram(plane, 64, 64);
+  const double target = std::accumulate(spectrum.begin(), spectrum.end(), 0.0);
+  const auto variance = [&](double renormalise) {
+    const Model model =
+        analyze("gabor", exemplar.view(), {{"kappa", 1.0 / 16.0}, {"renormalise", renormalise}}, 1);
+    double sum = 0.0;
+    for (const GaussianComponent& g : std::get<GaborModel>(model.data().model).gaussians())
+      sum += g.variance;
+    return sum;
+  };
+  EXPECT_LT(variance(0.0), 0.97 * target);
+  EXPECT_NEAR(variance(1.0), target, 1e-4 * target);
 }
 
 TEST(GaborEdit, TransformsTheSelectedGaussiansOnly) {

@@ -153,7 +153,7 @@ TEST(Params, ValuesAreWrittenByName) {
   EXPECT_EQ(format_param("gabor", "kappa", 1.0 / 256.0), "0.00390625");
   const std::string text = methods_text();
   EXPECT_NE(text.find("-p blend=histogram "), std::string::npos);
-  EXPECT_NE(text.find("-p colour_space=independent "), std::string::npos);
+  EXPECT_NE(text.find("-p colour_space=pca "), std::string::npos);
   EXPECT_NE(text.find("-p mni=30 "), std::string::npos);
   const auto json = nlohmann::json::parse(methods_json());
   for (const auto& method : json)
@@ -202,7 +202,7 @@ TEST(Params, TypedRecordsRoundTripThroughValues) {
                                    tiling::Blend::linear, true});
   expect_round_trip("lrp", lrp::kFields, lrp::Params{20, 2, false, false, 12, 0.3, 4.5, false});
   expect_round_trip("gabor", gabor::kFields,
-                    gabor::Params{1.0 / 64.0, 256, gabor::ColourSpace::rgb, 50});
+                    gabor::Params{1.0 / 64.0, 256, gabor::ColourSpace::rgb, 50, 0.5, 2, false});
   expect_round_trip("texton_mix", texton_mix::kFields,
                     texton_mix::Params{{64, 3, 10, 12.5}, 9, -5, 300, 0.5, -2, 4});
 }

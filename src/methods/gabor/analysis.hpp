@@ -32,7 +32,8 @@ namespace stochtex::gabor {
 // FFT convolutions, one per band.
 class GaussianDictionary {
  public:
-  GaussianDictionary(int width, int height);
+  // The narrowest band spans `narrowest` bins (1: down to one bin, the paper's dictionary).
+  GaussianDictionary(int width, int height, int narrowest = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -57,8 +58,11 @@ class GaussianDictionary {
   void apply(const std::vector<std::vector<float>>& alpha, std::vector<float>& spectrum) const;
   // out = S_n^T(spectrum), zero off each band's grid.
   void adjoint(std::span<const float> spectrum, std::vector<std::vector<float>>& out) const;
-  // ||S_n||^2, by power iteration (computed once).
-  double squared_norm() const;
+  // Data weights w (width x height, positive): the operator becomes diag(w) S_n, so that a fit
+  // minimises ||w (S_n(alpha) - S_ex)||^2 (a weighted data term; see spectrum_weights). Empty:
+  // unweighted, eq. (8) as printed.
+  void set_weights(std::vector<float> weights) { weights_ = std::move(weights); }
+  std::span<const float> weights() const { return weights_; }
 
  private:
   struct Band {
@@ -88,7 +92,8 @@ class GaussianDictionary {
   std::unique_ptr<Fft2d> fft_;
   mutable std::vector<std::complex<float>> work_spectrum_;
   mutable std::vector<std::complex<float>> sum_spectrum_;
-  mutable double squared_norm_ = 0.0;
+  std::vector<float> weights_;
+  mutable std::vector<float> weighted_;
 };
 
 struct FitOptions {
@@ -106,15 +111,18 @@ struct SpectrumFit {
   int iterations = 0;                     // FISTA iterations over all homotopy steps
   int steps = 0;                          // homotopy steps (kappa = 1/2, 1/4, ..., kappa)
   bool converged = false;                 // the last step met the gap tolerance
-  double residual_norm = 0;               // ||S_n(alpha) - S_ex||_2
-  double target_norm = 0;                 // ||S_ex||_2
+  double residual_norm = 0;               // ||S_n(alpha) - S_ex||_2, unweighted
+  double target_norm = 0;                 // ||S_ex||_2, unweighted
 };
 
 // Non-negative basis pursuit denoising (eq. 8) by FISTA (Beck & Teboulle 2009) with the
 // duality-gap stop (Kim et al. 2007), over the homotopy kappa = 1/2, 1/4, ... down to
-// options.kappa, each step warm-started from the previous one (section 5.2). `progress` (may be
-// empty) is called after each iteration with the fraction done; an exception it throws stops the
-// fit.
+// options.kappa, each step warm-started from the previous one (section 5.2). With the
+// dictionary's weights w, `target` is the weighted spectrum w S_ex and the problem is eq. (8) for
+// the operator diag(w) S_n. FISTA is diagonally preconditioned: coefficient j steps by
+// 1 / (2 D_j), D = A^T A 1 (A the operator: non-negative entries, so diag(D) majorises A^T A).
+// `progress` (may be empty) is called after each iteration with the fraction done; an exception
+// it throws stops the fit.
 SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const float> target,
                          const FitOptions& options,
                          const std::function<void(double)>& progress = {});
@@ -131,6 +139,15 @@ DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const flo
 // Periodogram |DFT(plane)|^2 / (width height)^2 on the full width x height plane (section 3.2):
 // it sums to the plane's mean square.
 std::vector<float> periodogram(std::span<const float> plane, int width, int height);
+
+// Data weights of the fit: w = (level / max level)^-gamma, the level being the periodogram
+// smoothed by a Gaussian of kLevelSmoothing bins (floored at 1e-6 of its peak). The periodogram's
+// noise has a standard deviation equal to its mean, so an unweighted fit (gamma = 0, the paper's)
+// spends its l1 budget on the strong bins near DC and drops the diffuse part of the spectrum;
+// gamma = 1/2 makes the l1 shrinkage proportional to the local level, gamma = 1 fits relative
+// errors.
+std::vector<float> spectrum_weights(std::span<const float> periodogram, int width, int height,
+                                    double gamma);
 
 // Colour (section 7). Matrices are n x n, row-major, in double.
 using Matrix = std::vector<double>;
