@@ -51,8 +51,8 @@ inline constexpr std::array<ParamField<Params>, 7> kFields = {{
         "exponent gamma of the data weights of the fit, (smoothed periodogram)^-gamma: 0 is the "
         "paper's unweighted eq. (8), which drops the weak, diffuse part of a spectrum; 1/2 makes "
         "the l1 shrinkage proportional to the local spectrum level (docs)"),
-    number_field<&Params::narrowest>(
-        "narrowest", 0, 64,
+    chosen_number_field<&Params::narrowest>(
+        "narrowest", 1, 64,
         "FWHM of the dictionary's narrowest band, in frequency bins of the exemplar (section 4.3): "
         "1 is the paper's (down to one bin); 0 chooses per channel: 4 bins, or 1 when the 4-bin "
         "fit stays above the periodogram's noise level (a spectrum with sharp features). One-bin "
