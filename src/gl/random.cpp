@@ -1,7 +1,9 @@
-// random.glsl with the stream constants of core/hash.hpp declared from the C++ enum.
+// The embedded GLSL files, and random.glsl with the stream constants of core/hash.hpp declared
+// from the C++ enum.
 
 #include <array>
 #include <span>
+#include <stdexcept>
 #include <string>
 
 #include "core/hash.hpp"
@@ -23,6 +25,12 @@ constexpr std::array<GlslConstant, 5> kStreams = {{
 }};
 
 }  // namespace
+
+std::string shader_source(std::string_view name) {
+  if (const EmbeddedFile* file = find_embedded(embedded_files(), name))
+    return std::string(file->text);
+  throw std::logic_error("no embedded GLSL file " + std::string(name));
+}
 
 std::span<const GlslConstant> random_constants() {
   return kStreams;

@@ -1,15 +1,19 @@
 #pragma once
 // The GLSL files compiled into the library: src/gl/*.glsl and src/methods/*/*.glsl, embedded as
-// strings by CMake (cmake/embed_glsl.cmake), so the files stay the single source and editors see
+// strings by CMake (cmake/embed_files.cmake), so the files stay the single source and editors see
 // them as GLSL.
 
 #include <span>
 #include <string>
 #include <string_view>
 
+#include "core/embedded_file.hpp"
 #include "gl/glsl_text.hpp"
 
 namespace stochtex::gl {
+
+// Every embedded GLSL file (generated: build/generated/shaders.cpp).
+std::span<const EmbeddedFile> embedded_files();
 
 // The text of the GLSL file at `name`, its path under src/ ("gl/random.glsl",
 // "methods/texton/evaluate.glsl"). Throws std::logic_error for a file that is not embedded.
