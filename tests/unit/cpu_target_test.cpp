@@ -211,6 +211,37 @@ TEST_F(CpuTargets, EveryTargetGivesTheReferencesBytes) {
   }
 }
 
+TEST_F(CpuTargets, GaborStripsOfATileGiveTheReferencesBytes) {
+  // 4,096 impulses: the main grids' cells are a quarter to a half of their kernel radius, so the
+  // vectorised evaluator takes a 64-sample tile row in several strips (gabor/simd.hpp
+  // strip_width) and its cache slots wrap around within a strip.
+  const Model model =
+      analyze("gabor", grey_exemplar().view(), {{"impulses", 4096}, {"iterations", 10}}, 5);
+  const auto render_all = [&] {
+    std::vector<ImageF> images;
+    for (const double scale : {1.0, 0.5, 3.0})
+      for (const bool filter : {false, true}) {
+        ImageF out(64, 40, model.channels());
+        RenderOptions options;
+        options.threads = 1;
+        options.tile_size = 64;
+        options.filter = filter;
+        render(model, {{-700.25, 33.5}, scale, 64, 40}, 9, out.view(), options);
+        images.push_back(std::move(out));
+      }
+    return images;
+  };
+  set_cpu_target(CpuTarget::reference);
+  const std::vector<ImageF> reference = render_all();
+  for (const CpuTarget target : available_cpu_targets()) {
+    if (target == CpuTarget::reference) continue;
+    set_cpu_target(target);
+    const std::vector<ImageF> images = render_all();
+    for (std::size_t i = 0; i < images.size(); ++i)
+      EXPECT_TRUE(same_bytes(reference[i], images[i])) << cpu_target_name(target) << ", " << i;
+  }
+}
+
 TEST_F(CpuTargets, GaborCellsBeyondACacheSlotGiveTheReferencesBytes) {
   // 65,536 impulses: cells of about 300 impulses, more than a slot of the vectorised evaluator's
   // cache holds (gabor/simd.hpp), drawn block by block at each use.

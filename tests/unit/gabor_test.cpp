@@ -18,6 +18,7 @@
 #include "methods/gabor/analysis.hpp"
 #include "methods/gabor/edit_analysis.hpp"
 #include "methods/gabor/model.hpp"
+#include "methods/gabor/simd.hpp"
 #include "model/model_data.hpp"
 #include "spectral/periodic.hpp"
 #include "stochtex/error.hpp"
@@ -816,6 +817,24 @@ TEST(GaborGroups, FindsPeaksLinesAndTheDiffuseRest) {
   const std::vector<WoldComponent> two_labels = wold_components(model_of(two, 2));
   EXPECT_EQ(std::vector<WoldComponent>(two_labels.begin(), two_labels.end() - 1), labels);
   EXPECT_EQ(two_labels.back(), WoldComponent::stochastic);
+}
+
+TEST(GaborEvaluate, StripsSpanAtMostTheCacheColumns) {
+  // The cells within `reach` of a strip of w samples `step` apart span at most
+  // (w step + 2 reach) / cell + 2 columns: never more than the cache's 16.
+  for (const double cell : {0.3, 1.0, 7.5})
+    for (const double reach : {cell / 2, cell, 4 * cell})
+      for (const double step : {0.25, 1.0, 8.0}) {
+        const std::size_t width = strip_width(step, reach, cell);
+        ASSERT_GE(width, 1u);
+        if (width > 1) {
+          EXPECT_LE((static_cast<double>(width) * step + 2 * reach) / cell + 2,
+                    static_cast<double>(ImpulseCache::kSide))
+              << cell << " " << reach << " " << step;
+        }
+      }
+  EXPECT_EQ(strip_width(0.0, 1.0, 1.0), 1u);  // not a row: sample by sample
+  EXPECT_EQ(strip_width(1.0, 1.0, 1.0), 12u);
 }
 
 }  // namespace

@@ -369,9 +369,15 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
 
   // Grid-major: all samples of the batch visit one grid before the next, so one cell cache serves
   // them and the sum per sample runs over grids, cells and impulses in a fixed order (the output
-  // does not depend on the batch). The vectorised twin (simd.hpp) returns the same sums.
-  const bool simd = simd_enabled();
+  // does not depend on the batch or on the order of its samples). The vectorised twin (simd.hpp)
+  // returns the same sums; it takes a batch of rows (a render tile) in strips as narrow as its cell
+  // cache needs for the grid, top to bottom, so each cell is drawn about once.
   ImpulseCache impulses;
+  const bool simd = simd_enabled() && impulses.reserve();
+  std::size_t row = 1;
+  while (row < positions.size() && positions[row].y == positions[0].y) ++row;
+  if (positions.size() % row != 0) row = positions.size();
+  const double step = row > 1 ? std::abs(positions[1].x - positions[0].x) : 0.0;
   for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
     const Grid& grid = grids_[grid_index];
     const GridKernels kernels = grid_kernels(*this, grid);
@@ -381,12 +387,17 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
     // A render's samples share one footprint: the filter is derived again only when the footprint
     // changes (bit for bit, so the result is the same).
     KernelFilter filter = kernel_filter(grid, footprints.empty() ? nullptr : &footprints[0]);
-    for (std::size_t index = 0; index < positions.size(); ++index) {
+    const Footprint* filter_footprint = footprints.empty() ? nullptr : &footprints[0];
+    const std::size_t strip =
+        simd ? strip_width(step, filter.reach, std::ldexp(grid.cell_size, filter.level)) : row;
+    const auto sample = [&](std::size_t index) {
       const Vec2d p = positions[index];
-      if (index > 0 && !footprints.empty() &&
-          std::memcmp(&footprints[index], &footprints[index - 1], sizeof(Footprint)) != 0)
-        filter = kernel_filter(grid, &footprints[index]);
-      if (filter.skip) continue;
+      if (filter_footprint != nullptr &&
+          std::memcmp(&footprints[index], filter_footprint, sizeof(Footprint)) != 0) {
+        filter_footprint = &footprints[index];
+        filter = kernel_filter(grid, filter_footprint);
+      }
+      if (filter.skip) return;
       const int level = filter.level;
       const double cell_size = std::ldexp(grid.cell_size, level);
       const auto cell_size_f = static_cast<float>(cell_size);
@@ -424,7 +435,10 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
       }
       pixel(index, grid.channel) +=
           static_cast<float>(std::ldexp(grid.amplitude * filter.gain, level)) * sum;
-    }
+    };
+    for (std::size_t first = 0; first < row; first += strip)
+      for (std::size_t start = 0; start < positions.size(); start += row)
+        for (std::size_t i = first; i < std::min(first + strip, row); ++i) sample(start + i);
   }
 
   mix_to_colour(positions.size(), out);

@@ -160,10 +160,9 @@ float impulse_sum_typed(ImpulseCache& cache, const KernelShape& shape, const Cel
     const float offset_y = cell_offset(p.y, cell_y, cell_size);
     for (std::int64_t cell_x = cells.first_x; cell_x <= cells.last_x; ++cell_x) {
       const float offset_x = cell_offset(p.x, cell_x, cell_size);
-      const auto slot = static_cast<std::size_t>((static_cast<std::uint64_t>(cell_x) & 7u) |
-                                                 ((static_cast<std::uint64_t>(cell_y) & 3u) << 3u));
+      const std::size_t slot = ImpulseCache::slot(cell_x, cell_y);
       std::uint32_t count;
-      float* list = cache.lists[slot];
+      float* list = cache.lists(slot);
       if (cache.valid[slot] && cache.x[slot] == cell_x && cache.y[slot] == cell_y) {
         count = cache.count[slot];
       } else {

@@ -8,6 +8,9 @@
 // within the kernel's support are added one by one, in the cell and impulse order of the
 // reference.
 
+#include <hwy/aligned_allocator.h>
+
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -18,14 +21,28 @@
 namespace stochtex::gabor {
 
 // The impulses of the recently seen cells of one grid at one thinning level, kept for one
-// evaluate() call (a render tile). Cell (x, y) lives in slot (x mod 8) + 8 (y mod 4): the cells
-// around a sample (at most 4 x 4 at the default density) never share a slot. A slot holds the
-// lists u * cell_size, v * cell_size, omega_x, omega_y and phase of its cell's impulses, in the
-// reference's order; cells of more than kCapacity impulses are drawn block by block at each use.
+// evaluate() call (a render tile). Cell (x, y) lives in slot (x mod 16) + 16 (y mod 16): the cells
+// around a sample (at most 9 x 9, where a grid's cells are a quarter of its kernel radius) never
+// share a slot, and a strip of samples whose cells span at most 16 columns (strip_width) finds
+// the cells of the rows above it still cached. A slot holds the lists u * cell_size,
+// v * cell_size, omega_x, omega_y and phase of its cell's impulses, in the reference's order;
+// cells of more than kCapacity impulses are drawn block by block at each use.
 struct ImpulseCache {
-  static constexpr std::uint32_t kSlots = 32;
+  static constexpr std::uint32_t kSide = 16;
+  static constexpr std::uint32_t kSlots = kSide * kSide;
   static constexpr std::uint32_t kCapacity = 128;  // a multiple of every lane count
   static constexpr std::size_t kLists = 5;
+
+  static std::size_t slot(std::int64_t x, std::int64_t y) noexcept {
+    return static_cast<std::size_t>((static_cast<std::uint64_t>(x) & (kSide - 1)) |
+                                    ((static_cast<std::uint64_t>(y) & (kSide - 1)) << 4u));
+  }
+  // Allocates the lists (640 KiB, aligned for every SIMD target); false when that fails.
+  bool reserve() noexcept {
+    if (!storage) storage = hwy::AllocateAligned<float>(kSlots * kLists * kCapacity);
+    return storage != nullptr;
+  }
+  float* lists(std::size_t slot) noexcept { return storage.get() + slot * kLists * kCapacity; }
 
   // The grid, its cell-count sampler, the level's random stream and cell side whose cells the
   // cache holds from now on; the cache starts empty.
@@ -46,9 +63,17 @@ struct ImpulseCache {
   std::int64_t x[kSlots];
   std::int64_t y[kSlots];
   std::uint32_t count[kSlots];
-  alignas(64) float lists[kSlots][kLists * kCapacity];
+  hwy::AlignedFreeUniquePtr<float[]> storage;
   alignas(64) float scratch[kLists * kCapacity];  // a block of a cell too large for a slot
 };
+
+// How many samples of a row, `step` apart along x, one strip may hold so that its cells at
+// `cell_size` within `reach` of them span at most ImpulseCache::kSide columns: at least 1.
+inline std::size_t strip_width(double step, double reach, double cell_size) noexcept {
+  const double extent = (ImpulseCache::kSide - 2) * cell_size - 2.0 * reach;
+  if (!(step > 0.0) || extent <= step) return 1;
+  return static_cast<std::size_t>(std::min(extent / step, 1e6));
+}
 
 // sum_i g_i(p - x_i) over the impulses of `cells` within the kernel's support, as
 // GaborModel::evaluate's scalar loop sums them (bit for bit); `cache` was started for the grid
