@@ -819,6 +819,23 @@ TEST(GaborGroups, FindsPeaksLinesAndTheDiffuseRest) {
   EXPECT_EQ(two_labels.back(), WoldComponent::stochastic);
 }
 
+TEST(GaborGroups, FindsAPeakInACarpetOfWeakNarrowGaussians) {
+  // The weighted fit (issue 20's defaults) also covers the diffuse spectrum with narrow
+  // Gaussians on neighbouring bins: 16 x 16 of them around a strong peak, each with less than a
+  // quarter of a peak's least variance. Linked to its neighbours, the peak would chain into one
+  // large cluster that is not compact (plaid_fabric_256 had no periodic group at the defaults).
+  std::vector<GaussianComponent> gaussians = {{0, 7, 0.25f, 0.125f, 0.02f}};
+  for (int y = -8; y < 8; ++y)
+    for (int x = -8; x < 8; ++x)
+      if (x != 0 || y != 0)
+        gaussians.push_back({0, 7, 0.25f + static_cast<float>(x) / 128.0f,
+                             0.125f + static_cast<float>(y) / 128.0f, 0.00002f});
+  const std::vector<WoldComponent> labels = wold_components(model_of(gaussians));
+  EXPECT_EQ(component_name(labels[0]), "periodic");
+  for (std::size_t i = 1; i < labels.size(); ++i)
+    EXPECT_NE(labels[i], WoldComponent::periodic) << "Gaussian " << i;
+}
+
 TEST(GaborEvaluate, StripsSpanAtMostTheCacheColumns) {
   // The cells within `reach` of a strip of w samples `step` apart span at most
   // (w step + 2 reach) / cell + 2 columns: never more than the cache's 16.

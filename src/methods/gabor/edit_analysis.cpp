@@ -118,11 +118,15 @@ void mark_periodic(std::span<const GaussianComponent* const> channel,
   constexpr int kRingPoints = 16;
   double channel_variance = 0.0;
   for (const GaussianComponent* g : channel) channel_variance += g->variance;
+  // Candidates hold at least a quarter of a peak's least variance (a peak between bins is fitted
+  // by up to 4 neighbouring Gaussians): a fit that also covers the diffuse spectrum with narrow
+  // Gaussians (the weighted fit's defaults) would otherwise chain every peak to its neighbours.
   std::vector<std::size_t> narrow;
   for (std::size_t i = 0; i < channel.size(); ++i) {
     const GaussianComponent& g = *channel[i];
     if (full_width(g.band) <= kPeriodicMaxFwhm &&
-        std::hypot(g.frequency_x, g.frequency_y) >= 3.0 * full_width(g.band))
+        std::hypot(g.frequency_x, g.frequency_y) >= 3.0 * full_width(g.band) &&
+        g.variance >= 0.25 * kPeakMinShare * channel_variance)
       narrow.push_back(i);
   }
   // Clusters: narrow Gaussians within 2 FWHM of each other (a peak between frequency bins is
