@@ -99,7 +99,8 @@ fi
 
 # --variant fast alone; the same files again with --force, a foreign file kept.
 capture "$stochtex" export-web "$work/a/texton.stx" -o "$work/fast" --variant fast
-if [[ $status -ne 0 || -e $work/fast/models/texton/exact || ! -f $work/fast/models/texton/fast/manifest.json ]]; then
+if [[ $status -ne 0 || -e $work/fast/models/texton/exact ||
+  ! -f $work/fast/models/texton/fast/manifest.json ]]; then
   fail "export-web --variant fast: exit $status or the wrong folders"
 fi
 touch "$work/fast/mine.txt"

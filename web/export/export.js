@@ -70,6 +70,7 @@ function build(models) {
   const container = document.getElementById('models');
   for (const model of models) {
     const figure = document.createElement('figure');
+    figure.style.width = `${size}px`;
     const canvas = document.createElement('canvas');
     canvas.width = size;
     canvas.height = size;

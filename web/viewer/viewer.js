@@ -193,8 +193,15 @@ export function createViewer(canvas, options = {}) {
 
   async function load(baseUrl) {
     const base = baseUrl.endsWith('/') ? baseUrl : `${baseUrl}/`;
-    const loaded = await (await fetchChecked(`${base}manifest.json`, 'the manifest')).json();
-    if (loaded.format !== 'stochtex-web-export' || loaded.version !== 1)
+    const text = await (await fetchChecked(`${base}manifest.json`, 'the manifest')).text();
+    let loaded = null;
+    try {
+      loaded = JSON.parse(text);
+    } catch (error) {
+      loaded = null;
+    }
+    if (!loaded || loaded.format !== 'stochtex-web-export' || loaded.version !== 1 ||
+        !Array.isArray(loaded.textures))
       throw new Error(`stochtex viewer: ${base}manifest.json is not a stochtex web export of ` +
                       'version 1; export the model again');
     const [shader, buffers] = await Promise.all([
@@ -208,17 +215,25 @@ export function createViewer(canvas, options = {}) {
       throw new Error('stochtex viewer: this browser\'s WebGL2 lacks EXT_color_buffer_float, ' +
                       'which the mip-maps of this float texture need; load the exact variant');
     const arrays = loaded.textures.map((entry, i) => texelArray(entry, buffers[i]));
-    const built = link(gl, VERTEX_SHADER, `#version 300 es\n${shader}\n${fragmentMain(loaded.entry)}`,
+    const fragment = `#version 300 es\n${shader}\n${fragmentMain(loaded.entry)}`;
+    const built = link(gl, VERTEX_SHADER, fragment,
                        `${loaded.method} shader (${loaded.shader_variant})`);
+    gl.useProgram(built);
+    const made = [];
+    try {
+      loaded.textures.forEach((entry, unit) => {
+        made.push(makeTexture(gl, entry, arrays[unit], unit, anisotropy));
+        gl.uniform1i(gl.getUniformLocation(built, entry.uniform), unit);
+      });
+    } catch (error) {
+      for (const texture of made) gl.deleteTexture(texture);
+      gl.deleteProgram(built);
+      throw error;
+    }
     release();
     program = built;
     manifest = loaded;
-    gl.useProgram(program);
-    textures = loaded.textures.map((entry, unit) => {
-      const texture = makeTexture(gl, entry, arrays[unit], unit, anisotropy);
-      gl.uniform1i(gl.getUniformLocation(program, entry.uniform), unit);
-      return texture;
-    });
+    textures = made;
     uniforms = {};
     for (const name of ['origin', 'scale', 'height', 'seed', 'display', 'channels'])
       uniforms[name] = gl.getUniformLocation(program, `stochtex_view_${name}`);
