@@ -35,66 +35,22 @@ int stored_components(const ShaderTexture& texture) {
 
 constexpr std::array<const char*, 4> kUploadFormats = {"RED", "RG", "RGB", "RGBA"};
 
+// Names indexed by the enums' values.
+constexpr std::array<const char*, 3> kStoredSuffixes = {"32F", "16F", "8"};
+constexpr std::array<const char*, 3> kStoredTypes = {"FLOAT", "HALF_FLOAT", "UNSIGNED_BYTE"};
+constexpr std::array<const char*, 3> kFilters = {"nearest", "linear", "mipmap"};
+constexpr std::array<const char*, 3> kWraps = {"clamp_to_edge", "clamp_to_border", "repeat"};
+constexpr std::array<const char*, 3> kEncodings = {"exr_float32", "png8", "png16"};
+
+template <typename Enum>
+const char* name_of(const std::array<const char*, 3>& names, Enum value) {
+  return names[static_cast<std::size_t>(value)];
+}
+
 std::string internal_format(Stored stored, int components) {
   constexpr std::array<const char*, 4> kPrefixes = {"R", "RG", "RGB", "RGBA"};
-  const std::string prefix = kPrefixes[static_cast<std::size_t>(components - 1)];
-  switch (stored) {
-    case Stored::float32:
-      return prefix + "32F";
-    case Stored::half:
-      return prefix + "16F";
-    case Stored::byte:
-      break;
-  }
-  return prefix + "8";
-}
-
-std::string_view type_name(Stored stored) {
-  switch (stored) {
-    case Stored::float32:
-      return "FLOAT";
-    case Stored::half:
-      return "HALF_FLOAT";
-    case Stored::byte:
-      break;
-  }
-  return "UNSIGNED_BYTE";
-}
-
-std::string_view filter_name(TextureFilter filter) {
-  switch (filter) {
-    case TextureFilter::nearest:
-      return "nearest";
-    case TextureFilter::linear:
-      return "linear";
-    case TextureFilter::mipmap:
-      break;
-  }
-  return "mipmap";
-}
-
-std::string_view wrap_name(TextureWrap wrap) {
-  switch (wrap) {
-    case TextureWrap::clamp_to_edge:
-      return "clamp_to_edge";
-    case TextureWrap::clamp_to_border:
-      return "clamp_to_border";
-    case TextureWrap::repeat:
-      break;
-  }
-  return "repeat";
-}
-
-std::string_view encoding_name(TextureEncoding encoding) {
-  switch (encoding) {
-    case TextureEncoding::exr_float32:
-      return "exr_float32";
-    case TextureEncoding::png8:
-      return "png8";
-    case TextureEncoding::png16:
-      break;
-  }
-  return "png16";
+  return std::string(kPrefixes[static_cast<std::size_t>(components - 1)]) +
+         name_of(kStoredSuffixes, stored);
 }
 
 template <typename Word>
@@ -149,16 +105,16 @@ nlohmann::ordered_json texture_entry(const ShaderTexture& texture) {
       {"components", components},
       {"internal_format", internal_format(stored, components)},
       {"format", kUploadFormats[static_cast<std::size_t>(components - 1)]},
-      {"type", type_name(stored)},
-      {"filter", filter_name(texture.filter)},
-      {"wrap", wrap_name(wrap)},
+      {"type", name_of(kStoredTypes, stored)},
+      {"filter", name_of(kFilters, texture.filter)},
+      {"wrap", name_of(kWraps, wrap)},
       {"mip_levels", texture.mip_levels},
       {"anisotropy", texture.filter == TextureFilter::mipmap ? 16 : 1},
       {"exported_as",
        {{"file", texture.file_name()},
-        {"encoding", encoding_name(texture.encoding)},
+        {"encoding", name_of(kEncodings, texture.encoding)},
         {"components", texture.image.channels()},
-        {"wrap", wrap_name(texture.wrap)}}},
+        {"wrap", name_of(kWraps, texture.wrap)}}},
   };
   return entry;
 }

@@ -253,6 +253,11 @@ def main():
     if not shutil.which("chromedriver"):
         print("FAIL: chromium is installed without chromedriver; run scripts/install-deps.sh")
         return 1
+    try:
+        import selenium  # noqa: F401 (only checked here, imported where used)
+    except ImportError:
+        print("FAIL: chromium is installed without python3-selenium; run scripts/install-deps.sh")
+        return 1
 
     start = time.time()
     failures = []
