@@ -163,7 +163,7 @@ def run_page(driver, script, *arguments):
         raise RuntimeError(result)
 
 
-# The wheel zooms about the cursor and every viewer of the page follows.
+# The wheel zooms about the cursor, a drag pans, and every viewer of the page follows.
 WHEEL = """
 const page = window.stochtexPage;
 const [first, second] = [...page.viewers.values()];
@@ -194,6 +194,19 @@ def check_interaction(driver):
                         f"({new_x}, {new_y})")
     if other != view:
         failures.append(f"wheel: the other viewers are at {other}, not {view}")
+    # A real drag (WebDriver's pointer actions) of (30, 20) pixels pans every viewer by
+    # -scale x that.
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    driver.execute_script("window.stochtexPage.setView({x: 10, y: 20, scale: 2});")
+    canvas = driver.find_element(By.CSS_SELECTOR, "canvas")
+    ActionChains(driver).move_to_element(canvas).click_and_hold().move_by_offset(30, 20) \
+        .release().perform()
+    views = driver.execute_script(
+        "return [...window.stochtexPage.viewers.values()].map((v) => v.getView());")
+    expected = {"x": 10 - 2 * 30, "y": 20 - 2 * 20, "scale": 2}
+    if any(abs(view[k] - expected[k]) > 1e-9 for view in views for k in expected):
+        failures.append(f"drag: the viewers are at {views}, not {expected}")
     return failures
 
 

@@ -89,7 +89,7 @@ function build(models) {
         for (const [other, viewer] of viewers)
           if (other !== model.name) {
             viewer.setView(view);
-            viewer.render();
+            viewer.requestRender();
           }
         scaleOutput.textContent = `scale ${view.scale.toPrecision(3)}`;
       },

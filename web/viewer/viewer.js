@@ -6,7 +6,7 @@
 //   await viewer.load(baseUrl);        // fetches `${baseUrl}/manifest.json` and the files it names
 //   viewer.setView({x, y, scale});     // the render's --origin X,Y and --scale
 //   viewer.setSeed(n);                 // the render's --seed
-//   viewer.render();                   // draws on the canvas
+//   viewer.render();                   // draws on the canvas (requestRender(): at the next frame)
 //   const {width, height, channels, data} = viewer.readPixels();  // the values, as floats
 //
 // Pixel (i, j), j counted downwards from the top row, samples p = (x, y) + scale * (i + 1/2,
@@ -313,14 +313,19 @@ export function createViewer(canvas, options = {}) {
     seed = n;
   }
 
-  // Interaction: redraw once per animation frame and tell the page.
-  function changed() {
-    if (options.onViewChange) options.onViewChange({...view});
-    if (!frame && program)
+  // A render at the next animation frame, once however often it is asked for before.
+  function requestRender() {
+    if (!frame)
       frame = requestAnimationFrame(() => {
         frame = 0;
-        render();
+        if (program) render();
       });
+  }
+
+  // Interaction: redraw at the next animation frame and tell the page.
+  function changed() {
+    if (options.onViewChange) options.onViewChange({...view});
+    requestRender();
   }
 
   // A pointer event's position in canvas pixels.
@@ -385,6 +390,7 @@ export function createViewer(canvas, options = {}) {
     setSeed,
     getSeed: () => seed,
     render,
+    requestRender,
     readPixels,
     destroy,
     get manifest() { return manifest; },
