@@ -14,6 +14,8 @@ packages=(
   glslang-dev spirv-tools libspirv-cross-c-shared-dev
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-dask python3-distributed
   python3-zarr
+  # the browser test (tests/browser): headless Chromium, its WebDriver and Selenium
+  chromium chromium-driver python3-selenium
 )
 if [[ ${1:-} == --sanitize ]]; then
   packages+=(clang libclang-rt-14-dev llvm)

@@ -27,6 +27,7 @@ Command add_compare_command(CLI::App& app);
 Command add_info_command(CLI::App& app);
 Command add_mix_command(CLI::App& app);
 Command add_export_shader_command(CLI::App& app);
+Command add_export_web_command(CLI::App& app);
 Command add_edit_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_methods_command(CLI::App& app);

@@ -1,0 +1,348 @@
+#!/usr/bin/python3
+"""The web viewer in a real browser (docs/studio.md, "Browser parity").
+
+Analyses a small shipped exemplar with every method (and a texton mixing model), writes them with
+`stochtex export-web`, serves the folder over HTTP and loads the page in headless Chromium
+(SwiftShader's WebGL2). For each model and variant it reads the viewer's float values back
+(viewer.readPixels through the page's window.stochtexPage) and compares them with `stochtex
+render` of the same model, view and seed: pixel for pixel where the shader is the CPU's to float
+rounding, in variance when zoomed out 16x (the filtered render's), and it fails on any JavaScript
+console error.
+
+Usage: browser_test.py STOCHTEX EXEMPLAR [--screenshots DIR] [--measure]
+Exit 77 (CTest's SKIP_RETURN_CODE) when chromium is not installed.
+"""
+
+import argparse
+import base64
+import functools
+import http.server
+import json
+import math
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+SKIP = 77
+SIZE = 128  # canvas side: SwiftShader on two shared cores is slow
+SEED = 7
+# (origin, scale) of the compared views: scale 1 off the origin, and zoomed out 16x.
+VIEWS = [((-40.0, 24.0), 1.0), ((-1000.0, 512.0), 16.0)]
+MODELS = ["texton", "tiling", "lrp", "gabor", "texton_mix"]
+
+# The bounds, from what was measured on Chromium 156's SwiftShader here (docs/studio.md, "Browser
+# parity", has the numbers):
+# - where the web shader is the CPU's evaluator (every exact variant but gabor's, and lrp's and
+#   texton_mix's fast ones, which are their exact ones), largest |web - CPU| per value: measured
+#   at most 1.0e-6 (lrp), bound ten times that;
+EXACT_BOUND = 1e-5
+# - gabor's float-only shader (both variants: its exact one needs doubles): measured 1.7e-4 at
+#   scale 1, 2.7e-4 at 16, from SwiftShader's cos (off by 1.9e-4 at |x| = 33, where llvmpipe's
+#   is within 1e-7 and the same shader is within 2.4e-7 of the CPU); bound about 4x that;
+GABOR_BOUND = 1e-3
+# - texton's and tiling's fast variant at scale 1: the fast path's bound (docs/shaders.md), 1/255;
+#   measured 4.1e-5 and 3.1e-4 with the web export's half-float textures;
+FAST_BOUND = 1.0 / 255.0
+# - every model zoomed out 16x: |variance / CPU variance - 1| per channel. The estimator's own
+#   noise (128^2 CPU renders at scale 16, 8 seeds) is at most 2.1 % (relative standard deviation),
+#   hardware trilinear filtering raises texton's variance by up to 8 % (docs/shaders.md); bound
+#   8 % + 3 x 2.1 %. Measured: texton 6.0 %, tiling 1.7 % (fast), below 1e-6 where exact. An
+#   unfiltered render's variance there is 13 to 35 times the filtered one, so a viewer that did
+#   not filter (shimmering when zoomed out) fails.
+VARIANCE_BOUND = 0.08 + 3 * 0.021
+
+
+def pixel_bound(method, shader_variant, scale):
+    """The bound on |web - CPU| per value, or None where only the variance is compared."""
+    if method == "gabor":
+        return GABOR_BOUND
+    if shader_variant == "exact" or method not in ("texton", "tiling"):
+        return EXACT_BOUND
+    return FAST_BOUND if scale == 1 else None
+
+
+def parse_pfm(data):
+    """A PFM file's pixels, top row first: (width, height, channels, floats)."""
+    fields = []
+    position = 0
+    while len(fields) < 4:
+        while data[position:position + 1].isspace():
+            position += 1
+        start = position
+        while not data[position:position + 1].isspace():
+            position += 1
+        fields.append(data[start:position].decode())
+    position += 1
+    channels = 3 if fields[0] == "PF" else 1
+    width, height = int(fields[1]), int(fields[2])
+    order = "<" if float(fields[3]) < 0 else ">"
+    values = struct.unpack(f"{order}{width * height * channels}f", data[position:])
+    row = width * channels
+    rows = [values[(height - 1 - j) * row:(height - j) * row] for j in range(height)]
+    return width, height, channels, [v for r in rows for v in r]
+
+
+def cpu_render(stochtex, model, origin, scale, seed, folder):
+    path = os.path.join(folder, f"{os.path.basename(model)}_{scale:g}_{seed}.pfm")
+    subprocess.run([stochtex, "render", model, "-o", path, "--size", f"{SIZE}x{SIZE}",
+                    "--origin", f"{origin[0]:g},{origin[1]:g}", "--scale", f"{scale:g}",
+                    "--seed", str(seed)], check=True, capture_output=True)
+    with open(path, "rb") as file:
+        return parse_pfm(file.read())
+
+
+def variances(values, channels):
+    result = []
+    for c in range(channels):
+        column = values[c::channels]
+        mean = sum(column) / len(column)
+        result.append(sum((v - mean) ** 2 for v in column) / len(column))
+    return result
+
+
+class QuietHandler(http.server.SimpleHTTPRequestHandler):
+    def log_message(self, *args):
+        pass
+
+
+def serve(folder):
+    handler = functools.partial(QuietHandler, directory=folder)
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server
+
+
+def browser():
+    from selenium import webdriver
+    from selenium.webdriver.chrome.options import Options
+    from selenium.webdriver.chrome.service import Service
+    options = Options()
+    options.binary_location = shutil.which("chromium")
+    for argument in ["--headless=new", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+                     "--no-sandbox", "--window-size=1400,700", "--hide-scrollbars"]:
+        options.add_argument(argument)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    driver = webdriver.Chrome(options=options, service=Service(shutil.which("chromedriver")))
+    driver.set_script_timeout(300)
+    return driver
+
+
+READ_BACK = """
+const [name, done] = arguments;
+try {
+  const r = window.stochtexPage.viewers.get(name).readPixels();
+  const bytes = new Uint8Array(r.data.buffer);
+  let text = '';
+  for (let i = 0; i < bytes.length; i += 0x8000)
+    text += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+  done([r.width, r.height, r.channels, btoa(text)]);
+} catch (error) { done(['error', String(error)]); }
+"""
+
+
+def read_back(driver, name):
+    result = driver.execute_async_script(READ_BACK, name)
+    if result[0] == "error":
+        raise RuntimeError(f"{name}: readPixels failed: {result[1]}")
+    width, height, channels, text = result
+    raw = base64.b64decode(text)
+    return width, height, channels, list(struct.unpack(f"<{len(raw) // 4}f", raw))
+
+
+def run_page(driver, script, *arguments):
+    result = driver.execute_async_script(
+        "const done = arguments[arguments.length - 1];"
+        f"(async () => {{ {script} }})().then(() => done(null), (e) => done(String(e)));",
+        *arguments)
+    if result is not None:
+        raise RuntimeError(result)
+
+
+# The wheel zooms about the cursor, a drag pans, and every viewer of the page follows.
+WHEEL = """
+const page = window.stochtexPage;
+const [first, second] = [...page.viewers.values()];
+page.setView({x: 10, y: 20, scale: 2});
+const canvas = document.querySelector('canvas');
+const box = canvas.getBoundingClientRect();
+const event = new WheelEvent('wheel', {clientX: Math.round(box.left) + 40,
+                                       clientY: Math.round(box.top) + 90, deltaY: 500,
+                                       bubbles: true, cancelable: true});
+// The cursor in canvas pixels, as the event carries it.
+const px = (event.clientX - box.left) * canvas.width / box.width;
+const py = (event.clientY - box.top) * canvas.height / box.height;
+canvas.dispatchEvent(event);
+const view = first.getView();
+const other = second.getView();
+return [10 + 2 * px, 20 + 2 * py, view.x + view.scale * px, view.y + view.scale * py,
+        view.scale, [view.x, view.y, view.scale], [other.x, other.y, other.scale]];
+"""
+
+
+def check_interaction(driver):
+    x, y, new_x, new_y, scale, view, other = driver.execute_script(WHEEL)
+    failures = []
+    if abs(scale - 2 * math.exp(1.0)) > 1e-9:
+        failures.append(f"wheel: scale {scale} after a 500-pixel wheel step, not 2 e")
+    if abs(new_x - x) > 1e-6 or abs(new_y - y) > 1e-6:
+        failures.append(f"wheel: the point under the cursor moved from ({x}, {y}) to "
+                        f"({new_x}, {new_y})")
+    if other != view:
+        failures.append(f"wheel: the other viewers are at {other}, not {view}")
+    # A real drag (WebDriver's pointer actions) of (30, 20) pixels pans every viewer by
+    # -scale x that.
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.by import By
+    driver.execute_script("window.stochtexPage.setView({x: 10, y: 20, scale: 2});")
+    canvas = driver.find_element(By.CSS_SELECTOR, "canvas")
+    ActionChains(driver).move_to_element(canvas).click_and_hold().move_by_offset(30, 20) \
+        .release().perform()
+    views = driver.execute_script(
+        "return [...window.stochtexPage.viewers.values()].map((v) => v.getView());")
+    expected = {"x": 10 - 2 * 30, "y": 20 - 2 * 20, "scale": 2}
+    if any(abs(view[k] - expected[k]) > 1e-9 for view in views for k in expected):
+        failures.append(f"drag: the viewers are at {views}, not {expected}")
+    return failures
+
+
+# A shader that does not compile: load() rejects with the driver's log.
+BROKEN = """
+const done = arguments[arguments.length - 1];
+import('./viewer/viewer.js').then(async ({createViewer}) => {
+  const viewer = createViewer(document.createElement('canvas'));
+  try {
+    await viewer.load('broken');
+    done('loaded');
+  } catch (error) {
+    done(error instanceof Error ? error.message : 'not an Error: ' + String(error));
+  }
+});
+"""
+
+
+def check_compile_error(driver, site):
+    broken = os.path.join(site, "broken")
+    shutil.copytree(os.path.join(site, "models", "lrp", "exact"), broken)
+    with open(os.path.join(broken, "shader.essl"), "a") as file:
+        file.write("\nvec4 broken() { return undefined_name; }\n")
+    message = driver.execute_async_script(BROKEN)
+    if "does not compile" not in message or "undefined_name" not in message:
+        return [f"a broken shader gave '{message}', not the compile error with its log"]
+    print(f"broken shader: {message.splitlines()[0][:100]}")
+    return []
+
+
+def take_screenshots(driver, url, folder):
+    """The page at 256-pixel canvases: the exact shaders at scale 1 and zoomed out 16x."""
+    os.makedirs(folder, exist_ok=True)
+    driver.set_window_size(1480, 720)
+    driver.get(url.replace(f"size={SIZE}", "size=256"))
+    run_page(driver, "await window.stochtexPage.ready;")
+    for name, view in [("export_web.png", {"x": 0, "y": 0, "scale": 1}),
+                       ("export_web_zoomed_out.png", {"x": 0, "y": 0, "scale": 16})]:
+        run_page(driver, "window.stochtexPage.setSeed(7);"
+                 "window.stochtexPage.setView(arguments[0]);"
+                 "await new Promise((resolve) => requestAnimationFrame(resolve));", view)
+        driver.save_screenshot(os.path.join(folder, name))
+        print(f"wrote {os.path.join(folder, name)}")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("stochtex")
+    parser.add_argument("exemplar")
+    parser.add_argument("--second", help="texton_mix's second exemplar")
+    parser.add_argument("--screenshots", help="folder for the page's screenshots")
+    parser.add_argument("--measure", action="store_true", help="print every measured number")
+    args = parser.parse_args()
+    if not shutil.which("chromium"):
+        print("SKIP: chromium is not installed (scripts/install-deps.sh installs it)")
+        return SKIP
+    if not shutil.which("chromedriver"):
+        print("FAIL: chromium is installed without chromedriver; run scripts/install-deps.sh")
+        return 1
+    try:
+        import selenium  # noqa: F401 (only checked here, imported where used)
+    except ImportError:
+        print("FAIL: chromium is installed without python3-selenium; run scripts/install-deps.sh")
+        return 1
+
+    start = time.time()
+    failures = []
+    with tempfile.TemporaryDirectory(prefix="stochtex_browser_") as work:
+        models = {}
+        for method in MODELS:
+            path = os.path.join(work, f"{method}.stx")
+            if method == "texton_mix":
+                command = [args.stochtex, "mix", args.exemplar, args.second or args.exemplar,
+                           "-o", path, "--steps", "3", "--ramp", "0,128", "-p", "support=64"]
+            else:
+                command = [args.stochtex, "analyze", args.exemplar, "-m", method, "-o", path]
+            subprocess.run(command, check=True, capture_output=True)
+            models[method] = path
+        site = os.path.join(work, "site")
+        subprocess.run([args.stochtex, "export-web", *models.values(), "-o", site], check=True,
+                       capture_output=True)
+        server = serve(site)
+        driver = browser()
+        try:
+            url = f"http://127.0.0.1:{server.server_address[1]}/index.html?size={SIZE}"
+            driver.get(url)
+            run_page(driver, "await window.stochtexPage.ready;")
+            print(f"page loaded in {time.time() - start:.1f} s")
+            for variant in ["exact", "fast"]:
+                run_page(driver, f"await window.stochtexPage.setVariant('{variant}');")
+                for origin, scale in VIEWS:
+                    run_page(driver, "window.stochtexPage.setSeed(arguments[0]);"
+                             "window.stochtexPage.setView(arguments[1]);",
+                             SEED, {"x": origin[0], "y": origin[1], "scale": scale})
+                    for method, path in models.items():
+                        manifest_path = os.path.join(site, "models", method, variant,
+                                                     "manifest.json")
+                        with open(manifest_path) as file:
+                            manifest = json.load(file)
+                        web = read_back(driver, method)
+                        cpu = cpu_render(args.stochtex, path, origin, scale, SEED, work)
+                        if web[:3] != cpu[:3]:
+                            failures.append(f"{method} {variant}: web {web[:3]} != cpu {cpu[:3]}")
+                            continue
+                        largest = max(abs(a - b) for a, b in zip(web[3], cpu[3]))
+                        web_var = variances(web[3], web[2])
+                        cpu_var = variances(cpu[3], cpu[2])
+                        ratio = max(abs(w / c - 1) for w, c in zip(web_var, cpu_var))
+                        what = f"{method} {variant} ({manifest['shader_variant']} shader)"
+                        print(f"{what:32} scale {scale:4g}: max |web - cpu| {largest:.3g}, "
+                              f"|variance / cpu's - 1| {ratio:.3g}")
+                        bound = pixel_bound(method, manifest["shader_variant"], scale)
+                        if bound is not None and not largest <= bound:
+                            failures.append(f"{what} scale {scale:g}: max |web - cpu| "
+                                            f"{largest:.3g} exceeds {bound:.3g}")
+                        if scale > 1 and not ratio <= VARIANCE_BOUND:
+                            failures.append(f"{what} scale {scale:g}: variance off the CPU's "
+                                            f"by {ratio:.3g}, beyond {VARIANCE_BOUND:.3g}")
+            failures += check_interaction(driver)
+            failures += check_compile_error(driver, site)
+            if args.screenshots:
+                take_screenshots(driver, url, args.screenshots)
+            log = driver.get_log("browser")
+            for entry in log:
+                if entry["level"] == "SEVERE":
+                    failures.append(f"console: {entry['message']}")
+                elif args.measure:
+                    print(f"console {entry['level']}: {entry['message']}")
+        finally:
+            driver.quit()
+            server.shutdown()
+    print(f"took {time.time() - start:.1f} s")
+    for failure in failures:
+        print(f"FAIL: {failure}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
