@@ -146,6 +146,9 @@ std::string default_error(const httplib::Request& req, int status, std::size_t m
     case 405:
       return fmt::format("'{}' does not take the method {}", req.path, req.method);
     case 413:
+      if (req.get_header_value("Content-Type").starts_with("application/x-www-form-urlencoded"))
+        return "the body is sent as a form (application/x-www-form-urlencoded), which is limited "
+               "to 8 KiB; send the image's bytes as application/octet-stream";
       return fmt::format(
           "the request body is larger than the limit of {} bytes; upload a smaller "
           "image",

@@ -178,12 +178,12 @@ nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
     const std::lock_guard heavy(heavy_);
     exemplar->png = encode_png(exemplar->image.view());
   }
-  nlohmann::ordered_json info{{"width", exemplar->image.width()},
-                              {"height", exemplar->image.height()},
-                              {"channels", exemplar->image.channels()}};
   std::lock_guard lock(mutex_);
   const std::string id = new_id();
-  info["id"] = id;
+  const nlohmann::ordered_json info{{"id", id},
+                                    {"width", exemplar->image.width()},
+                                    {"height", exemplar->image.height()},
+                                    {"channels", exemplar->image.channels()}};
   exemplars_[id] = std::move(exemplar);
   exemplar_order_.push_back(id);
   evict_oldest(exemplars_, exemplar_order_, limits_.max_exemplars);
