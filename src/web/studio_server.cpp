@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 #include <httplib.h>
+#include <malloc.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -282,6 +283,10 @@ void serve_studio(const StudioOptions& options,
   for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&signals, signal_number);
   ::pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
+  // Buffers of 256 KiB and more (images, PNGs, request bodies) are mapped and unmapped on their
+  // own rather than left in the request threads' heaps, where glibc's dynamic threshold would put
+  // them after the first free: the server's memory then follows what it holds.
+  ::mallopt(M_MMAP_THRESHOLD, 256 * 1024);
   const TemporaryFolder folder;
   StudioStore store(options.limits, folder.path());
   httplib::Server server;
