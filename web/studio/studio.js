@@ -166,7 +166,7 @@ async function poll() {
   try {
     const status = await (await api(`/api/analyses/${id}`)).json();
     $('progress').value = status.progress;
-    $('analysis-state').textContent = `${status.state}, ${status.seconds.toFixed(1)} s`;
+    $('analysis-state').textContent = `${status.state}, ${status.seconds.toFixed(2)} s`;
     if (status.state === 'queued' || status.state === 'running') {
       state.polling = setTimeout(poll, 250);
       return;
