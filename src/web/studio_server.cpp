@@ -229,8 +229,7 @@ void add_routes(httplib::Server& server, StudioStore& store) {
              }));
   server.Delete("/api/analyses/" + kId,
                 guarded([&store](const httplib::Request& req, httplib::Response& res) {
-                  required_client(req);
-                  send_json(res, store.cancel_analysis(req.matches[1]));
+                  send_json(res, store.cancel_analysis(req.matches[1], required_client(req)));
                 }));
   server.Get("/api/models/" + kId + "\\.stx",
              guarded([&store](const httplib::Request& req, httplib::Response& res) {

@@ -295,13 +295,16 @@ nlohmann::ordered_json StudioStore::analysis_status(const std::string& id) {
   return status;
 }
 
-nlohmann::ordered_json StudioStore::cancel_analysis(const std::string& id) {
+nlohmann::ordered_json StudioStore::cancel_analysis(const std::string& id,
+                                                    const std::string& client) {
   {
     std::lock_guard lock(mutex_);
     const auto found = analyses_.find(id);
     if (found == analyses_.end())
       throw StudioError(404, fmt::format("there is no analysis '{}'; start one first", id));
     Analysis& analysis = *found->second;
+    if (analysis.client != client)
+      throw StudioError(403, "this analysis was started by another browser; only it can cancel it");
     analysis.cancel = true;
     if (analysis.state == State::queued) {
       analysis.state = State::cancelled;

@@ -76,8 +76,9 @@ class StudioStore {
                              std::uint32_t seed);
   // {"id", "method", "state", "progress", "seconds", "error"?, "model"?}.
   nlohmann::ordered_json analysis_status(const std::string& id);
-  // Cancels a queued or running analysis (a finished one is left as it is); its status.
-  nlohmann::ordered_json cancel_analysis(const std::string& id);
+  // Cancels `client`'s queued or running analysis (a finished one is left as it is); its status.
+  // Another client's analysis is a 403.
+  nlohmann::ordered_json cancel_analysis(const std::string& id, const std::string& client);
 
   std::string model_file(const std::string& id);  // the .stx bytes
   std::string render_png(const std::string& id, const RenderRequest& request);

@@ -295,9 +295,11 @@ def test_cancel_one_analysis_at_a_time_and_a_bounded_queue(studio):
     assert "queue is full" in studio.error(
         "POST", "/api/analyses", {"exemplar": slow["id"], "method": "texton"}, expect=503,
         client="c000000000000009")
-    for analysis in queued:
+    assert "another browser" in studio.error("DELETE", f"/api/analyses/{running['id']}",
+                                             expect=403, client="c000000000000000")
+    for i, analysis in enumerate(queued):
         cancelled = studio.json("DELETE", f"/api/analyses/{analysis['id']}",
-                                client="c000000000000000")
+                                client=f"c00000000000000{i}")
         assert cancelled["state"] == "cancelled", cancelled
 
     time.sleep(0.5)  # into the analysis' iterations
