@@ -33,6 +33,7 @@ constexpr const char* kJson = "application/json";
 constexpr std::string_view kClientCookie = "stochtex_client=";
 const std::regex kClientId("[0-9a-f]{16}");
 const std::string kId = "([0-9a-f]{16})";  // the ids the store makes
+constexpr std::size_t kMaxJsonBody = 64 * 1024;
 
 // The private temporary folder of one server, removed with everything in it at the end.
 class TemporaryFolder {
@@ -67,19 +68,52 @@ void send_error(httplib::Response& res, int status, const std::string& message) 
   send_json(res, {{"error", message}}, status);
 }
 
-// The handler, with a StudioError or any other failure answered as a JSON error.
+// Runs `work`, answering a StudioError or any other failure as a JSON error.
+template <typename Work>
+void answer(httplib::Response& res, Work&& work) {
+  try {
+    work();
+  } catch (const StudioError& e) {
+    send_error(res, e.status(), e.what());
+  } catch (const std::bad_alloc&) {
+    send_error(res, 503, "the server ran out of memory for this request; try a smaller one");
+  } catch (const std::exception& e) {
+    send_error(res, 500, fmt::format("the server failed: {}", e.what()));
+  }
+}
+
 httplib::Server::Handler guarded(
     std::function<void(const httplib::Request&, httplib::Response&)> handler) {
   return [handler = std::move(handler)](const httplib::Request& req, httplib::Response& res) {
-    try {
-      handler(req, res);
-    } catch (const StudioError& e) {
-      send_error(res, e.status(), e.what());
-    } catch (const std::bad_alloc&) {
-      send_error(res, 503, "the server ran out of memory for this request; try a smaller one");
-    } catch (const std::exception& e) {
-      send_error(res, 500, fmt::format("the server failed: {}", e.what()));
-    }
+    answer(res, [&] { handler(req, res); });
+  };
+}
+
+std::string too_large(std::size_t limit) {
+  return fmt::format("the request body is larger than the limit of {} bytes; send a smaller one",
+                     limit);
+}
+
+// A handler of the request's body, read here up to `limit` bytes: httplib's own limit
+// (set_payload_max_length) holds only for bodies with a Content-Length, not for chunked ones.
+httplib::Server::HandlerWithContentReader with_body(
+    std::size_t limit,
+    std::function<void(const httplib::Request&, httplib::Response&, const std::string&)> handler) {
+  return [limit, handler = std::move(handler)](const httplib::Request& req, httplib::Response& res,
+                                               const httplib::ContentReader& reader) {
+    answer(res, [&] {
+      std::string body;
+      bool over = false;
+      const bool read = reader([&](const char* data, std::size_t length) {
+        over = body.size() + length > limit;
+        if (!over) body.append(data, length);
+        return !over;
+      });
+      // httplib refuses a Content-Length over set_payload_max_length itself (status 413).
+      if (over || res.status == 413) throw StudioError(413, too_large(limit));
+      if (!read) throw StudioError(400, "the request body could not be read; send it again");
+      handler(req, res, body);
+    });
   };
 }
 
@@ -147,13 +181,7 @@ std::string default_error(const httplib::Request& req, int status, std::size_t m
     case 405:
       return fmt::format("'{}' does not take the method {}", req.path, req.method);
     case 413:
-      if (req.get_header_value("Content-Type").starts_with("application/x-www-form-urlencoded"))
-        return "the body is sent as a form (application/x-www-form-urlencoded), which is limited "
-               "to 8 KiB; send the image's bytes as application/octet-stream";
-      return fmt::format(
-          "the request body is larger than the limit of {} bytes; upload a smaller "
-          "image",
-          max_body);
+      return too_large(max_body);
     case 414:
     case 431:
       return "the request's address or headers are too long";
@@ -189,19 +217,23 @@ void add_routes(httplib::Server& server, StudioStore& store) {
                res.set_content(methods_json(), kJson);
              }));
   server.Post("/api/exemplars",
-              guarded([&store](const httplib::Request& req, httplib::Response& res) {
-                required_client(req);
-                send_json(res, store.add_exemplar(req.body), 201);
-              }));
+              with_body(store.limits().max_upload_bytes,
+                        [&store](const httplib::Request& req, httplib::Response& res,
+                                 const std::string& body) {
+                          required_client(req);
+                          send_json(res, store.add_exemplar(body), 201);
+                        }));
   server.Get("/api/exemplars/" + kId + "/(image|gaussian)\\.png",
              guarded([&store](const httplib::Request& req, httplib::Response& res) {
                res.set_content(store.exemplar_png(req.matches[1], req.matches[2] == "gaussian"),
                                "image/png");
              }));
   server.Post(
-      "/api/analyses", guarded([&store](const httplib::Request& req, httplib::Response& res) {
+      "/api/analyses",
+      with_body(kMaxJsonBody, [&store](const httplib::Request& req, httplib::Response& res,
+                                       const std::string& text_body) {
         const std::string client = required_client(req);
-        const auto body = nlohmann::ordered_json::parse(req.body, nullptr, false);
+        const auto body = nlohmann::ordered_json::parse(text_body, nullptr, false);
         if (body.is_discarded() || !body.is_object())
           throw StudioError(400,
                             "the body is not a JSON object; send {\"exemplar\": id, "

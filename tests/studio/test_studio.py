@@ -6,6 +6,7 @@ folder can be seen and seen removed when it stops."""
 import http.client
 import json
 import os
+import socket
 import struct
 import subprocess
 import threading
@@ -87,6 +88,27 @@ class Studio:
         headers = {"Content-Type": "application/octet-stream"}
         return self.json("POST", "/api/exemplars", data, expect=expect, headers=headers,
                          client=client)
+
+    def chunked_upload_refused(self, mebibytes):
+        """Sends a chunked upload of zeros, which has no Content-Length for the server to check
+        first; the server must stop reading it at its limit (the send then fails well before
+        the end) and answer 413."""
+        with socket.create_connection(("127.0.0.1", self.port), timeout=60) as connection:
+            connection.sendall(b"POST /api/exemplars HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                               b"X-Stochtex-Client: a000000000000001\r\n"
+                               b"Transfer-Encoding: chunked\r\n\r\n")
+            chunk = b"%x\r\n" % (1 << 20) + bytes(1 << 20) + b"\r\n"
+            sent = 0
+            try:
+                for sent in range(mebibytes):
+                    connection.sendall(chunk)
+            except OSError:
+                pass
+            assert sent < mebibytes - 1, "the server read the whole chunked body"
+            response = connection.recv(4096).decode()
+        assert response.startswith("HTTP/1.1 413"), response
+        self.assert_serving()
+        return response
 
     def analyse(self, exemplar, method, params=None, client="a000000000000001", expect=202):
         body = {"exemplar": exemplar, "method": method, "params": params or {}}
@@ -179,6 +201,7 @@ def test_bad_uploads_are_refused(studio):
     assert "limit of 16777216 bytes" in studio.error(
         "POST", "/api/exemplars", b"\0" * (16 * 1024 * 1024 + 1), expect=413,
         headers={"Content-Type": "application/octet-stream"})
+    assert "limit of 16777216 bytes" in studio.chunked_upload_refused(128)
     assert "1024x1024" in studio.error("POST", "/api/exemplars", grey_png(1025, 1024),
                                        headers={"Content-Type": "application/octet-stream"})
     assert "constant" in studio.error("POST", "/api/exemplars", grey_png(16, 16, constant=True),
