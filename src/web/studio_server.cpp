@@ -6,9 +6,11 @@
 #include <pthread.h>
 #include <signal.h>
 #include <stdlib.h>
+#include <sys/socket.h>
 
 #include <atomic>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -295,6 +297,10 @@ void wait_for_signal(httplib::Server& server, const std::atomic<bool>& done) {
   const timespec interval{0, 200'000'000};
   while (!done) {
     if (::sigtimedwait(&signals, nullptr, &interval) > 0) {
+      // stop() does nothing before listen_after_bind() has started: a signal that came first
+      // waits for it.
+      while (!done && !server.is_running())
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
       server.stop();
       return;
     }
@@ -323,6 +329,12 @@ void serve_studio(const StudioOptions& options,
   httplib::Server server;
   server.new_task_queue = [] { return new httplib::ThreadPool(8); };
   server.set_payload_max_length(options.limits.max_upload_bytes);
+  // SO_REUSEADDR (a restart may bind while old connections linger) but not httplib's default
+  // SO_REUSEPORT, with which a second server could bind the same port and take its connections.
+  server.set_socket_options([](socket_t sock) {
+    const int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   server.set_keep_alive_timeout(2);
   server.set_default_headers(
       {{"X-Content-Type-Options", "nosniff"},
@@ -352,9 +364,10 @@ void serve_studio(const StudioOptions& options,
                    : server.bind_to_port(options.host, options.port) ? options.port
                                                                      : -1;
   if (port < 0)
-    throw Error(ErrorCode::io, fmt::format("cannot listen on {} port {}; is another server using "
-                                           "it? choose another --port (0 picks a free one)",
-                                           options.host, options.port));
+    throw Error(ErrorCode::io,
+                fmt::format("cannot listen on {} port {}: the port is in use or the address is not "
+                            "this machine's; choose another --port (0 picks a free one) or --host",
+                            options.host, options.port));
   const std::string host =
       options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host;
   listening(fmt::format("http://{}:{}/", host, port));

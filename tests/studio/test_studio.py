@@ -360,6 +360,13 @@ def test_memory_stays_bounded(studio):
     studio.assert_serving()
 
 
+def test_a_second_server_cannot_take_the_port(studio):
+    second = subprocess.run([STOCHTEX, "studio", "--port", str(studio.port)], capture_output=True,
+                            text=True, timeout=30)
+    assert second.returncode == 1 and "cannot listen on 127.0.0.1 port" in second.stderr, second
+    studio.assert_serving()
+
+
 def test_sigint_stops_it_cleanly(studio):
     folders = list(studio.tmp.iterdir())
     assert [folder.name[:16] for folder in folders] == ["stochtex-studio-"], folders
