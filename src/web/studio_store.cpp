@@ -374,8 +374,12 @@ std::shared_ptr<const StudioStore::StoredModel> StudioStore::find_model(const st
   return found->second;
 }
 
+Model StudioStore::model(const std::string& id) {
+  return find_model(id)->model;
+}
+
 std::string StudioStore::model_file(const std::string& id) {
-  const std::vector<std::uint8_t> bytes = serialize_model(find_model(id)->model);
+  const std::vector<std::uint8_t> bytes = serialize_model(model(id));
   return {bytes.begin(), bytes.end()};
 }
 

@@ -80,6 +80,9 @@ class StudioStore {
   // Another client's analysis is a 403.
   nlohmann::ordered_json cancel_analysis(const std::string& id, const std::string& client);
 
+  // The model `id` (a 404 when the store has none such), for routes that serve what is made from
+  // it.
+  Model model(const std::string& id);
   std::string model_file(const std::string& id);  // the .stx bytes
   std::string render_png(const std::string& id, const RenderRequest& request);
   // `stochtex compare --json`'s numbers of a render at the exemplar's size against the exemplar.
