@@ -31,5 +31,6 @@ Command add_export_web_command(CLI::App& app);
 Command add_edit_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_methods_command(CLI::App& app);
+Command add_studio_command(CLI::App& app);
 
 }  // namespace stochtex::cli

@@ -200,9 +200,10 @@ methods=$(python3 -c 'import json, sys; print(" ".join(m["name"] for m in json.l
   <"$work/stdout")
 if [[ -z $methods ]]; then fail "methods --json lists methods" "no method names"; fi
 expect_ok "--help" "$stochtex" --help
-for command in analyze mix render render-mesh synth gaussian compare info edit methods report; do
+for command in analyze mix render render-mesh synth gaussian compare info edit methods report studio; do
   expect_ok "$command --help" "$stochtex" "$command" --help
 done
+expect_parse_error "studio --port out of range" "$stochtex" studio --port 70000
 
 if expect_ok "analyze" "$stochtex" analyze "$exemplar" "${fast[@]}" -o "$model"; then
   expect_file "analyze writes the model" "$model"

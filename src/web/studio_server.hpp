@@ -1,0 +1,29 @@
+#pragma once
+// `stochtex studio`'s HTTP server (docs/studio.md): the embedded pages of web/ and the JSON API
+// over a StudioStore, on cpp-httplib.
+
+#include <functional>
+#include <string>
+
+#include "web/studio_store.hpp"
+
+namespace stochtex::web {
+
+struct StudioOptions {
+  std::string host = "127.0.0.1";
+  int port = 8080;  // 0: a free port
+  StudioLimits limits;
+};
+
+// Whether `host` names the loopback interface (127.0.0.0/8, ::1 or localhost).
+bool is_loopback_host(const std::string& host);
+
+// Binds to options.host:options.port, calls `listening` with the URL served
+// ("http://127.0.0.1:8080/"), then serves until SIGINT, SIGTERM or SIGHUP arrives; removes its
+// temporary folder before it returns. Throws Error when it cannot bind or make its folder. Call
+// it before other threads are started: it blocks those signals in this thread and every thread
+// started after, and waits for them in a thread of its own.
+void serve_studio(const StudioOptions& options,
+                  const std::function<void(const std::string& url)>& listening);
+
+}  // namespace stochtex::web

@@ -1,0 +1,422 @@
+#include "web/studio_store.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <iterator>
+#include <new>
+#include <random>
+#include <sstream>
+#include <system_error>
+
+#include "report/compare.hpp"
+#include "stochtex/io.hpp"
+#include "stochtex/stochtex.hpp"
+
+namespace stochtex::web {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kUploadName = "the uploaded image";
+
+enum class State { queued, running, done, failed, cancelled };
+
+const char* state_name(State state) {
+  switch (state) {
+    case State::queued:
+      return "queued";
+    case State::running:
+      return "running";
+    case State::done:
+      return "done";
+    case State::failed:
+      return "failed";
+    case State::cancelled:
+      return "cancelled";
+  }
+  return "failed";
+}
+
+// Thrown by the progress callback of a cancelled analysis.
+struct Cancelled {};
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream file(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << file.rdbuf();
+  if (!file) throw StudioError(500, "the server could not read back its own temporary file");
+  return std::move(bytes).str();
+}
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  file.close();
+  if (!file) throw StudioError(500, "the server could not write its temporary file");
+}
+
+// Removes the file when it goes out of scope.
+struct ScratchFile {
+  fs::path path;
+  ~ScratchFile() {
+    std::error_code ignored;
+    fs::remove(path, ignored);
+  }
+};
+
+// `message` with every mention of `path` (quoted) replaced by `name`.
+std::string rename_file_in_message(std::string message, const fs::path& path,
+                                   const std::string& name) {
+  const std::string quoted_path = "'" + path.string() + "'";
+  for (std::size_t at = message.find(quoted_path); at != std::string::npos;
+       at = message.find(quoted_path, at + name.size()))
+    message.replace(at, quoted_path.size(), name);
+  return message;
+}
+
+template <typename Map>
+void evict_oldest(Map& map, std::deque<std::string>& order, std::size_t keep) {
+  while (order.size() > keep) {
+    map.erase(order.front());
+    order.pop_front();
+  }
+}
+
+}  // namespace
+
+struct StudioStore::Exemplar {
+  ImageF image;
+  std::string png;
+  mutable std::string gaussian_png;  // filled once, under heavy_
+};
+
+struct StudioStore::Analysis {
+  std::string id;
+  std::string client;
+  std::shared_ptr<const Exemplar> exemplar;
+  std::string method;
+  ParamValues params;
+  std::uint32_t seed = 0;
+  std::atomic<State> state{State::queued};
+  std::atomic<double> progress{0.0};
+  std::atomic<bool> cancel{false};
+  std::chrono::steady_clock::time_point started;
+  double seconds = 0.0;  // the analysis' time, once finished (guarded by mutex_)
+  std::string error;     // guarded by mutex_
+  std::string model;     // guarded by mutex_
+};
+
+struct StudioStore::StoredModel {
+  Model model;
+  std::shared_ptr<const Exemplar> exemplar;
+};
+
+StudioStore::StudioStore(StudioLimits limits, fs::path folder)
+    : limits_(limits), folder_(std::move(folder)) {
+  std::random_device random;
+  id_state_ = (std::uint64_t{random()} << 32) ^ random();
+  worker_ = std::thread([this] { work(); });
+}
+
+StudioStore::~StudioStore() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    for (const auto& [id, analysis] : analyses_) analysis->cancel = true;
+  }
+  wake_.notify_all();
+  worker_.join();
+}
+
+std::string StudioStore::new_id() {
+  // splitmix64 of a randomly seeded counter: unique, and not guessable from other ids.
+  std::uint64_t z = (id_state_ += 0x9e3779b97f4a7c15ull);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return fmt::format("{:016x}", z ^ (z >> 31));
+}
+
+fs::path StudioStore::scratch_path(const std::string& extension) {
+  std::lock_guard lock(mutex_);
+  return folder_ / fmt::format("scratch-{}{}", next_file_++, extension);
+}
+
+std::string StudioStore::encode_png(ImageView<const float> image) {
+  const ScratchFile file{scratch_path(".png")};
+  write_image(file.path, image);
+  return read_bytes(file.path);
+}
+
+nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
+  if (bytes.size() > limits_.max_upload_bytes)
+    throw StudioError(413, fmt::format("the upload is {} bytes, more than the limit of {} bytes; "
+                                       "upload a smaller image",
+                                       bytes.size(), limits_.max_upload_bytes));
+  auto exemplar = std::make_shared<Exemplar>();
+  {
+    const ScratchFile file{scratch_path(".upload")};
+    write_bytes(file.path, bytes);
+    const std::int64_t side = limits_.max_exemplar_side;
+    try {
+      exemplar->image = read_image(file.path, {.max_pixels = side * side});
+      validate_exemplar(exemplar->image.view(), kUploadName);
+    } catch (const Error& e) {
+      std::string message = rename_file_in_message(e.what(), file.path, kUploadName);
+      if (e.code() == ErrorCode::invalid_input &&
+          message.find("more than the limit") != std::string::npos)
+        message =
+            fmt::format("{} (the studio takes exemplars up to {}x{} pixels)", message, side, side);
+      throw StudioError(400, message);
+    }
+  }
+  {
+    const std::lock_guard heavy(heavy_);
+    exemplar->png = encode_png(exemplar->image.view());
+  }
+  std::lock_guard lock(mutex_);
+  const std::string id = new_id();
+  const nlohmann::ordered_json info{{"id", id},
+                                    {"width", exemplar->image.width()},
+                                    {"height", exemplar->image.height()},
+                                    {"channels", exemplar->image.channels()}};
+  exemplars_[id] = std::move(exemplar);
+  exemplar_order_.push_back(id);
+  evict_oldest(exemplars_, exemplar_order_, limits_.max_exemplars);
+  return info;
+}
+
+std::shared_ptr<const StudioStore::Exemplar> StudioStore::find_exemplar(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  const auto found = exemplars_.find(id);
+  if (found == exemplars_.end())
+    throw StudioError(404, fmt::format("there is no exemplar '{}' (the studio keeps the last {}); "
+                                       "upload it again",
+                                       id, limits_.max_exemplars));
+  return found->second;
+}
+
+std::string StudioStore::exemplar_png(const std::string& id, bool gaussian) {
+  const auto exemplar = find_exemplar(id);
+  if (!gaussian) return exemplar->png;
+  const std::lock_guard heavy(heavy_);
+  std::string& cached = exemplar->gaussian_png;
+  if (cached.empty()) {
+    const ImageView<const float> image = exemplar->image.view();
+    const ImageF version = gaussian_version(image, image.width, image.height, 1);
+    cached = encode_png(version.view());
+  }
+  return cached;
+}
+
+std::string StudioStore::start_analysis(const std::string& client, const std::string& exemplar,
+                                        const std::string& method,
+                                        const nlohmann::ordered_json& params, std::uint32_t seed) {
+  if (!params.is_object())
+    throw StudioError(400, "\"params\" must be an object of parameter names and values");
+  std::map<std::string, std::string, std::less<>> text;
+  for (const auto& [name, value] : params.items()) {
+    if (value.is_string())
+      text[name] = value.get<std::string>();
+    else if (value.is_number_integer())
+      text[name] = fmt::format("{}", value.get<std::int64_t>());
+    else if (value.is_number())
+      text[name] = fmt::format("{}", value.get<double>());
+    else
+      throw StudioError(
+          400, fmt::format("the parameter '{}' must be a number or a choice's name", name));
+  }
+  auto analysis = std::make_shared<Analysis>();
+  try {
+    analysis->params = resolve_params(method, text);
+  } catch (const std::invalid_argument& e) {
+    throw StudioError(400, e.what());
+  }
+  analysis->exemplar = find_exemplar(exemplar);
+  analysis->client = client;
+  analysis->method = method;
+  analysis->seed = seed;
+  std::lock_guard lock(mutex_);
+  for (const auto& [id, other] : analyses_)
+    if (other->client == client &&
+        (other->state == State::queued || other->state == State::running))
+      throw StudioError(429,
+                        "this browser already has an analysis queued or running; wait for "
+                        "it to finish or cancel it first");
+  if (queue_.size() >= limits_.max_queued)
+    throw StudioError(503, fmt::format("the analysis queue is full ({} waiting); try again when "
+                                       "one has finished",
+                                       queue_.size()));
+  analysis->id = new_id();
+  analyses_[analysis->id] = analysis;
+  analysis_order_.push_back(analysis->id);
+  queue_.push_back(analysis);
+  evict_analyses();
+  wake_.notify_all();
+  return analysis->id;
+}
+
+void StudioStore::evict_analyses() {
+  // The oldest finished records go first; queued and running ones stay (the queue bounds them).
+  for (auto it = analysis_order_.begin();
+       analysis_order_.size() > limits_.max_analyses && it != analysis_order_.end();) {
+    const State state = analyses_.at(*it)->state;
+    if (state == State::queued || state == State::running) {
+      ++it;
+      continue;
+    }
+    analyses_.erase(*it);
+    it = analysis_order_.erase(it);
+  }
+}
+
+nlohmann::ordered_json StudioStore::analysis_status(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  const auto found = analyses_.find(id);
+  if (found == analyses_.end())
+    throw StudioError(404, fmt::format("there is no analysis '{}'; start one first", id));
+  const Analysis& analysis = *found->second;
+  const State state = analysis.state;
+  double seconds = analysis.seconds;
+  if (state == State::running)
+    seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - analysis.started).count();
+  nlohmann::ordered_json status{{"id", analysis.id},
+                                {"method", analysis.method},
+                                {"state", state_name(state)},
+                                {"progress", state == State::done ? 1.0 : analysis.progress.load()},
+                                {"seconds", seconds}};
+  if (state == State::failed) status["error"] = analysis.error;
+  if (state == State::done) status["model"] = analysis.model;
+  return status;
+}
+
+nlohmann::ordered_json StudioStore::cancel_analysis(const std::string& id,
+                                                    const std::string& client) {
+  {
+    std::lock_guard lock(mutex_);
+    const auto found = analyses_.find(id);
+    if (found == analyses_.end())
+      throw StudioError(404, fmt::format("there is no analysis '{}'; start one first", id));
+    Analysis& analysis = *found->second;
+    if (analysis.client != client)
+      throw StudioError(403, "this analysis was started by another browser; only it can cancel it");
+    analysis.cancel = true;
+    if (analysis.state == State::queued) {
+      analysis.state = State::cancelled;
+      std::erase(queue_, found->second);
+    }
+  }
+  return analysis_status(id);
+}
+
+void StudioStore::work() {
+  for (;;) {
+    std::shared_ptr<Analysis> analysis;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+      if (stopping_) return;
+      analysis = queue_.front();
+      queue_.pop_front();
+      analysis->started = std::chrono::steady_clock::now();
+      analysis->state = State::running;
+    }
+    run(*analysis);
+  }
+}
+
+void StudioStore::run(Analysis& analysis) {
+  State state = State::done;
+  std::string error;
+  Model model;
+  try {
+    model = analyze(analysis.method, analysis.exemplar->image.view(), analysis.params,
+                    analysis.seed, kUploadName, [&analysis](double fraction) {
+                      if (analysis.cancel) throw Cancelled{};
+                      analysis.progress = fraction;
+                    });
+  } catch (const Cancelled&) {
+    state = State::cancelled;
+  } catch (const std::bad_alloc&) {
+    state = State::failed;
+    error = "the analysis ran out of memory; use a smaller exemplar";
+  } catch (const std::exception& e) {
+    state = State::failed;
+    error = e.what();
+  }
+  std::lock_guard lock(mutex_);
+  analysis.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - analysis.started).count();
+  analysis.error = error;
+  if (state == State::done) {
+    analysis.model = new_id();
+    models_[analysis.model] =
+        std::make_shared<const StoredModel>(StoredModel{std::move(model), analysis.exemplar});
+    model_order_.push_back(analysis.model);
+    evict_oldest(models_, model_order_, limits_.max_models);
+  }
+  analysis.exemplar.reset();
+  analysis.state = state;
+}
+
+std::shared_ptr<const StudioStore::StoredModel> StudioStore::find_model(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  const auto found = models_.find(id);
+  if (found == models_.end())
+    throw StudioError(404, fmt::format("there is no model '{}' (the studio keeps the last {}); "
+                                       "run the analysis again",
+                                       id, limits_.max_models));
+  return found->second;
+}
+
+Model StudioStore::model(const std::string& id) {
+  return find_model(id)->model;
+}
+
+std::string StudioStore::model_file(const std::string& id) {
+  const std::vector<std::uint8_t> bytes = serialize_model(model(id));
+  return {bytes.begin(), bytes.end()};
+}
+
+std::string StudioStore::render_png(const std::string& id, const RenderRequest& request) {
+  const int most = limits_.max_render_side;
+  if (request.width < 1 || request.height < 1 || request.width > most || request.height > most)
+    throw StudioError(400, fmt::format("a render is 1 to {} pixels wide and high, not {}x{}; ask "
+                                       "for a smaller one",
+                                       most, request.width, request.height));
+  const auto stored = find_model(id);
+  const Grid grid{request.origin, request.scale, request.width, request.height};
+  try {
+    check_grid(grid, "the render's view");
+  } catch (const std::invalid_argument& e) {
+    throw StudioError(400, e.what());
+  }
+  const std::lock_guard heavy(heavy_);
+  ImageF image(request.width, request.height, stored->model.channels());
+  render(stored->model, grid, request.seed, image.view());
+  return encode_png(image.view());
+}
+
+nlohmann::ordered_json StudioStore::compare(const std::string& id, std::uint32_t seed) {
+  const auto stored = find_model(id);
+  const ImageView<const float> exemplar = stored->exemplar->image.view();
+  const std::lock_guard heavy(heavy_);
+  ImageF image(exemplar.width, exemplar.height, stored->model.channels());
+  render(stored->model, Grid{{0.0, 0.0}, 1.0, exemplar.width, exemplar.height}, seed, image.view());
+  Comparison comparison(exemplar);
+  try {
+    add_checked(comparison, exemplar, "the exemplar", image.view(), "the render");
+  } catch (const Error& e) {
+    throw StudioError(422, e.what());
+  }
+  nlohmann::ordered_json doc{{"model", id}, {"seed", seed}};
+  doc.update(comparison_json(comparison.report()));
+  return doc;
+}
+
+}  // namespace stochtex::web

@@ -1,0 +1,123 @@
+#pragma once
+// What `stochtex studio` holds (docs/studio.md): the uploaded exemplars, the analyses (run one at
+// a time by one worker thread, from a bounded queue, at most one queued or running per browser
+// client) and the models they made, each kept up to a count and the oldest evicted. Files that
+// the image and model code needs are written to the store's own temporary folder under names the
+// store makes; nothing from a request names a file. Every failure is a StudioError: an HTTP status
+// and one sentence for the JSON error body.
+
+#include <condition_variable>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "stochtex/image.hpp"
+#include "stochtex/model.hpp"
+
+namespace stochtex::web {
+
+struct StudioLimits {
+  std::size_t max_upload_bytes = std::size_t{16} << 20;  // an upload's body, 16 MiB
+  int max_exemplar_side = 1024;  // an exemplar's pixels: at most this squared
+  std::size_t max_exemplars = 8;
+  std::size_t max_models = 8;
+  std::size_t max_analyses = 64;  // analysis records kept (finished ones evicted first)
+  std::size_t max_queued = 4;     // analyses waiting behind the running one
+  int max_render_side = 2048;     // render.png's width and height
+};
+
+class StudioError : public std::runtime_error {
+ public:
+  StudioError(int status, const std::string& message)
+      : std::runtime_error(message), status_(status) {}
+  int status() const { return status_; }
+
+ private:
+  int status_;
+};
+
+// A CPU render of a model: output pixel (i, j) samples origin + scale * (i + 1/2, j + 1/2), as
+// `stochtex render --origin X,Y --scale S --seed SEED`.
+struct RenderRequest {
+  int width = 512;
+  int height = 512;
+  std::uint32_t seed = 0;
+  double scale = 1.0;
+  Vec2d origin;
+};
+
+class StudioStore {
+ public:
+  // `folder`: an existing, private, empty folder the store may write to (and the caller removes).
+  StudioStore(StudioLimits limits, std::filesystem::path folder);
+  ~StudioStore();  // cancels the running analysis and stops the worker
+  StudioStore(const StudioStore&) = delete;
+  StudioStore& operator=(const StudioStore&) = delete;
+
+  const StudioLimits& limits() const { return limits_; }
+
+  // An image file's bytes (PNG, OpenEXR, PFM) -> {"id", "width", "height", "channels"}.
+  nlohmann::ordered_json add_exemplar(const std::string& bytes);
+  // The exemplar, or its Gaussian version (ADSN at its size, seed 1), as PNG bytes.
+  std::string exemplar_png(const std::string& id, bool gaussian);
+
+  // Queues an analysis of exemplar `exemplar` for `client`; `params` maps names to numbers or
+  // choice names. Returns its id.
+  std::string start_analysis(const std::string& client, const std::string& exemplar,
+                             const std::string& method, const nlohmann::ordered_json& params,
+                             std::uint32_t seed);
+  // {"id", "method", "state", "progress", "seconds", "error"?, "model"?}.
+  nlohmann::ordered_json analysis_status(const std::string& id);
+  // Cancels `client`'s queued or running analysis (a finished one is left as it is); its status.
+  // Another client's analysis is a 403.
+  nlohmann::ordered_json cancel_analysis(const std::string& id, const std::string& client);
+
+  // The model `id` (a 404 when the store has none such), for routes that serve what is made from
+  // it.
+  Model model(const std::string& id);
+  std::string model_file(const std::string& id);  // the .stx bytes
+  std::string render_png(const std::string& id, const RenderRequest& request);
+  // `stochtex compare --json`'s numbers of a render at the exemplar's size against the exemplar.
+  nlohmann::ordered_json compare(const std::string& id, std::uint32_t seed);
+
+ private:
+  struct Exemplar;
+  struct Analysis;
+  struct StoredModel;
+
+  std::shared_ptr<const Exemplar> find_exemplar(const std::string& id);
+  std::shared_ptr<const StoredModel> find_model(const std::string& id);
+  std::string new_id();
+  std::filesystem::path scratch_path(const std::string& extension);
+  std::string encode_png(ImageView<const float> image);
+  void work();
+  void run(Analysis& analysis);
+  void evict_analyses();
+
+  StudioLimits limits_;
+  std::filesystem::path folder_;
+  std::mutex mutex_;  // guards everything below but the heavy-work mutex
+  std::condition_variable wake_;
+  bool stopping_ = false;
+  std::uint64_t next_file_ = 0;
+  std::uint64_t id_state_ = 0;
+  std::map<std::string, std::shared_ptr<const Exemplar>> exemplars_;
+  std::deque<std::string> exemplar_order_;
+  std::map<std::string, std::shared_ptr<Analysis>> analyses_;
+  std::deque<std::string> analysis_order_;
+  std::deque<std::shared_ptr<Analysis>> queue_;
+  std::map<std::string, std::shared_ptr<const StoredModel>> models_;
+  std::deque<std::string> model_order_;
+  std::mutex heavy_;  // one render, Gaussian version or comparison at a time: bounded memory
+  std::thread worker_;
+};
+
+}  // namespace stochtex::web
