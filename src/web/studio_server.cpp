@@ -283,6 +283,15 @@ void add_routes(httplib::Server& server, StudioStore& store) {
                render.origin.y = query(req, "y", 0.0, "a finite number");
                res.set_content(store.render_png(req.matches[1], render), "image/png");
              }));
+  server.Get("/api/models/" + kId + "/web/(exact|fast)/([A-Za-z0-9_.-]+)",
+             guarded([&store](const httplib::Request& req, httplib::Response& res) {
+               const std::string name = req.matches[3];
+               res.set_content(store.web_file(req.matches[1],
+                                              req.matches[2] == "exact" ? ShaderVariant::exact
+                                                                        : ShaderVariant::fast,
+                                              name),
+                               std::string(content_type(name)));
+             }));
   server.Get("/api/models/" + kId + "/compare",
              guarded([&store](const httplib::Request& req, httplib::Response& res) {
                send_json(res, store.compare(req.matches[1], query_seed(req)));

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <fstream>
@@ -13,8 +14,10 @@
 #include <system_error>
 
 #include "report/compare.hpp"
+#include "stochtex/error.hpp"
 #include "stochtex/io.hpp"
 #include "stochtex/stochtex.hpp"
+#include "web/web_export.hpp"
 
 namespace stochtex::web {
 
@@ -112,8 +115,13 @@ struct StudioStore::Analysis {
 };
 
 struct StudioStore::StoredModel {
+  StoredModel(Model stored, std::shared_ptr<const Exemplar> source)
+      : model(std::move(stored)), exemplar(std::move(source)) {}
   Model model;
   std::shared_ptr<const Exemplar> exemplar;
+  // The web exports made so far, by ShaderVariant; guarded by web_mutex.
+  mutable std::mutex web_mutex;
+  mutable std::array<std::vector<WebFile>, 2> web;
 };
 
 StudioStore::StudioStore(StudioLimits limits, fs::path folder)
@@ -356,7 +364,7 @@ void StudioStore::run(Analysis& analysis) {
   if (state == State::done) {
     analysis.model = new_id();
     models_[analysis.model] =
-        std::make_shared<const StoredModel>(StoredModel{std::move(model), analysis.exemplar});
+        std::make_shared<const StoredModel>(std::move(model), analysis.exemplar);
     model_order_.push_back(analysis.model);
     evict_oldest(models_, model_order_, limits_.max_models);
   }
@@ -381,6 +389,26 @@ Model StudioStore::model(const std::string& id) {
 std::string StudioStore::model_file(const std::string& id) {
   const std::vector<std::uint8_t> bytes = serialize_model(model(id));
   return {bytes.begin(), bytes.end()};
+}
+
+std::string StudioStore::web_file(const std::string& id, ShaderVariant variant,
+                                  const std::string& name) {
+  const std::shared_ptr<const StoredModel> stored = find_model(id);
+  std::lock_guard lock(stored->web_mutex);
+  std::vector<WebFile>& files = stored->web[static_cast<std::size_t>(variant)];
+  if (files.empty()) {
+    std::lock_guard heavy(heavy_);
+    try {
+      files = web_export(stored->model, variant);
+    } catch (const std::invalid_argument& e) {
+      throw StudioError(422, e.what());
+    } catch (const Error& e) {
+      throw StudioError(422, e.what());
+    }
+  }
+  for (const WebFile& file : files)
+    if (file.name == name) return file.bytes;
+  throw StudioError(404, fmt::format("the web export of model '{}' has no file '{}'", id, name));
 }
 
 std::string StudioStore::render_png(const std::string& id, const RenderRequest& request) {

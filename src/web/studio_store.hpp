@@ -19,6 +19,7 @@
 #include <string>
 #include <thread>
 
+#include "stochtex/gpu.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
 
@@ -87,6 +88,9 @@ class StudioStore {
   std::string render_png(const std::string& id, const RenderRequest& request);
   // `stochtex compare --json`'s numbers of a render at the exemplar's size against the exemplar.
   nlohmann::ordered_json compare(const std::string& id, std::uint32_t seed);
+  // The file `name` of the model's web export in `variant` (web_export.hpp: what the viewer
+  // loads), made once per model and variant; a 404 for a name the export does not have.
+  std::string web_file(const std::string& id, ShaderVariant variant, const std::string& name);
 
  private:
   struct Exemplar;

@@ -56,7 +56,7 @@ capture "$stochtex" export-web "$work"/a/{texton,tiling,lrp,gabor}.stx -o "$site
 if [[ $status -ne 0 ]]; then
   fail "export-web of four models: exit code $status"
 else
-  for file in index.html export/export.js export/export.css viewer/viewer.js models.json; do
+  for file in index.html export/export.js export/export.css viewer/viewer.js viewer/group.js models.json; do
     [[ -f $site/$file ]] || fail "export-web wrote no $file"
   done
   cmp -s "$site/viewer/viewer.js" "$source_dir/web/viewer/viewer.js" ||

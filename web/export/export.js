@@ -4,7 +4,7 @@
 // window.stochtexPage is the page's interface for scripts and the browser test:
 //   ready (a promise, settled once every model is loaded), viewers (name -> viewer),
 //   setVariant(name) (a promise), setView(view), setSeed(n), and errors (the messages shown).
-import {createViewer} from '../viewer/viewer.js';
+import {createViewerGroup} from '../viewer/group.js';
 
 const status = document.getElementById('status');
 const seedInput = document.getElementById('seed');
@@ -24,27 +24,17 @@ const size = (() => {
   return Number.isInteger(asked) && asked >= 16 && asked <= 2048 ? asked : 256;
 })();
 
-const viewers = new Map();
 let variant = 'exact';
-let view = {x: 0, y: 0, scale: 1};
-let seed = 0;
-
-function renderAll() {
-  for (const viewer of viewers.values()) if (viewer.manifest) viewer.render();
-  scaleOutput.textContent = `scale ${view.scale.toPrecision(3)}`;
-}
-
-function setView(next) {
-  view = {...next};
-  for (const viewer of viewers.values()) viewer.setView(view);
-  renderAll();
-}
+const group = createViewerGroup({
+  onViewChange: (view) => {
+    scaleOutput.textContent = `scale ${view.scale.toPrecision(3)}`;
+  },
+});
+const viewers = group.viewers;
 
 function setSeed(n) {
-  seed = n;
   seedInput.value = String(n);
-  for (const viewer of viewers.values()) viewer.setSeed(n);
-  renderAll();
+  group.setSeed(n);
 }
 
 async function loadAll(models) {
@@ -56,7 +46,7 @@ async function loadAll(models) {
     note.textContent = `${manifest.channels} channel(s), ${manifest.shader_variant} shader` +
                        (manifest.note ? `: ${manifest.note}` : '');
   }));
-  renderAll();
+  group.renderAll();
 }
 
 async function setVariant(name) {
@@ -83,35 +73,25 @@ function build(models) {
     caption.append(note);
     figure.append(canvas, caption);
     container.append(figure);
-    viewers.set(model.name, createViewer(canvas, {
-      onViewChange: (next) => {
-        view = next;
-        for (const [other, viewer] of viewers)
-          if (other !== model.name) {
-            viewer.setView(view);
-            viewer.requestRender();
-          }
-        scaleOutput.textContent = `scale ${view.scale.toPrecision(3)}`;
-      },
-    }));
+    group.add(model.name, canvas);
   }
   const both = models.some((model) => model.variants.length > 1);
   document.getElementById('variants').hidden = !both;
   if (!both && models.length > 0) variant = models[0].variants[0];
 }
 
-const page = {viewers, errors, models: [], setVariant, setView, setSeed};
+const page = {viewers, errors, models: [], setVariant, setView: group.setView, setSeed};
 window.stochtexPage = page;
 
 seedInput.addEventListener('change', () => {
   const n = Number(seedInput.value);
   if (Number.isInteger(n) && n >= 0 && n <= 0xffffffff) setSeed(n);
-  else seedInput.value = String(seed);
+  else seedInput.value = String(group.getSeed());
 });
 document.getElementById('new-seed').addEventListener('click', () => {
   setSeed(Math.floor(Math.random() * 0x100000000));
 });
-document.getElementById('reset').addEventListener('click', () => setView({x: 0, y: 0, scale: 1}));
+document.getElementById('reset').addEventListener('click', () => group.setView({x: 0, y: 0, scale: 1}));
 for (const radio of document.querySelectorAll('input[name="variant"]'))
   radio.addEventListener('change', () => setVariant(radio.value).catch(fail));
 

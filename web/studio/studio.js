@@ -1,13 +1,24 @@
 // The studio page: upload an exemplar, pick a method and its parameters (the form is made from
-// /api/methods), run the analysis with progress and cancel, then show a CPU render, the compare
-// numbers and the downloads. The API is described in docs/studio.md.
+// /api/methods), run the analysis with progress and cancel, then show each method's latest model
+// live in WebGL2 (web/viewer/) side by side at one view and seed, the compare numbers of each, a
+// CPU render and the downloads. The API is described in docs/studio.md. window.stochtexStudio is
+// the page's interface for scripts and the browser test: group (the viewers, by method), shown
+// (method -> {model, seconds}), loaded (a promise settled when the viewers have their models),
+// setSeed(n) (the seed control's) and errors (the messages shown).
+import {createViewerGroup} from '../viewer/group.js';
 
 const $ = (id) => document.getElementById(id);
 
 const state = { methods: [], exemplar: null, analysis: null, model: null, polling: 0 };
 
+const errors = [];
+
 function showError(message) {
   $('error').textContent = message || '';
+  if (message) {
+    errors.push(message);
+    console.error(message);
+  }
 }
 
 // fetch() that turns a JSON {"error"} answer (or a network failure) into a thrown Error.
@@ -206,33 +217,110 @@ function showRender() {
   $('render-image').src = url;
   $('download-render').href = url;
   $('download-render').download = `${state.model}.png`;
-  showCompare();
 }
 
-// The numbers of `stochtex compare --json`: each measure beside its ADSN value and floor.
-async function showCompare() {
-  const table = $('compare');
+// ---- the live view: each method's latest model, side by side ----------------------------------
+
+const live = {
+  group: createViewerGroup({
+    onViewChange: (view) => {
+      $('view-scale').textContent = `scale ${view.scale.toPrecision(3)}`;
+    },
+  }),
+  shown: new Map(),
+  variant: 'exact',
+  loaded: Promise.resolve(),
+  errors,
+};
+window.stochtexStudio = live;
+
+async function loadViewer(method) {
+  const { model } = live.shown.get(method);
+  await live.group.viewers.get(method).load(`/api/models/${model}/web/${live.variant}`);
+}
+
+function loadViewers(methods) {
+  live.loaded = Promise.all(methods.map(loadViewer)).then(() => live.group.renderAll());
+  live.loaded.catch((error) => showError(error.message));
+  return live.loaded;
+}
+
+function addViewer(status) {
+  live.shown.set(status.method, { model: status.model, seconds: status.seconds });
+  live.group.remove(status.method);
+  $(`figure-${status.method}`)?.remove();
+  const figure = document.createElement('figure');
+  figure.id = `figure-${status.method}`;
+  const canvas = document.createElement('canvas');
+  canvas.width = 256;
+  canvas.height = 256;
+  const caption = document.createElement('figcaption');
+  caption.textContent = `${status.method}, analysed in ${status.seconds.toFixed(2)} s`;
+  figure.append(canvas, caption);
+  $('viewer-mount').append(figure);
   try {
-    const doc = await (await api(`/api/models/${state.model}/compare?seed=${$('render-seed').value}`)).json();
-    table.replaceChildren();
-    const header = table.createTHead().insertRow();
-    for (const title of ['measure (render at the exemplar size)', 'render', 'Gaussian (ADSN)', 'floor']) {
-      const cell = document.createElement('th');
-      cell.textContent = title;
-      header.append(cell);
-    }
-    const body = table.createTBody();
-    const number = (value) => (typeof value === 'number' ? value.toFixed(4) : '');
-    for (const [key, value] of Object.entries(doc)) {
-      if (typeof value !== 'number' || key === 'seed' || key === 'welch_crop') continue;
-      if (key.endsWith('_adsn') || key.endsWith('_floor')) continue;
-      const row = body.insertRow();
-      for (const text of [key, number(value), number(doc[`${key}_adsn`]), number(doc[`${key}_floor`])])
-        row.insertCell().textContent = text;
-    }
+    live.group.add(status.method, canvas);
   } catch (error) {
+    figure.remove();
     showError(error.message);
+    return;
   }
+  loadViewers([status.method]);
+  compareAll();
+}
+
+// The compare numbers of every shown model: a render at the exemplar's size with the view's seed.
+async function compareAll() {
+  const seed = live.group.getSeed();
+  const rows = await Promise.all([...live.shown].map(async ([method, shown]) => {
+    try {
+      const doc = await (await api(`/api/models/${shown.model}/compare?seed=${seed}`)).json();
+      return [method, shown.seconds, doc];
+    } catch (error) {
+      showError(error.message);
+      return null;
+    }
+  }));
+  const table = $('compare');
+  table.replaceChildren();
+  const header = table.createTHead().insertRow();
+  for (const title of ['method', 'analysis (s)', 'spectral error', 'ADSN', 'colour histogram error',
+                       'ADSN', 'floor', 'covariance error'])
+    header.append(Object.assign(document.createElement('th'), { textContent: title }));
+  const body = table.createTBody();
+  for (const row of rows) {
+    if (!row) continue;
+    const [method, seconds, doc] = row;
+    const cells = [method, seconds.toFixed(2), doc.spectral_error, doc.spectral_error_adsn,
+                   doc.histogram_error, doc.histogram_error_adsn, doc.histogram_error_floor,
+                   doc.covariance_error];
+    const line = body.insertRow();
+    for (const value of cells)
+      line.insertCell().textContent = typeof value === 'number' ? value.toFixed(4) : value;
+  }
+}
+
+function setViewSeed(n) {
+  $('view-seed').value = String(n);
+  live.group.setSeed(n);
+  compareAll();
+}
+
+live.setSeed = setViewSeed;
+
+function setUpLiveView() {
+  $('view-seed').addEventListener('change', () => {
+    const n = Number($('view-seed').value);
+    if (Number.isInteger(n) && n >= 0 && n <= 0xffffffff) setViewSeed(n);
+    else $('view-seed').value = String(live.group.getSeed());
+  });
+  $('new-seed').addEventListener('click', () => setViewSeed(Math.floor(Math.random() * 0x100000000)));
+  $('reset-view').addEventListener('click', () => live.group.setView({ x: 0, y: 0, scale: 1 }));
+  for (const radio of document.querySelectorAll('input[name="variant"]'))
+    radio.addEventListener('change', () => {
+      live.variant = radio.value;
+      loadViewers([...live.shown.keys()]);
+    });
 }
 
 function showModel(status) {
@@ -241,12 +329,14 @@ function showModel(status) {
   $('analysis-time').textContent = `${status.method}: analysed in ${status.seconds.toFixed(2)} s`;
   $('download-model').href = `/api/models/${status.model}.stx`;
   $('download-model').download = `${status.method}.stx`;
+  addViewer(status);
   showRender();
 }
 
 // ---- start -------------------------------------------------------------------------------------
 
 setUpDropZone();
+setUpLiveView();
 $('analyse').addEventListener('click', analyse);
 $('cancel').addEventListener('click', cancel);
 $('render').addEventListener('click', showRender);

@@ -1,0 +1,149 @@
+#!/usr/bin/python3
+"""The studio in a real browser (docs/studio.md, "What the tests check").
+
+Starts `stochtex studio --port 0`, opens its page in headless Chromium (SwiftShader's WebGL2),
+uploads a shipped exemplar through the page's file input and runs an analysis per method through
+its form. Each method's model then shows in its own WebGL2 viewer; the test reads every viewer's
+float values back and compares them with `stochtex render` of the model the studio serves
+(downloaded as .stx), at the same view and seed: value for value at scale 1 within the exported
+shader's tolerance, and in variance zoomed out 16x. It fails on any JavaScript console error.
+
+Usage: studio_browser_test.py STOCHTEX EXEMPLAR [--screenshots DIR]
+Exit 77 (CTest's SKIP_RETURN_CODE) when chromium is not installed.
+"""
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import browser_test as common  # noqa: E402 (the browser and comparison helpers)
+
+METHODS = ["texton", "tiling", "lrp", "gabor"]
+SIZE = 256  # the studio's canvases
+SEED = 7
+VIEWS = [((-40.0, 24.0), 1.0), ((-1000.0, 512.0), 16.0)]
+
+
+def start_studio(stochtex):
+    server = subprocess.Popen([stochtex, "studio", "--port", "0"], stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True)
+    line = server.stdout.readline()
+    prefix = "stochtex studio: serving "
+    if not line.startswith(prefix):
+        server.kill()
+        raise RuntimeError(f"the studio did not start: {line!r} {server.stderr.read()}")
+    return server, line[len(prefix):].strip().rstrip("/")
+
+
+ANALYSE = """
+const [method, done] = arguments;
+const select = document.getElementById('method');
+select.value = method;
+select.dispatchEvent(new Event('change'));
+document.getElementById('analyse').click();
+const studio = window.stochtexStudio;
+const started = performance.now();
+(function wait() {
+  if (studio.errors.length) return done('error: ' + studio.errors.join('; '));
+  if (studio.shown.has(method) && studio.group.viewers.get(method).manifest)
+    return studio.loaded.then(() => done(studio.shown.get(method).model), (e) => done('error: ' + e));
+  if (performance.now() - started > 240000) return done('error: the analysis took over 240 s');
+  setTimeout(wait, 200);
+})();
+"""
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("stochtex")
+    parser.add_argument("exemplar")
+    parser.add_argument("--screenshots", help="folder for the page's screenshot")
+    args = parser.parse_args()
+    if not shutil.which("chromium"):
+        print("SKIP: chromium is not installed (scripts/install-deps.sh installs it)")
+        return common.SKIP
+    if not shutil.which("chromedriver"):
+        print("FAIL: chromium is installed without chromedriver; run scripts/install-deps.sh")
+        return 1
+
+    from selenium.webdriver.common.by import By
+    start = time.time()
+    failures = []
+    server, url = start_studio(args.stochtex)
+    driver = common.browser()
+    try:
+        with tempfile.TemporaryDirectory(prefix="stochtex_studio_browser_") as work:
+            driver.set_window_size(1400, 1400)
+            driver.get(f"{url}/")
+            # The file input is hidden in its drop zone: shown so that WebDriver may type in it.
+            upload = driver.find_element(By.ID, "exemplar-file")
+            driver.execute_script("arguments[0].style.display = 'block';", upload)
+            upload.send_keys(os.path.abspath(args.exemplar))
+            deadline = time.time() + 60
+            while "channel" not in driver.find_element(By.ID, "exemplar-info").text:
+                if time.time() > deadline:
+                    raise RuntimeError("the exemplar upload did not finish within 60 s")
+                time.sleep(0.2)
+            models = {}
+            for method in METHODS:
+                result = driver.execute_async_script(ANALYSE, method)
+                if result.startswith("error"):
+                    raise RuntimeError(f"{method}: {result}")
+                path = os.path.join(work, f"{method}.stx")
+                urllib.request.urlretrieve(f"{url}/api/models/{result}.stx", path)
+                models[method] = path
+                print(f"{method}: analysed and shown after {time.time() - start:.1f} s")
+            for origin, scale in VIEWS:
+                common.run_page(driver, "window.stochtexStudio.setSeed(arguments[0]);"
+                                "window.stochtexStudio.group.setView(arguments[1]);",
+                                SEED, {"x": origin[0], "y": origin[1], "scale": scale})
+                for method, path in models.items():
+                    web = common.read_back(driver, method)
+                    cpu = common.cpu_render(args.stochtex, path, origin, scale, SEED, work, SIZE)
+                    if web[:3] != cpu[:3]:
+                        failures.append(f"{method}: web {web[:3]} != cpu {cpu[:3]}")
+                        continue
+                    largest = max(abs(a - b) for a, b in zip(web[3], cpu[3]))
+                    ratio = max(abs(w / c - 1) for w, c in zip(common.variances(web[3], web[2]),
+                                                              common.variances(cpu[3], cpu[2])))
+                    print(f"{method:8} scale {scale:4g}: max |web - cpu| {largest:.3g}, "
+                          f"|variance / cpu's - 1| {ratio:.3g}")
+                    bound = common.pixel_bound(method, "exact", scale)
+                    if not largest <= bound:
+                        failures.append(f"{method} scale {scale:g}: max |web - cpu| "
+                                        f"{largest:.3g} exceeds {bound:.3g}")
+                    if scale > 1 and not ratio <= common.VARIANCE_BOUND:
+                        failures.append(f"{method} scale {scale:g}: variance off the CPU's by "
+                                        f"{ratio:.3g}, beyond {common.VARIANCE_BOUND:.3g}")
+            if args.screenshots:
+                os.makedirs(args.screenshots, exist_ok=True)
+                common.run_page(driver, "window.stochtexStudio.group.setView({x: 0, y: 0, scale: 1});"
+                                "await window.stochtexStudio.loaded;"
+                                "await new Promise((resolve) => requestAnimationFrame(resolve));")
+                path = os.path.join(args.screenshots, "studio.png")
+                driver.set_window_size(1300, 2400)
+                section = driver.find_element(By.ID, "result-section")
+                driver.execute_script("arguments[0].scrollIntoView();", section)
+                section.screenshot(path)
+                print(f"wrote {path}")
+            for entry in driver.get_log("browser"):
+                if entry["level"] == "SEVERE":
+                    failures.append(f"console: {entry['message']}")
+    finally:
+        driver.quit()
+        server.terminate()
+        server.wait(timeout=30)
+    print(f"took {time.time() - start:.1f} s")
+    for failure in failures:
+        print(f"FAIL: {failure}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
