@@ -1,7 +1,7 @@
 // `stochtex export-web MODEL.stx... -o DIR [--variant exact|fast|both] [--force]`: the WebGL2
 // viewer as static files for a set of models (docs/studio.md, "export-web"): DIR/index.html with
-// its export/ files, DIR/viewer/ (viewer.js, group.js), DIR/models.json and each model's web export in
-// DIR/models/<file stem>/<variant>/ (src/web/web_export.hpp).
+// its export/ files, DIR/viewer/ (viewer.js, group.js), DIR/models.json and each model's web
+// export in DIR/models/<file stem>/<variant>/ (src/web/web_export.hpp).
 
 #include <fmt/core.h>
 
