@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev libhwy-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   glslang-dev spirv-tools libspirv-cross-c-shared-dev libcpp-httplib-dev
+  libarchive-dev
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-dask python3-distributed
   python3-zarr
   # the browser test (tests/browser): headless Chromium, its WebDriver and Selenium

@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "core/file_message.hpp"
+#include "gl/cross_compile.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/stochtex.hpp"
 #include "web/assets.hpp"
@@ -291,6 +292,19 @@ void add_routes(httplib::Server& server, StudioStore& store) {
                                                                         : ShaderVariant::fast,
                                               name),
                                std::string(content_type(name)));
+             }));
+  server.Get("/api/models/" + kId + "/shader-(exact|fast)-(glsl|essl|hlsl|msl)\\.zip",
+             guarded([&store](const httplib::Request& req, httplib::Response& res) {
+               ShaderExportOptions options;
+               options.variant =
+                   req.matches[2] == "exact" ? ShaderVariant::exact : ShaderVariant::fast;
+               for (const gl::LanguageRow& row : gl::kLanguageRows)
+                 if (req.matches[3].str() == row.option) options.language = row.language;
+               res.set_content(store.shader_zip(req.matches[1], options), "application/zip");
+               res.set_header(
+                   "Content-Disposition",
+                   fmt::format("attachment; filename=\"{}-shader-{}-{}.zip\"", req.matches[1].str(),
+                               req.matches[2].str(), req.matches[3].str()));
              }));
   server.Get("/api/models/" + kId + "/compare",
              guarded([&store](const httplib::Request& req, httplib::Response& res) {

@@ -1,5 +1,7 @@
 #include "web/studio_store.hpp"
 
+#include <archive.h>
+#include <archive_entry.h>
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -8,10 +10,13 @@
 #include <chrono>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <new>
 #include <random>
 #include <sstream>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include "report/compare.hpp"
 #include "stochtex/error.hpp"
@@ -61,6 +66,40 @@ void write_bytes(const fs::path& path, const std::string& bytes) {
   file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   file.close();
   if (!file) throw StudioError(500, "the server could not write its temporary file");
+}
+
+// `entries` (name, bytes) as a zip archive, every file dated 1980-01-01 (zip's earliest time), so
+// that the same export gives the same bytes.
+std::string zip_archive(const std::vector<std::pair<std::string, std::string>>& entries) {
+  std::string bytes;
+  const std::unique_ptr<archive, decltype(&archive_write_free)> writer(archive_write_new(),
+                                                                       archive_write_free);
+  const auto append = [](archive*, void* client, const void* buffer, std::size_t length) {
+    static_cast<std::string*>(client)->append(static_cast<const char*>(buffer), length);
+    return static_cast<la_ssize_t>(length);
+  };
+  const auto check = [&](int status) {
+    if (status != ARCHIVE_OK)
+      throw StudioError(500, fmt::format("the server could not write the zip archive: {}",
+                                         archive_error_string(writer.get())));
+  };
+  check(archive_write_set_format_zip(writer.get()));
+  check(archive_write_open(writer.get(), &bytes, nullptr, append, nullptr));
+  for (const auto& [name, data] : entries) {
+    const std::unique_ptr<archive_entry, decltype(&archive_entry_free)> entry(archive_entry_new(),
+                                                                              archive_entry_free);
+    archive_entry_set_pathname(entry.get(), name.c_str());
+    archive_entry_set_size(entry.get(), static_cast<la_int64_t>(data.size()));
+    archive_entry_set_filetype(entry.get(), AE_IFREG);
+    archive_entry_set_perm(entry.get(), 0644);
+    archive_entry_set_mtime(entry.get(), 315532800, 0);
+    check(archive_write_header(writer.get(), entry.get()));
+    if (archive_write_data(writer.get(), data.data(), data.size()) !=
+        static_cast<la_ssize_t>(data.size()))
+      check(ARCHIVE_FATAL);
+  }
+  check(archive_write_close(writer.get()));
+  return bytes;
 }
 
 // Removes the file when it goes out of scope.
@@ -409,6 +448,31 @@ std::string StudioStore::web_file(const std::string& id, ShaderVariant variant,
   for (const WebFile& file : files)
     if (file.name == name) return file.bytes;
   throw StudioError(404, fmt::format("the web export of model '{}' has no file '{}'", id, name));
+}
+
+std::string StudioStore::shader_zip(const std::string& id, const ShaderExportOptions& options) {
+  const std::shared_ptr<const StoredModel> stored = find_model(id);
+  std::lock_guard heavy(heavy_);
+  ShaderExport files;
+  try {
+    files = export_shader(stored->model, options);
+  } catch (const std::invalid_argument& e) {
+    throw StudioError(422, e.what());
+  } catch (const Error& e) {
+    throw StudioError(422, e.what());
+  }
+  std::vector<std::pair<std::string, std::string>> entries = {
+      {files.shader.name, files.shader.text}};
+  for (const TextFile& wrapper : files.wrappers) entries.emplace_back(wrapper.name, wrapper.text);
+  for (const ShaderTexture& texture : files.textures) {
+    const std::string name = texture.file_name();
+    const ScratchFile file{scratch_path(fs::path(name).extension().string())};
+    write_image(file.path, texture.image.view(),
+                texture.encoding == TextureEncoding::png16 ? 16 : 8);
+    entries.emplace_back(name, read_bytes(file.path));
+  }
+  entries.emplace_back("README.md", files.readme);
+  return zip_archive(entries);
 }
 
 std::string StudioStore::render_png(const std::string& id, const RenderRequest& request) {

@@ -91,6 +91,10 @@ class StudioStore {
   // The file `name` of the model's web export in `variant` (web_export.hpp: what the viewer
   // loads), made once per model and variant; a 404 for a name the export does not have.
   std::string web_file(const std::string& id, ShaderVariant variant, const std::string& name);
+  // `stochtex export-shader`'s files of the model (the shader, its wrappers, the data images and
+  // README.md) as one zip archive; a 422 for what the export refuses (gabor's exact shader
+  // outside GLSL, a model of more than 4 channels).
+  std::string shader_zip(const std::string& id, const ShaderExportOptions& options);
 
  private:
   struct Exemplar;

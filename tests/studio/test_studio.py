@@ -4,6 +4,7 @@ STOCHTEX_CLI from CTest) with TMPDIR set to a folder of the test, so that its pr
 folder can be seen and seen removed when it stops."""
 
 import http.client
+import io
 import json
 import os
 import socket
@@ -11,6 +12,7 @@ import struct
 import subprocess
 import threading
 import time
+import zipfile
 import zlib
 
 import pytest
@@ -189,6 +191,32 @@ def test_upload_analyse_download(studio, grass, tmp_path):
     assert compare["model"] == model and compare["seed"] == 2
     for key in ["spectral_error", "spectral_error_adsn", "histogram_error", "covariance_error"]:
         assert 0 <= compare[key] < 10, (key, compare)
+
+
+def test_shader_export_downloads(studio, grass, tmp_path):
+    # The zip of /shader-<variant>-<language>.zip holds export-shader's files, byte for byte.
+    analysis = studio.analyse(grass["id"], "texton", {"iterations": 5})
+    status = studio.wait(analysis["id"], {"done", "failed", "cancelled"}, 60)
+    assert status["state"] == "done", status
+    model = status["model"]
+    _, _, stx = studio.request("GET", f"/api/models/{model}.stx")
+    (tmp_path / "model.stx").write_bytes(stx)
+    for variant, language in [("exact", "glsl"), ("fast", "essl")]:
+        code, headers, data = studio.request(
+            "GET", f"/api/models/{model}/shader-{variant}-{language}.zip")
+        assert code == 200 and headers["Content-Type"] == "application/zip"
+        folder = tmp_path / f"{variant}-{language}"
+        subprocess.run([STOCHTEX, "export-shader", str(tmp_path / "model.stx"), "-o", str(folder),
+                        "--variant", variant, "--language", language], check=True,
+                       capture_output=True)
+        with zipfile.ZipFile(io.BytesIO(data)) as archive:
+            files = {name: archive.read(name) for name in archive.namelist()}
+        assert sorted(files) == sorted(path.name for path in folder.iterdir())
+        assert "README.md" in files
+        for name, content in files.items():
+            assert content == (folder / name).read_bytes(), name
+    code, _, _ = studio.request("GET", f"/api/models/{model}/shader-exact-cuda.zip")
+    assert code == 404
 
 
 def test_bad_uploads_are_refused(studio):

@@ -9,7 +9,7 @@ import {createViewerGroup} from '../viewer/group.js';
 
 const $ = (id) => document.getElementById(id);
 
-const state = { methods: [], exemplar: null, analysis: null, model: null, polling: 0 };
+const state = { methods: [], exemplar: null, analysis: null, model: null, method: null, polling: 0 };
 
 const errors = [];
 
@@ -323,12 +323,22 @@ function setUpLiveView() {
     });
 }
 
+// The latest model's `stochtex export-shader` files in the chosen variant and language.
+function updateShaderLink() {
+  const variant = $('shader-variant').value;
+  const language = $('shader-language').value;
+  $('download-shader').href = `/api/models/${state.model}/shader-${variant}-${language}.zip`;
+  $('download-shader').download = `${state.method}-shader-${variant}-${language}.zip`;
+}
+
 function showModel(status) {
   state.model = status.model;
   $('result-section').hidden = false;
   $('analysis-time').textContent = `${status.method}: analysed in ${status.seconds.toFixed(2)} s`;
   $('download-model').href = `/api/models/${status.model}.stx`;
   $('download-model').download = `${status.method}.stx`;
+  state.method = status.method;
+  updateShaderLink();
   addViewer(status);
   showRender();
 }
@@ -337,6 +347,8 @@ function showModel(status) {
 
 setUpDropZone();
 setUpLiveView();
+$('shader-variant').addEventListener('change', updateShaderLink);
+$('shader-language').addEventListener('change', updateShaderLink);
 $('analyse').addEventListener('click', analyse);
 $('cancel').addEventListener('click', cancel);
 $('render').addEventListener('click', showRender);
