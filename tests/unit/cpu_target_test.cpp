@@ -192,22 +192,43 @@ TEST_F(CpuTargets, NamesFindTheTargetsThisMachineRuns) {
   }
 }
 
+// Every CPU target gives the scalar reference's bytes for `outputs()`.
+void expect_the_references_bytes(const std::function<std::vector<ImageF>()>& outputs,
+                                 const std::string& what) {
+  set_cpu_target(CpuTarget::reference);
+  const std::vector<ImageF> reference = outputs();
+  for (const CpuTarget target : available_cpu_targets()) {
+    if (target == CpuTarget::reference) continue;
+    set_cpu_target(target);
+    const std::vector<ImageF> images = outputs();
+    for (std::size_t i = 0; i < images.size(); ++i)
+      EXPECT_TRUE(same_bytes(reference[i], images[i]))
+          << what << ", " << cpu_target_name(target) << ", output " << i;
+  }
+}
+
+// One-thread renders of `model` on each grid, unfiltered and filtered, in tiles of 64.
+std::vector<ImageF> renders(const Model& model, const std::vector<Grid>& grids) {
+  std::vector<ImageF> images;
+  for (const Grid& grid : grids)
+    for (const bool filter : {false, true}) {
+      ImageF out(grid.width, grid.height, model.channels());
+      RenderOptions options;
+      options.threads = 1;
+      options.tile_size = 64;
+      options.filter = filter;
+      render(model, grid, 9, out.view(), options);
+      images.push_back(std::move(out));
+    }
+  return images;
+}
+
 TEST_F(CpuTargets, EveryTargetGivesTheReferencesBytes) {
-  const std::vector<CpuTarget> targets = available_cpu_targets();
   // An x86-64 machine runs SSE4 at least: the test must compare a vector target.
-  ASSERT_GE(targets.size(), 3u);
+  ASSERT_GE(available_cpu_targets().size(), 3u);
   for (const Case& c : cases()) {
     const Model model = c.make();
-    set_cpu_target(CpuTarget::reference);
-    const std::vector<ImageF> reference = outputs(model);
-    for (const CpuTarget target : targets) {
-      if (target == CpuTarget::reference) continue;
-      set_cpu_target(target);
-      const std::vector<ImageF> images = outputs(model);
-      for (std::size_t i = 0; i < images.size(); ++i)
-        EXPECT_TRUE(same_bytes(reference[i], images[i]))
-            << c.name << ", " << cpu_target_name(target) << ", output " << i;
-    }
+    expect_the_references_bytes([&] { return outputs(model); }, c.name);
   }
 }
 
@@ -217,29 +238,9 @@ TEST_F(CpuTargets, GaborStripsOfATileGiveTheReferencesBytes) {
   // strip_width) and its cache slots wrap around within a strip.
   const Model model =
       analyze("gabor", grey_exemplar().view(), {{"impulses", 4096}, {"iterations", 10}}, 5);
-  const auto render_all = [&] {
-    std::vector<ImageF> images;
-    for (const double scale : {1.0, 0.5, 3.0})
-      for (const bool filter : {false, true}) {
-        ImageF out(64, 40, model.channels());
-        RenderOptions options;
-        options.threads = 1;
-        options.tile_size = 64;
-        options.filter = filter;
-        render(model, {{-700.25, 33.5}, scale, 64, 40}, 9, out.view(), options);
-        images.push_back(std::move(out));
-      }
-    return images;
-  };
-  set_cpu_target(CpuTarget::reference);
-  const std::vector<ImageF> reference = render_all();
-  for (const CpuTarget target : available_cpu_targets()) {
-    if (target == CpuTarget::reference) continue;
-    set_cpu_target(target);
-    const std::vector<ImageF> images = render_all();
-    for (std::size_t i = 0; i < images.size(); ++i)
-      EXPECT_TRUE(same_bytes(reference[i], images[i])) << cpu_target_name(target) << ", " << i;
-  }
+  std::vector<Grid> grids;
+  for (const double scale : {1.0, 0.5, 3.0}) grids.push_back({{-700.25, 33.5}, scale, 64, 40});
+  expect_the_references_bytes([&] { return renders(model, grids); }, "gabor strips");
 }
 
 TEST_F(CpuTargets, GaborCellsBeyondACacheSlotGiveTheReferencesBytes) {
@@ -247,27 +248,11 @@ TEST_F(CpuTargets, GaborCellsBeyondACacheSlotGiveTheReferencesBytes) {
   // cache holds (gabor/simd.hpp), drawn block by block at each use.
   const Model model =
       analyze("gabor", grey_exemplar().view(), {{"impulses", 65536}, {"iterations", 10}}, 5);
-  const auto render_both = [&] {
-    std::vector<ImageF> images;
-    for (const bool filter : {false, true}) {
-      ImageF out(7, 5, model.channels());
-      RenderOptions options;
-      options.threads = 1;
-      options.filter = filter;
-      render(model, {{-3.5, 2e5}, 2.0, 7, 5}, 9, out.view(), options);
-      images.push_back(std::move(out));
-    }
-    return images;
-  };
-  set_cpu_target(CpuTarget::reference);
-  const std::vector<ImageF> reference = render_both();
-  for (const CpuTarget target : available_cpu_targets()) {
-    if (target == CpuTarget::reference) continue;
-    set_cpu_target(target);
-    const std::vector<ImageF> images = render_both();
-    for (std::size_t i = 0; i < images.size(); ++i)
-      EXPECT_TRUE(same_bytes(reference[i], images[i])) << cpu_target_name(target) << ", " << i;
-  }
+  expect_the_references_bytes(
+      [&] {
+        return renders(model, {{{-3.5, 2e5}, 2.0, 7, 5}});
+      },
+      "gabor large cells");
 }
 
 }  // namespace
