@@ -32,7 +32,7 @@ struct EditOptions {
   bool json = false;
 };
 
-// --translate FX,FY (the range is checked with the rest of the edit).
+// --translate FX,FY within gabor::kMaxTranslation (the message quotes the text as typed).
 void parse_translation(const std::string& text, gabor::EditRequest& edit) {
   const std::optional<Vec2d> t = parse_number_pair(text);
   if (!t || !(std::abs(t->x) <= gabor::kMaxTranslation) ||

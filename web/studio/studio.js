@@ -241,7 +241,12 @@ const editor = createEditor({
   mount: $('editor-mount'),
   api,
   showError,
-  onModel: () => loadViewers(['gabor']),
+  // Only the gabor viewer redraws: a slider's change leaves the other methods' viewers alone.
+  onModel: () => {
+    live.loaded = loadViewer('gabor').then(() => live.group.viewers.get('gabor').render());
+    live.loaded.catch((error) => showError(error.message));
+    return live.loaded;
+  },
 });
 live.editor = editor;
 
