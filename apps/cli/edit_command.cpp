@@ -6,11 +6,9 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <stdexcept>
 #include <variant>
 #include <vector>
@@ -28,47 +26,23 @@ namespace {
 struct EditOptions {
   std::string model;
   std::string output;
-  std::string group = "all";
-  double rotate_degrees = 0.0;
-  double scale = 1.0;
+  gabor::EditRequest edit;
   std::string translate = "0,0";
-  double magnitude = 1.0;
-  double bandwidth = 1.0;
   bool list_groups = false;
   bool json = false;
 };
 
-constexpr std::array<gabor::WoldComponent, 3> kComponents = {gabor::WoldComponent::periodic,
-                                                             gabor::WoldComponent::anisotropic,
-                                                             gabor::WoldComponent::stochastic};
-
-// Frequencies are in cycles per exemplar pixel; a translation beyond Nyquist moves every
-// Gaussian out of the pixel grid's reach.
-struct Translation {
-  double x = 0.0;
-  double y = 0.0;
-};
-
-Translation parse_translation(const std::string& text) {
-  if (const std::optional<Vec2d> t = parse_number_pair(text);
-      t && std::abs(t->x) <= 1.0 && std::abs(t->y) <= 1.0)
-    return {t->x, t->y};
-  throw std::invalid_argument(
-      "--translate must be FX,FY in cycles per pixel, each within [-1, 1], "
-      "e.g. 0.05,-0.1, not '" +
-      text + "'");
-}
-
-// The bandwidths are quantised to a_b = 2^-b a_0 (section 4.3): a factor of 2^k shifts the band
-// index by -k.
-int bandwidth_shift(double factor) {
-  const double exponent = std::log2(factor);
-  if (!(factor > 0.0) || exponent != std::round(exponent) || std::abs(exponent) >= gabor::kMaxBands)
-    throw std::invalid_argument(fmt::format(
-        "--bandwidth must be a power of two such as 0.5 or 2 (the bandwidths are quantised to "
-        "powers of two, section 4.3 of the paper), not {}",
-        factor));
-  return -static_cast<int>(exponent);
+// --translate FX,FY within gabor::kMaxTranslation (the message quotes the text as typed).
+void parse_translation(const std::string& text, gabor::EditRequest& edit) {
+  const std::optional<Vec2d> t = parse_number_pair(text);
+  if (!t || !(std::abs(t->x) <= gabor::kMaxTranslation) ||
+      !(std::abs(t->y) <= gabor::kMaxTranslation))
+    throw std::invalid_argument(
+        "--translate must be FX,FY in cycles per pixel, each within [-1, 1], "
+        "e.g. 0.05,-0.1, not '" +
+        text + "'");
+  edit.translate_x = t->x;
+  edit.translate_y = t->y;
 }
 
 const gabor::GaborModel& gabor_model(const Model& model, const std::string& path) {
@@ -83,46 +57,28 @@ const gabor::GaborModel& gabor_model(const Model& model, const std::string& path
 
 void list_groups(const gabor::GaborModel& model, const std::vector<gabor::WoldComponent>& labels,
                  bool json) {
-  std::array<std::size_t, 3> counts{};
-  std::array<double, 3> variances{};
-  double total = 0.0;
-  for (std::size_t i = 0; i < labels.size(); ++i) {
-    const auto slot = static_cast<std::size_t>(labels[i]);
-    ++counts[slot];
-    variances[slot] += model.gaussians()[i].variance;
-    total += model.gaussians()[i].variance;
-  }
-  const auto share = [&](std::size_t slot) { return total > 0.0 ? variances[slot] / total : 0.0; };
   if (json) {
-    nlohmann::ordered_json doc{{"gaussians", labels.size()}};
-    for (const gabor::WoldComponent component : kComponents) {
-      const auto slot = static_cast<std::size_t>(component);
-      doc["groups"][std::string(gabor::component_name(component))] = {
-          {"gaussians", counts[slot]}, {"variance_share", share(slot)}};
-    }
-    fmt::print("{}\n", doc.dump(2));
+    fmt::print("{}\n", gabor::groups_json(model, labels).dump(2));
     return;
   }
   fmt::print("{:<14}{:>10}{:>16}\n", "group", "gaussians", "variance share");
-  for (const gabor::WoldComponent component : kComponents) {
-    const auto slot = static_cast<std::size_t>(component);
-    fmt::print("{:<14}{:>10}{:>15.1f}%\n", gabor::component_name(component), counts[slot],
-               100.0 * share(slot));
-  }
+  for (const gabor::GroupShare& share : gabor::group_shares(model, labels))
+    fmt::print("{:<14}{:>10}{:>15.1f}%\n", gabor::component_name(share.component), share.gaussians,
+               100.0 * share.variance_share);
 }
 
 void add_edit_options(CLI::App* command, EditOptions& options) {
   command->add_option("MODEL", options.model, "gabor model file (.stx)")->required();
   command->add_option("-o,--output", options.output, "edited model file to write (.stx)");
-  command->add_option("--group", options.group, "which Gaussians the edit changes")
+  command->add_option("--group", options.edit.group, "which Gaussians the edit changes")
       ->capture_default_str()
       ->check(CLI::IsMember({"all", "periodic", "anisotropic", "stochastic"}));
   command
-      ->add_option("--rotate", options.rotate_degrees,
+      ->add_option("--rotate", options.edit.rotate_degrees,
                    "rotate the group's frequencies by DEG degrees, counter-clockwise")
       ->capture_default_str();
   command
-      ->add_option("--scale", options.scale,
+      ->add_option("--scale", options.edit.scale,
                    "multiply the group's frequencies by S (> 1: finer detail)")
       ->capture_default_str();
   command
@@ -130,11 +86,11 @@ void add_edit_options(CLI::App* command, EditOptions& options) {
                    "add FX,FY cycles per pixel to the group's frequencies")
       ->capture_default_str();
   command
-      ->add_option("--magnitude", options.magnitude,
+      ->add_option("--magnitude", options.edit.magnitude,
                    "multiply the group's kernel magnitude K by this (the variance by its square)")
       ->capture_default_str();
   command
-      ->add_option("--bandwidth", options.bandwidth,
+      ->add_option("--bandwidth", options.edit.bandwidth,
                    "multiply the group's bandwidth a by this power of two (< 1: sharper spectral "
                    "Gaussians, longer-range kernels); each Gaussian keeps its variance")
       ->capture_default_str();
@@ -152,25 +108,9 @@ void run_edit(const EditOptions& options) {
     throw std::invalid_argument("edit needs -o OUT.stx for the edited model (or --list-groups)");
   if (options.json && !options.list_groups)
     throw std::invalid_argument("--json goes with --list-groups");
-  if (!std::isfinite(options.rotate_degrees) || !std::isfinite(options.scale) ||
-      !(options.scale > 0.0))
-    throw std::invalid_argument(
-        fmt::format("--rotate must be finite and --scale a positive number, not {} and {}",
-                    options.rotate_degrees, options.scale));
-  // The variance grows by the square: up to 1e3, variances (about 10 after analysis) stay far
-  // within the model value range (model/value_range.hpp).
-  constexpr double kMaxMagnitude = 1e3;
-  if (!(options.magnitude >= 0.0 && options.magnitude <= kMaxMagnitude))
-    throw std::invalid_argument(fmt::format("--magnitude must be a number from 0 to {}, not {}",
-                                            kMaxMagnitude, options.magnitude));
-  const Translation translation = parse_translation(options.translate);
-  gabor::SpectrumEdit edit;
-  edit.rotation = options.rotate_degrees * std::numbers::pi / 180.0;
-  edit.scale = options.scale;
-  edit.translation_x = translation.x;
-  edit.translation_y = translation.y;
-  edit.magnitude = options.magnitude;
-  edit.bandwidth_shift = bandwidth_shift(options.bandwidth);
+  gabor::EditRequest request = options.edit;
+  parse_translation(options.translate, request);
+  const gabor::SpectrumEdit edit = gabor::spectrum_edit(request, "--");
   if (!options.list_groups) check_output_path(options.output, false, options.model);
 
   const Model model = load_model(options.model);
@@ -181,17 +121,14 @@ void run_edit(const EditOptions& options) {
     return;
   }
 
-  std::vector<bool> selected(labels.size(), true);
-  if (options.group != "all")
-    for (std::size_t i = 0; i < labels.size(); ++i)
-      selected[i] = gabor::component_name(labels[i]) == options.group;
+  const std::vector<bool> selected = gabor::select_group(labels, request.group, "--");
   gabor::GaborModel edited = gabor::edit_gaussians(gabor, selected, edit);
   const std::size_t dropped = gabor.gaussians().size() - edited.gaussians().size();
   save_model(Model(std::make_shared<const ModelData>(
                  ModelData{model.params(), std::move(edited), model.data().maps})),
              options.output);
   fmt::print(
-      stderr, "wrote {} ({} group: {} Gaussians edited{})\n", options.output, options.group,
+      stderr, "wrote {} ({} group: {} Gaussians edited{})\n", options.output, options.edit.group,
       static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true)),
       dropped > 0 ? fmt::format(", {} moved beyond Nyquist or to zero and dropped", dropped) : "");
 }

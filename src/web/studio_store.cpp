@@ -12,12 +12,14 @@
 #include <iterator>
 #include <memory>
 #include <new>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <system_error>
 #include <utility>
 #include <vector>
 
+#include "model/model_data.hpp"
 #include "report/compare.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/io.hpp"
@@ -161,6 +163,9 @@ struct StudioStore::StoredModel {
   // The web exports made so far, by ShaderVariant; guarded by web_mutex.
   mutable std::mutex web_mutex;
   mutable std::array<std::vector<WebFile>, 2> web;
+  // A gabor model's Wold labels (gabor::wold_components), found once; guarded by labels_mutex.
+  mutable std::mutex labels_mutex;
+  mutable std::optional<std::vector<gabor::WoldComponent>> labels;
 };
 
 StudioStore::StudioStore(StudioLimits limits, fs::path folder)
@@ -428,6 +433,55 @@ Model StudioStore::model(const std::string& id) {
 std::string StudioStore::model_file(const std::string& id) {
   const std::vector<std::uint8_t> bytes = serialize_model(model(id));
   return {bytes.begin(), bytes.end()};
+}
+
+const std::vector<gabor::WoldComponent>& StudioStore::gabor_labels(const StoredModel& stored,
+                                                                   const std::string& id) {
+  const auto* gabor = std::get_if<gabor::GaborModel>(&stored.model.data().model);
+  if (gabor == nullptr)
+    throw StudioError(400, fmt::format("model '{}' is a {} model; only gabor models have groups "
+                                       "to edit (run a gabor analysis)",
+                                       id, stored.model.method()));
+  std::lock_guard lock(stored.labels_mutex);
+  if (!stored.labels) stored.labels = gabor::wold_components(*gabor);
+  return *stored.labels;
+}
+
+nlohmann::ordered_json StudioStore::gabor_groups(const std::string& id) {
+  const std::shared_ptr<const StoredModel> stored = find_model(id);
+  const auto& labels = gabor_labels(*stored, id);
+  return gabor::groups_json(std::get<gabor::GaborModel>(stored->model.data().model), labels);
+}
+
+std::string StudioStore::edit_model(const std::string& id, const gabor::EditRequest& request) {
+  gabor::SpectrumEdit edit;
+  try {
+    edit = gabor::spectrum_edit(request, "");
+  } catch (const std::invalid_argument& e) {
+    throw StudioError(400, e.what());
+  }
+  const std::shared_ptr<const StoredModel> stored = find_model(id);
+  const auto& labels = gabor_labels(*stored, id);
+  const Model& model = stored->model;
+  std::optional<Model> edited;
+  {
+    const std::lock_guard heavy(heavy_);
+    try {
+      edited.emplace(std::make_shared<const ModelData>(
+          ModelData{model.params(),
+                    gabor::edit_gaussians(std::get<gabor::GaborModel>(model.data().model),
+                                          gabor::select_group(labels, request.group, ""), edit),
+                    model.data().maps}));
+    } catch (const std::invalid_argument& e) {
+      throw StudioError(400, e.what());
+    }
+  }
+  std::lock_guard lock(mutex_);
+  const std::string edited_id = new_id();
+  models_[edited_id] = std::make_shared<const StoredModel>(std::move(*edited), stored->exemplar);
+  edited_order_.push_back(edited_id);
+  evict_oldest(models_, edited_order_, limits_.max_edited_models);
+  return edited_id;
 }
 
 std::string StudioStore::web_file(const std::string& id, ShaderVariant variant,

@@ -19,6 +19,7 @@
 #include <string>
 #include <thread>
 
+#include "methods/gabor/edit_analysis.hpp"
 #include "stochtex/gpu.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
@@ -29,10 +30,11 @@ struct StudioLimits {
   std::size_t max_upload_bytes = std::size_t{16} << 20;  // an upload's body, 16 MiB
   int max_exemplar_side = 1024;  // an exemplar's pixels: at most this squared
   std::size_t max_exemplars = 8;
-  std::size_t max_models = 8;
-  std::size_t max_analyses = 64;  // analysis records kept (finished ones evicted first)
-  std::size_t max_queued = 4;     // analyses waiting behind the running one
-  int max_render_side = 2048;     // render.png's width and height
+  std::size_t max_models = 8;         // analysed models
+  std::size_t max_edited_models = 4;  // edited ones, evicted among themselves
+  std::size_t max_analyses = 64;      // analysis records kept (finished ones evicted first)
+  std::size_t max_queued = 4;         // analyses waiting behind the running one
+  int max_render_side = 2048;         // render.png's width and height
 };
 
 class StudioError : public std::runtime_error {
@@ -88,6 +90,13 @@ class StudioStore {
   std::string render_png(const std::string& id, const RenderRequest& request);
   // `stochtex compare --json`'s numbers of a render at the exemplar's size against the exemplar.
   nlohmann::ordered_json compare(const std::string& id, std::uint32_t seed);
+  // The groups of the gabor model `id` (gabor::groups_json: `stochtex edit --list-groups --json`);
+  // a 400 for another method.
+  nlohmann::ordered_json gabor_groups(const std::string& id);
+  // Edits the gabor model `id` as `stochtex edit` does and stores the result as a new model (made
+  // from the same exemplar); its id. A 400 for another method or a bad edit.
+  std::string edit_model(const std::string& id, const gabor::EditRequest& request);
+
   // The file `name` of the model's web export in `variant` (web_export.hpp: what the viewer
   // loads), made once per model and variant; a 404 for a name the export does not have.
   std::string web_file(const std::string& id, ShaderVariant variant, const std::string& name);
@@ -103,6 +112,9 @@ class StudioStore {
 
   std::shared_ptr<const Exemplar> find_exemplar(const std::string& id);
   std::shared_ptr<const StoredModel> find_model(const std::string& id);
+  // The stored gabor model `id`'s Wold labels, found once; a 400 for another method.
+  const std::vector<gabor::WoldComponent>& gabor_labels(const StoredModel& stored,
+                                                        const std::string& id);
   std::string new_id();
   std::filesystem::path scratch_path(const std::string& extension);
   std::string encode_png(ImageView<const float> image);
@@ -124,6 +136,7 @@ class StudioStore {
   std::deque<std::shared_ptr<Analysis>> queue_;
   std::map<std::string, std::shared_ptr<const StoredModel>> models_;
   std::deque<std::string> model_order_;
+  std::deque<std::string> edited_order_;
   std::mutex heavy_;  // one render, Gaussian version or comparison at a time: bounded memory
   std::thread worker_;
 };

@@ -59,6 +59,50 @@ const started = performance.now();
 """
 
 
+# Moves the gabor editor's rotate and magnitude sliders as a person would and waits for the edited
+# model in the gabor viewer.
+EDIT = """
+const [done] = arguments;
+const studio = window.stochtexStudio;
+for (const [id, value] of [['edit-rotate', '30'], ['edit-magnitude', '1.5']]) {
+  const slider = document.getElementById(id);
+  slider.value = value;
+  slider.dispatchEvent(new Event('input'));
+}
+const started = performance.now();
+(function wait() {
+  if (studio.errors.length) return done('error: ' + studio.errors.join('; '));
+  if (studio.editor.edited && !studio.editor.busy)
+    return studio.loaded.then(() => done(studio.editor.edited), (e) => done('error: ' + e));
+  if (performance.now() - started > 60000) return done('error: the edit took over 60 s');
+  setTimeout(wait, 100);
+})();
+"""
+
+
+def check_editor(driver, stochtex, url, original, work, failures):
+    """The edited model in the gabor viewer equals `stochtex render` of its .stx, and
+    differs from the original's render beyond that bound (the edit shows)."""
+    # At the view the checks above left (the last of VIEWS): the edit redraws only the gabor
+    # viewer, and SwiftShader's gabor is the slow one.
+    origin, scale = VIEWS[-1]
+    edited = driver.execute_async_script(EDIT)
+    if edited.startswith("error"):
+        raise RuntimeError(f"gabor editor: {edited}")
+    path = os.path.join(work, "gabor-edited.stx")
+    urllib.request.urlretrieve(f"{url}/api/models/{edited}.stx", path)
+    web = common.read_back(driver, "gabor")
+    bound = common.pixel_bound("gabor", "exact", scale)
+    for name, model, close in [("edited", path, True), ("original", original, False)]:
+        cpu = common.cpu_render(stochtex, model, origin, scale, SEED, work, SIZE)
+        largest = max(abs(a - b) for a, b in zip(web[3], cpu[3]))
+        print(f"gabor edited in the viewer against the {name} model's render: max |web - cpu| "
+              f"{largest:.3g}")
+        if web[:3] != cpu[:3] or (largest <= bound) != close:
+            failures.append(f"gabor editor: max |web - cpu of the {name} model| {largest:.3g} "
+                            f"{'exceeds' if close else 'within'} {bound:.3g}")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("stochtex")
@@ -121,6 +165,9 @@ def main():
                     if scale > 1 and not ratio <= common.VARIANCE_BOUND:
                         failures.append(f"{method} scale {scale:g}: variance off the CPU's by "
                                         f"{ratio:.3g}, beyond {common.VARIANCE_BOUND:.3g}")
+            edit_start = time.time()
+            check_editor(driver, args.stochtex, url, models["gabor"], work, failures)
+            print(f"gabor editor checked in {time.time() - edit_start:.1f} s")
             if args.screenshots:
                 os.makedirs(args.screenshots, exist_ok=True)
                 common.run_page(driver, "window.stochtexStudio.group.setView({x: 0, y: 0, scale: 1});"

@@ -366,6 +366,82 @@ def test_cancel_one_analysis_at_a_time_and_a_bounded_queue(studio):
     assert studio.wait(again["id"], {"done", "failed", "cancelled"}, 60)["state"] == "done"
 
 
+@pytest.fixture(scope="module")
+def plaid_gabor(studio):
+    """A gabor model of the plaid (light parameters: about 4 s) and its groups: 71 periodic
+    Gaussians of 25k holding 64% of the variance."""
+    plaid = studio.upload(exemplar_bytes("plaid_fabric_256.png"))
+    analysis = studio.analyse(plaid["id"], "gabor", {"iterations": 50, "impulses": 64})
+    status = studio.wait(analysis["id"], {"done", "failed", "cancelled"}, 120)
+    assert status["state"] == "done", status
+    return status["model"]
+
+
+def test_gabor_groups_are_the_clis(studio, plaid_gabor, tmp_path):
+    groups = studio.json("GET", f"/api/models/{plaid_gabor}/groups")
+    assert list(groups["groups"]) == ["periodic", "anisotropic", "stochastic"]
+    counts = [group["gaussians"] for group in groups["groups"].values()]
+    assert sum(counts) == groups["gaussians"] and groups["groups"]["periodic"]["gaussians"] > 0
+    assert sum(group["variance_share"] for group in groups["groups"].values()) == \
+        pytest.approx(1.0, abs=1e-9)
+    _, _, data = studio.request("GET", f"/api/models/{plaid_gabor}.stx")
+    (tmp_path / "plaid.stx").write_bytes(data)
+    listed = subprocess.run([STOCHTEX, "edit", str(tmp_path / "plaid.stx"), "--list-groups",
+                             "--json"], check=True, capture_output=True)
+    assert groups == json.loads(listed.stdout)
+
+
+def test_an_edit_of_the_periodic_group(studio, plaid_gabor, tmp_path):
+    edit = {"group": "periodic", "rotate": 30, "magnitude": 1.5}
+    edited = studio.json("POST", f"/api/models/{plaid_gabor}/edit", edit, expect=201)["model"]
+    assert edited != plaid_gabor
+    query = "render.png?width=64&height=64&seed=1"
+    renders = [studio.request("GET", f"/api/models/{model}/{query}") for model in
+               [plaid_gabor, edited]]
+    assert all(code == 200 for code, _, _ in renders) and renders[0][2] != renders[1][2]
+    # The edited model is the CLI's edit of the same model, byte for byte.
+    for name, model in [("plaid.stx", plaid_gabor), ("studio.stx", edited)]:
+        _, _, data = studio.request("GET", f"/api/models/{model}.stx")
+        (tmp_path / name).write_bytes(data)
+    subprocess.run([STOCHTEX, "edit", str(tmp_path / "plaid.stx"), "-o", str(tmp_path / "cli.stx"),
+                    "--group", "periodic", "--rotate", "30", "--magnitude", "1.5"], check=True,
+                   capture_output=True)
+    assert (tmp_path / "studio.stx").read_bytes() == (tmp_path / "cli.stx").read_bytes()
+    info = subprocess.run([STOCHTEX, "info", str(tmp_path / "studio.stx")], capture_output=True,
+                          text=True)
+    assert info.returncode == 0 and "gabor" in info.stdout, info.stderr
+    for route in ["web/exact/manifest.json", "compare"]:
+        assert studio.request("GET", f"/api/models/{edited}/{route}")[0] == 200
+
+
+def test_bad_edits_are_refused(studio, plaid_gabor, grass):
+    path = f"/api/models/{plaid_gabor}/edit"
+    assert "no Gaussian" in studio.error("POST", path, {"magnitude": 0})
+    for body, words in [({"rotate": "NaN"}, "rotate"), ({"scale": -1}, "scale"),
+                        ({"magnitude": 1e9}, "magnitude"), ({"bandwidth": 3}, "power of two"),
+                        ({"translate": [2, 0]}, "translate"), ({"translate": 0.1}, "translate"),
+                        ({"group": "nosuch"}, "nosuch"), ({"spin": 1}, "spin"),
+                        ("not json", "JSON object")]:
+        assert words in studio.error("POST", path, body), body
+    assert "client id" in studio.error("POST", path, {}, expect=403, client=None)
+    texton = studio.analyse(grass["id"], "texton", {"iterations": 2})
+    status = studio.wait(texton["id"], {"done", "failed", "cancelled"}, 60)
+    for method, route in [("GET", "groups"), ("POST", "edit")]:
+        assert "texton model" in studio.error(method, f"/api/models/{status['model']}/{route}", {})
+        studio.error(method, f"/api/models/0123456789abcdef/{route}", {}, expect=404)
+
+
+def test_edits_replace_only_edits(studio, plaid_gabor):
+    # The page edits the original model each time: the studio keeps the last 4 edited models,
+    # evicting older edits and never the analysed models.
+    path = f"/api/models/{plaid_gabor}/edit"
+    edits = [studio.json("POST", path, {"scale": 1 + k / 10}, expect=201)["model"]
+             for k in range(6)]
+    assert studio.request("GET", f"/api/models/{edits[0]}/groups")[0] == 404
+    assert studio.request("GET", f"/api/models/{edits[-1]}/groups")[0] == 200
+    assert studio.request("GET", f"/api/models/{plaid_gabor}/groups")[0] == 200
+
+
 def test_memory_stays_bounded(studio):
     # The studio keeps the last 8 exemplars: after 10 uploads of a 512x512 exemplar (each with
     # its Gaussian version) the store is full; 30 more must not grow the server by more than

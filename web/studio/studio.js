@@ -1,11 +1,13 @@
 // The studio page: upload an exemplar, pick a method and its parameters (the form is made from
 // /api/methods), run the analysis with progress and cancel, then show each method's latest model
 // live in WebGL2 (web/viewer/) side by side at one view and seed, the compare numbers of each, a
-// CPU render and the downloads. The API is described in docs/studio.md. window.stochtexStudio is
-// the page's interface for scripts and the browser test: group (the viewers, by method), shown
-// (method -> {model, seconds}), loaded (a promise settled when the viewers have their models),
-// setSeed(n) (the seed control's) and errors (the messages shown).
+// CPU render and the downloads, and the gabor model's editor (editor.js). The API is described in
+// docs/studio.md. window.stochtexStudio is the page's interface for scripts and the browser test:
+// group (the viewers, by method), shown (method -> {model, seconds}), editor (editor.js's),
+// loaded (a promise settled when the viewers have their models), setSeed(n) (the seed control's)
+// and errors (the messages shown).
 import {createViewerGroup} from '../viewer/group.js';
+import {createEditor} from './editor.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -234,8 +236,22 @@ const live = {
 };
 window.stochtexStudio = live;
 
+// The gabor editor (editor.js): its edited model, when there is one, takes the gabor viewer.
+const editor = createEditor({
+  mount: $('editor-mount'),
+  api,
+  showError,
+  // Only the gabor viewer redraws: a slider's change leaves the other methods' viewers alone.
+  onModel: () => {
+    live.loaded = loadViewer('gabor').then(() => live.group.viewers.get('gabor').render());
+    live.loaded.catch((error) => showError(error.message));
+    return live.loaded;
+  },
+});
+live.editor = editor;
+
 async function loadViewer(method) {
-  const { model } = live.shown.get(method);
+  const model = (method === 'gabor' && editor.edited) || live.shown.get(method).model;
   await live.group.viewers.get(method).load(`/api/models/${model}/web/${live.variant}`);
 }
 
@@ -339,6 +355,7 @@ function showModel(status) {
   $('download-model').download = `${status.method}.stx`;
   state.method = status.method;
   updateShaderLink();
+  if (status.method === 'gabor') editor.show(status.model);
   addViewer(status);
   showRender();
 }

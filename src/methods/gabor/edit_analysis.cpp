@@ -1,6 +1,7 @@
 #include "methods/gabor/edit_analysis.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <span>
@@ -311,6 +312,103 @@ std::vector<WoldComponent> wold_components(const GaborModel& model) {
     mark_anisotropic(channel, channel_labels);
   }
   return labels;
+}
+
+}  // namespace stochtex::gabor
+
+namespace stochtex::gabor {
+
+namespace {
+
+constexpr std::array<WoldComponent, 3> kComponents = {
+    WoldComponent::periodic, WoldComponent::anisotropic, WoldComponent::stochastic};
+
+// The shortest text that reads back as `value`, as fmt's "{}".
+std::string number(double value) {
+  std::array<char, 32> text;
+  const auto end = std::to_chars(text.data(), text.data() + text.size(), value).ptr;
+  return {text.data(), end};
+}
+
+}  // namespace
+
+std::array<GroupShare, 3> group_shares(const GaborModel& model,
+                                       const std::vector<WoldComponent>& labels) {
+  std::array<GroupShare, 3> shares;
+  std::array<double, 3> variances{};
+  double total = 0.0;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    const auto slot = static_cast<std::size_t>(labels[i]);
+    ++shares[slot].gaussians;
+    variances[slot] += model.gaussians()[i].variance;
+    total += model.gaussians()[i].variance;
+  }
+  std::array<GroupShare, 3> ordered;
+  for (std::size_t k = 0; k < kComponents.size(); ++k) {
+    const auto slot = static_cast<std::size_t>(kComponents[k]);
+    ordered[k] = {kComponents[k], shares[slot].gaussians,
+                  total > 0.0 ? variances[slot] / total : 0.0};
+  }
+  return ordered;
+}
+
+nlohmann::ordered_json groups_json(const GaborModel& model,
+                                   const std::vector<WoldComponent>& labels) {
+  nlohmann::ordered_json doc{{"gaussians", labels.size()}};
+  for (const GroupShare& share : group_shares(model, labels))
+    doc["groups"][std::string(component_name(share.component))] = {
+        {"gaussians", share.gaussians}, {"variance_share", share.variance_share}};
+  return doc;
+}
+
+std::vector<bool> select_group(const std::vector<WoldComponent>& labels, std::string_view group,
+                               std::string_view prefix) {
+  if (group == "all") return std::vector<bool>(labels.size(), true);
+  if (std::none_of(kComponents.begin(), kComponents.end(),
+                   [group](WoldComponent c) { return component_name(c) == group; }))
+    throw std::invalid_argument(std::string(prefix) +
+                                "group must be all, periodic, anisotropic or stochastic, not '" +
+                                std::string(group) + "'");
+  std::vector<bool> selected(labels.size());
+  for (std::size_t i = 0; i < labels.size(); ++i) selected[i] = component_name(labels[i]) == group;
+  return selected;
+}
+
+SpectrumEdit spectrum_edit(const EditRequest& request, std::string_view prefix) {
+  select_group({}, request.group, prefix);
+  const std::string name(prefix);
+  if (!std::isfinite(request.rotate_degrees) || !std::isfinite(request.scale) ||
+      !(request.scale > 0.0))
+    throw std::invalid_argument(name + "rotate must be finite and " + name +
+                                "scale a positive number, not " + number(request.rotate_degrees) +
+                                " and " + number(request.scale));
+  if (!(std::abs(request.translate_x) <= kMaxTranslation) ||
+      !(std::abs(request.translate_y) <= kMaxTranslation))
+    throw std::invalid_argument(name + "translate must be in cycles per pixel, each within [-" +
+                                number(kMaxTranslation) + ", " + number(kMaxTranslation) +
+                                "], not " + number(request.translate_x) + "," +
+                                number(request.translate_y));
+  if (!(request.magnitude >= 0.0 && request.magnitude <= kMaxMagnitude))
+    throw std::invalid_argument(name + "magnitude must be a number from 0 to " +
+                                number(kMaxMagnitude) + ", not " + number(request.magnitude));
+  // The bandwidths are quantised to a_b = 2^-b a_0 (section 4.3): a factor of 2^k shifts the band
+  // index by -k.
+  const double exponent = std::log2(request.bandwidth);
+  if (!(request.bandwidth > 0.0) || exponent != std::round(exponent) ||
+      std::abs(exponent) >= kMaxBands)
+    throw std::invalid_argument(name +
+                                "bandwidth must be a power of two such as 0.5 or 2 (the "
+                                "bandwidths are quantised to powers of two, section 4.3 of the "
+                                "paper), not " +
+                                number(request.bandwidth));
+  SpectrumEdit edit;
+  edit.rotation = request.rotate_degrees * std::numbers::pi / 180.0;
+  edit.scale = request.scale;
+  edit.translation_x = request.translate_x;
+  edit.translation_y = request.translate_y;
+  edit.magnitude = request.magnitude;
+  edit.bandwidth_shift = -static_cast<int>(exponent);
+  return edit;
 }
 
 }  // namespace stochtex::gabor

@@ -3,7 +3,11 @@
 // automatic grouping into the components of a 2-D Wold decomposition. Analysis-time tools (used by
 // `stochtex edit`): evaluating a model needs none of them, so they live in stochtex::analysis.
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -79,5 +83,44 @@ std::string_view component_name(WoldComponent component);
 
 // One label per model.gaussians(), in the same order.
 std::vector<WoldComponent> wold_components(const GaborModel& model);
+
+// How many Gaussians and what share of the variance each group holds (0 shares for a model
+// without variance), in the order periodic, anisotropic, stochastic.
+struct GroupShare {
+  WoldComponent component = WoldComponent::stochastic;
+  std::size_t gaussians = 0;
+  double variance_share = 0.0;
+};
+std::array<GroupShare, 3> group_shares(const GaborModel& model,
+                                       const std::vector<WoldComponent>& labels);
+// {"gaussians": n, "groups": {"periodic": {"gaussians", "variance_share"}, ...}}: what
+// `stochtex edit --list-groups --json` prints and the studio's /api/models/<id>/groups answers.
+nlohmann::ordered_json groups_json(const GaborModel& model,
+                                   const std::vector<WoldComponent>& labels);
+
+// An edit as a person asks for it (`stochtex edit`'s options, the studio's edit panel): a group
+// name ("all" or a component_name), degrees, and a bandwidth factor that is a power of two.
+struct EditRequest {
+  std::string group = "all";
+  double rotate_degrees = 0.0;
+  double scale = 1.0;
+  double translate_x = 0.0;  // cycles per pixel, each within [-kMaxTranslation, kMaxTranslation]
+  double translate_y = 0.0;
+  double magnitude = 1.0;  // 0 to kMaxMagnitude
+  double bandwidth = 1.0;
+};
+// Frequencies are in cycles per exemplar pixel: a translation beyond Nyquist moves every
+// Gaussian out of the pixel grid's reach.
+inline constexpr double kMaxTranslation = 1.0;
+// The variance grows by the square: up to 1e3, variances (about 10 after analysis) stay far
+// within the model value range (model/value_range.hpp).
+inline constexpr double kMaxMagnitude = 1e3;
+// The request checked and converted (radians, a band shift); a std::invalid_argument of one
+// sentence otherwise, naming each value as `prefix` + its name ("--rotate" for the CLI).
+SpectrumEdit spectrum_edit(const EditRequest& request, std::string_view prefix);
+// One flag per label: the Gaussians of group `group` ("all" selects every one); a
+// std::invalid_argument for another name.
+std::vector<bool> select_group(const std::vector<WoldComponent>& labels, std::string_view group,
+                               std::string_view prefix);
 
 }  // namespace stochtex::gabor
