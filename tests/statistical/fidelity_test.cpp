@@ -75,12 +75,6 @@ struct Shortfall {
   const char* why = "";
 };
 const std::map<std::pair<std::string, std::string>, Shortfall> kShortfalls = {
-    {{"lrp", "moss_ground_512.png"},
-     {1.61, 0.0,
-      "measured 1.64 and 1.57 (averaged 1.51): a bias, 30% too much power in the lowest radial "
-      "bins of the 128 crop (27.7, 27.8 against the exemplar's 21.5, 19.8): the DC peak of the "
-      "Welch target (T = 256) is blurred again by the lattice window; the spacing floor does not "
-      "change it (12-24 px: 1.54-1.64) (docs/methods/lrp.md)"}},
     {{"tiling", "wood_planks_256.png"},
      {3.0, 0.0,
       "measured 2.62 and 3.31 (averaged 2.96): the exemplar is not tileable (the steps across its "
