@@ -132,10 +132,19 @@ std::vector<WebFile> web_export(const Model& model, ShaderVariant variant) {
                 "the web viewer shows a model of up to 4 channels, and this " +
                     std::string(model.method()) + " model has " + std::to_string(model.channels()) +
                     "; export its shader with `stochtex export-shader` instead");
-  // gabor's exact shader needs doubles: its float-only shader is what GLSL ES can run.
-  const bool float_only = model.method() == "gabor";
-  const ShaderVariant shader_variant = float_only ? ShaderVariant::fast : variant;
-  const ShaderExport exported = export_shader(model, {shader_variant, ShaderLanguage::essl});
+  // An exact shader that GLSL ES cannot run (gabor's needs double precision) is refused by the
+  // exporter with its reason: the web export then holds the model's fast shader and says why.
+  ShaderVariant shader_variant = variant;
+  ShaderExport exported;
+  std::string refusal;
+  try {
+    exported = export_shader(model, {variant, ShaderLanguage::essl});
+  } catch (const std::invalid_argument& e) {
+    if (variant != ShaderVariant::exact) throw;
+    refusal = e.what();
+    shader_variant = ShaderVariant::fast;
+    exported = export_shader(model, {shader_variant, ShaderLanguage::essl});
+  }
   const std::string entry = "stochtex_" + std::string(model.method());
   if (exported.shader.text.find("vec4 " + entry + "(") == std::string::npos)
     throw Error(ErrorCode::invalid_input, "the exported GLSL ES shader of this " +
@@ -153,10 +162,7 @@ std::vector<WebFile> web_export(const Model& model, ShaderVariant variant) {
       {"textures", nlohmann::ordered_json::array()},
   };
   if (shader_variant != variant)
-    manifest["note"] =
-        "gabor's exact shader computes in double precision, which GLSL ES 3.00 lacks: this is "
-        "its float-only shader (export-shader --variant fast), within about 1e-3 of the image's "
-        "standard deviation of the CPU render";
+    manifest["note"] = refusal + " (this web export holds its fast shader)";
   std::vector<WebFile> files;
   files.push_back({"manifest.json", ""});
   files.push_back({"shader.essl", exported.shader.text});

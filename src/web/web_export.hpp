@@ -33,8 +33,9 @@ struct WebFile {
 };
 
 // The web export of `model` in `variant`: manifest.json first, then shader.essl, then the data.
-// gabor's exact shader computes in double precision, which GLSL ES 3.00 lacks: its exact web
-// export holds its float-only (fast) shader and says so in the manifest ("shader_variant").
+// An exact shader the exporter refuses in GLSL ES (gabor's computes in double precision, which
+// GLSL ES 3.00 lacks) is replaced by the model's fast shader, and the manifest says so
+// ("shader_variant", and a "note" with the exporter's reason).
 // Throws what export_shader throws (std::invalid_argument, stochtex::Error, one sentence), and
 // Error(invalid_input) for a model of more than 4 channels (the viewer shows one vec4).
 std::vector<WebFile> web_export(const Model& model, ShaderVariant variant);
