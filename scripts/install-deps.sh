@@ -11,7 +11,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libfmt-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev libhwy-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
-  glslang-dev spirv-tools libspirv-cross-c-shared-dev libcpp-httplib-dev
+  glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev libcpp-httplib-dev
   libarchive-dev
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-dask python3-distributed
   python3-zarr
