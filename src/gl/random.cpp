@@ -1,11 +1,12 @@
-// The embedded GLSL files, and random.glsl with the stream constants of core/hash.hpp declared
-// from the C++ enum.
+// The embedded GLSL files; random.glsl with the stream constants of core/hash.hpp declared from
+// the C++ enum, and float_math.glsl with the constants of core/float_math.hpp.
 
 #include <array>
 #include <span>
 #include <stdexcept>
 #include <string>
 
+#include "core/float_math.hpp"
 #include "core/hash.hpp"
 #include "gl/shaders.hpp"
 
@@ -24,6 +25,12 @@ constexpr std::array<GlslConstant, 5> kStreams = {{
     {"STREAM_KERNELS", stream(Stream::kernels)},
 }};
 
+constexpr std::array<GlslConstant, 3> kFloatMath = {{
+    {"FLOAT_MATH_TWO_PI", kTwoPi},
+    {"FLOAT_MATH_EXP_FLOOR", kExpFloor},
+    {"FLOAT_MATH_EXP_CEILING", kExpCeiling},
+}};
+
 }  // namespace
 
 std::string shader_source(std::string_view name) {
@@ -38,6 +45,14 @@ std::span<const GlslConstant> random_constants() {
 
 std::string random_source() {
   return glsl_constants(kStreams) + shader_source("gl/random.glsl");
+}
+
+std::span<const GlslConstant> float_math_constants() {
+  return kFloatMath;
+}
+
+std::string float_math_source() {
+  return glsl_constants(kFloatMath) + shader_source("gl/float_math.glsl");
 }
 
 }  // namespace stochtex::gl

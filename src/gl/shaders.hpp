@@ -25,4 +25,10 @@ std::string random_source();
 // The stream constants random_source() declares.
 std::span<const GlslConstant> random_constants();
 
+// float_math.glsl preceded by the constants of core/float_math.hpp: cos_turns and exp_float, the
+// CPU's polynomials, for the methods whose C++ evaluators use them.
+std::string float_math_source();
+// The constants float_math_source() declares.
+std::span<const GlslConstant> float_math_constants();
+
 }  // namespace stochtex::gl

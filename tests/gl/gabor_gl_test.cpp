@@ -169,11 +169,12 @@ struct GaborCase {
 
 TEST(GlGabor, MatchesTheCpuReference) {
   // Positions, cells and the filter maths are doubles on both sides and the float arithmetic is
-  // the same statement for statement without fused multiply-adds, so the two backends draw the
-  // same kernels and truncate the same ones; what differs is exp and cos (GLSL's are not
-  // correctly rounded: a few ulp on llvmpipe, about 2^-21 absolute for NVIDIA's cos) summed over
-  // the ~10^3 kernels of a sample. The tolerance is the texton's (1e-4, 40x below one 8-bit
-  // step); the measured maximum is printed below and recorded in docs/methods/gabor.md.
+  // the same statement for statement without fused multiply-adds, exp and cos included (the
+  // polynomials of core/float_math.hpp and their twin float_math.glsl), so the two backends draw
+  // the same kernels, truncate the same ones and sum the same floats: measured 0 (the same
+  // bytes) on llvmpipe in every case. The tolerance is the texton's (1e-4, 40x below one 8-bit
+  // step), for GPUs whose double division or square root rounds otherwise; the measured maximum
+  // is printed below and recorded in docs/methods/gabor.md.
   const std::vector<GaborCase> cases = {
       {"grass_lawn_128.png", {{0.0, 0.0}, 1.0, 40, 32}},
       {"grass_lawn_128.png", {{-300.25, 17.5}, 0.5, 32, 32}},
@@ -249,12 +250,14 @@ TEST(GlGabor, FloatPathMatchesTheCpuReference) {
   // --gl-filter hardware: filter maths, positions and cells in float, positions split per grid
   // into a 64-bit cell and a float offset (gl_pass.cpp), so origin 1e7 is as precise as 0.
   // Measured on llvmpipe (max and RMS of |difference| over the CPU image's standard deviation,
-  // 256 impulses, 48x48, seed 5), against the CPU and against the double GL path alike: max
-  // 3.7e-6 / 4.0e-6 / 8.2e-6 at scale 1 (origin 0.25, 1e7, -1e7), 3.7e-6 / 3.4e-6 at scale 4
-  // (origin -20.5, 1e7), 1.4e-5 / 2.4e-5 at scale 16 (origin 7, -1e7); RMS at most 5.1e-6. The
-  // far origins are as close as the near ones. The bounds leave room for GPUs' less accurate
-  // exp and cos (the double path's parity test allows 1e-4 absolute, about 5e-4 of these
-  // images' deviation); a wrong cell or offset (a shift of 0.25 pixel) gives 0.1 RMS, 0.4 max.
+  // 256 impulses, 48x48, seed 5), against the CPU and against the double GL path alike (they
+  // give the same bytes): max 3.2e-6 / 3.7e-6 / 9.8e-6 at scale 1 (origin 0.25, 1e7, -1e7),
+  // 2.4e-6 / 2.4e-6 at scale 4 (origin -20.5, 1e7), 8.2e-6 / 2.4e-5 at scale 16 (origin 7,
+  // -1e7); RMS at most 5.1e-6. The far origins are as close as the near ones. What differs is
+  // the float positions and filter maths, the bounds leave room for GPUs whose float division
+  // and square root round otherwise (the double path's parity test allows 1e-4 absolute, about
+  // 5e-4 of these images' deviation); a wrong cell or offset (a shift of 0.25 pixel) gives
+  // 0.1 RMS, 0.4 max.
   // The bounds allow no kernel that the float and double offsets put on opposite sides of the
   // truncation cut (a jump of e^-pi times its amplitude, section "GPU" of docs/methods/gabor.md):
   // metal's model at the defaults of issue 20 (narrowest band chosen: 4 bins) has one, at pixel

@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "core/float_math.hpp"
 #include "core/hash.hpp"
 #include "gl/context.hpp"
 #include "gl/gl_support.hpp"
@@ -81,6 +83,54 @@ void main() {
     ASSERT_EQ(values[i * 4 + 1], key) << i;
     ASSERT_EQ(values[i * 4 + 2], first) << i;
     ASSERT_EQ(values[i * 4 + 3], uniform_bits) << i;
+  }
+}
+
+TEST(Gl, FloatMathGlslMatchesTheCpp) {
+  // float_math.glsl's cos_turns and exp_float, bit for bit against core/float_math.hpp, on
+  // arguments across their range: turns up to +-1000 (gabor's and lrp's phases) with the fold
+  // points 1/4, 1/2 and the integers, and exponents across [-100, 100] with the clamp's ends.
+  std::vector<float> arguments;
+  for (int i = -6400; i <= 6400; ++i)
+    arguments.push_back(static_cast<float>(i) * 0.015625f + 1e-3f);
+  for (int i = -4000; i <= 4000; ++i) arguments.push_back(static_cast<float>(i) * 0.25f);
+  for (int i = 0; i < 4096; ++i) arguments.push_back(std::ldexp(static_cast<float>(i) + 0.3f, -12));
+  for (float x : {-87.5f, kExpFloor, -86.999f, 88.0f, 88.001f, kExpCeiling, 1e-30f, -1e-30f})
+    arguments.push_back(x);
+  while (arguments.size() % 64 != 0) arguments.push_back(0.5f);
+  const gl::Context context;
+  const std::string source = "#version 450\n" + gl::float_math_source() + R"glsl(
+layout(local_size_x = 64) in;
+layout(std430, binding = 0) readonly buffer In { float arguments[]; };
+layout(std430, binding = 1) writeonly buffer Out { uint values[]; };
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  float x = arguments[i];
+  values[2u * i] = floatBitsToUint(cos_turns(x));
+  values[2u * i + 1u] = floatBitsToUint(exp_float(x));
+}
+)glsl";
+  const gl::Program program(source);
+  const auto count = static_cast<GLsizeiptr>(arguments.size());
+  const gl::Buffer input(count * static_cast<GLsizeiptr>(sizeof(float)));
+  glNamedBufferSubData(input.id(), 0, count * static_cast<GLsizeiptr>(sizeof(float)),
+                       arguments.data());
+  const gl::Buffer output(2 * count * static_cast<GLsizeiptr>(sizeof(std::uint32_t)));
+  glUseProgram(program.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, input.id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, output.id());
+  glDispatchCompute(static_cast<GLuint>(arguments.size() / 64), 1, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<std::uint32_t> values(2 * arguments.size());
+  glGetNamedBufferSubData(
+      output.id(), 0, 2 * count * static_cast<GLsizeiptr>(sizeof(std::uint32_t)), values.data());
+  ASSERT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  for (std::size_t i = 0; i < arguments.size(); ++i) {
+    const float x = arguments[i];
+    ASSERT_EQ(values[2 * i], std::bit_cast<std::uint32_t>(cos_turns(x)))
+        << "cos_turns(" << x << ")";
+    ASSERT_EQ(values[2 * i + 1], std::bit_cast<std::uint32_t>(exp_float(x)))
+        << "exp_float(" << x << ")";
   }
 }
 

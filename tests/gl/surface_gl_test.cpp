@@ -142,9 +142,10 @@ TEST(GlSurface, TextonSurfaceNoiseMatchesTheCpuReference) {
 }
 
 // Surface Gabor noise (stochtex_gabor_surface, gabor surface.glsl on surface_process.glsl): the
-// same impulses and kernels, exp and cos in float on both sides. Measured maxima over 300 points:
-// 9.3e-6 (radius 120), 2.8e-5 (460), 5.4e-4 (3000: a float position's error moves each kernel's
-// phase); bounds with a 3x margin.
+// same impulses and kernels, exp and cos as the same float polynomials on both sides. Measured
+// maxima over 300 points: 7.0e-6 (radius 120), 3.7e-5 (460), 1.1e-4 (3000: a float position's
+// error moves each kernel's phase; 5.4e-4 before the kernel taper, where it also moved kernels
+// across the support's edge); bounds with a 3x margin.
 TEST(GlSurface, GaborSurfaceNoiseMatchesTheCpuReference) {
   const ImageF metal = read_image(kTextureDir + "/metal_grey_256.png");
   const ImageF grass = read_image(kTextureDir + "/grass_lawn_128.png");
@@ -154,7 +155,7 @@ TEST(GlSurface, GaborSurfaceNoiseMatchesTheCpuReference) {
   expect_surface_parity(grey, "gabor grey", 300, 120.0, 3e-5f);
   expect_surface_parity(colour, "gabor colour", 300, 120.0, 3e-5f);
   expect_surface_parity(grey, "gabor grey", 300, 460.0, 1e-4f);
-  expect_surface_parity(grey, "gabor grey", 300, 3000.0, 2e-3f);
+  expect_surface_parity(grey, "gabor grey", 300, 3000.0, 4e-4f);
 }
 
 // Linear triplanar mapping (triplanar_linear.glsl) calls each method's planar GLSL on the three

@@ -28,10 +28,11 @@ namespace {
 
 using namespace gl_test;
 
-// Every table of shared constants: random.glsl's streams and the Twin::kConstants of each method
-// that has a twin (a CPU-only model has none).
+// Every table of shared constants: random.glsl's streams, float_math.glsl's constants and the
+// Twin::kConstants of each method that has a twin (a CPU-only model has none).
 std::vector<std::span<const gl::GlslConstant>> shared_constant_tables() {
-  std::vector<std::span<const gl::GlslConstant>> tables = {gl::random_constants()};
+  std::vector<std::span<const gl::GlslConstant>> tables = {gl::random_constants(),
+                                                           gl::float_math_constants()};
   [&]<typename... MethodModels>(std::type_identity<std::variant<MethodModels...>>) {
     (
         [&] {

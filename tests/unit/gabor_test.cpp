@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iostream>
 #include <numbers>
 #include <numeric>
 #include <random>
@@ -375,6 +376,28 @@ TEST(GaborEvaluate, HugeFootprintsGiveTheMeanQuickly) {
   model.evaluate(positions, footprints, 1, out.view());
   EXPECT_NEAR(out.at(0, 0, 0), 0.5f, 1e-6f);
   EXPECT_NEAR(out.at(1, 0, 0), 0.5f, 1e-6f);
+}
+
+TEST(GaborEvaluate, NoiseIsContinuousAcrossTheKernelsCut) {
+  // Samples 1e-5 pixels apart along a 0.45-pixel path, which crosses the support's edge of many
+  // kernels. Tapered (kTaperScale), the noise is smooth: every increment is the gradient's, and the
+  // largest of 40 000 is measured at 1.37 times their median. Cut hard, each crossing jumps by
+  // e^-pi of a kernel's amplitude times its cosine (up to 0.01 of the noise's deviation at 256
+  // impulses): measured 283 times the median with kTaperScale = 1e7 (a taper of 1e-7).
+  const GaborModel model = model_of({{0, 3, 0.05f, 0.02f, 0.004f}, {0, 1, 0.3f, -0.25f, 0.004f}});
+  constexpr int kSamples = 40000;
+  std::vector<Vec2d> positions;
+  for (int i = 0; i < kSamples; ++i) positions.push_back({3.3 + 1e-5 * i, 5.1 - 0.5e-5 * i});
+  ImageF out(kSamples, 1, 1);
+  model.evaluate(positions, {}, 2, out.view());
+  std::vector<double> increments;
+  for (int i = 1; i < kSamples; ++i)
+    increments.push_back(std::abs(out.at(i, 0, 0) - out.at(i - 1, 0, 0)));
+  const double largest = *std::max_element(increments.begin(), increments.end());
+  std::nth_element(increments.begin(), increments.begin() + kSamples / 2, increments.end());
+  const double median = increments[kSamples / 2];
+  std::cout << "largest increment " << largest / median << " times the median " << median << "\n";
+  EXPECT_LT(largest, 10.0 * median);
 }
 
 TEST(GaborEvaluate, FarFromTheOriginIsAsPreciseAsAtTheOrigin) {

@@ -4,7 +4,8 @@
 // `render --backend gl --gl-filter hardware`. Same hash, streams, draws and maths as the C++ and
 // the double variant; what is float here is the filter maths, the positions and the cell
 // arithmetic, so the CPU and GPU agree to about 1e-5 of the image's standard deviation rather than
-// to the rounding of exp and cos (tests/gl/gabor_gl_test.cpp, docs/methods/gabor.md). Requires random.glsl, then the model's constants (gabor_glsl() in gl_data.cpp:
+// byte for byte (tests/gl/gabor_gl_test.cpp, docs/methods/gabor.md). Requires random.glsl and
+// float_math.glsl, then the model's constants (gabor_glsl() in gl_data.cpp:
 // GABOR_CHANNELS, GABOR_GRIDS, GABOR_GRID_ARRAY, GABOR_DATA_WIDTH, GABOR_MIXING, GABOR_MEAN and the
 // GABOR_GRID_* arrays, one entry per Poisson grid) and `vec4 gabor_texel(int index)`:
 // texel i < GABOR_GAUSSIANS is Gaussian i in grid order (frequency x, frequency y, alias
@@ -18,8 +19,9 @@
 #else
 // Gabor noise by example in GLSL: the twin of GaborModel::evaluate (model.cpp), same hash, same
 // streams, same draws (Poisson counts, positions, alias column and coin, phase) in the same order,
-// same constants and the same arithmetic statement for statement, so the CPU and GPU agree to
-// the rounding of exp and cos. Requires random.glsl, then the model's constants (gabor_glsl() in
+// same constants and the same arithmetic statement for statement, exp and cos included (the CPU's
+// float polynomials, float_math.glsl), so the CPU and GPU give the same bytes (measured on
+// llvmpipe). Requires random.glsl and float_math.glsl, then the model's constants (gabor_glsl() in
 // gl_data.cpp writes them: GABOR_CHANNELS, GABOR_GRIDS, GABOR_DATA_WIDTH, GABOR_MIXING, GABOR_MEAN and
 // the GABOR_GRID_* arrays, one entry per Poisson grid) and `vec4 gabor_texel(int index)`:
 // texel i < GABOR_GAUSSIANS is Gaussian i in grid order (frequency x, frequency y, alias
@@ -32,7 +34,7 @@
 // `precise` keeps the compiler from fusing a * b + c into an fma the C++ does not use.
 
 #endif
-// GABOR_PI, GABOR_PI_F, GABOR_TWO_PI_F, GABOR_PIXEL_VARIANCE, GABOR_NEGLIGIBLE_ATTENUATION and
+// GABOR_PI, GABOR_PI_F, GABOR_TAPER_SCALE, GABOR_PIXEL_VARIANCE, GABOR_NEGLIGIBLE_ATTENUATION and
 // GABOR_MAX_LEVEL_RATIO (2^kMaxLevels) are the C++ constants of model.hpp, declared before this
 // file from Twin::kConstants (gl_twin.hpp).
 
@@ -186,12 +188,14 @@ vec4 gabor_draw_alias(int g, inout CounterRng rng) {
 }
 
 // The filtered kernel of Gaussian `gaussian` (its frequency in .xy) and phase at offset
-// (dx, dy) = x - x_i, into `value` (KernelShape::at in model.cpp); false where the envelope is
-// truncated (beyond e^-pi). The planar sum below and surface noise (surface_impulse.glsl) share it.
+// (dx, dy) = x - x_i, tapered to 0 at the cut, into `value` (KernelShape::at in evaluate.hpp);
+// false where the envelope is truncated (beyond e^-pi). The planar sum below and surface noise (surface_impulse.glsl) share it.
 bool gabor_kernel(GaborGridFilter f, vec4 gaussian, float phase, float dx, float dy,
                   out float value) {
   precise float envelope = f.ex * dx * dx + f.exy * dx * dy + f.ey * dy * dy;
   if (envelope >= GABOR_PI_F) return false;
+  precise float t = min((GABOR_PI_F - envelope) * GABOR_TAPER_SCALE, 1.0);
+  precise float taper = t * t * (3.0 - 2.0 * t);
   precise float wx = gaussian.x;
   precise float wy = gaussian.y;
   precise float attenuation = 0.0;
@@ -201,8 +205,7 @@ bool gabor_kernel(GaborGridFilter f, vec4 gaussian, float phase, float dx, float
     wy = f.fxy * wx + f.fyy * wy;
     wx = mapped_x;
   }
-  precise float argument = GABOR_TWO_PI_F * (wx * dx + wy * dy + phase);
-  value = exp(-envelope - attenuation) * cos(argument);
+  value = exp_float(-envelope - attenuation) * cos_turns(wx * dx + wy * dy + phase) * taper;
   return true;
 }
 

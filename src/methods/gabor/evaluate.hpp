@@ -3,6 +3,7 @@
 // simd.hpp), in the restricted subset of docs/design.md §4 (uint32/float, flat arrays, no
 // allocation) that the GLSL twin mirrors.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -85,12 +86,14 @@ struct KernelShape {
         filtered(k.filtered) {}
 
   // The filtered kernel of frequency (wx, wy) and phase at offset (dx, dy) = x - x_i, into
-  // `value`; false where the envelope is truncated (beyond e^-pi). exp and cos are the float
-  // polynomials of core/float_math.hpp, which the vectorised twin shares (the GLSL twin calls
-  // GLSL's exp and cos: they agree to float rounding).
+  // `value`, tapered to 0 at the cut (kTaperScale); false where the envelope is truncated (beyond
+  // e^-pi). exp and cos are the float polynomials of core/float_math.hpp, which the vectorised and
+  // GLSL twins share.
   bool at(float wx, float wy, float phase, float dx, float dy, float& value) const noexcept {
     const float envelope = ex * dx * dx + exy * dx * dy + ey * dy * dy;
     if (envelope >= kPiF) return false;
+    const float t = std::min((kPiF - envelope) * kTaperScale, 1.0f);
+    const float taper = t * t * (3.0f - 2.0f * t);
     float attenuation = 0.0f;
     if (filtered) {
       attenuation = dxx * wx * wx + dxy * wx * wy + dyy * wy * wy;
@@ -98,7 +101,7 @@ struct KernelShape {
       wy = fxy * wx + fyy * wy;
       wx = mapped_x;
     }
-    value = exp_float(-envelope - attenuation) * cos_turns(wx * dx + wy * dy + phase);
+    value = exp_float(-envelope - attenuation) * cos_turns(wx * dx + wy * dy + phase) * taper;
     return true;
   }
 };

@@ -111,8 +111,9 @@ std::string gabor_library_source(const GaborGlsl& glsl) {
       "uniform sampler2D stochtex_gabor_data;\nvec4 gabor_texel(int index) {\n  return "
       "texelFetch(stochtex_gabor_data, ivec2(index % GABOR_DATA_WIDTH, index / "
       "GABOR_DATA_WIDTH), 0);\n}\n";
-  return random_source() + glsl_constants(Twin<gabor::GaborModel>::kConstants, glsl.precision) +
-         glsl.constants + reader +
+  return random_source() + float_math_source() +
+         glsl_constants(Twin<gabor::GaborModel>::kConstants, glsl.precision) + glsl.constants +
+         reader +
          glsl_precision_variant(
              shader_source("methods/gabor/evaluate.glsl") +
                  shader_source(glsl.channels > 4 ? "methods/gabor/colour_channels.glsl"

@@ -38,10 +38,10 @@ struct GaborGlsl {
 GaborGlsl gabor_glsl(const gabor::GaborModel& model,
                      GlslPrecision precision = GlslPrecision::doubles);
 
-// random.glsl, kConstants, the model's constants, the data read (gabor_texel: texelFetch from the
-// sampler `stochtex_gabor_data`) and gabor evaluate.glsl and noise.glsl (noise_channels.glsl
-// beyond 4 channels), all in
-// glsl.precision (the float one is the `--gl-filter hardware` library, without doubles): all but
+// random.glsl, float_math.glsl, kConstants, the model's constants, the data read (gabor_texel:
+// texelFetch from the sampler `stochtex_gabor_data`) and gabor evaluate.glsl and noise.glsl
+// (noise_channels.glsl beyond 4 channels), all in glsl.precision (the float one is the `--gl-filter
+// hardware` library, without doubles): all but
 // `#version`.
 std::string gabor_library_source(const GaborGlsl& glsl);
 
@@ -50,7 +50,7 @@ struct Twin<gabor::GaborModel> {
   static constexpr std::array<GlslConstant, 6> kConstants = {{
       {"GABOR_PI", std::numbers::pi},
       {"GABOR_PI_F", gabor::kPiF},
-      {"GABOR_TWO_PI_F", gabor::kTwoPiF},
+      {"GABOR_TAPER_SCALE", gabor::kTaperScale},
       {"GABOR_PIXEL_VARIANCE", gabor::kPixelVariance},
       {"GABOR_NEGLIGIBLE_ATTENUATION", gabor::kNegligibleAttenuation},
       {"GABOR_MAX_LEVEL_RATIO", static_cast<double>(std::uint64_t{1} << gabor::kMaxLevels)},

@@ -31,9 +31,16 @@ double bandwidth(int band);
 inline constexpr std::size_t kMaxGaussians = std::size_t{1} << 22;
 
 // Constants of the evaluator (GaborModel::evaluate), shared with its GLSL twin (gl_twin.hpp).
-// pi and 2 pi as floats, for the kernel's envelope and cosine.
+// pi as a float, for the kernel's truncation test: the kernel's support ends where its envelope
+// exp(-e) falls to e^-pi (r = 1/a, section 6.1).
 inline constexpr auto kPiF = static_cast<float>(std::numbers::pi);
-inline constexpr auto kTwoPiF = static_cast<float>(2.0 * std::numbers::pi);
+// The kernel fades out before that cut instead of jumping there by e^-pi of its amplitude (our
+// addition; docs/methods/gabor.md, "Kernel taper"): it is multiplied by smoothstep(t) = t^2 (3 -
+// 2t) with t = min((pi - e) kTaperScale, 1), which changes only the envelope's last 1 / kTaperScale
+// before the cut (values below e^-(pi - 1/2) = 7 % of the peak). The noise is then continuous with
+// a continuous gradient, and a kernel that rounding puts just inside or just outside the support
+// (a float position against a double one) changes a sample by float rounding, not by a jump.
+inline constexpr float kTaperScale = 2.0f;
 // A grid whose least attenuated Gaussian is scaled by less than e^-12 (6e-6) by the footprint's
 // filter contributes nothing visible and is skipped.
 inline constexpr double kNegligibleAttenuation = 12.0;

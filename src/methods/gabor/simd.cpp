@@ -92,7 +92,12 @@ float evaluate_pending(const KernelShape& shape, const Pending& pending, std::si
   const VF dy = hn::Load(df, pending.field[1]);
   VF wx = hn::Load(df, pending.field[3]);
   VF wy = hn::Load(df, pending.field[4]);
-  VF exponent = hn::Neg(hn::Load(df, pending.field[2]));
+  const VF envelope = hn::Load(df, pending.field[2]);
+  VF exponent = hn::Neg(envelope);
+  const VF t = hn::Min(hn::Mul(hn::Sub(hn::Set(df, kPiF), envelope), hn::Set(df, kTaperScale)),
+                       hn::Set(df, 1.0f));
+  const VF taper =
+      hn::Mul(hn::Mul(t, t), hn::Sub(hn::Set(df, 3.0f), hn::Mul(hn::Set(df, 2.0f), t)));
   if constexpr (Filtered) {
     const VF attenuation = hn::Add(hn::Add(hn::Mul(hn::Mul(hn::Set(df, shape.dxx), wx), wx),
                                            hn::Mul(hn::Mul(hn::Set(df, shape.dxy), wx), wy)),
@@ -107,7 +112,7 @@ float evaluate_pending(const KernelShape& shape, const Pending& pending, std::si
   const VF argument =
       hn::Add(hn::Add(hn::Mul(wx, dx), hn::Mul(wy, dy)), hn::Load(df, pending.field[5]));
   HWY_ALIGN float values[kMaxLanes] = {};
-  hn::Store(hn::Mul(ExpFloat(df, exponent), CosTurns(df, argument)), df, values);
+  hn::Store(hn::Mul(hn::Mul(ExpFloat(df, exponent), CosTurns(df, argument)), taper), df, values);
   for (std::size_t i = 0; i < count; ++i) sum += values[i];
   return sum;
 }

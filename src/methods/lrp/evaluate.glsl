@@ -1,27 +1,11 @@
 // Local random-phase noise in GLSL: the twin of LrpModel::evaluate_typed (model.cpp,
-// evaluate.hpp, window.hpp), same lattices, same draws, same polynomial cosine and window.
-// Requires random.glsl, then the constants shared with the C++ (LRP_TWO_PI, LRP_WINDOW_*,
+// evaluate.hpp, window.hpp), same lattices, same draws, same polynomial cosine (cos_turns of
+// float_math.glsl) and window. Requires random.glsl and float_math.glsl, then the constants shared
+// with the C++ (LRP_WINDOW_*,
 // LRP_TURBULENCE_STREAM_BASE: Twin::kConstants in gl_twin.hpp), the model's constants (lrp_glsl()
 // in gl_data.cpp writes them) and the table readers `vec3 lrp_frequency(uint index)` (f_x, f_y,
 // weight) and `uvec2 lrp_substratum(int index)` (first, count): storage buffers in the renderer,
 // a texture in an exported shader (lrp_library_source in gl_data.cpp).
-
-// cos(2 pi t), t in turns (cos_turns).
-float lrp_cos_turns(float t) {
-  t -= float(int(t));
-  t = abs(t);
-  t = t > 0.5 ? 1.0 - t : t;
-  float sign = t > 0.25 ? -1.0 : 1.0;
-  t = t > 0.25 ? 0.5 - t : t;
-  float x = LRP_TWO_PI * t;
-  float x2 = x * x;
-  float p = 1.0 + x2 * (-1.0 / 2.0 +
-                        x2 * (1.0 / 24.0 +
-                              x2 * (-1.0 / 720.0 +
-                                    x2 * (1.0 / 40320.0 +
-                                          x2 * (-1.0 / 3628800.0 + x2 * (1.0 / 479001600.0))))));
-  return sign * p;
-}
 
 // Frequency clamping, section 6.4 (clamp_weight).
 float lrp_clamp_weight(float cycles) {
@@ -74,7 +58,7 @@ vec2 lrp_stratum_sum(bool turbulence, int s, vec2 u, uvec2 origin_node, uint str
         float fx = frequency.x;
         float fy = frequency.y;
         float phase = float(draw >> LRP_PICK_BITS) * LRP_PHASE_STEP;
-        float c = lrp_cos_turns(fx * px + fy * py + phase);
+        float c = cos_turns(fx * px + fy * py + phase);
         if (filtered) {
           float along_a = abs(fx * axis_a.x + fy * axis_a.y);
           float along_b = abs(fx * axis_b.x + fy * axis_b.y);
@@ -142,7 +126,7 @@ void lrp_add_fixed_phase(vec2 q, bool filtered, vec2 axis_a, vec2 axis_b, float 
           vec4 cosine = lrp_structure_cosine(base + j);
           float fx = cosine.x;
           float fy = cosine.y;
-          float value = cosine.z * lrp_cos_turns(fx * px + fy * py + cosine.w);
+          float value = cosine.z * cos_turns(fx * px + fy * py + cosine.w);
           if (filtered) {
             float along_a = abs(fx * axis_a.x + fy * axis_a.y);
             float along_b = abs(fx * axis_b.x + fy * axis_b.y);

@@ -164,8 +164,8 @@ uvec2 lrp_turbulence_substratum(int index) {
 }
 )glsl";
   }
-  return random_source() + glsl_constants(Twin<lrp::LrpModel>::kConstants) + glsl.constants +
-         readers + shader_source("methods/lrp/evaluate.glsl");
+  return random_source() + float_math_source() + glsl_constants(Twin<lrp::LrpModel>::kConstants) +
+         glsl.constants + readers + shader_source("methods/lrp/evaluate.glsl");
 }
 
 ImageF lrp_tables_image(const LrpGlsl& glsl) {

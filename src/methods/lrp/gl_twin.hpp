@@ -45,8 +45,7 @@ ImageF lrp_tables_image(const LrpGlsl& glsl);
 
 template <>
 struct Twin<lrp::LrpModel> {
-  static constexpr std::array<GlslConstant, 10> kConstants = {{
-      {"LRP_TWO_PI", kTwoPi},
+  static constexpr std::array<GlslConstant, 9> kConstants = {{
       {"LRP_PICK_BITS", lrp::kPickBits},
       {"LRP_PICK_MASK", lrp::kPickMask},
       {"LRP_PHASE_STEP", lrp::kPhaseStep},
