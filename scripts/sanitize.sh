@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The reliability checks of docs/reliability.md: builds stochtex with clang under AddressSanitizer
 # and UndefinedBehaviorSanitizer (-fno-sanitize-recover: the first report fails), runs the unit,
-# CLI and deterministic fuzz tests in that build, then runs every libFuzzer target
+# CLI, deterministic fuzz and studio server tests in that build, then runs every libFuzzer target
 # (tests/fuzz/libfuzzer) for a bounded time from a copy of its committed seed corpus.
 # Usage: bash scripts/sanitize.sh [build-dir] [seconds per libFuzzer target, default 20]
 set -euo pipefail
@@ -23,7 +23,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # suppression can name. Kept loaded, the driver's memory stays reachable from its own globals and
 # stochtex's allocations are still checked (docs/reliability.md).
 mesa_driver=$(find /usr/lib -name swrast_dri.so -print -quit)
-LD_PRELOAD=$mesa_driver ctest --test-dir "$build" -L "unit|cli|fuzz" --output-on-failure \
+LD_PRELOAD=$mesa_driver ctest --test-dir "$build" -L "unit|cli|fuzz|studio" --output-on-failure \
   --parallel 2
 for fuzzer in "$build"/tests/*_fuzzer; do
   name=$(basename "$fuzzer" _fuzzer)
