@@ -15,6 +15,7 @@
 #include <optional>
 #include <random>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 #include <utility>
 #include <vector>
@@ -131,6 +132,18 @@ void evict_oldest(Map& map, std::deque<std::string>& order, std::size_t keep) {
   }
 }
 
+// Entry `id` of `map` (a store kept to its last `keep` entries; the caller holds the store's
+// lock), or a 404 that names the `kind` of entry and what to do.
+template <typename Map>
+typename Map::mapped_type find_kept(const Map& map, const std::string& id, std::string_view kind,
+                                    std::size_t keep, std::string_view remedy) {
+  const auto found = map.find(id);
+  if (found == map.end())
+    throw StudioError(404, fmt::format("there is no {} '{}' (the studio keeps the last {}); {}",
+                                       kind, id, keep, remedy));
+  return found->second;
+}
+
 }  // namespace
 
 struct StudioStore::Exemplar {
@@ -244,12 +257,7 @@ nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
 
 std::shared_ptr<const StudioStore::Exemplar> StudioStore::find_exemplar(const std::string& id) {
   std::lock_guard lock(mutex_);
-  const auto found = exemplars_.find(id);
-  if (found == exemplars_.end())
-    throw StudioError(404, fmt::format("there is no exemplar '{}' (the studio keeps the last {}); "
-                                       "upload it again",
-                                       id, limits_.max_exemplars));
-  return found->second;
+  return find_kept(exemplars_, id, "exemplar", limits_.max_exemplars, "upload it again");
 }
 
 std::string StudioStore::exemplar_png(const std::string& id, bool gaussian) {
@@ -418,12 +426,7 @@ void StudioStore::run(Analysis& analysis) {
 
 std::shared_ptr<const StudioStore::StoredModel> StudioStore::find_model(const std::string& id) {
   std::lock_guard lock(mutex_);
-  const auto found = models_.find(id);
-  if (found == models_.end())
-    throw StudioError(404, fmt::format("there is no model '{}' (the studio keeps the last {}); "
-                                       "run the analysis again",
-                                       id, limits_.max_models));
-  return found->second;
+  return find_kept(models_, id, "model", limits_.max_models, "run the analysis again");
 }
 
 Model StudioStore::model(const std::string& id) {

@@ -286,17 +286,33 @@ function addViewer(status) {
 }
 
 // The compare numbers of every shown model: a render at the exemplar's size with the view's seed.
+// Each model's numbers for a seed are asked for once (a model never changes); only the latest call
+// writes the table, so a slow answer for an older seed cannot overwrite a newer one.
+const compareCache = new Map();
+let compareVersion = 0;
+
+function compareNumbers(model, seed) {
+  const url = `/api/models/${model}/compare?seed=${seed}`;
+  if (!compareCache.has(url)) {
+    const asked = api(url).then((response) => response.json());
+    asked.catch(() => compareCache.delete(url));
+    compareCache.set(url, asked);
+  }
+  return compareCache.get(url);
+}
+
 async function compareAll() {
   const seed = live.group.getSeed();
+  const version = ++compareVersion;
   const rows = await Promise.all([...live.shown].map(async ([method, shown]) => {
     try {
-      const doc = await (await api(`/api/models/${shown.model}/compare?seed=${seed}`)).json();
-      return [method, shown.seconds, doc];
+      return [method, shown.seconds, await compareNumbers(shown.model, seed)];
     } catch (error) {
       showError(error.message);
       return null;
     }
   }));
+  if (version !== compareVersion) return;
   const table = $('compare');
   table.replaceChildren();
   const header = table.createTHead().insertRow();
