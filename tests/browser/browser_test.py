@@ -44,8 +44,8 @@ MODELS = ["texton", "tiling", "lrp", "gabor", "texton_mix"]
 EXACT_BOUND = 1e-5
 # - gabor's float-only shader (both variants: its exact one needs doubles): the tolerance
 #   docs/shaders.md gives it, 1e-3 of the image's standard deviation (the smallest channel's, of
-#   the CPU render at that view): bound 3.8e-5 at scale 1 and 7.2e-6 at 16, measured 2.0e-6 and
-#   4.2e-7 (on the studio's 256^2 views bound 3.8e-5 and 7.3e-6, measured 5.1e-6 and 1.0e-6);
+#   the CPU render at that view): bound 3.8e-5 at scale 1 and 7.2e-6 at 16, measured 2.2e-6 and
+#   5.4e-7 (on the studio's 256^2 views bound 3.8e-5 and 7.3e-6, measured 5.1e-6 and 1.0e-6);
 GABOR_DEVIATIONS = 1e-3
 # - texton's and tiling's fast variant at scale 1: the fast path's bound (docs/shaders.md), 1/255;
 #   measured 4.1e-5 and 3.1e-4 with the web export's half-float textures;

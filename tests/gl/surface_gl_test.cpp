@@ -143,7 +143,7 @@ TEST(GlSurface, TextonSurfaceNoiseMatchesTheCpuReference) {
 
 // Surface Gabor noise (stochtex_gabor_surface, gabor surface.glsl on surface_process.glsl): the
 // same impulses and kernels, exp and cos as the same float polynomials on both sides. Measured
-// maxima over 300 points: 7.0e-6 (radius 120), 3.7e-5 (460), 1.1e-4 (3000: a float position's
+// maxima over 300 points: 6.9e-6 (radius 120), 3.7e-5 (460), 1.1e-4 (3000: a float position's
 // error moves each kernel's phase; 5.4e-4 before the kernel taper, where it also moved kernels
 // across the support's edge); bounds with a 3x margin.
 TEST(GlSurface, GaborSurfaceNoiseMatchesTheCpuReference) {

@@ -381,7 +381,7 @@ TEST(GaborEvaluate, HugeFootprintsGiveTheMeanQuickly) {
 TEST(GaborEvaluate, NoiseIsContinuousAcrossTheKernelsCut) {
   // Samples 1e-5 pixels apart along a 0.45-pixel path, which crosses the support's edge of many
   // kernels. Tapered (kTaperScale), the noise is smooth: every increment is the gradient's, and the
-  // largest of 40 000 is measured at 1.37 times their median. Cut hard, each crossing jumps by
+  // largest of 40 000 is measured at 1.77 times their median. Cut hard, each crossing jumps by
   // e^-pi of a kernel's amplitude times its cosine (up to 0.01 of the noise's deviation at 256
   // impulses): measured 283 times the median with kTaperScale = 1e7 (a taper of 1e-7).
   const GaborModel model = model_of({{0, 3, 0.05f, 0.02f, 0.004f}, {0, 1, 0.3f, -0.25f, 0.004f}});
