@@ -189,7 +189,8 @@ vec4 gabor_draw_alias(int g, inout CounterRng rng) {
 
 // The filtered kernel of Gaussian `gaussian` (its frequency in .xy) and phase at offset
 // (dx, dy) = x - x_i, tapered to 0 at the cut, into `value` (KernelShape::at in evaluate.hpp);
-// false where the envelope is truncated (beyond e^-pi). The planar sum below and surface noise (surface_impulse.glsl) share it.
+// false where the envelope is truncated (beyond e^-pi). The planar sum below and surface noise
+// (surface_impulse.glsl) share it.
 bool gabor_kernel(GaborGridFilter f, vec4 gaussian, float phase, float dx, float dy,
                   out float value) {
   precise float envelope = f.ex * dx * dx + f.exy * dx * dy + f.ey * dy * dy;

@@ -41,8 +41,7 @@ GaborGlsl gabor_glsl(const gabor::GaborModel& model,
 // random.glsl, float_math.glsl, kConstants, the model's constants, the data read (gabor_texel:
 // texelFetch from the sampler `stochtex_gabor_data`) and gabor evaluate.glsl and noise.glsl
 // (noise_channels.glsl beyond 4 channels), all in glsl.precision (the float one is the `--gl-filter
-// hardware` library, without doubles): all but
-// `#version`.
+// hardware` library, without doubles): all but `#version`.
 std::string gabor_library_source(const GaborGlsl& glsl);
 
 template <>

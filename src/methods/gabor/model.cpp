@@ -41,7 +41,7 @@ double truncation_gain() {
   };
   double simpson = f(0.0) + f(1.0);
   for (int i = 1; i < kIntervals; ++i)
-    simpson += (i % 2 == 1 ? 4.0 : 2.0) * f(i / double(kIntervals));
+    simpson += (i % 2 == 1 ? 4.0 : 2.0) * f(static_cast<double>(i) / kIntervals);
   const double taper = h * std::exp(-2.0 * kPi) * simpson / (3.0 * kIntervals);
   const double energy = 0.5 * (1.0 - std::exp(-2.0 * (kPi - h))) + taper;
   return std::sqrt(0.5 / energy);

@@ -1,11 +1,11 @@
 // Local random-phase noise in GLSL: the twin of LrpModel::evaluate_typed (model.cpp,
 // evaluate.hpp, window.hpp), same lattices, same draws, same polynomial cosine (cos_turns of
 // float_math.glsl) and window. Requires random.glsl and float_math.glsl, then the constants shared
-// with the C++ (LRP_WINDOW_*,
-// LRP_TURBULENCE_STREAM_BASE: Twin::kConstants in gl_twin.hpp), the model's constants (lrp_glsl()
-// in gl_data.cpp writes them) and the table readers `vec3 lrp_frequency(uint index)` (f_x, f_y,
-// weight) and `uvec2 lrp_substratum(int index)` (first, count): storage buffers in the renderer,
-// a texture in an exported shader (lrp_library_source in gl_data.cpp).
+// with the C++ (LRP_WINDOW_*, LRP_TURBULENCE_STREAM_BASE: Twin::kConstants in gl_twin.hpp), the
+// model's constants (lrp_glsl() in gl_data.cpp writes them) and the table readers
+// `vec3 lrp_frequency(uint index)` (f_x, f_y, weight) and `uvec2 lrp_substratum(int index)`
+// (first, count): storage buffers in the renderer, a texture in an exported shader
+// (lrp_library_source in gl_data.cpp).
 
 // Frequency clamping, section 6.4 (clamp_weight).
 float lrp_clamp_weight(float cycles) {
