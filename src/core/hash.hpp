@@ -41,7 +41,7 @@ enum class Stream : std::uint32_t {
   offsets = 0x85ebca6bu,
   analysis = 0xc2b2ae35u,    // white noise of the analyses (ADSN, texton initialisation)
   kernels = 0x165667b1u,     // Gabor noise: per-grid seeds and kernel parameters (alias, phase)
-  signs = 0xd3a2646cu,       // texton noise mixing: the random sign of each impulse
+  signs = 0xd3a2646cu,       // texton noise (balanced points) and mixing: each impulse's sign
   transforms = 0x27d4eb2fu,  // tiling's artist controls: each patch's rotation and scale
 };
 

@@ -2,7 +2,7 @@
 // The 3-D Poisson impulse process of surface noise (section 6 of "Texton Noise", Galerne,
 // Leclaire and Moisan, CGF 2017, doi:10.1111/cgf.13073, after Lagae et al. 2009), shared by the
 // texton and Gabor surface evaluators (docs/surface.md). Space is cut into cubic cells; each cell
-// holds an exact Poisson number of impulses (core/poisson.hpp), uniform in the cell, drawn from
+// holds an exact Poisson number of impulses (core/cell_count.hpp), uniform in the cell, drawn from
 // the 3-D cell_key (docs/design.md §5) in a fixed order. A surface point y with frame
 // (u1, u2, u3) sees the impulses x_i of the oriented box |<y - x_i, u3>| < depth,
 // |<y - x_i, u1>|, |<y - x_i, u2>| < reach, as local coordinates
@@ -14,8 +14,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/cell_count.hpp"
 #include "core/hash.hpp"
-#include "core/poisson.hpp"
 #include "stochtex/model.hpp"
 #include "stochtex/surface.hpp"
 
@@ -53,7 +53,7 @@ inline Footprint tangent_footprint(const SurfacePoint& p, const SurfaceFrame& f)
 // for cells of side `cell_size`.
 template <typename Visit>
 void for_each_surface_impulse(const SurfacePoint& p, const SurfaceFrame& f, double reach,
-                              double depth, double cell_size, const PoissonSampler& count,
+                              double depth, double cell_size, const CellCount& count,
                               std::uint32_t seed, Visit&& visit) noexcept {
   const double position[3] = {p.position.x, p.position.y, p.position.z};
   std::int64_t first[3];

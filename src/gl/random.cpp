@@ -17,12 +17,13 @@ constexpr auto stream(Stream s) {
   return static_cast<std::uint32_t>(s);
 }
 
-constexpr std::array<GlslConstant, 5> kStreams = {{
+constexpr std::array<GlslConstant, 6> kStreams = {{
     {"STREAM_POINTS", stream(Stream::points)},
     {"STREAM_PHASES", stream(Stream::phases)},
     {"STREAM_OFFSETS", stream(Stream::offsets)},
     {"STREAM_ANALYSIS", stream(Stream::analysis)},
     {"STREAM_KERNELS", stream(Stream::kernels)},
+    {"STREAM_SIGNS", stream(Stream::signs)},
 }};
 
 constexpr std::array<GlslConstant, 3> kFloatMath = {{

@@ -4,7 +4,7 @@
 // #defined as the method's type of per-point state (texton: TextonFilter; gabor:
 // GaborSurfacePoint), and, before or after this file, the method's two callbacks:
 //   uint surface_impulse_count(inout CounterRng rng, SURFACE_CONTEXT context);
-//     a cell's impulse count (the method's PoissonSampler twin);
+//     a cell's impulse count (the method's CellCount twin);
 //   void surface_impulse(inout CounterRng rng, float t, float z1, float z2,
 //                        SURFACE_CONTEXT context, inout vec4 acc);
 //     one impulse at local coordinates (t, z1, z2) = (<y - x_i, u3>, <y - x_i, u1>,

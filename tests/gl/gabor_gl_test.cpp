@@ -82,7 +82,7 @@ TEST(GlGabor, PackedDataHoldsTheModelInGridOrder) {
     }
   const std::size_t gaussians = model.alias_probability().size();
   for (std::size_t g = 0; g < model.grids().size(); ++g)
-    for (std::size_t k = 0; k < PoissonSampler::kTableSize; ++k)
+    for (std::size_t k = 0; k < CellCount::kTableSize; ++k)
       ASSERT_EQ(texel(gaussians + g * gl::GaborGlsl::kCdfTexels + k / 4, static_cast<int>(k % 4)),
                 model.grids()[g].cell_count.cdf()[k]);
 }
@@ -93,7 +93,7 @@ TEST(GlGabor, GlslReadsTheGridTableTheCppWrites) {
   const gabor::GaborModel& model = gabor_of(gabor_model("grass_lawn_128.png", 256));
   const gl::GaborGlsl glsl = gl::gabor_glsl(model);
   const gl::Context context;
-  constexpr int kWords = 12 + PoissonSampler::kTableSize;
+  constexpr int kWords = 12 + CellCount::kTableSize;
   const std::string source = "#version 450\n" + gl::gabor_library_source(glsl) + R"glsl(
 layout(local_size_x = 1) in;
 layout(std430, binding = 0) writeonly buffer Out { uint values[]; };
@@ -156,7 +156,7 @@ void main() {
     EXPECT_EQ(v[7] | (std::uint64_t{v[8]} << 32), radius) << g;
     EXPECT_EQ(v[9] | (std::uint64_t{v[10]} << 32), cell_size) << g;
     EXPECT_EQ(v[11], model.alias_index()[grid.first + grid.count - 1]) << g;
-    for (std::size_t k = 0; k < PoissonSampler::kTableSize; ++k)
+    for (std::size_t k = 0; k < CellCount::kTableSize; ++k)
       ASSERT_EQ(v[12 + k], bits(grid.cell_count.cdf()[k])) << g << " " << k;
   }
 }

@@ -26,12 +26,13 @@ namespace {
 
 using namespace gl_test;
 
-const Model& model_of(const std::string& name, int order) {
+const Model& model_of(const std::string& name, int order, int points) {
   static std::map<std::string, Model> models;
-  const std::string key = name + std::to_string(order);
+  const std::string key = name + std::to_string(order) + "/" + std::to_string(points);
   if (!models.contains(key)) {
     const ImageF exemplar = read_image(kTextureDir + "/" + name);
-    models[key] = analyze("texton", exemplar.view(), {{"support", 48}, {"order", order}}, 0);
+    models[key] = analyze("texton", exemplar.view(),
+                          {{"support", 48}, {"order", order}, {"points", points}}, 0);
   }
   return models[key];
 }
@@ -139,6 +140,7 @@ struct ParityCase {
   int order;
   Grid grid;
   bool filter;
+  int points = 1;  // texton params.hpp: 1 balanced (the default), 0 the paper's Poisson process
 };
 
 TEST(Gl, TextonMatchesTheCpuReference) {
@@ -153,16 +155,18 @@ TEST(Gl, TextonMatchesTheCpuReference) {
       {"metal_grey_256.png", 1, {{1e7, -3e6}, 4.0, 70, 50}, true},
       {"metal_grey_256.png", 5, {{5.0, 5.0}, 8.0, 40, 40}, true},
       {"grass_lawn_128.png", 0, {{12.0, -4.0}, 3.0, 50, 50}, false},
+      {"grass_lawn_128.png", 1, {{0.0, 0.0}, 1.0, 96, 80}, true, 0},
+      {"metal_grey_256.png", 1, {{1e7, -3e6}, 4.0, 70, 50}, true, 0},
   };
   for (const auto& c : cases) {
-    const Model& model = model_of(c.exemplar, c.order);
+    const Model& model = model_of(c.exemplar, c.order, c.points);
     const ImageF cpu = render_cpu(model, c.grid, 9, c.filter);
     const ImageF gpu = render_gpu(model, c.grid, 9, 512, c.filter);
     float worst = 0.0f;
     for (std::size_t i = 0; i < cpu.pixels().size(); ++i)
       worst = std::max(worst, std::abs(cpu.pixels()[i] - gpu.pixels()[i]));
-    std::cout << c.exemplar << " order " << c.order << " scale " << c.grid.scale
-              << ": max |cpu - gl| = " << worst << "\n";
+    std::cout << c.exemplar << " order " << c.order << " points " << c.points << " scale "
+              << c.grid.scale << ": max |cpu - gl| = " << worst << "\n";
     EXPECT_LT(worst, 1e-4f) << c.exemplar << " order " << c.order << " scale " << c.grid.scale;
   }
 }
@@ -282,7 +286,7 @@ TEST(Gl, TilingAndLrpMatchTheCpuReference) {
 }
 
 TEST(Gl, BitIdenticalWhateverTheDispatchTilesAndRegions) {
-  const Model& model = model_of("grass_lawn_128.png", 1);
+  const Model& model = model_of("grass_lawn_128.png", 1, 1);
   const Grid grid{{-40.0, 9.5}, 2.0, 75, 61};
   const ImageF reference = render_gpu(model, grid, 4, 512);
   EXPECT_TRUE(same_bytes(reference, render_gpu(model, grid, 4, 512)));
@@ -351,7 +355,7 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
 TEST(Gl, RefusesGridsBeyondThePreciseRange) {
   // The same check as render() (render.hpp): before any dispatch, for a NaN scale or an origin
   // beyond +-kPositionLimit.
-  const Model& model = model_of("grass_lawn_128.png", 1);
+  const Model& model = model_of("grass_lawn_128.png", 1, 1);
   GlRenderer renderer(model);
   ImageF out(4, 4, model.channels());
   for (const Grid& grid : {Grid{{0.0, 0.0}, std::nan(""), 4, 4}, Grid{{1e19, 0.0}, 1.0, 4, 4},

@@ -29,7 +29,8 @@ namespace {
 using namespace gl_test;
 
 // Every table of shared constants: random.glsl's streams, float_math.glsl's constants and the
-// Twin::kConstants of each method that has a twin (a CPU-only model has none).
+// Twin::kConstants of each method that has a twin and constants of its own (a CPU-only model has
+// none; texton_mix shares texton noise's and random.glsl's).
 std::vector<std::span<const gl::GlslConstant>> shared_constant_tables() {
   std::vector<std::span<const gl::GlslConstant>> tables = {gl::random_constants(),
                                                            gl::float_math_constants()};
@@ -37,7 +38,8 @@ std::vector<std::span<const gl::GlslConstant>> shared_constant_tables() {
     (
         [&] {
           if constexpr (gl::HasTwin<MethodModels>)
-            tables.push_back(gl::Twin<MethodModels>::kConstants);
+            if (!gl::Twin<MethodModels>::kConstants.empty())
+              tables.push_back(gl::Twin<MethodModels>::kConstants);
         }(),
         ...);
   }(std::type_identity<MethodModel>{});

@@ -55,13 +55,13 @@ struct Aim {
 };
 const std::map<std::string, Aim, std::less<>> kAims = {
     {"texton",
-     {1.2, true, 0.06,
-      "a sparse Poisson process of MNI 30 impacts: one 1024² render's overall variance moves "
-      "by a few percent with the seed. Over 8 seeds per exemplar the per-render covariance error "
-      "averages 0.021-0.047 (sd 0.012-0.026), against ADSN's 0.002-0.026, while the covariance "
-      "averaged over the 8 renders is within 0.025 of the exemplar's, or at ADSN's own bias "
-      "(brushed aluminium 0.047, ADSN 0.059; wood 0.44, ADSN 0.45: the periodic component's): "
-      "unbiased, but fluctuating (docs/methods/texton.md)"}},
+     {1.2, true, 0.04,
+      "a sparse process of MNI 30 impacts whose kernels are as wide as the texton (129 to 257 "
+      "pixels): many of a 1024² render's impacts lie partly outside it, so its variance moves "
+      "with where they fall. The balanced points (the default) remove the count's share: over 6 "
+      "seeds the per-render covariance error averages 0.007-0.020 on 7 exemplars (Poisson "
+      "points: 0.023-0.036; mean + 2 sd / sqrt(2) at most 0.038), 0.033 on rock_sandstone "
+      "(ADSN 0.026) and 0.072 on brushed aluminium (ADSN's bias 0.059) (docs/methods/texton.md)"}},
     {"lrp", {1.5, true}},
     {"gabor", {1.25, true}},
     {"tiling", {1.5, false}}};

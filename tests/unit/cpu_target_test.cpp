@@ -91,6 +91,8 @@ std::vector<Case> cases() {
       {"lrp material", model("lrp", material_exemplar, {{"cosines", 12}})},
       {"texton colour", model("texton", colour_exemplar, {{"support", 12}, {"iterations", 10}})},
       {"texton grey", model("texton", grey_exemplar, {{"support", 12}, {"iterations", 10}})},
+      {"texton poisson",
+       model("texton", colour_exemplar, {{"support", 12}, {"iterations", 10}, {"points", 0}})},
       {"texton material",
        model("texton", material_exemplar, {{"support", 12}, {"iterations", 10}})},
       {"texton nearest",

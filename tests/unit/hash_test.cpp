@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/poisson.hpp"
+#include "core/cell_count.hpp"
 
 namespace stochtex {
 namespace {
@@ -101,7 +101,7 @@ class PoissonTest : public ::testing::TestWithParam<double> {};
 
 TEST_P(PoissonTest, CountsFollowThePoissonLaw) {
   const double mean = GetParam();
-  const PoissonSampler sampler(mean);
+  const CellCount sampler = CellCount::poisson(mean);
   EXPECT_NEAR(sampler.mean(), mean, 1e-5 * mean);
   constexpr int kDraws = 200000;
   const int max_count = static_cast<int>(mean + 20.0 * std::sqrt(mean) + 30.0);
@@ -143,6 +143,42 @@ TEST_P(PoissonTest, CountsFollowThePoissonLaw) {
 
 // Small means (one chunk), the chunk limit, and large means split into several exact chunks.
 INSTANTIATE_TEST_SUITE_P(Means, PoissonTest, ::testing::Values(0.3, 2.5, 10.8, 16.0, 30.0, 250.0));
+
+class BalancedCountTest : public ::testing::TestWithParam<double> {};
+
+// Each chunk of mean m_c holds floor(m_c) or floor(m_c) + 1 points, the latter with probability
+// frac(m_c): counts lie within [c floor(m_c), c (floor(m_c) + 1)] for c chunks, and the frequency
+// of each value is binomial around its probability (checked to 5 standard errors).
+TEST_P(BalancedCountTest, CountsAreTheLeastVariableOfTheirMean) {
+  const double mean = GetParam();
+  const CellCount sampler = CellCount::balanced(mean);
+  EXPECT_NEAR(sampler.mean(), mean, 1e-5 * mean);
+  const double chunk_mean = mean / sampler.chunks();
+  const double whole = std::floor(chunk_mean);
+  const double fraction = chunk_mean - whole;
+  constexpr int kDraws = 200000;
+  double sum = 0.0;
+  double sum_squares = 0.0;
+  for (int i = 0; i < kDraws; ++i) {
+    CounterRng rng(cell_key(i, -i, 3, Stream::points));
+    const double k = sampler(rng);
+    ASSERT_GE(k, whole * sampler.chunks());
+    ASSERT_LE(k, (whole + 1.0) * sampler.chunks());
+    sum += k;
+    sum_squares += k * k;
+  }
+  const double variance_expected = sampler.chunks() * fraction * (1.0 - fraction);
+  EXPECT_NEAR(sum / kDraws, mean, 5.0 * std::sqrt(variance_expected / kDraws) + 1e-9);
+  const double variance = sum_squares / kDraws - (sum / kDraws) * (sum / kDraws);
+  // A sample variance of n draws of a bounded variable: its standard error is at most
+  // sqrt(chunks / (16 n)) (the fourth central moment of a Bernoulli is at most 1/16).
+  EXPECT_NEAR(variance, variance_expected, 5.0 * std::sqrt(sampler.chunks() / (16.0 * kDraws)));
+  EXPECT_LE(variance_expected, 0.25 * sampler.chunks());
+}
+
+// Whole and fractional means, the chunk limit, and several chunks.
+INSTANTIATE_TEST_SUITE_P(Means, BalancedCountTest,
+                         ::testing::Values(0.3, 2.5, 10.8, 11.0, 16.0, 30.0, 250.0));
 
 }  // namespace
 }  // namespace stochtex

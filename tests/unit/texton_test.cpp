@@ -14,6 +14,7 @@
 #include "methods/texton/model.hpp"
 #include "methods/texton/params.hpp"
 #include "model/model_data.hpp"
+#include "stochtex/error.hpp"
 #include "stochtex/stochtex.hpp"
 #include "stochtex/surface.hpp"
 #include "test_support.hpp"
@@ -46,7 +47,7 @@ texton::TextonModel widened(const texton::TextonModel& three, int channels) {
       coefficients[t * channels + c] = three.coefficients()[t * 3 + c % 3];
   for (int c = 0; c < channels; ++c) mean[c] = three.mean()[c % 3];
   return texton::TextonModel(channels, three.support(), three.order(), three.mean_impacts(),
-                             coefficients, mean);
+                             three.points(), coefficients, mean);
 }
 
 // Channel c of `wide` equals channel c % 3 of `three`, bit for bit.
@@ -170,6 +171,62 @@ TEST(TextonSupport, TheDefaultTakesTheWholeExemplarUpTo256AndCrops128Beyond) {
   const Model loaded = deserialize_model(serialize_model(model), "texton.stx");
   EXPECT_EQ(loaded.params().at("support"), 24);
   EXPECT_EQ(std::get<texton::TextonModel>(loaded.data().model).support(), 24);
+}
+
+// The point process (`points`, params.hpp): a model file written before the choice existed has no
+// `points` scalar and renders the paper's Poisson process, byte for byte as before; the balanced
+// process draws the same points' positions from other counts and gives each impact a random sign.
+TEST(TextonPoints, AFileWithoutTheChoiceRendersThePaperPoissonProcess) {
+  const texton::TextonModel& balanced = three_channel_texton();
+  ASSERT_TRUE(balanced.signed_impacts());
+  const texton::TextonModel poisson(
+      balanced.channels(), balanced.support(), balanced.order(), balanced.mean_impacts(),
+      texton::kPoissonPoints, {balanced.coefficients().begin(), balanced.coefficients().end()},
+      {balanced.mean().begin(), balanced.mean().end()});
+  ModelRecord record = poisson.to_record({});
+  ASSERT_EQ(record.scalars.erase("points"), 1u);
+  const texton::TextonModel legacy = texton::TextonModel::from_record(record, "old.stx");
+  EXPECT_EQ(legacy.points(), texton::kPoissonPoints);
+  // The Poisson process subtracts E f = lambda sum(alpha); signed impacts have E f = 0.
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(balanced.constant_term()[c], balanced.mean()[c]);
+  EXPECT_NE(poisson.constant_term()[0], poisson.mean()[0]);
+
+  constexpr int kSide = 32;
+  std::vector<Vec2d> positions;
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) positions.push_back({1.5 * x - 20.0, 1.5 * y + 7.0});
+  ImageF from_poisson(kSide, kSide, 3), from_legacy(kSide, kSide, 3),
+      from_balanced(kSide, kSide, 3);
+  poisson.evaluate(positions, {}, 4, from_poisson.view());
+  legacy.evaluate(positions, {}, 4, from_legacy.view());
+  balanced.evaluate(positions, {}, 4, from_balanced.view());
+  EXPECT_TRUE(test_support::same_bytes(from_poisson, from_legacy));
+  EXPECT_FALSE(test_support::same_bytes(from_poisson, from_balanced));
+  // A file that names a process outside the choices is refused.
+  record.scalars["points"] = 2;
+  EXPECT_THROW(texton::TextonModel::from_record(record, "bad.stx"), Error);
+}
+
+TEST(TextonPoints, SignsAreFairCoins) {
+  // impulse_sign over 40 000 (cell, index, seed) triples: the count of -1 is binomial(n, 1/2),
+  // within 5 standard deviations of n / 2; and the sign of a point does not repeat its
+  // neighbour's more often than chance (the same bound on the count of equal consecutive signs).
+  int negative = 0;
+  int repeats = 0;
+  int total = 0;
+  float previous = 0.0f;
+  for (std::int64_t cell = -100; cell < 100; ++cell)
+    for (std::uint32_t index = 0; index < 200; ++index) {
+      const float sign = texton::impulse_sign(cell, 3 * cell + 1, index, 9u);
+      ASSERT_TRUE(sign == 1.0f || sign == -1.0f);
+      negative += sign < 0.0f;
+      repeats += sign == previous;
+      previous = sign;
+      ++total;
+    }
+  const double bound = 5.0 * std::sqrt(0.25 * total);
+  EXPECT_NEAR(negative, 0.5 * total, bound);
+  EXPECT_NEAR(repeats, 0.5 * (total - 1), bound);
 }
 
 }  // namespace

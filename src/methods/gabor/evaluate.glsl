@@ -158,7 +158,7 @@ GaborGridFilter gabor_grid_filter(int g, dvec2 dpdx, dvec2 dpdy) {
 }
 
 // A Poisson count by inversion of the tabulated CDF (96 floats) in the data from texel
-// `cdf_texel`, in `chunks` draws (PoissonSampler in core/poisson.hpp).
+// `cdf_texel`, in `chunks` draws (CellCount in core/cell_count.hpp).
 uint gabor_poisson(int cdf_texel, uint chunks, inout CounterRng rng) {
   uint total = 0u;
   for (uint c = 0u; c < chunks; ++c) {

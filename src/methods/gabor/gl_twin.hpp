@@ -19,8 +19,8 @@ namespace stochtex::gl {
 struct GaborGlsl {
   // Texels per row of `data`: the largest model (kMaxGaussians, 2^22) takes 4112 rows.
   static constexpr int kDataWidth = kDataTextureWidth;
-  // Texels of one grid's Poisson CDF (PoissonSampler::kTableSize floats, 4 per texel).
-  static constexpr int kCdfTexels = PoissonSampler::kTableSize / 4;
+  // Texels of one grid's Poisson CDF (CellCount::kTableSize floats, 4 per texel).
+  static constexpr int kCdfTexels = CellCount::kTableSize / 4;
 
   GlslPrecision precision = GlslPrecision::doubles;
   // The model's; beyond 4 the colour is an array of floats (noise_channels.glsl), not a vec4.

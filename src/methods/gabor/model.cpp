@@ -258,7 +258,7 @@ GaborModel::GaborModel(int channels, double impulses, int colour_space,
     grid.cell_size =
         grid.radius *
         std::clamp(std::sqrt(kPointsPerCell / (intensity * grid.radius * grid.radius)), 0.25, 2.0);
-    grid.cell_count = PoissonSampler(intensity * grid.cell_size * grid.cell_size);
+    grid.cell_count = CellCount::poisson(intensity * grid.cell_size * grid.cell_size);
     // With p = sigma_g^2 / sigma_b^2 and K_g = 2 a sigma_g, every kernel of eq. (5) has the same
     // weight K_g / sqrt(lambda_b p_g) = 2 a sigma_b / sqrt(lambda_b): its variance is then
     // lambda_b * E[K^2 / (lambda_b p)] / (4 a^2) = sigma_b^2.
@@ -440,7 +440,7 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
             // The kernel parameters of the cell's impulses come in the impulses' order from their
             // own stream, so cached positions and fresh parameters stay paired.
             CounterRng kernel_rng(cell_key(cell_x, cell_y, level_seed, Stream::kernels));
-            cells->for_each_point(cell_x, cell_y, [&](float u, float v) {
+            cells->for_each_point(cell_x, cell_y, [&](float u, float v, float) {
               float wx, wy, phase;
               kernels.draw(kernel_rng, wx, wy, phase);
               float value;
@@ -490,7 +490,7 @@ GaborModel::SurfaceGrid GaborModel::surface_grid(const Grid& grid, double surfac
       std::clamp(std::cbrt(kPointsPerCell / (intensity * grid.radius * grid.radius * grid.radius)),
                  0.25, 2.0);
   surface.count =
-      PoissonSampler(intensity * surface.cell_size * surface.cell_size * surface.cell_size);
+      CellCount::poisson(intensity * surface.cell_size * surface.cell_size * surface.cell_size);
   return surface;
 }
 

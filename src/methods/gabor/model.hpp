@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/poisson.hpp"
+#include "core/cell_count.hpp"
 #include "model/model_record.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
@@ -131,14 +131,14 @@ class GaborModel {
     std::uint32_t count = 0;
     float min_frequency_squared = 0;
     double impulses = 0;  // N_b, this grid's share of the impulse budget
-    PoissonSampler cell_count;
+    CellCount cell_count;
   };
   const std::vector<Grid>& grids() const { return grids_; }
   // The 3-D process of one grid's surface noise at one MNI (evaluate_surface, and its GLSL twin in
   // gl_data.cpp): the side of its cubic cells and their impulse count, at thinning level 0.
   struct SurfaceGrid {
     double cell_size = 0;
-    PoissonSampler count;
+    CellCount count;
   };
   static SurfaceGrid surface_grid(const Grid& grid, double surface_mni);
   // The amplitude gain of surface noise at this MNI: the planar noise's variance.

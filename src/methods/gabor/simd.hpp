@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/poisson.hpp"
+#include "core/cell_count.hpp"
 #include "methods/gabor/evaluate.hpp"
 #include "stochtex/model.hpp"
 
@@ -46,7 +46,7 @@ struct ImpulseCache {
 
   // The grid, its cell-count sampler, the level's random stream and cell side whose cells the
   // cache holds from now on; the cache starts empty.
-  void start(const GridKernels& grid_kernels, const PoissonSampler& grid_cell_count,
+  void start(const GridKernels& grid_kernels, const CellCount& grid_cell_count,
              std::uint32_t grid_level_seed, float grid_cell_size) noexcept {
     kernels = grid_kernels;
     cell_count = &grid_cell_count;
@@ -56,7 +56,7 @@ struct ImpulseCache {
   }
 
   GridKernels kernels{};
-  const PoissonSampler* cell_count = nullptr;
+  const CellCount* cell_count = nullptr;
   std::uint32_t level_seed = 0;
   float cell_size = 0.0f;
   bool valid[kSlots] = {};

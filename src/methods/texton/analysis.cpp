@@ -114,8 +114,8 @@ TextonModel analyze(ImageView<const float> exemplar, const Params& params, std::
   std::vector<float> coefficients = texton_coefficients(
       fft, normalised_kernel_spectrum(fft, periodic.view(), mean), target, params, seed, progress);
   const int support = texton_support(params.support, exemplar.width, exemplar.height);
-  return TextonModel(exemplar.channels, support, params.order, params.mni, std::move(coefficients),
-                     std::move(mean));
+  return TextonModel(exemplar.channels, support, params.order, params.mni, params.points,
+                     std::move(coefficients), std::move(mean));
 }
 
 std::vector<float> texton_coefficients(

@@ -2,7 +2,7 @@
 // model.cpp), same hash, same draws, same constants, so the CPU and GPU agree to float rounding.
 // Requires random.glsl, then the constants shared with the C++ (TEXTON_PADDING, TEXTON_MAX_PROBES,
 // TEXTON_LOD_BIAS: Twin::kConstants in gl_twin.hpp), the model's constants (texton_glsl() in
-// gl_data.cpp writes them: TEXTON_CHANNELS, TEXTON_ORDER, TEXTON_CELL_SIZE, TEXTON_POISSON_CDF, TEXTON_POISSON_CHUNKS,
+// gl_data.cpp writes them: TEXTON_CHANNELS, TEXTON_ORDER, TEXTON_CELL_SIZE, TEXTON_COUNT_CDF, TEXTON_COUNT_CHUNKS, TEXTON_SIGNS,
 // TEXTON_INVERSE_SQRT_INTENSITY, TEXTON_CONSTANT_TERM, TEXTON_MEAN, TEXTON_LEVELS and the
 // TEXTON_LEVEL_* arrays) and `vec4 texton_atlas_texel(ivec2 texel)`, the atlas of every pyramid
 // level's padded texels (RGBA = up to 4 channels), level l in rows TEXTON_LEVEL_ROW[l] onwards
@@ -13,8 +13,8 @@ vec4 texton_texture_fetch(float dx, float dy);  // hardware.glsl
 #endif
 
 // One impulse of the shot noise (Impulse in evaluate.hpp): the atlas texel where its texton's
-// pyramid starts (texton noise: the atlas corner) and its weight (texton noise: 1; mixing, texton
-// paper section 7: a random sign).
+// pyramid starts (texton noise: the atlas corner) and its weight (texton noise: 1 or a random
+// sign; mixing, texton paper section 7: a random sign).
 struct TextonImpulse {
   ivec2 atlas;
   float weight;
@@ -50,9 +50,10 @@ TextonFilter texton_filter(vec2 dpdx, vec2 dpdy) {
   return f;
 }
 
-// A Poisson count by inversion of a tabulated CDF in `chunks` draws (PoissonSampler in
-// core/poisson.hpp): the planar grid's, or surface noise's 3-D cells'.
-uint texton_poisson(inout CounterRng rng, float cdf[TEXTON_POISSON_CDF.length()], uint chunks) {
+// A cell's point count by inversion of a tabulated CDF in `chunks` draws (CellCount in
+// core/cell_count.hpp): the planar grid's (Poisson or balanced), or surface noise's 3-D cells'
+// (Poisson).
+uint texton_count(inout CounterRng rng, float cdf[TEXTON_COUNT_CDF.length()], uint chunks) {
   uint total = 0u;
   for (uint c = 0u; c < chunks; ++c) {
     float u = rng_uniform(rng);
@@ -63,7 +64,7 @@ uint texton_poisson(inout CounterRng rng, float cdf[TEXTON_POISSON_CDF.length()]
   return total;
 }
 
-uint texton_poisson_count(inout CounterRng rng) {
-  return texton_poisson(rng, TEXTON_POISSON_CDF, TEXTON_POISSON_CHUNKS);
+uint texton_cell_count(inout CounterRng rng) {
+  return texton_count(rng, TEXTON_COUNT_CDF, TEXTON_COUNT_CHUNKS);
 }
 

@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/cell_count.hpp"
 #include "core/hash.hpp"
 #include "core/level_of_detail.hpp"
-#include "core/poisson.hpp"
 #include "methods/texton/model.hpp"
 
 namespace stochtex::texton {
@@ -191,25 +191,39 @@ class FilteredTexton {
   double reach_ = 0.0;
 };
 
-// The Poisson points of the grid cells (section 8): cell (x, y) holds a Poisson number of points,
-// uniform in the cell, all drawn from cell_key(x, y, seed, points) in a fixed order. The draws are
-// a pure function of the cell, so neighbouring samples of a batch, which visit the same cells, can
-// reuse them: the cache keeps the points of recently visited cells and gives exactly the numbers
-// a fresh draw gives, so the output does not depend on the batch (a GLSL port simply draws every
-// time). Fixed size, on the stack: no allocation during evaluation.
+// The random sign eps_j in {-1, +1} (section 7) of the index-th point of a cell whose sign key is
+// cell_key(cell, seed, Stream::signs): the signs come from the cell's own stream, so the points
+// are the same with or without them.
+inline float point_sign(std::uint32_t sign_key, std::uint32_t index) noexcept {
+  return (pcg_hash(sign_key ^ pcg_hash(index)) >> 31u) != 0u ? -1.0f : 1.0f;
+}
+inline float impulse_sign(std::int64_t cell_x, std::int64_t cell_y, std::uint32_t index,
+                          std::uint32_t seed) noexcept {
+  return point_sign(cell_key(cell_x, cell_y, seed, Stream::signs), index);
+}
+
+// The points of the grid cells (section 8): cell (x, y) holds `count` points (a Poisson or a
+// balanced number, core/cell_count.hpp), uniform in the cell, all drawn from
+// cell_key(x, y, seed, points) in a fixed order, each with the sign point_sign gives when the
+// cache is `signed` (texton noise's balanced points), else 1. The draws are a pure function of the
+// cell, so neighbouring samples of a batch, which visit the same cells, can reuse them: the cache
+// keeps the points of recently visited cells and gives exactly the numbers a fresh draw gives, so
+// the output does not depend on the batch (a GLSL port simply draws every time). Fixed size, on
+// the stack: no allocation during evaluation.
 class CellCache {
  public:
   static constexpr int kEntries = 32;
   static constexpr std::uint32_t kMaxPoints = 128;  // cells with more points are drawn each time
 
-  CellCache(std::uint32_t seed, const PoissonSampler& count) noexcept
-      : seed_(seed), count_(count) {}
+  CellCache(std::uint32_t seed, const CellCount& count, bool signs = false) noexcept
+      : seed_(seed), count_(count), signs_(signs) {}
 
-  // The points of a cell in the cache: (u[i], v[i]) in [0, 1)^2 relative to the cell corner,
-  // i < count; u and v are null when the cell holds more than kMaxPoints points.
+  // The points of a cell in the cache: (u[i], v[i]) in [0, 1)^2 relative to the cell corner and
+  // sign[i], i < count; the arrays are null when the cell holds more than kMaxPoints points.
   struct Points {
     const float* u;
     const float* v;
+    const float* sign;
     std::uint32_t count;
   };
 
@@ -223,7 +237,7 @@ class CellCache {
     if (!entry.valid || entry.x != cell_x || entry.y != cell_y) {
       CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
       const std::uint32_t impacts = count_(rng);
-      if (impacts > kMaxPoints) return {nullptr, nullptr, impacts};
+      if (impacts > kMaxPoints) return {nullptr, nullptr, nullptr, impacts};
       entry.valid = true;
       entry.x = cell_x;
       entry.y = cell_y;
@@ -232,25 +246,30 @@ class CellCache {
         entry.u[i] = rng.uniform();
         entry.v[i] = rng.uniform();
       }
+      const std::uint32_t sign_key = sign_key_of(cell_x, cell_y);
+      for (std::uint32_t i = 0; i < impacts; ++i)
+        entry.sign[i] = signs_ ? point_sign(sign_key, i) : 1.0f;
     }
-    return {entry.u, entry.v, entry.count};
+    return {entry.u, entry.v, entry.sign, entry.count};
   }
 
-  // Calls f(u, v) for each point of the cell, (u, v) in [0, 1)^2 relative to the cell corner.
+  // Calls f(u, v, sign) for each point of the cell, (u, v) in [0, 1)^2 relative to the cell
+  // corner.
   template <typename F>
   void for_each_point(std::int64_t cell_x, std::int64_t cell_y, F&& f) noexcept {
     const Points cached = points(cell_x, cell_y);
     if (cached.u != nullptr) {
-      for (std::uint32_t i = 0; i < cached.count; ++i) f(cached.u[i], cached.v[i]);
+      for (std::uint32_t i = 0; i < cached.count; ++i) f(cached.u[i], cached.v[i], cached.sign[i]);
       return;
     }
     // Too many to keep: the count's draws again, then the points'.
     CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
     count_(rng);
+    const std::uint32_t sign_key = sign_key_of(cell_x, cell_y);
     for (std::uint32_t i = 0; i < cached.count; ++i) {
       const float u = rng.uniform();
       const float v = rng.uniform();
-      f(u, v);
+      f(u, v, signs_ ? point_sign(sign_key, i) : 1.0f);
     }
   }
 
@@ -262,11 +281,17 @@ class CellCache {
     std::uint32_t count = 0;
     float u[kMaxPoints];
     float v[kMaxPoints];
+    float sign[kMaxPoints];
   };
   static_assert(kEntries == 32, "the slot index is (x mod 8, y mod 4)");
 
+  std::uint32_t sign_key_of(std::int64_t cell_x, std::int64_t cell_y) const noexcept {
+    return signs_ ? cell_key(cell_x, cell_y, seed_, Stream::signs) : 0u;
+  }
+
   std::uint32_t seed_;
-  const PoissonSampler& count_;
+  const CellCount& count_;
+  bool signs_;
   std::array<Entry, kEntries> entries_{};
 };
 
@@ -308,13 +333,15 @@ inline void with_order_and_channels(int order, int channels, F&& f) noexcept {
 }
 
 // One impulse of the shot noise: the pyramid of the texton it scatters and its weight (texton
-// noise: the one texton, weight 1; mixing, section 7: the texton of its region, a random sign).
+// noise: the one texton, weight 1 or a random sign; mixing, section 7: the texton of its region,
+// a random sign).
 struct Impulse {
   const PyramidLevel* pyramid;
   float weight;
 };
 
-// The impulses of texton noise: every point scatters the one texton with weight 1.
+// The impulses of texton noise: every point scatters the one texton with weight 1 (times the
+// point's sign, which the cell cache gives).
 struct OneTexton {
   const PyramidLevel* pyramid;
   Impulse operator()(std::int64_t, std::int64_t, std::uint32_t, float, float) const noexcept {
@@ -323,9 +350,9 @@ struct OneTexton {
 };
 
 // The shot-noise sum at p (eq. 1), filtered as section 5 says: the impulses of the grid cells that
-// meet p + [-reach, reach]^2, each adding weight * h(p - x_j) through `texton`. `impulses` maps a
-// point (cell, index in the cell, (u, v) in the cell) to its Impulse. The one loop of texton noise
-// and texton noise mixing.
+// meet p + [-reach, reach]^2, each adding weight * sign * h(p - x_j) through `texton`. `impulses`
+// maps a point (cell, index in the cell, (u, v) in the cell) to its Impulse. The one loop of texton
+// noise and texton noise mixing.
 template <int Order, int Channels, typename Impulses>
 inline void sum_impulses(Vec2d p, const FilteredTexton<Order, Channels>& texton,
                          double cell_size_double, CellCache& cells, Impulses&& impulses,
@@ -345,10 +372,10 @@ inline void sum_impulses(Vec2d p, const FilteredTexton<Order, Channels>& texton,
       const float offset_x =
           static_cast<float>(p.x - static_cast<double>(cell_x) * cell_size_double);
       std::uint32_t index = 0;
-      cells.for_each_point(cell_x, cell_y, [&](float u, float v) {
+      cells.for_each_point(cell_x, cell_y, [&](float u, float v, float sign) {
         const Impulse impulse = impulses(cell_x, cell_y, index++, u, v);
         texton.add(impulse.pyramid, offset_x - u * cell_size, offset_y - v * cell_size,
-                   impulse.weight, acc);
+                   impulse.weight * sign, acc);
       });
     }
   }

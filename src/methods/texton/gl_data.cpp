@@ -46,9 +46,11 @@ TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model, int first_ch
   text += "const int TEXTON_ORDER = " + std::to_string(model.order()) + ";\n";
   text +=
       "const float TEXTON_CELL_SIZE = " + glsl_float(static_cast<float>(model.cell_size())) + ";\n";
-  text += glsl_array("float", "TEXTON_POISSON_CDF", std::span<const float>(cdf), glsl_float);
+  text += glsl_array("float", "TEXTON_COUNT_CDF", std::span<const float>(cdf), glsl_float);
   text +=
-      "const uint TEXTON_POISSON_CHUNKS = " + std::to_string(model.cell_count().chunks()) + "u;\n";
+      "const uint TEXTON_COUNT_CHUNKS = " + std::to_string(model.cell_count().chunks()) + "u;\n";
+  text += std::string("const bool TEXTON_SIGNS = ") + (model.signed_impacts() ? "true" : "false") +
+          ";\n";
   text +=
       "const float TEXTON_INVERSE_SQRT_INTENSITY = " + glsl_float(model.inverse_sqrt_intensity()) +
       ";\n";
@@ -68,6 +70,7 @@ TextonGlsl texton_glsl(const texton::TextonModel& model, int first_channel) {
       "const vec4 TEXTON_CONSTANT_TERM = " + glsl_vec4(model.constant_term().subspan(first)) +
       ";\n";
   glsl.constants += "const vec4 TEXTON_MEAN = " + glsl_vec4(model.mean().subspan(first)) + ";\n";
+
   return glsl;
 }
 

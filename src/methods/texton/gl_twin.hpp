@@ -23,8 +23,8 @@ struct TextonGlsl {
   ImageF atlas;           // 4 channels; level l's padded texels start at row TEXTON_LEVEL_ROW[l]
 };
 
-// The shot noise's constants (channels, order, cell size, Poisson counts, intensity, the pyramid
-// levels) and texel atlas: what impulses.glsl needs, shared with texton noise mixing
+// The shot noise's constants (channels, order, cell size, cell counts and signs, intensity, the
+// pyramid levels) and texel atlas: what impulses.glsl needs, shared with texton noise mixing
 // (texton_mix/gl_data.cpp, one texton model per step). A model of more than 4 channels renders
 // in chunks of 4 (gl_pass.cpp): `first_channel` picks the chunk (TEXTON_CHANNELS = its width, the
 // atlas its channels); every chunk has the same impulses.

@@ -7,6 +7,18 @@
 // the point's cell relative to it, its index in the cell, (u, v) in the cell) to its TextonImpulse.
 TextonImpulse texton_impulse(uvec2 origin_cell, ivec2 cell, uint index, vec2 uv, uint seed);
 
+// The random sign of the index-th point of a cell from the cell's sign key (point_sign in
+// evaluate.hpp), and from the cell given as for texton_impulse (impulse_sign).
+float texton_point_sign(uint sign_key, uint index) {
+  return (pcg_hash(sign_key ^ pcg_hash(index)) >> 31u) != 0u ? -1.0 : 1.0;
+}
+
+float texton_sign(uvec2 origin_cell, ivec2 cell, uint index, uint seed) {
+  return texton_point_sign(
+      cell_key(origin_cell.x + uint(cell.x), origin_cell.y + uint(cell.y), seed, STREAM_SIGNS),
+      index);
+}
+
 // Half side of the square outside which an impact adds nothing (FilteredTexton::reach in
 // evaluate.hpp): the kernel's support plus the spread of the probes.
 float texton_reach(TextonFilter f) {
@@ -56,17 +68,19 @@ vec4 texton_sum_impulses(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
     float offset_y = p.y - float(cell_y) * TEXTON_CELL_SIZE;
     for (int cell_x = first_x; cell_x <= last_x; ++cell_x) {
       float offset_x = p.x - float(cell_x) * TEXTON_CELL_SIZE;
-      CounterRng rng = CounterRng(cell_key(origin_cell.x + uint(cell_x),
-                                           origin_cell.y + uint(cell_y), seed, STREAM_POINTS),
-                                  0u);
-      uint impacts = texton_poisson_count(rng);
+      uvec2 key_cell = origin_cell + uvec2(ivec2(cell_x, cell_y));
+      CounterRng rng = CounterRng(cell_key(key_cell.x, key_cell.y, seed, STREAM_POINTS), 0u);
+      // Each point's sign (CellCache in evaluate.hpp): the balanced points' (TEXTON_SIGNS), else 1.
+      uint sign_key = TEXTON_SIGNS ? cell_key(key_cell.x, key_cell.y, seed, STREAM_SIGNS) : 0u;
+      uint impacts = texton_cell_count(rng);
       for (uint n = 0u; n < impacts; ++n) {
         float u = rng_uniform(rng);
         float v = rng_uniform(rng);
         TextonImpulse impulse =
             texton_impulse(origin_cell, ivec2(cell_x, cell_y), n, vec2(u, v), seed);
+        float sign = TEXTON_SIGNS ? texton_point_sign(sign_key, n) : 1.0;
         texton_add(impulse.atlas, f, offset_x - u * TEXTON_CELL_SIZE,
-                   offset_y - v * TEXTON_CELL_SIZE, impulse.weight, acc);
+                   offset_y - v * TEXTON_CELL_SIZE, impulse.weight * sign, acc);
       }
     }
   }

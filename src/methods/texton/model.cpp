@@ -67,12 +67,13 @@ std::vector<PyramidLevel> build_pyramid(std::span<const float> coefficients, int
 
 }  // namespace
 
-TextonModel::TextonModel(int channels, int support, int order, double mean_impacts,
+TextonModel::TextonModel(int channels, int support, int order, double mean_impacts, int points,
                          std::vector<float> coefficients, std::vector<float> mean)
     : channels_(channels),
       support_(support),
       order_(order),
       mean_impacts_(mean_impacts),
+      points_(points),
       coefficients_(std::move(coefficients)),
       mean_(std::move(mean)) {
   if (channels_ < 1 || channels_ > kMaxChannels)
@@ -83,6 +84,8 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
     throw std::invalid_argument("texton: order must be 0, 1, 3 or 5");
   if (!(mean_impacts_ > 0.0) || !std::isfinite(mean_impacts_))
     throw std::invalid_argument("texton: mni must be a positive number");
+  if (points_ != kPoissonPoints && points_ != kBalancedPoints)
+    throw std::invalid_argument("texton: points must be poisson (0) or balanced (1)");
   if (coefficients_.size() != static_cast<std::size_t>(support_) * support_ * channels_ ||
       mean_.size() != static_cast<std::size_t>(channels_))
     throw std::invalid_argument("texton: coefficient or mean array has the wrong size");
@@ -93,9 +96,11 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
   const double side = 2.0 * pyramid_.front().half_width;
   intensity_ = mean_impacts_ / (side * side);
   cell_size_ = kCellSizeFactor * side;
-  cell_count_ = PoissonSampler(intensity_ * cell_size_ * cell_size_);
+  const double cell_mean = intensity_ * cell_size_ * cell_size_;
+  cell_count_ = signed_impacts() ? CellCount::balanced(cell_mean) : CellCount::poisson(cell_mean);
   inverse_sqrt_intensity_ = static_cast<float>(1.0 / std::sqrt(intensity_));
-  // E f = lambda * integral(h) = lambda * sum(alpha) since psi integrates to 1 (Proposition 1).
+  // E f = lambda * integral(h) = lambda * sum(alpha) since psi integrates to 1 (Proposition 1);
+  // with signed impacts E f = 0 (section 7).
   constant_term_.resize(static_cast<std::size_t>(channels_));
   coefficient_sum_.resize(static_cast<std::size_t>(channels_));
   for (int c = 0; c < channels_; ++c) {
@@ -104,7 +109,8 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
          i += static_cast<std::size_t>(channels_))
       sum += coefficients_[i];
     coefficient_sum_[c] = sum;
-    constant_term_[c] = static_cast<float>(mean_[c] - intensity_ * sum / std::sqrt(intensity_));
+    const double expectation = signed_impacts() ? 0.0 : intensity_ * sum;
+    constant_term_[c] = static_cast<float>(mean_[c] - expectation / std::sqrt(intensity_));
   }
 }
 
@@ -120,6 +126,9 @@ TextonModel TextonModel::from_record(const ModelRecord& record, const std::strin
   const int support = static_cast<int>(read_param("support"));
   const int order = static_cast<int>(read_param("order"));
   const double mean_impacts = read_param("mni");
+  // Files written before the choice existed were rendered with the paper's Poisson process.
+  const int points = record.scalars.contains("points") ? static_cast<int>(read_param("points"))
+                                                       : static_cast<int>(kPoissonPoints);
   const NamedArray& coefficients = record.array("texton", {support, support, channels}, source);
   const NamedArray& mean = record.array("mean", {channels}, source);
   if (!within_model_range(coefficients.values) || !within_model_range(mean.values))
@@ -127,7 +136,8 @@ TextonModel TextonModel::from_record(const ModelRecord& record, const std::strin
                                        "' holds texton values that are not finite or beyond "
                                        "+-1e12; re-run `stochtex analyze`");
   try {
-    return TextonModel(channels, support, order, mean_impacts, coefficients.values, mean.values);
+    return TextonModel(channels, support, order, mean_impacts, points, coefficients.values,
+                       mean.values);
   } catch (const std::invalid_argument& e) {
     throw Error(ErrorCode::format, "'" + source + "' is not a valid texton model (" + e.what() +
                                        "); re-run `stochtex analyze`");
@@ -140,8 +150,11 @@ ModelRecord TextonModel::to_record(const ParamValues& params) const {
   record.params = params;
   // The side used, also when the exemplar chose it (support = 0): `stochtex info` shows it.
   record.params["support"] = support_;
-  record.scalars = {
-      {"channels", channels_}, {"support", support_}, {"order", order_}, {"mni", mean_impacts_}};
+  record.scalars = {{"channels", channels_},
+                    {"support", support_},
+                    {"order", order_},
+                    {"mni", mean_impacts_},
+                    {"points", points_}};
   record.arrays.push_back({"texton", {support_, support_, channels_}, coefficients_});
   record.arrays.push_back({"mean", {channels_}, mean_});
   return record;
@@ -165,14 +178,14 @@ template <int Order, int Channels>
 void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
                                  std::span<const Footprint> footprints, std::uint32_t seed,
                                  ImageView<float> out) const noexcept {
-  CellCache cells(seed, cell_count_);
+  CellCache cells(seed, cell_count_, signed_impacts());
   shot_noise<Order, Channels>(
       positions, footprints, pyramid_, cell_size_, cells, OneTexton{pyramid_.data()},
       [&](std::size_t index, const FilteredTexton<Order, Channels>& texton,
           const float(&acc)[Channels]) {
         const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
         const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-        // (f - lambda sum alpha) / sqrt(lambda) + mean, eq. (2). Channels is the lane count
+        // (f - E f) / sqrt(lambda) + mean, eq. (2). Channels is the lane count
         // (texton_lanes): the channels beyond the model's are zero padding.
         for (int c = 0; c < channels_; ++c)
           out.at(x, y, c) =
@@ -190,8 +203,8 @@ SurfaceConstants TextonModel::surface_constants(double surface_mni) const {
   const double intensity = surface_mni / (side * side * side);
   SurfaceConstants constants;
   constants.cell_size = kCellSizeFactor * side;
-  constants.count =
-      PoissonSampler(intensity * constants.cell_size * constants.cell_size * constants.cell_size);
+  constants.count = CellCount::poisson(intensity * constants.cell_size * constants.cell_size *
+                                       constants.cell_size);
   const double scale = 1.0 / std::sqrt(intensity * side / 3.0);
   constants.scale = static_cast<float>(scale);
   for (int c = 0; c < channels_; ++c)

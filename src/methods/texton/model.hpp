@@ -8,7 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/poisson.hpp"
+#include "core/cell_count.hpp"
+#include "methods/texton/params.hpp"
 #include "model/model_record.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
@@ -23,7 +24,7 @@ namespace stochtex::texton {
 // (f - lambda r/2 sum(alpha)) / sqrt(lambda r/3) + mean = f * scale + constant.
 struct SurfaceConstants {
   double cell_size = 0;
-  PoissonSampler count;
+  CellCount count;
   float depth = 0;
   float inverse_depth = 0;
   float scale = 0;
@@ -56,8 +57,9 @@ class TextonModel {
   static constexpr std::string_view kMethodName = "texton";
 
   // `coefficients` is support x support x channels, row-major (the output of Algorithm 1 after the
-  // colour covariance correction); `mean` has `channels` values.
-  TextonModel(int channels, int support, int order, double mean_impacts,
+  // colour covariance correction); `mean` has `channels` values; `points` a PointProcess
+  // (params.hpp).
+  TextonModel(int channels, int support, int order, double mean_impacts, int points,
               std::vector<float> coefficients, std::vector<float> mean);
 
   static TextonModel from_record(const ModelRecord& record, const std::string& source);
@@ -69,18 +71,22 @@ class TextonModel {
   int support() const { return support_; }
   int order() const { return order_; }
   double mean_impacts() const { return mean_impacts_; }
+  int points() const { return points_; }
+  // Whether each impact carries a random sign (the balanced process; section 7's marks).
+  bool signed_impacts() const { return points_ == kBalancedPoints; }
   std::span<const float> coefficients() const { return coefficients_; }
   std::span<const float> mean() const { return mean_; }
   const std::vector<PyramidLevel>& pyramid() const { return pyramid_; }
   double intensity() const { return intensity_; }
   // Shot-noise constants, for the GLSL twin of the evaluator (gl_data.cpp).
   double cell_size() const { return cell_size_; }
-  const PoissonSampler& cell_count() const { return cell_count_; }
+  const CellCount& cell_count() const { return cell_count_; }
   float inverse_sqrt_intensity() const { return inverse_sqrt_intensity_; }
   std::span<const float> constant_term() const { return constant_term_; }
 
-  // Normalised texton noise (f - lambda sum(alpha)) / sqrt(lambda) + mean (eq. 2) at each
-  // position, filtered by the footprint when it is wider than a texel. noexcept, no allocation.
+  // Normalised texton noise (f - E f) / sqrt(lambda) + mean (eq. 2; E f = lambda sum(alpha) for
+  // the Poisson process, 0 with signed impacts) at each position, filtered by the footprint when it
+  // is wider than a texel. noexcept, no allocation.
   void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                 std::uint32_t seed, ImageView<float> out) const noexcept;
 
@@ -105,6 +111,7 @@ class TextonModel {
   int support_;
   int order_;
   double mean_impacts_;
+  int points_;
   std::vector<float> coefficients_;
   std::vector<float> mean_;
 
@@ -112,9 +119,9 @@ class TextonModel {
   std::vector<PyramidLevel> pyramid_;
   double intensity_ = 0;  // lambda = MNI / r^2, r the side of h's support (section 3.3)
   double cell_size_ = 0;  // a = 0.6 r (section 8)
-  PoissonSampler cell_count_;
+  CellCount cell_count_;
   float inverse_sqrt_intensity_ = 0;
-  std::vector<float> constant_term_;     // mean - lambda sum(alpha) / sqrt(lambda), per channel
+  std::vector<float> constant_term_;     // mean - E f / sqrt(lambda), per channel
   std::vector<double> coefficient_sum_;  // sum(alpha), per channel
 };
 

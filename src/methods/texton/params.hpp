@@ -24,11 +24,22 @@ constexpr int texton_support(int support, int width, int height) {
   return std::min(support, side);
 }
 
+// The point process of the impacts (`points`). poisson: the paper's (sections 3.3, 8): a Poisson
+// number of points per grid cell, each scattering the texton with weight 1. balanced (the
+// default, our variant): each cell holds floor(m) or floor(m) + 1 points (m = lambda a^2, the
+// least variable count of that mean, core/cell_count.hpp), each scattering the texton with a
+// random sign eps_j in {-1, +1} (section 7's marks). With signs of mean zero the covariance is
+// lambda C whatever the count's law (the cross terms cancel), so the model is unchanged; but one
+// render's variance no longer moves with the number of points it holds (docs/methods/texton.md,
+// "Fidelity on the shipped exemplars").
+enum PointProcess : int { kPoissonPoints = 0, kBalancedPoints = 1 };
+
 struct Params {
   int support = 0;
   int order = 1;
   int iterations = 50;
   double mni = 30;
+  int points = kBalancedPoints;
 
   bool operator==(const Params&) const = default;
 };
@@ -36,7 +47,10 @@ struct Params {
 inline constexpr std::array<ParamChoice, 4> kOrders = {
     {{"nearest", 0}, {"bilinear", 1}, {"cubic", 3}, {"quintic", 5}}};
 
-inline constexpr std::array<ParamField<Params>, 4> kFields = {{
+inline constexpr std::array<ParamChoice, 2> kPointProcesses = {
+    {{"poisson", kPoissonPoints}, {"balanced", kBalancedPoints}}};
+
+inline constexpr std::array<ParamField<Params>, 5> kFields = {{
     chosen_number_field<&Params::support>(
         "support", 2, 1024,
         "side of the square support S of the texton coefficients, in exemplar pixels (section "
@@ -52,6 +66,11 @@ inline constexpr std::array<ParamField<Params>, 4> kFields = {{
         "mni", 1, 10000,
         "mean number of impacts: the mean count of textons covering a point (sections 3.3, 9); "
         "the evaluation cost per sample grows linearly with it"),
+    choice_field<&Params::points>(
+        "points", kPointProcesses,
+        "point process of the impacts: poisson (the paper's: Poisson counts per cell, weight 1) "
+        "or balanced (each cell holds floor(m) or floor(m) + 1 points of mean m, each with a "
+        "random sign as in section 7: the same covariance, and one render's variance steadier)"),
 }};
 
 inline constexpr auto kParams = param_infos(kFields);

@@ -136,11 +136,11 @@ struct LaneSums {
     }
   };
 
-  // Point `index` (u, v) of cell (cell_x, cell_y), for the lanes of `lanes` at offsets (ox, oy)
-  // from the cell corner. `near` bounds u * cell_size and v * cell_size: outside it the point is
-  // beyond the reach of every lane (the reads would all add nothing) and is passed over.
+  // Point `index` (u, v, its sign) of cell (cell_x, cell_y), for the lanes of `lanes` at offsets
+  // (ox, oy) from the cell corner. `near` bounds u * cell_size and v * cell_size: outside it the
+  // point is beyond the reach of every lane (the reads would all add nothing) and is passed over.
   HWY_INLINE void point(std::int64_t cell_x, std::int64_t cell_y, std::uint32_t index, float u,
-                        float v, VF ox, VF oy, MF lanes, const float (&near)[4]) {
+                        float v, float sign, VF ox, VF oy, MF lanes, const float (&near)[4]) {
     const DF df;
     const float impact_x = u * cell_size;
     const float impact_y = v * cell_size;
@@ -152,7 +152,7 @@ struct LaneSums {
     const Read read{ox - hn::Set(df, impact_x), oy - hn::Set(df, impact_y), lanes, acc};
     HWY_NAMESPACE::for_each_read(texton.filter(), impulse.pyramid[texton.fine_level()],
                                  impulse.pyramid[texton.coarse_level()], texton.probe_weight(),
-                                 impulse.weight, read);
+                                 impulse.weight * sign, read);
   }
 };
 
@@ -238,11 +238,12 @@ void sum_lanes(std::span<const Vec2d> positions, std::size_t first,
         const CellCache::Points points = cells.points(cell_x, cell_y);
         if (points.u != nullptr) {
           for (std::uint32_t i = 0; i < points.count; ++i)
-            sums.point(cell_x, cell_y, i, points.u[i], points.v[i], ox, oy, in_cell, near);
+            sums.point(cell_x, cell_y, i, points.u[i], points.v[i], points.sign[i], ox, oy, in_cell,
+                       near);
         } else {
           std::uint32_t index = 0;
-          cells.for_each_point(cell_x, cell_y, [&](float u, float v) HWY_ATTR {
-            sums.point(cell_x, cell_y, index++, u, v, ox, oy, in_cell, near);
+          cells.for_each_point(cell_x, cell_y, [&](float u, float v, float sign) HWY_ATTR {
+            sums.point(cell_x, cell_y, index++, u, v, sign, ox, oy, in_cell, near);
           });
         }
       }

@@ -7,7 +7,7 @@
 // TEXTON_SURFACE_CONSTANT.
 
 uint surface_impulse_count(inout CounterRng rng, TextonFilter f) {
-  return texton_poisson(rng, TEXTON_SURFACE_POISSON_CDF, TEXTON_SURFACE_POISSON_CHUNKS);
+  return texton_count(rng, TEXTON_SURFACE_POISSON_CDF, TEXTON_SURFACE_POISSON_CHUNKS);
 }
 
 // An impulse within r/2 of the tangent plane, weighted by (1 - 2 |t| / r)+, carries the filtered

@@ -1,7 +1,7 @@
 // Texton noise mixing in GLSL (texton paper section 7): the twin of MixField::rho and
 // TextonMixModel::evaluate_typed (model.cpp), same draws, so the CPU and GPU agree to float
-// rounding. Requires random.glsl, texton's and this method's shared constants (Twin::kConstants:
-// TEXTON_PADDING, ..., STREAM_SIGNS), the shot noise's constants (texton_shot_noise_glsl), this
+// rounding. Requires random.glsl (STREAM_SIGNS among its constants), texton's shared constants
+// (Twin::kConstants: TEXTON_PADDING, ...), the shot noise's constants (texton_shot_noise_glsl), this
 // model's (texton_mix_glsl in gl_data.cpp: TEXTON_MIX_STEPS, TEXTON_MIX_ATLAS_COLUMNS,
 // TEXTON_MIX_ATLAS_TILE, TEXTON_MIX_MEAN_A/B, TEXTON_MIX_FIELD_AT_ORIGIN and the ramp's
 // TEXTON_MIX_RAMP_* or, with TEXTON_MIX_MASK defined, the mask's TEXTON_MIX_MASK_* and
@@ -41,11 +41,8 @@ TextonImpulse texton_impulse(uvec2 origin_cell, ivec2 cell, uint index, vec2 uv,
   int step = int(floor(texton_mix_rho((vec2(cell) + uv) * TEXTON_CELL_SIZE) *
                            float(TEXTON_MIX_STEPS - 1) +
                        0.5));
-  uint key = cell_key(origin_cell.x + uint(cell.x), origin_cell.y + uint(cell.y), seed,
-                      STREAM_SIGNS);
-  float sign = (pcg_hash(key ^ pcg_hash(index)) >> 31u) != 0u ? -1.0 : 1.0;
   ivec2 tile = ivec2(step % TEXTON_MIX_ATLAS_COLUMNS, step / TEXTON_MIX_ATLAS_COLUMNS);
-  return TextonImpulse(tile * TEXTON_MIX_ATLAS_TILE, sign);
+  return TextonImpulse(tile * TEXTON_MIX_ATLAS_TILE, texton_sign(origin_cell, cell, index, seed));
 }
 
 // The mixed texton noise f / sqrt(lambda) + (1 - rho) mean_A + rho mean_B at p, in exemplar pixels

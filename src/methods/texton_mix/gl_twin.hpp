@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "core/hash.hpp"
 #include "gl/twin.hpp"
 #include "methods/texton_mix/model.hpp"
 #include "stochtex/image.hpp"
@@ -36,9 +35,8 @@ std::array<float, 2> texton_mix_field_at(const texton_mix::MixField& field, doub
 
 template <>
 struct Twin<texton_mix::TextonMixModel> {
-  static constexpr std::array<GlslConstant, 1> kConstants = {{
-      {"STREAM_SIGNS", static_cast<std::uint32_t>(Stream::signs)},
-  }};
+  // Its shared constants are texton noise's and random.glsl's (STREAM_SIGNS among them).
+  static constexpr std::array<GlslConstant, 0> kConstants = {};
   static std::unique_ptr<Pass> pass(const texton_mix::TextonMixModel& model);
   static ExportParts shader(const texton_mix::TextonMixModel& model, ShaderVariant variant);
 };

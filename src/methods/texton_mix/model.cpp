@@ -4,7 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/hash.hpp"
 #include "methods/texton/evaluate.hpp"
 #include "methods/texton/simd.hpp"
 #include "model/value_range.hpp"
@@ -74,11 +73,12 @@ TextonMixModel::TextonMixModel(const Params& params, int channels, int support,
     throw std::invalid_argument("texton_mix: a texton or mean array has the wrong size");
   // Each step as a texton noise model of zero mean: its pyramid (section 5) and its shot-noise
   // constants, which depend on support, order and MNI only and so are the same for every step.
+  // The mixing keeps the paper's Poisson process (its impulses carry their own signs).
   shapes_.reserve(static_cast<std::size_t>(params_.steps));
   for (int step = 0; step < params_.steps; ++step) {
     const auto first = textons_.begin() + static_cast<std::ptrdiff_t>(texton_size * step);
     shapes_.emplace_back(
-        channels, support, params_.texton.order, params_.texton.mni,
+        channels, support, params_.texton.order, params_.texton.mni, texton::kPoissonPoints,
         std::vector<float>(first, first + static_cast<std::ptrdiff_t>(texton_size)),
         std::vector<float>(static_cast<std::size_t>(channels), 0.0f));
   }
@@ -167,9 +167,8 @@ void TextonMixModel::evaluate_typed(std::span<const Vec2d> positions,
     const double centre_y = (static_cast<double>(cell_y) + v) * cell_size;
     const auto step =
         static_cast<std::size_t>(std::lround(field_.rho(centre_x, centre_y) * last_step));
-    const std::uint32_t key = cell_key(cell_x, cell_y, seed, Stream::signs);
-    const float sign = (pcg_hash(key ^ pcg_hash(index)) >> 31u) != 0u ? -1.0f : 1.0f;
-    return texton::Impulse{shapes_[step].pyramid().data(), sign};
+    return texton::Impulse{shapes_[step].pyramid().data(),
+                           texton::impulse_sign(cell_x, cell_y, index, seed)};
   };
   texton::shot_noise<Order, Channels>(
       positions, footprints, shape.pyramid(), cell_size, cells, region_texton,
