@@ -202,10 +202,25 @@ inline float impulse_sign(std::int64_t cell_x, std::int64_t cell_y, std::uint32_
   return point_sign(cell_key(cell_x, cell_y, seed, Stream::signs), index);
 }
 
+// Generators of the shifted rank-1 lattice of the balanced points in a cell: the R2 sequence's
+// (1/g, 1/g^2, g the plastic number, the root of g^3 = g + 1), whose first n points are well
+// spread in the unit square for every n.
+inline constexpr float kLatticeStepU = 0.7548776662f;
+inline constexpr float kLatticeStepV = 0.5698402910f;
+
+// Point i of the lattice shifted by `shift` (Cranley-Patterson rotation), coordinate by
+// coordinate: uniform in [0, 1) for a uniform shift. x - floor(x) is exact in float.
+inline float lattice_point(float shift, std::uint32_t i, float step) noexcept {
+  const float x = shift + static_cast<float>(i) * step;
+  return x - std::floor(x);
+}
+
 // The points of the grid cells (section 8): cell (x, y) holds `count` points (a Poisson or a
-// balanced number, core/cell_count.hpp), uniform in the cell, all drawn from
-// cell_key(x, y, seed, points) in a fixed order, each with the sign point_sign gives when the
-// cache is `signed` (texton noise's balanced points), else 1. The draws are a pure function of the
+// balanced number, core/cell_count.hpp), all drawn from cell_key(x, y, seed, points) in a fixed
+// order. Unsigned (the Poisson process): each point uniform in the cell, two uniforms each.
+// Signed (texton noise's balanced points): a shifted lattice of kLatticeStepU/V, the shift two
+// uniforms, so every point is uniform in the cell but the cell's points are evenly spread; each
+// point with the sign point_sign gives (else 1). The draws are a pure function of the
 // cell, so neighbouring samples of a batch, which visit the same cells, can reuse them: the cache
 // keeps the points of recently visited cells and gives exactly the numbers a fresh draw gives, so
 // the output does not depend on the batch (a GLSL port simply draws every time). Fixed size, on
@@ -242,13 +257,12 @@ class CellCache {
       entry.x = cell_x;
       entry.y = cell_y;
       entry.count = impacts;
-      for (std::uint32_t i = 0; i < impacts; ++i) {
-        entry.u[i] = rng.uniform();
-        entry.v[i] = rng.uniform();
-      }
+      PointDraws draws(rng, signs_);
       const std::uint32_t sign_key = sign_key_of(cell_x, cell_y);
-      for (std::uint32_t i = 0; i < impacts; ++i)
+      for (std::uint32_t i = 0; i < impacts; ++i) {
+        draws.next(rng, i, entry.u[i], entry.v[i]);
         entry.sign[i] = signs_ ? point_sign(sign_key, i) : 1.0f;
+      }
     }
     return {entry.u, entry.v, entry.sign, entry.count};
   }
@@ -265,10 +279,11 @@ class CellCache {
     // Too many to keep: the count's draws again, then the points'.
     CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
     count_(rng);
+    PointDraws draws(rng, signs_);
     const std::uint32_t sign_key = sign_key_of(cell_x, cell_y);
     for (std::uint32_t i = 0; i < cached.count; ++i) {
-      const float u = rng.uniform();
-      const float v = rng.uniform();
+      float u, v;
+      draws.next(rng, i, u, v);
       f(u, v, signs_ ? point_sign(sign_key, i) : 1.0f);
     }
   }
@@ -284,6 +299,28 @@ class CellCache {
     float sign[kMaxPoints];
   };
   static_assert(kEntries == 32, "the slot index is (x mod 8, y mod 4)");
+
+  // The positions of a cell's points after its count's draws: two uniforms per point, or the
+  // lattice's shift once (`lattice`).
+  struct PointDraws {
+    bool lattice;
+    float shift_u = 0.0f;
+    float shift_v = 0.0f;
+    PointDraws(CounterRng& rng, bool lattice_points) noexcept : lattice(lattice_points) {
+      if (!lattice) return;
+      shift_u = rng.uniform();
+      shift_v = rng.uniform();
+    }
+    void next(CounterRng& rng, std::uint32_t i, float& u, float& v) const noexcept {
+      if (lattice) {
+        u = lattice_point(shift_u, i, kLatticeStepU);
+        v = lattice_point(shift_v, i, kLatticeStepV);
+      } else {
+        u = rng.uniform();
+        v = rng.uniform();
+      }
+    }
+  };
 
   std::uint32_t sign_key_of(std::int64_t cell_x, std::int64_t cell_y) const noexcept {
     return signs_ ? cell_key(cell_x, cell_y, seed_, Stream::signs) : 0u;

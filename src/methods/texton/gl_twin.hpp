@@ -55,10 +55,12 @@ std::array<double, 2> set_render_uniforms(const Program& program, const texton::
 
 template <>
 struct Twin<texton::TextonModel> {
-  static constexpr std::array<GlslConstant, 3> kConstants = {{
+  static constexpr std::array<GlslConstant, 5> kConstants = {{
       {"TEXTON_PADDING", texton::kPadding},
       {"TEXTON_MAX_PROBES", texton::kMaxProbes},
       {"TEXTON_LOD_BIAS", static_cast<float>(kLodBias)},
+      {"TEXTON_LATTICE_STEP_U", texton::kLatticeStepU},
+      {"TEXTON_LATTICE_STEP_V", texton::kLatticeStepV},
   }};
   static std::unique_ptr<Pass> pass(const texton::TextonModel& model);
   // fast: the library and texture of --gl-filter hardware (TextonPass compiles and binds them).

@@ -13,6 +13,12 @@ float texton_point_sign(uint sign_key, uint index) {
   return (pcg_hash(sign_key ^ pcg_hash(index)) >> 31u) != 0u ? -1.0 : 1.0;
 }
 
+// Point i of the shifted lattice of the balanced points (lattice_point in evaluate.hpp).
+float texton_lattice_point(float shift, uint i, float step) {
+  float x = shift + float(i) * step;
+  return x - floor(x);
+}
+
 float texton_sign(uvec2 origin_cell, ivec2 cell, uint index, uint seed) {
   return texton_point_sign(
       cell_key(origin_cell.x + uint(cell.x), origin_cell.y + uint(cell.y), seed, STREAM_SIGNS),
@@ -70,12 +76,26 @@ vec4 texton_sum_impulses(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
       float offset_x = p.x - float(cell_x) * TEXTON_CELL_SIZE;
       uvec2 key_cell = origin_cell + uvec2(ivec2(cell_x, cell_y));
       CounterRng rng = CounterRng(cell_key(key_cell.x, key_cell.y, seed, STREAM_POINTS), 0u);
-      // Each point's sign (CellCache in evaluate.hpp): the balanced points' (TEXTON_SIGNS), else 1.
+      // The balanced points (TEXTON_SIGNS; CellCache in evaluate.hpp): a shifted lattice, each
+      // point with a sign; else uniform points of weight 1.
       uint sign_key = TEXTON_SIGNS ? cell_key(key_cell.x, key_cell.y, seed, STREAM_SIGNS) : 0u;
       uint impacts = texton_cell_count(rng);
+      float shift_u = 0.0;
+      float shift_v = 0.0;
+      if (TEXTON_SIGNS) {
+        shift_u = rng_uniform(rng);
+        shift_v = rng_uniform(rng);
+      }
       for (uint n = 0u; n < impacts; ++n) {
-        float u = rng_uniform(rng);
-        float v = rng_uniform(rng);
+        float u;
+        float v;
+        if (TEXTON_SIGNS) {
+          u = texton_lattice_point(shift_u, n, TEXTON_LATTICE_STEP_U);
+          v = texton_lattice_point(shift_v, n, TEXTON_LATTICE_STEP_V);
+        } else {
+          u = rng_uniform(rng);
+          v = rng_uniform(rng);
+        }
         TextonImpulse impulse =
             texton_impulse(origin_cell, ivec2(cell_x, cell_y), n, vec2(u, v), seed);
         float sign = TEXTON_SIGNS ? texton_point_sign(sign_key, n) : 1.0;

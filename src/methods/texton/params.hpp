@@ -25,12 +25,13 @@ constexpr int texton_support(int support, int width, int height) {
 }
 
 // The point process of the impacts (`points`). poisson: the paper's (sections 3.3, 8): a Poisson
-// number of points per grid cell, each scattering the texton with weight 1. balanced (the
+// number of uniform points per grid cell, each scattering the texton with weight 1. balanced (the
 // default, our variant): each cell holds floor(m) or floor(m) + 1 points (m = lambda a^2, the
-// least variable count of that mean, core/cell_count.hpp), each scattering the texton with a
-// random sign eps_j in {-1, +1} (section 7's marks). With signs of mean zero the covariance is
-// lambda C whatever the count's law (the cross terms cancel), so the model is unchanged; but one
-// render's variance no longer moves with the number of points it holds (docs/methods/texton.md,
+// least variable count of that mean, core/cell_count.hpp) on a randomly shifted lattice
+// (evaluate.hpp's CellCache), each scattering the texton with a random sign eps_j in {-1, +1}
+// (section 7's marks). With signs of mean zero the covariance is lambda C for any points that are
+// each uniform in their cell (the cross terms cancel), so the model is unchanged; but one render's
+// variance no longer moves with how many points it holds and where (docs/methods/texton.md,
 // "Fidelity on the shipped exemplars").
 enum PointProcess : int { kPoissonPoints = 0, kBalancedPoints = 1 };
 
@@ -68,9 +69,10 @@ inline constexpr std::array<ParamField<Params>, 5> kFields = {{
         "the evaluation cost per sample grows linearly with it"),
     choice_field<&Params::points>(
         "points", kPointProcesses,
-        "point process of the impacts: poisson (the paper's: Poisson counts per cell, weight 1) "
-        "or balanced (each cell holds floor(m) or floor(m) + 1 points of mean m, each with a "
-        "random sign as in section 7: the same covariance, and one render's variance steadier)"),
+        "point process of the impacts: poisson (the paper's: Poisson counts of uniform points, "
+        "weight 1) or balanced (floor(m) or floor(m) + 1 points per cell of mean m on a shifted "
+        "lattice, each with a random sign as in section 7: the same covariance, and one render's "
+        "variance steadier)"),
 }};
 
 inline constexpr auto kParams = param_infos(kFields);
