@@ -179,7 +179,7 @@ TEST(TextonSupport, TheDefaultTakesTheWholeExemplarUpTo256AndCrops128Beyond) {
 // process draws the same points' positions from other counts and gives each impact a random sign.
 TEST(TextonPoints, AFileWithoutTheChoiceRendersThePaperPoissonProcess) {
   const texton::TextonModel& balanced = three_channel_texton();
-  ASSERT_TRUE(balanced.signed_impacts());
+  ASSERT_TRUE(balanced.balanced_points());
   const texton::TextonModel poisson(
       balanced.channels(), balanced.support(), balanced.order(), balanced.mean_impacts(),
       texton::kPoissonPoints, {balanced.coefficients().begin(), balanced.coefficients().end()},

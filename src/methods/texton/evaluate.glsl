@@ -3,7 +3,7 @@
 // Requires random.glsl, then the constants shared with the C++ (TEXTON_PADDING, TEXTON_MAX_PROBES,
 // TEXTON_LOD_BIAS, TEXTON_LATTICE_STEP_U/V: Twin::kConstants in gl_twin.hpp), the model's
 // constants (texton_glsl() in gl_data.cpp writes them: TEXTON_CHANNELS, TEXTON_ORDER,
-// TEXTON_CELL_SIZE, TEXTON_COUNT_CDF, TEXTON_COUNT_CHUNKS, TEXTON_SIGNS,
+// TEXTON_CELL_SIZE, TEXTON_COUNT_CDF, TEXTON_COUNT_CHUNKS, TEXTON_BALANCED,
 // TEXTON_INVERSE_SQRT_INTENSITY, TEXTON_CONSTANT_TERM, TEXTON_MEAN, TEXTON_LEVELS and the
 // TEXTON_LEVEL_* arrays) and `vec4 texton_atlas_texel(ivec2 texel)`, the atlas of every pyramid
 // level's padded texels (RGBA = up to 4 channels), level l in rows TEXTON_LEVEL_ROW[l] onwards

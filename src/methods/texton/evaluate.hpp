@@ -217,21 +217,20 @@ inline float lattice_point(float shift, std::uint32_t i, float step) noexcept {
 
 // The points of the grid cells (section 8): cell (x, y) holds `count` points (a Poisson or a
 // balanced number, core/cell_count.hpp), all drawn from cell_key(x, y, seed, points) in a fixed
-// order. Unsigned (the Poisson process): each point uniform in the cell, two uniforms each.
-// Signed (texton noise's balanced points): a shifted lattice of kLatticeStepU/V, the shift two
-// uniforms, so every point is uniform in the cell but the cell's points are evenly spread; each
-// point with the sign point_sign gives (else 1). The draws are a pure function of the
-// cell, so neighbouring samples of a batch, which visit the same cells, can reuse them: the cache
-// keeps the points of recently visited cells and gives exactly the numbers a fresh draw gives, so
-// the output does not depend on the batch (a GLSL port simply draws every time). Fixed size, on
-// the stack: no allocation during evaluation.
+// order. The Poisson process: each point uniform in the cell (two uniforms), sign 1. The balanced
+// points (`balanced`): a lattice of steps kLatticeStepU/V shifted by two uniforms, so that every
+// point is uniform in the cell but the cell's points are evenly spread, each point with the sign
+// point_sign gives. The draws are a pure function of the cell, so neighbouring samples of a batch,
+// which visit the same cells, can reuse them: the cache keeps the points of recently visited cells
+// and gives exactly the numbers a fresh draw gives, so the output does not depend on the batch (a
+// GLSL port simply draws every time). Fixed size, on the stack: no allocation during evaluation.
 class CellCache {
  public:
   static constexpr int kEntries = 32;
   static constexpr std::uint32_t kMaxPoints = 128;  // cells with more points are drawn each time
 
-  CellCache(std::uint32_t seed, const CellCount& count, bool signs = false) noexcept
-      : seed_(seed), count_(count), signs_(signs) {}
+  CellCache(std::uint32_t seed, const CellCount& count, bool balanced = false) noexcept
+      : seed_(seed), count_(count), balanced_(balanced) {}
 
   // The points of a cell in the cache: (u[i], v[i]) in [0, 1)^2 relative to the cell corner and
   // sign[i], i < count; the arrays are null when the cell holds more than kMaxPoints points.
@@ -257,11 +256,11 @@ class CellCache {
       entry.x = cell_x;
       entry.y = cell_y;
       entry.count = impacts;
-      PointDraws draws(rng, signs_);
+      PointDraws draws(rng, balanced_);
       const std::uint32_t sign_key = sign_key_of(cell_x, cell_y);
       for (std::uint32_t i = 0; i < impacts; ++i) {
         draws.next(rng, i, entry.u[i], entry.v[i]);
-        entry.sign[i] = signs_ ? point_sign(sign_key, i) : 1.0f;
+        entry.sign[i] = balanced_ ? point_sign(sign_key, i) : 1.0f;
       }
     }
     return {entry.u, entry.v, entry.sign, entry.count};
@@ -279,12 +278,12 @@ class CellCache {
     // Too many to keep: the count's draws again, then the points'.
     CounterRng rng(cell_key(cell_x, cell_y, seed_, Stream::points));
     count_(rng);
-    PointDraws draws(rng, signs_);
+    PointDraws draws(rng, balanced_);
     const std::uint32_t sign_key = sign_key_of(cell_x, cell_y);
     for (std::uint32_t i = 0; i < cached.count; ++i) {
       float u, v;
       draws.next(rng, i, u, v);
-      f(u, v, signs_ ? point_sign(sign_key, i) : 1.0f);
+      f(u, v, balanced_ ? point_sign(sign_key, i) : 1.0f);
     }
   }
 
@@ -301,7 +300,7 @@ class CellCache {
   static_assert(kEntries == 32, "the slot index is (x mod 8, y mod 4)");
 
   // The positions of a cell's points after its count's draws: two uniforms per point, or the
-  // lattice's shift once (`lattice`).
+  // lattice's shift once (`lattice`: the balanced points).
   struct PointDraws {
     bool lattice;
     float shift_u = 0.0f;
@@ -323,12 +322,12 @@ class CellCache {
   };
 
   std::uint32_t sign_key_of(std::int64_t cell_x, std::int64_t cell_y) const noexcept {
-    return signs_ ? cell_key(cell_x, cell_y, seed_, Stream::signs) : 0u;
+    return balanced_ ? cell_key(cell_x, cell_y, seed_, Stream::signs) : 0u;
   }
 
   std::uint32_t seed_;
   const CellCount& count_;
-  bool signs_;
+  bool balanced_;
   std::array<Entry, kEntries> entries_{};
 };
 

@@ -49,8 +49,8 @@ TextonGlsl texton_shot_noise_glsl(const texton::TextonModel& model, int first_ch
   text += glsl_array("float", "TEXTON_COUNT_CDF", std::span<const float>(cdf), glsl_float);
   text +=
       "const uint TEXTON_COUNT_CHUNKS = " + std::to_string(model.cell_count().chunks()) + "u;\n";
-  text += std::string("const bool TEXTON_SIGNS = ") + (model.signed_impacts() ? "true" : "false") +
-          ";\n";
+  text += std::string("const bool TEXTON_BALANCED = ") +
+          (model.balanced_points() ? "true" : "false") + ";\n";
   text +=
       "const float TEXTON_INVERSE_SQRT_INTENSITY = " + glsl_float(model.inverse_sqrt_intensity()) +
       ";\n";

@@ -76,20 +76,20 @@ vec4 texton_sum_impulses(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
       float offset_x = p.x - float(cell_x) * TEXTON_CELL_SIZE;
       uvec2 key_cell = origin_cell + uvec2(ivec2(cell_x, cell_y));
       CounterRng rng = CounterRng(cell_key(key_cell.x, key_cell.y, seed, STREAM_POINTS), 0u);
-      // The balanced points (TEXTON_SIGNS; CellCache in evaluate.hpp): a shifted lattice, each
-      // point with a sign; else uniform points of weight 1.
-      uint sign_key = TEXTON_SIGNS ? cell_key(key_cell.x, key_cell.y, seed, STREAM_SIGNS) : 0u;
+      // The balanced points (TEXTON_BALANCED; CellCache in evaluate.hpp): a shifted lattice, each
+      // point with a random sign; else uniform points, sign 1.
+      uint sign_key = TEXTON_BALANCED ? cell_key(key_cell.x, key_cell.y, seed, STREAM_SIGNS) : 0u;
       uint impacts = texton_cell_count(rng);
       float shift_u = 0.0;
       float shift_v = 0.0;
-      if (TEXTON_SIGNS) {
+      if (TEXTON_BALANCED) {
         shift_u = rng_uniform(rng);
         shift_v = rng_uniform(rng);
       }
       for (uint n = 0u; n < impacts; ++n) {
         float u;
         float v;
-        if (TEXTON_SIGNS) {
+        if (TEXTON_BALANCED) {
           u = texton_lattice_point(shift_u, n, TEXTON_LATTICE_STEP_U);
           v = texton_lattice_point(shift_v, n, TEXTON_LATTICE_STEP_V);
         } else {
@@ -98,7 +98,7 @@ vec4 texton_sum_impulses(vec2 p, uvec2 origin_cell, uint seed, TextonFilter f) {
         }
         TextonImpulse impulse =
             texton_impulse(origin_cell, ivec2(cell_x, cell_y), n, vec2(u, v), seed);
-        float sign = TEXTON_SIGNS ? texton_point_sign(sign_key, n) : 1.0;
+        float sign = TEXTON_BALANCED ? texton_point_sign(sign_key, n) : 1.0;
         texton_add(impulse.atlas, f, offset_x - u * TEXTON_CELL_SIZE,
                    offset_y - v * TEXTON_CELL_SIZE, impulse.weight * sign, acc);
       }

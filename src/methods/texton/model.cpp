@@ -97,7 +97,7 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
   intensity_ = mean_impacts_ / (side * side);
   cell_size_ = kCellSizeFactor * side;
   const double cell_mean = intensity_ * cell_size_ * cell_size_;
-  cell_count_ = signed_impacts() ? CellCount::balanced(cell_mean) : CellCount::poisson(cell_mean);
+  cell_count_ = balanced_points() ? CellCount::balanced(cell_mean) : CellCount::poisson(cell_mean);
   inverse_sqrt_intensity_ = static_cast<float>(1.0 / std::sqrt(intensity_));
   // E f = lambda * integral(h) = lambda * sum(alpha) since psi integrates to 1 (Proposition 1);
   // with signed impacts E f = 0 (section 7).
@@ -109,7 +109,7 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
          i += static_cast<std::size_t>(channels_))
       sum += coefficients_[i];
     coefficient_sum_[c] = sum;
-    const double expectation = signed_impacts() ? 0.0 : intensity_ * sum;
+    const double expectation = balanced_points() ? 0.0 : intensity_ * sum;
     constant_term_[c] = static_cast<float>(mean_[c] - expectation / std::sqrt(intensity_));
   }
 }
@@ -178,7 +178,7 @@ template <int Order, int Channels>
 void TextonModel::evaluate_typed(std::span<const Vec2d> positions,
                                  std::span<const Footprint> footprints, std::uint32_t seed,
                                  ImageView<float> out) const noexcept {
-  CellCache cells(seed, cell_count_, signed_impacts());
+  CellCache cells(seed, cell_count_, balanced_points());
   shot_noise<Order, Channels>(
       positions, footprints, pyramid_, cell_size_, cells, OneTexton{pyramid_.data()},
       [&](std::size_t index, const FilteredTexton<Order, Channels>& texton,

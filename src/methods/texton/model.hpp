@@ -72,8 +72,9 @@ class TextonModel {
   int order() const { return order_; }
   double mean_impacts() const { return mean_impacts_; }
   int points() const { return points_; }
-  // Whether each impact carries a random sign (the balanced process; section 7's marks).
-  bool signed_impacts() const { return points_ == kBalancedPoints; }
+  // Whether the points are balanced (params.hpp): balanced counts on a shifted lattice, each
+  // impact with a random sign (section 7's marks).
+  bool balanced_points() const { return points_ == kBalancedPoints; }
   std::span<const float> coefficients() const { return coefficients_; }
   std::span<const float> mean() const { return mean_; }
   const std::vector<PyramidLevel>& pyramid() const { return pyramid_; }
