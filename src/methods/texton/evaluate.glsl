@@ -14,8 +14,8 @@ vec4 texton_texture_fetch(float dx, float dy);  // hardware.glsl
 #endif
 
 // One impulse of the shot noise (Impulse in evaluate.hpp): the atlas texel where its texton's
-// pyramid starts (texton noise: the atlas corner) and its weight (texton noise: 1 or a random
-// sign; mixing, texton paper section 7: a random sign).
+// pyramid starts (texton noise: the atlas corner) and its weight (texton noise: 1; mixing, texton
+// paper section 7: a random sign); the balanced points multiply it by their own sign.
 struct TextonImpulse {
   ivec2 atlas;
   float weight;

@@ -369,8 +369,8 @@ inline void with_order_and_channels(int order, int channels, F&& f) noexcept {
 }
 
 // One impulse of the shot noise: the pyramid of the texton it scatters and its weight (texton
-// noise: the one texton, weight 1 or a random sign; mixing, section 7: the texton of its region,
-// a random sign).
+// noise: the one texton, weight 1; mixing, section 7: the texton of its region, a random sign);
+// the balanced points multiply it by their own sign (CellCache).
 struct Impulse {
   const PyramidLevel* pyramid;
   float weight;
