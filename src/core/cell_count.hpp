@@ -14,7 +14,9 @@
 // - balanced(m): each chunk holds floor(m_c) or floor(m_c) + 1 points, the latter with
 //   probability m_c - floor(m_c): the integer count of mean m_c with the least variance
 //   (at most 1/4 per chunk, against m for Poisson). Points still fall uniformly in their cell.
+//   A caller free to size its cells takes whole_mean(m): then every cell holds the same count.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -54,6 +56,15 @@ class CellCount {
     return count;
   }
 
+  // The smallest mean >= `mean` (and >= 1) that balanced() splits into whole chunk means, so
+  // that every chunk, hence every cell, holds exactly that many points: a cell process with no
+  // count variance at all. The caller sizes its cells to hold it.
+  static double whole_mean(double mean) {
+    for (auto whole = static_cast<std::uint32_t>(std::max(1.0, std::ceil(mean)));; ++whole) {
+      const CellCount count(whole);
+      if (whole % count.chunks_ == 0) return whole;
+    }
+  }
   double mean() const noexcept { return chunk_mean_ * chunks_; }
   // The tabulated CDF and chunk count, for the GLSL twin of the sampler (src/gl).
   const std::array<float, kTableSize>& cdf() const noexcept { return cdf_; }

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -179,6 +180,24 @@ TEST_P(BalancedCountTest, CountsAreTheLeastVariableOfTheirMean) {
 // Whole and fractional means, the chunk limit, and several chunks.
 INSTANTIATE_TEST_SUITE_P(Means, BalancedCountTest,
                          ::testing::Values(0.3, 2.5, 10.8, 11.0, 16.0, 30.0, 250.0));
+
+// whole_mean gives the least mean >= m (and >= 1) whose chunks all hold a whole number of points:
+// every draw of balanced(whole_mean(m)) is that count.
+TEST(WholeMeanTest, CountsOfAWholeMeanNeverVary) {
+  for (const double mean : {0.3, 1.0, 10.8, 16.0, 16.5, 17.0, 30.0, 250.0, 1000.0}) {
+    const double whole = CellCount::whole_mean(mean);
+    EXPECT_GE(whole, std::max(1.0, mean));
+    EXPECT_LT(whole, std::max(1.0, mean) + CellCount::balanced(whole).chunks()) << mean;
+    EXPECT_EQ(whole, std::floor(whole));
+    const CellCount sampler = CellCount::balanced(whole);
+    for (int i = 0; i < 1000; ++i) {
+      CounterRng rng(cell_key(i, 2 * i, 5, Stream::points));
+      ASSERT_EQ(sampler(rng), whole) << "mean " << mean << ", draw " << i;
+    }
+  }
+  EXPECT_EQ(CellCount::whole_mean(10.8), 11.0);
+  EXPECT_EQ(CellCount::whole_mean(17.0), 18.0);  // two chunks of 9: 17 would split into 8.5s
+}
 
 }  // namespace
 }  // namespace stochtex

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/hash.hpp"
 #include "methods/texton/evaluate.hpp"
 #include "methods/texton/model.hpp"
 #include "methods/texton/params.hpp"
@@ -206,6 +207,25 @@ TEST(TextonPoints, AFileWithoutTheChoiceRendersThePaperPoissonProcess) {
   // A file that names a process outside the choices is refused.
   record.scalars["points"] = 2;
   EXPECT_THROW(texton::TextonModel::from_record(record, "bad.stx"), Error);
+}
+
+TEST(TextonPoints, BalancedCellsHoldAWholeNumberOfPoints) {
+  // The cells of the balanced process are sized (0.6 r or a little more) so that each holds
+  // exactly lambda a^2 points; the Poisson process keeps the paper's a = 0.6 r.
+  const texton::TextonModel& balanced = three_channel_texton();
+  const texton::TextonModel poisson(
+      balanced.channels(), balanced.support(), balanced.order(), balanced.mean_impacts(),
+      texton::kPoissonPoints, {balanced.coefficients().begin(), balanced.coefficients().end()},
+      {balanced.mean().begin(), balanced.mean().end()});
+  const double points = balanced.intensity() * balanced.cell_size() * balanced.cell_size();
+  EXPECT_NEAR(points, std::round(points), 1e-9);
+  EXPECT_EQ(balanced.cell_count().mean(), std::round(points));
+  EXPECT_GE(balanced.cell_size(), poisson.cell_size());
+  EXPECT_LT(points - poisson.intensity() * poisson.cell_size() * poisson.cell_size(), 1.0);
+  for (int i = 0; i < 100; ++i) {
+    CounterRng rng(cell_key(i, -3 * i, 1, Stream::points));
+    ASSERT_EQ(balanced.cell_count()(rng), std::round(points));
+  }
 }
 
 TEST(TextonPoints, SignsAreFairCoins) {

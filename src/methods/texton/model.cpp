@@ -84,7 +84,8 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
     throw std::invalid_argument("texton: order must be 0, 1, 3 or 5");
   if (!(mean_impacts_ > 0.0) || !std::isfinite(mean_impacts_))
     throw std::invalid_argument("texton: mni must be a positive number");
-  if (points_ != kPoissonPoints && points_ != kBalancedPoints)
+  if (std::none_of(kPointProcesses.begin(), kPointProcesses.end(),
+                   [&](const ParamChoice& choice) { return choice.value == points_; }))
     throw std::invalid_argument("texton: points must be poisson (0) or balanced (1)");
   if (coefficients_.size() != static_cast<std::size_t>(support_) * support_ * channels_ ||
       mean_.size() != static_cast<std::size_t>(channels_))
@@ -96,8 +97,15 @@ TextonModel::TextonModel(int channels, int support, int order, double mean_impac
   const double side = 2.0 * pyramid_.front().half_width;
   intensity_ = mean_impacts_ / (side * side);
   cell_size_ = kCellSizeFactor * side;
-  const double cell_mean = intensity_ * cell_size_ * cell_size_;
-  cell_count_ = balanced_points() ? CellCount::balanced(cell_mean) : CellCount::poisson(cell_mean);
+  if (balanced_points()) {
+    // Cells a little larger than 0.6 r, so that each holds a whole number of points: then no
+    // cell's count varies, and the impacts of a region vary with nothing but where they fall.
+    const double whole = CellCount::whole_mean(intensity_ * cell_size_ * cell_size_);
+    cell_size_ = std::sqrt(whole / intensity_);
+    cell_count_ = CellCount::balanced(whole);
+  } else {
+    cell_count_ = CellCount::poisson(intensity_ * cell_size_ * cell_size_);
+  }
   inverse_sqrt_intensity_ = static_cast<float>(1.0 / std::sqrt(intensity_));
   // E f = lambda * integral(h) = lambda * sum(alpha) since psi integrates to 1 (Proposition 1);
   // with signed impacts E f = 0 (section 7).

@@ -119,7 +119,7 @@ class TextonModel {
   // Derived at construction.
   std::vector<PyramidLevel> pyramid_;
   double intensity_ = 0;  // lambda = MNI / r^2, r the side of h's support (section 3.3)
-  double cell_size_ = 0;  // a = 0.6 r (section 8)
+  double cell_size_ = 0;  // a = 0.6 r (section 8); a little more for balanced points
   CellCount cell_count_;
   float inverse_sqrt_intensity_ = 0;
   std::vector<float> constant_term_;     // mean - E f / sqrt(lambda), per channel
