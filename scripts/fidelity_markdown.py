@@ -96,16 +96,11 @@ not reach the aim; the method's page says why.
                            for c in sorted(row, key=lambda c: c["method"]))))
         out.append("")
     shortfalls = [c for c in cases if c["shortfall"]]
-    fluctuating = {c["method"]: (c["covariance_fluctuation"], c["covariance_why"])
-                   for c in cases if "covariance_fluctuation" in c}
-    if shortfalls or fluctuating:
+    if shortfalls:
         out.append("## Shortfalls\n")
         for case in shortfalls:
             out.append("- **{}** on `{}`: {}".format(case["method"], case["exemplar"],
                                                      case["shortfall"]))
-        for method, (level, why) in fluctuating.items():
-            out.append("- **{}**, covariance of one render (the mean of two may reach {:.2f} "
-                       "where ADSN's bound is lower): {}".format(method, level, why))
         out.append("")
     out.append("Where each method stands and why, per exemplar: " + ", ".join(
         "[{0}](methods/{0}.md)".format(m) for m in methods) + " (sections \"Fidelity on the "
