@@ -26,8 +26,8 @@ constexpr int texton_support(int support, int width, int height) {
 
 // The point process of the impacts (`points`). poisson: the paper's (sections 3.3, 8): a Poisson
 // number of uniform points per grid cell, each scattering the texton with weight 1. balanced (the
-// default, our variant): each cell holds floor(m) or floor(m) + 1 points (m = lambda a^2, the
-// least variable count of that mean, core/cell_count.hpp) on a randomly shifted lattice
+// default, our variant): each cell holds the same whole number of points (the cells are sized
+// for it, CellCount::whole_mean in core/cell_count.hpp; model.cpp) on a randomly shifted lattice
 // (evaluate.hpp's CellCache), each scattering the texton with a random sign eps_j in {-1, +1}
 // (section 7's marks). With signs of mean zero the covariance is lambda C for any points that are
 // each uniform in their cell (the cross terms cancel), so the model is unchanged; but one render's
@@ -70,7 +70,7 @@ inline constexpr std::array<ParamField<Params>, 5> kFields = {{
     choice_field<&Params::points>(
         "points", kPointProcesses,
         "point process of the impacts: poisson (the paper's: Poisson counts of uniform points, "
-        "weight 1) or balanced (floor(m) or floor(m) + 1 points per cell of mean m on a shifted "
+        "weight 1) or balanced (the same whole number of points in every cell, on a shifted "
         "lattice, each with a random sign as in section 7: the same covariance, and one render's "
         "variance steadier)"),
 }};
