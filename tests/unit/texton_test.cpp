@@ -38,6 +38,14 @@ const texton::TextonModel& three_channel_texton() {
   return std::get<texton::TextonModel>(model.data().model);
 }
 
+// The same texton and MNI with the paper's Poisson point process.
+texton::TextonModel with_poisson_points(const texton::TextonModel& model) {
+  return texton::TextonModel(model.channels(), model.support(), model.order(), model.mean_impacts(),
+                             texton::kPoissonPoints,
+                             {model.coefficients().begin(), model.coefficients().end()},
+                             {model.mean().begin(), model.mean().end()});
+}
+
 // A model of `channels` channels whose channel c has the texton and mean of channel c % 3 of
 // `three` (same support, order and MNI, hence the same impulses).
 texton::TextonModel widened(const texton::TextonModel& three, int channels) {
@@ -181,10 +189,7 @@ TEST(TextonSupport, TheDefaultTakesTheWholeExemplarUpTo256AndCrops128Beyond) {
 TEST(TextonPoints, AFileWithoutTheChoiceRendersThePaperPoissonProcess) {
   const texton::TextonModel& balanced = three_channel_texton();
   ASSERT_TRUE(balanced.balanced_points());
-  const texton::TextonModel poisson(
-      balanced.channels(), balanced.support(), balanced.order(), balanced.mean_impacts(),
-      texton::kPoissonPoints, {balanced.coefficients().begin(), balanced.coefficients().end()},
-      {balanced.mean().begin(), balanced.mean().end()});
+  const texton::TextonModel poisson = with_poisson_points(balanced);
   ModelRecord record = poisson.to_record({});
   ASSERT_EQ(record.scalars.erase("points"), 1u);
   const texton::TextonModel legacy = texton::TextonModel::from_record(record, "old.stx");
@@ -213,10 +218,7 @@ TEST(TextonPoints, BalancedCellsHoldAWholeNumberOfPoints) {
   // The cells of the balanced process are sized (0.6 r or a little more) so that each holds
   // exactly lambda a^2 points; the Poisson process keeps the paper's a = 0.6 r.
   const texton::TextonModel& balanced = three_channel_texton();
-  const texton::TextonModel poisson(
-      balanced.channels(), balanced.support(), balanced.order(), balanced.mean_impacts(),
-      texton::kPoissonPoints, {balanced.coefficients().begin(), balanced.coefficients().end()},
-      {balanced.mean().begin(), balanced.mean().end()});
+  const texton::TextonModel poisson = with_poisson_points(balanced);
   const double points = balanced.intensity() * balanced.cell_size() * balanced.cell_size();
   EXPECT_NEAR(points, std::round(points), 1e-9);
   EXPECT_EQ(balanced.cell_count().mean(), std::round(points));
