@@ -15,6 +15,7 @@
 #include "methods/lrp/model.hpp"
 #include "methods/lrp/structure_analysis.hpp"
 #include "methods/lrp/window.hpp"
+#include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
@@ -93,7 +94,7 @@ TEST(LrpStrata, EqualEnergyPowerIntervals) {
   const SpectrumTarget target = lumpy_spectrum(64);
   const double total = std::accumulate(target.power.begin(), target.power.end(), 0.0);
   for (const int strata : {1, 2, 4, 8}) {
-    const std::vector<StratumPlan> plans = plan_strata(target.power, 64, strata, 50, true, 0.0, 1);
+    const std::vector<StratumPlan> plans = plan_strata(target.power, 64, strata, 50, true, {}, 1);
     ASSERT_EQ(plans.size(), static_cast<std::size_t>(strata));
     double energy = 0.0;
     for (std::size_t s = 0; s < plans.size(); ++s) {
@@ -112,7 +113,7 @@ TEST(LrpStrata, EqualEnergyPowerIntervals) {
 
 TEST(LrpStrata, SpacingAmplitudeAndSubstrata) {
   const SpectrumTarget target = lumpy_spectrum(64);
-  const std::vector<StratumPlan> plans = plan_strata(target.power, 64, 4, 50, true, 0.0, 7);
+  const std::vector<StratumPlan> plans = plan_strata(target.power, 64, 4, 50, true, {}, 7);
   const double radial = window_radial_energy();
   int cosines = 0;
   for (const StratumPlan& plan : plans) {
@@ -156,7 +157,7 @@ TEST(LrpStrata, ShapedAmplitudesFollowThePowerAndKeepTheEnergy) {
     return (nx == kx && ny == bin[1]) ? p : 2.0 * p;
   };
   for (const bool shaped : {false, true}) {
-    const std::vector<StratumPlan> plans = plan_strata(target.power, size, 4, 50, shaped, 0.0, 7);
+    const std::vector<StratumPlan> plans = plan_strata(target.power, size, 4, 50, shaped, {}, 7);
     for (const StratumPlan& plan : plans) {
       ASSERT_EQ(plan.weights.size(), plan.substrata.size());
       // Each sub-stratum is drawn uniformly, so a cosine's expected squared weight is the mean of
@@ -187,8 +188,9 @@ TEST(LrpStrata, ShapedAmplitudesFollowThePowerAndKeepTheEnergy) {
 TEST(LrpStrata, SpacingFloorKeepsWiderSpacings) {
   // Parameter `spacing`: Delta_S = max(floor, T sqrt(J_S) / sqrt(2 |S|)).
   const SpectrumTarget target = lumpy_spectrum(64);
-  const std::vector<StratumPlan> paper = plan_strata(target.power, 64, 4, 50, true, 0.0, 7);
-  const std::vector<StratumPlan> floored = plan_strata(target.power, 64, 4, 50, true, 12.0, 7);
+  const std::vector<StratumPlan> paper = plan_strata(target.power, 64, 4, 50, true, {}, 7);
+  const std::vector<StratumPlan> floored =
+      plan_strata(target.power, 64, 4, 50, true, {.floor = 12.0}, 7);
   bool raised = false;
   for (std::size_t s = 0; s < paper.size(); ++s) {
     EXPECT_EQ(floored[s].sampling.spacing, std::max(12.0f, paper[s].sampling.spacing)) << s;
@@ -202,6 +204,52 @@ TEST(LrpStrata, SpacingFloorKeepsWiderSpacings) {
   EXPECT_TRUE(raised);  // the floor is tested on a stratum it changes
 }
 
+TEST(LrpStrata, WidenMultipliesThePapersSpacingBeforeTheFloor) {
+  // Parameter `widen`: Delta_S = max(floor, widen T sqrt(J_S) / sqrt(2 |S|)).
+  const SpectrumTarget target = lumpy_spectrum(64);
+  const std::vector<StratumPlan> paper = plan_strata(target.power, 64, 4, 50, true, {}, 7);
+  const std::vector<StratumPlan> widened =
+      plan_strata(target.power, 64, 4, 50, true, {.widen = 2.0, .floor = 12.0}, 7);
+  bool floored = false;
+  bool doubled = false;
+  for (std::size_t s = 0; s < paper.size(); ++s) {
+    const float twice = 2.0f * paper[s].sampling.spacing;
+    EXPECT_NEAR(widened[s].sampling.spacing, std::max(12.0f, twice), 1e-5f * twice) << s;
+    EXPECT_EQ(widened[s].sampling.amplitude, paper[s].sampling.amplitude) << s;
+    floored = floored || twice < 12.0f;
+    doubled = doubled || twice > 12.0f;
+  }
+  EXPECT_TRUE(floored);  // both branches of the rule are exercised
+  EXPECT_TRUE(doubled);
+}
+
+TEST(LrpWelch, DeblurPutsAToneBackOnItsBin) {
+  // A tone on bin (5, 3) of 32-pixel crops: Welch's Hann window spreads it over the 3 x 3 bins
+  // around (5, 3) and (-5, -3), (2/3)^2 = 4/9 on each. Per axis, deblur_welch's taps turn
+  // [1, 4, 1] / 6 into [1, -2, 3, 92, 3, -2, 1] / 96 (positive taps 100/96, negative -4/96):
+  // (92/96)^2 of the tone is back on its bin, and clamping the negative products leaves a total of
+  // (100^2 + 4^2) / 96^2.
+  constexpr int kCrop = 32;
+  ImageF tone(128, 128, 1);
+  for (int y = 0; y < tone.height(); ++y)
+    for (int x = 0; x < tone.width(); ++x)
+      tone.at(x, y, 0) =
+          static_cast<float>(std::cos(2.0 * std::numbers::pi * (5.0 * x + 3.0 * y) / kCrop));
+  std::vector<double> welch = welch_power_spectrum(tone.view(), kCrop);
+  welch[0] = 0.0;
+  const std::vector<double> deblurred = deblur_welch(welch, kCrop);
+  const double before = std::accumulate(welch.begin(), welch.end(), 0.0);
+  const double after = std::accumulate(deblurred.begin(), deblurred.end(), 0.0);
+  const auto on_bins = [](const std::vector<double>& power) {
+    return power[3 * kCrop + 5] + power[(kCrop - 3) * kCrop + kCrop - 5];
+  };
+  EXPECT_NEAR(on_bins(welch) / before, 4.0 / 9.0, 1e-4);
+  EXPECT_NEAR(on_bins(deblurred) / before, (92.0 * 92.0) / (96.0 * 96.0), 1e-4);
+  EXPECT_NEAR(after / before, (100.0 * 100.0 + 4.0 * 4.0) / (96.0 * 96.0), 1e-4);
+  EXPECT_EQ(deblurred[0], 0.0);
+  EXPECT_TRUE(std::all_of(deblurred.begin(), deblurred.end(), [](double v) { return v >= 0.0; }));
+}
+
 TEST(LrpStrata, DcPowerJoinsTheStrongestStratum) {
   // With shaped amplitudes, power at DC (the exemplar's variance below the estimate's resolution)
   // is one more frequency of the strongest stratum and keeps its energy; as published (constant
@@ -210,7 +258,7 @@ TEST(LrpStrata, DcPowerJoinsTheStrongestStratum) {
   const double total = std::accumulate(target.power.begin(), target.power.end(), 0.0);
   target.power[0] = 0.5 * total;
   for (const bool shaped : {false, true}) {
-    const std::vector<StratumPlan> plans = plan_strata(target.power, 64, 4, 50, shaped, 0.0, 7);
+    const std::vector<StratumPlan> plans = plan_strata(target.power, 64, 4, 50, shaped, {}, 7);
     double energy = 0.0;
     bool drawn = false;
     for (std::size_t s = 0; s < plans.size(); ++s) {
@@ -243,7 +291,7 @@ TEST(LrpStrata, SpeckleInTheSupportIsNotEroded) {
   }
   std::size_t support = 0;
   for (const double p : target.power) support += p > 0.0 ? 1 : 0;
-  const std::vector<StratumPlan> plans = plan_strata(target.power, kSize, 4, 50, true, 0.0, 7);
+  const std::vector<StratumPlan> plans = plan_strata(target.power, kSize, 4, 50, true, {}, 7);
   std::size_t drawable = 0;
   for (const StratumPlan& plan : plans) {
     EXPECT_GT(plan.erosion_radius, 3.0);
@@ -255,9 +303,9 @@ TEST(LrpStrata, SpeckleInTheSupportIsNotEroded) {
 
 TEST(LrpStrata, KmeansIsSeededAndDeterministic) {
   const SpectrumTarget target = lumpy_spectrum(64);
-  const auto a = plan_strata(target.power, 64, 4, 50, true, 0.0, 3);
-  const auto b = plan_strata(target.power, 64, 4, 50, true, 0.0, 3);
-  const auto c = plan_strata(target.power, 64, 4, 50, true, 0.0, 4);
+  const auto a = plan_strata(target.power, 64, 4, 50, true, {}, 3);
+  const auto b = plan_strata(target.power, 64, 4, 50, true, {}, 3);
+  const auto c = plan_strata(target.power, 64, 4, 50, true, {}, 4);
   bool differs = false;
   for (std::size_t s = 0; s < a.size(); ++s) {
     EXPECT_EQ(a[s].substrata, b[s].substrata);

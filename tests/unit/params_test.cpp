@@ -200,7 +200,8 @@ TEST(Params, TypedRecordsRoundTripThroughValues) {
   expect_round_trip("tiling", tiling::kFields,
                     tiling::Params{0.75, tiling::Transport::per_channel, 8, 16, 256,
                                    tiling::Blend::linear, true});
-  expect_round_trip("lrp", lrp::kFields, lrp::Params{20, 2, false, false, 12, 0.3, 4.5, false});
+  expect_round_trip("lrp", lrp::kFields,
+                    lrp::Params{20, 2, false, false, false, 3, 12, 0.3, 4.5, false});
   expect_round_trip("gabor", gabor::kFields,
                     gabor::Params{1.0 / 64.0, 256, gabor::ColourSpace::rgb, 50, 0.5, 2, false});
   expect_round_trip("texton_mix", texton_mix::kFields,

@@ -315,6 +315,32 @@ SpectrumTarget sampled_target(int size, double variance, Shape shape) {
 
 }  // namespace
 
+std::vector<double> deblur_welch(std::span<const double> power, int size) {
+  check_spectrum_size(size);
+  if (power.size() != static_cast<std::size_t>(size) * size)
+    throw std::invalid_argument("lrp: the power spectrum does not have size x size values");
+  // Per axis, periodic: [1, -6, 26, -6, 1] / 16, two Jacobi sweeps of [1, 4, 1] / 6 x = y from
+  // x = y. Its gain is the inverse's 1 / (2/3 + cos(w) / 3) at w = 0 and pi / 2, 2.5 instead of 3
+  // at w = pi (bin-to-bin speckle, which the exact inverse amplified: docs/methods/lrp.md).
+  constexpr std::array<double, 5> taps{1.0 / 16, -6.0 / 16, 26.0 / 16, -6.0 / 16, 1.0 / 16};
+  const auto at = [size](int x, int y) { return static_cast<std::size_t>(y) * size + x; };
+  std::vector<double> rows(power.size(), 0.0);
+  std::vector<double> result(power.size(), 0.0);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      for (int t = -2; t <= 2; ++t)
+        rows[at(x, y)] +=
+            taps[static_cast<std::size_t>(t + 2)] * power[at((x + t + size) % size, y)];
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      for (int t = -2; t <= 2; ++t)
+        result[at(x, y)] +=
+            taps[static_cast<std::size_t>(t + 2)] * rows[at(x, (y + t + size) % size)];
+  for (double& value : result) value = std::max(0.0, value);
+  result[0] = 0.0;
+  return result;
+}
+
 int welch_size(int width, int height) {
   const int side = std::min(width, height);
   int size = 1;
@@ -359,7 +385,7 @@ double window_energy_radius(double fraction) {
 }
 
 std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
-                                     int cosines, bool shaped, double min_spacing,
+                                     int cosines, bool shaped, SpacingRule spacing,
                                      std::uint32_t key) {
   check_spectrum_size(size);
   if (power.size() != static_cast<std::size_t>(size) * size)
@@ -487,13 +513,15 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
     plan.highest_power = stratum.front()->power;
     plan.lowest_power = stratum.back()->power;
     // Delta_S = T sqrt(J_S) / sqrt(2 |S|) (section 4.3): J_S spectral footprints of radius
-    // 1 / Delta_S cover the stratum's area |S| / T^2 with a slight overlap.
-    // Our floor (parameter `spacing`, docs/methods/lrp.md): the footprint of radius 1 / Delta_S
-    // blurs a wide stratum of the weak, high frequencies (Delta_S of 3-6 pixels, a footprint of
-    // a sixth of the plane) far outside the target, while a sample costs 9 J_S cosines whatever
-    // Delta_S.
-    plan.sampling.spacing =
-        static_cast<float>(std::max(min_spacing, size * std::sqrt(j_s / (2.0 * plan.bins))));
+    // 1 / Delta_S cover the stratum's area |S| / T^2 "with a slight overlap", in fact 2 pi times.
+    // Both of our changes (docs/methods/lrp.md) widen the spacing, which a sample does not pay
+    // for (9 J_S cosines whatever Delta_S), only fewer nodes per area: the factor `widen` (1 by
+    // default) narrows every footprint, which blurs narrow spectra such as a brushed metal's line,
+    // since each node draws its own frequency and the draws, not the footprints, cover the
+    // stratum; the floor `spacing` keeps a wide stratum of the weak, high frequencies (Delta_S of
+    // 3-6 pixels, a footprint of a sixth of the plane) from leaking far outside the target.
+    plan.sampling.spacing = static_cast<float>(
+        std::max(spacing.floor, spacing.widen * size * std::sqrt(j_s / (2.0 * plan.bins))));
     // Equation (3) with the energy per unit area: the variance of n_S, averaged over a lattice
     // cell, is A_S^2 J_S / 2 * 2 pi int r w^2 (the mean of sum_i w^2(|x - x_i| / Delta_S)); the
     // paper's Delta_S^2 converts its per-window energy and cancels here.
@@ -659,16 +687,21 @@ LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uin
     // Section 4.4: Welch's power spectrum on crops of side T; the DC term is the mean, not noise.
     std::vector<double> power = welch_power_spectrum(component.view(), size);
     power[0] = 0.0;
+    const double welch_sum = std::accumulate(power.begin(), power.end(), 0.0);
+    // Our `deblur` (docs/methods/lrp.md): each bin becomes a frequency of the model, so the
+    // window's blur already in the estimate would show twice in a render's own estimate.
+    if (params.deblur) power = deblur_welch(power, size);
     const double sum = std::accumulate(power.begin(), power.end(), 0.0);
     // Welch's estimate has the variance of the Hann-weighted pixels; the noise gets the
     // component's exact variance. A component without variance (grey exemplar stored as RGB)
     // gets a zero spectrum, hence silent strata.
     const bool silent = !(sum > 0.0 && variances[k] > 1e-12 * variances.sum());
-    // The estimate's own variance is its mean power (metrics.hpp). With shaped amplitudes, the
+    // The estimate's own variance is its mean power (metrics.hpp), taken before `deblur`, which
+    // keeps the sum but for the values it clamps. With shaped amplitudes, the
     // variance it misses (below its resolution 1 / T, removed with each crop's mean: two thirds of
     // wood_planks_256's) goes to DC, which plan_strata gives to the strongest stratum, instead of
     // raising every frequency (docs/methods/lrp.md, issue 20).
-    const double estimated = sum / (static_cast<double>(size) * size);
+    const double estimated = welch_sum / (static_cast<double>(size) * size);
     // Not with fixed phases: R is measured at the estimate's resolution too (section 5.1), and at
     // r = 1 the random strata must stay silent.
     const bool below_resolution =
@@ -682,9 +715,9 @@ LrpModel analyze(ImageView<const float> exemplar, const Params& params, std::uin
       regions.push_back(fixed_phase_region(component.view(), size, ratio));
       remove_region(power, regions.back());
     }
-    append_channel(
-        data, plan_strata(power, size, strata, std::max(1, cosines - fixed_cosines), shaped,
-                          params.spacing, cell_key(channel_stream(k), 0, seed, Stream::analysis)));
+    append_channel(data, plan_strata(power, size, strata, std::max(1, cosines - fixed_cosines),
+                                     shaped, {params.widen, params.spacing},
+                                     cell_key(channel_stream(k), 0, seed, Stream::analysis)));
   }
   if (fixed_cosines > 0) {
     data.structure = reduce_structure(regions, fixed_cosines, data.colour_basis);
@@ -712,7 +745,7 @@ LrpModel analyze_spectrum(const SpectrumTarget& target, const Params& params, st
   data.colour_basis = {1.0f};
   append_channel(
       data, plan_strata(target.power, target.size, data.strata, params.cosines, params.amplitudes,
-                        params.spacing, cell_key(0, 0, seed, Stream::analysis)));
+                        {params.widen, params.spacing}, cell_key(0, 0, seed, Stream::analysis)));
   for (float& f : data.frequencies) f /= static_cast<float>(target.size);
   return LrpModel(std::move(data));
 }

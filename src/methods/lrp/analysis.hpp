@@ -52,14 +52,28 @@ struct StratumPlan {
 
 // The largest power of two strictly below the exemplar's smaller side (section 4.4).
 int welch_size(int width, int height);
+// Welch's estimate (section 4.4, metrics.hpp) is the spectrum blurred by its Hann window: a
+// frequency on bin k lands on k and its neighbours with weights 1/6, 2/3, 1/6 per axis. A model
+// renders each bin as a frequency, so the render's own estimate is blurred twice (parameter
+// `deblur`, docs/methods/lrp.md). This undoes most of that blur on a size x size estimate (DC
+// first): a 5-tap approximation of the inverse per axis, negative values clamped to zero, DC kept
+// at zero. A tone had 44% of its power on its bin and gets 92% back (test); the sum is kept but
+// for the clamped values (9% for a tone, which is all side lobes).
+std::vector<double> deblur_welch(std::span<const double> power, int size);
 // The radius, in cycles per lattice spacing, of the disc holding `fraction` of the energy of the
 // 2-D window's spectrum |W-hat|^2 (W(x) = w(|x|)), by numerical Hankel transform (section 4.3).
 double window_energy_radius(double fraction);
+// A stratum's lattice spacing: section 4.3's Delta_S = T sqrt(J_S) / sqrt(2 |S|) times `widen`
+// (parameter `widen`), at least `floor` pixels (parameter `spacing`). The defaults are the paper's.
+struct SpacingRule {
+  double widen = 1.0;
+  double floor = 0.0;
+};
 // Sections 4.2-4.3 for one channel: `power` is a SpectrumTarget's power (size x size). `shaped`:
-// per-frequency amplitudes (parameter `amplitudes`). `min_spacing`: the floor on Delta_S in pixels
-// (parameter `spacing`; 0 as published). `key` seeds the k-means initialisation of each stratum.
+// per-frequency amplitudes (parameter `amplitudes`). `key` seeds the k-means initialisation of
+// each stratum.
 std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
-                                     int cosines, bool shaped, double min_spacing,
+                                     int cosines, bool shaped, SpacingRule spacing,
                                      std::uint32_t key);
 
 // The model of an exemplar: PCA-decorrelated channels, Welch spectrum of each, strata.

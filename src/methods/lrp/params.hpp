@@ -15,6 +15,8 @@ struct Params {
   int strata = 8;
   bool envelope = true;
   bool amplitudes = true;
+  bool deblur = true;
+  double widen = 1;
   double spacing = 24;
   double ratio = 0;
   double turbulence = 0;
@@ -23,7 +25,7 @@ struct Params {
   bool operator==(const Params&) const = default;
 };
 
-inline constexpr std::array<ParamField<Params>, 8> kFields = {{
+inline constexpr std::array<ParamField<Params>, 10> kFields = {{
     number_field<&Params::cosines>(
         "cosines", 1, 2000,
         "cosine budget J per channel (sections 4.1, 6.3): each stratum gets J_S = J / L cosines "
@@ -42,6 +44,18 @@ inline constexpr std::array<ParamField<Params>, 8> kFields = {{
         "on: each frequency's amplitude follows the target's power inside its sub-stratum, so the "
         "expected spectrum follows the target within a stratum (our addition, "
         "docs/methods/lrp.md); off: one amplitude A_S per stratum (equation 3 as published)"),
+    choice_field<&Params::deblur>(
+        "deblur", kSwitch,
+        "on: undo most of the Hann window's blur of Welch's estimate (section 4.4), which a render "
+        "measured again would otherwise show twice (our addition, docs/methods/lrp.md); off: the "
+        "estimate as published"),
+    number_field<&Params::widen>(
+        "widen", 1, 16,
+        "factor on section 4.3's lattice spacing Delta_S, before the floor `spacing` (our "
+        "addition, docs/methods/lrp.md): the paper's J_S footprints of radius 1 / Delta_S cover "
+        "2 pi times their stratum and blur narrow spectra (2 suits a brushed metal's lines); a "
+        "wider spacing narrows them at no cost per sample but leaves fewer nodes, so one render's "
+        "statistics vary more; 1: Delta_S as published"),
     number_field<&Params::spacing>(
         "spacing", 0, 1024,
         "smallest lattice spacing Delta_S in pixels (our floor on section 4.3's Delta_S, "

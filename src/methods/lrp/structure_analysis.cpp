@@ -229,7 +229,7 @@ void plan_turbulence(std::span<const double> power, int size, double turbulence,
   // Constant amplitudes per stratum (shaped = false): n_T only needs the exemplar's spectral
   // scale, and its tables carry no per-frequency weights.
   for (const StratumPlan& plan :
-       plan_strata(power, size, kTurbulenceStrata, kTurbulenceCosines, false, 0.0, key)) {
+       plan_strata(power, size, kTurbulenceStrata, kTurbulenceCosines, false, {}, key)) {
     structure.turbulence_strata.push_back({plan.sampling.cosines, plan.sampling.spacing,
                                            static_cast<float>(plan.sampling.amplitude * scale)});
     for (const auto& substratum : plan.substrata) {
