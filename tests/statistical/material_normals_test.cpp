@@ -59,8 +59,8 @@ TEST(MaterialNormals, DerivedSlopesHaveTheExemplarsMeanSquare) {
     // The calibration measured the model's height on one 256² render of seed 0, which scatters
     // like each of these renders (other seeds and places): the mean ratio lies within 4 standard
     // deviations of that combined noise of 1, sqrt(sd^2 / seeds + sd^2), sd the spread of one
-    // 256² render's ratio over the seeds. Measured (rock): texton 1.03 +- 0.04, lrp 0.99 +- 0.01,
-    // gabor 1.03 +- 0.09; the least-squares scale alone gave lrp 2.8 and gabor 0.7 (mean |s|
+    // 256² render's ratio over the seeds. Measured (rock): texton 1.01 +- 0.01, lrp 0.96 +- 0.05,
+    // gabor 1.02 +- 0.03; the least-squares scale alone gave lrp 2.8 and gabor 0.7 (mean |s|
     // 1.47 and 0.37 against the exemplar's 0.52).
     const Sample ratio = summarise(ratios);
     std::cout << std::setprecision(3) << method << ": rms slope / exemplar's " << ratio.mean
