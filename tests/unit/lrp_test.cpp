@@ -465,6 +465,41 @@ TEST(LrpAnalysis, RejectsTooSmallExemplarsAndKeepsTheMean) {
                std::invalid_argument);
 }
 
+TEST(LrpAnalysis, DeblurredModelPutsAToneOnItsBin) {
+  // A grey tone on bin (5, 3) of the Welch crops (T = 64 for a 128² exemplar). The model's
+  // expected power per frequency, A_S^2 w_f^2 / n_k summed over the sub-strata that hold it,
+  // follows the estimate it was cut from: 4/9 on the tone's bin as published, (92/96)^2 of
+  // (100^2 + 4^2) / 96^2 with `deblur` (LrpWelch.DeblurPutsAToneBackOnItsBin).
+  ImageF tone(128, 128, 1);
+  for (int y = 0; y < tone.height(); ++y)
+    for (int x = 0; x < tone.width(); ++x)
+      tone.at(x, y, 0) = static_cast<float>(
+          0.5 + 0.2 * std::cos(2.0 * std::numbers::pi * (5.0 * x + 3.0 * y) / 64.0));
+  const auto share_on_the_tone = [&](const ParamValues& params) {
+    const Model model = analyze("lrp", tone.view(), params, 0);
+    const LrpData& data = std::get<LrpModel>(model.data().model).data();
+    double total = 0.0;
+    double on_bin = 0.0;
+    std::size_t k = 0;
+    for (const Stratum& stratum : data.strata_table)
+      for (int j = 0; j < stratum.cosines; ++j, ++k) {
+        const std::uint32_t first = data.substratum_first[k];
+        const std::uint32_t count = data.substratum_count[k];
+        for (std::uint32_t i = first; i < first + count; ++i) {
+          const double weight = double(stratum.amplitude) * data.weights[i];
+          const double power = weight * weight / count;
+          total += power;
+          if (std::lround(data.frequencies[2 * i] * 64) == 5 &&
+              std::lround(data.frequencies[2 * i + 1] * 64) == 3)
+            on_bin += power;
+        }
+      }
+    return on_bin / total;
+  };
+  EXPECT_NEAR(share_on_the_tone({{"deblur", 0}}), 4.0 / 9.0, 0.01);
+  EXPECT_NEAR(share_on_the_tone({}), (92.0 * 92.0) / (100.0 * 100.0 + 4.0 * 4.0), 0.01);
+}
+
 // Section 5: a colour model with every part of the structure (R, blocks, turbulence, placement).
 const Model& structure_model() {
   static const Model model = analyze(

@@ -55,10 +55,10 @@ int welch_size(int width, int height);
 // Welch's estimate (section 4.4, metrics.hpp) is the spectrum blurred by its Hann window: a
 // frequency on bin k lands on k and its neighbours with weights 1/6, 2/3, 1/6 per axis. A model
 // renders each bin as a frequency, so the render's own estimate is blurred twice (parameter
-// `deblur`, docs/methods/lrp.md). This undoes most of that blur on a size x size estimate (DC
-// first): a 5-tap approximation of the inverse per axis, negative values clamped to zero, DC kept
-// at zero. A tone had 44% of its power on its bin and gets 92% back (test); the sum is kept but
-// for the clamped values (9% for a tone, which is all side lobes).
+// `deblur`, docs/methods/lrp.md). This undoes most of that blur on a size x size estimate (DC at
+// index 0): a 5-tap approximation of the inverse per axis, negative values clamped to zero, DC
+// kept at zero. A tone had 44% of its power on its bin and gets 92% back (test); the sum is kept
+// but for the clamped values (9% for a tone, which is all side lobes).
 std::vector<double> deblur_welch(std::span<const double> power, int size);
 // The radius, in cycles per lattice spacing, of the disc holding `fraction` of the energy of the
 // 2-D window's spectrum |W-hat|^2 (W(x) = w(|x|)), by numerical Hankel transform (section 4.3).
