@@ -223,6 +223,16 @@ TEST(LrpStrata, WidenMultipliesThePapersSpacingBeforeTheFloor) {
   EXPECT_TRUE(doubled);
 }
 
+// A 128² grey tone, 0.5 + 0.2 cos, on bin (5, 3) of crops of side `crop`.
+ImageF tone_on_bin_5_3(int crop) {
+  ImageF tone(128, 128, 1);
+  for (int y = 0; y < tone.height(); ++y)
+    for (int x = 0; x < tone.width(); ++x)
+      tone.at(x, y, 0) = static_cast<float>(
+          0.5 + 0.2 * std::cos(2.0 * std::numbers::pi * (5.0 * x + 3.0 * y) / crop));
+  return tone;
+}
+
 TEST(LrpWelch, DeblurPutsAToneBackOnItsBin) {
   // A tone on bin (5, 3) of 32-pixel crops: Welch's Hann window spreads it over the 3 x 3 bins
   // around (5, 3) and (-5, -3), (2/3)^2 = 4/9 on each. Per axis, deblur_welch's taps turn
@@ -230,11 +240,7 @@ TEST(LrpWelch, DeblurPutsAToneBackOnItsBin) {
   // (92/96)^2 of the tone is back on its bin, and clamping the negative products leaves a total of
   // (100^2 + 4^2) / 96^2.
   constexpr int kCrop = 32;
-  ImageF tone(128, 128, 1);
-  for (int y = 0; y < tone.height(); ++y)
-    for (int x = 0; x < tone.width(); ++x)
-      tone.at(x, y, 0) =
-          static_cast<float>(std::cos(2.0 * std::numbers::pi * (5.0 * x + 3.0 * y) / kCrop));
+  const ImageF tone = tone_on_bin_5_3(kCrop);
   std::vector<double> welch = welch_power_spectrum(tone.view(), kCrop);
   welch[0] = 0.0;
   const std::vector<double> deblurred = deblur_welch(welch, kCrop);
@@ -470,11 +476,7 @@ TEST(LrpAnalysis, DeblurredModelPutsAToneOnItsBin) {
   // expected power per frequency, A_S^2 w_f^2 / n_k summed over the sub-strata that hold it,
   // follows the estimate it was cut from: 4/9 on the tone's bin as published, (92/96)^2 of
   // (100^2 + 4^2) / 96^2 with `deblur` (LrpWelch.DeblurPutsAToneBackOnItsBin).
-  ImageF tone(128, 128, 1);
-  for (int y = 0; y < tone.height(); ++y)
-    for (int x = 0; x < tone.width(); ++x)
-      tone.at(x, y, 0) = static_cast<float>(
-          0.5 + 0.2 * std::cos(2.0 * std::numbers::pi * (5.0 * x + 3.0 * y) / 64.0));
+  const ImageF tone = tone_on_bin_5_3(64);
   const auto share_on_the_tone = [&](const ParamValues& params) {
     const Model model = analyze("lrp", tone.view(), params, 0);
     const LrpData& data = std::get<LrpModel>(model.data().model).data();

@@ -295,6 +295,12 @@ void check_spectrum_size(int size) {
                                 std::to_string(size));
 }
 
+void check_spectrum(std::span<const double> power, int size) {
+  check_spectrum_size(size);
+  if (power.size() != static_cast<std::size_t>(size) * size)
+    throw std::invalid_argument("lrp: the power spectrum does not have size x size values");
+}
+
 // The size x size target whose power at the signed frequency (f_x, f_y) (cycles per pixel) is
 // shape(f_x, f_y), zero at DC, scaled to sum to `variance`.
 template <typename Shape>
@@ -316,26 +322,24 @@ SpectrumTarget sampled_target(int size, double variance, Shape shape) {
 }  // namespace
 
 std::vector<double> deblur_welch(std::span<const double> power, int size) {
-  check_spectrum_size(size);
-  if (power.size() != static_cast<std::size_t>(size) * size)
-    throw std::invalid_argument("lrp: the power spectrum does not have size x size values");
+  check_spectrum(power, size);
   // Per axis, periodic: [1, -6, 26, -6, 1] / 16, two Jacobi sweeps of [1, 4, 1] / 6 x = y from
   // x = y. Its gain is the inverse's 1 / (2/3 + cos(w) / 3) at w = 0 and pi / 2, 2.5 instead of 3
   // at w = pi (bin-to-bin speckle, which the exact inverse amplified: docs/methods/lrp.md).
   constexpr std::array<double, 5> taps{1.0 / 16, -6.0 / 16, 26.0 / 16, -6.0 / 16, 1.0 / 16};
   const auto at = [size](int x, int y) { return static_cast<std::size_t>(y) * size + x; };
-  std::vector<double> rows(power.size(), 0.0);
-  std::vector<double> result(power.size(), 0.0);
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x)
-      for (int t = -2; t <= 2; ++t)
-        rows[at(x, y)] +=
-            taps[static_cast<std::size_t>(t + 2)] * power[at((x + t + size) % size, y)];
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x)
-      for (int t = -2; t <= 2; ++t)
-        result[at(x, y)] +=
-            taps[static_cast<std::size_t>(t + 2)] * rows[at(x, (y + t + size) % size)];
+  // One periodic pass of the taps along x or along y.
+  const auto pass = [&](std::span<const double> in, bool along_x) {
+    std::vector<double> out(in.size(), 0.0);
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x)
+        for (int t = -2; t <= 2; ++t)
+          out[at(x, y)] +=
+              taps[static_cast<std::size_t>(t + 2)] *
+              in[along_x ? at((x + t + size) % size, y) : at(x, (y + t + size) % size)];
+    return out;
+  };
+  std::vector<double> result = pass(pass(power, true), false);
   for (double& value : result) value = std::max(0.0, value);
   result[0] = 0.0;
   return result;
@@ -387,9 +391,7 @@ double window_energy_radius(double fraction) {
 std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, int strata,
                                      int cosines, bool shaped, SpacingRule spacing,
                                      std::uint32_t key) {
-  check_spectrum_size(size);
-  if (power.size() != static_cast<std::size_t>(size) * size)
-    throw std::invalid_argument("lrp: the power spectrum does not have size x size values");
+  check_spectrum(power, size);
   if (strata < 1 || cosines < 1)
     throw std::invalid_argument("lrp: strata and cosines must be positive");
   const auto at = [size](int x, int y) { return static_cast<std::size_t>(y) * size + x; };
