@@ -8,14 +8,20 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build-sanitize}"
 seconds="${2:-20}"
+source "$root/scripts/timing.sh"
 bash "$root/scripts/install-deps.sh" --sanitize
+phase "sanitizer packages"
 flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
 # Warnings are checked by the gcc build of scripts/test.sh; clang's differ, so no -Werror here.
+# Only what this script runs is built (no statistical or GL test programs, benchmarks or Python
+# module), at -O1 with line tables only: enough for the sanitizers' reports to name file and line.
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" \
   -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags -fsanitize=fuzzer-no-link" \
   -DSTOCHTEX_LIBFUZZER=ON -DSTOCHTEX_BUILD_BENCH=OFF -DSTOCHTEX_BUILD_PYTHON=OFF \
-  -DSTOCHTEX_TEST_TIMEOUT_SCALE=4
+  -DSTOCHTEX_BUILD_SLOW_TESTS=OFF -DSTOCHTEX_TEST_TIMEOUT_SCALE=4
 cmake --build "$build" --parallel
+phase "sanitizer build"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:allocator_may_return_null=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # Mesa's software OpenGL driver (llvmpipe in swrast_dri.so) leaks 128 bytes at every
@@ -25,6 +31,7 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 mesa_driver=$(find /usr/lib -name swrast_dri.so -print -quit)
 LD_PRELOAD=$mesa_driver ctest --test-dir "$build" -L "unit|cli|fuzz|studio" --output-on-failure \
   --parallel 2
+phase "sanitizer tests (unit, cli, fuzz, studio)"
 for fuzzer in "$build"/tests/*_fuzzer; do
   name=$(basename "$fuzzer" _fuzzer)
   corpus=$(mktemp -d)
@@ -39,4 +46,5 @@ for fuzzer in "$build"/tests/*_fuzzer; do
   grep -E "^stat::(number_of_executed_units|new_units_added|peak_rss_mb)" "$corpus.log" >&2 || true
   rm -rf "$corpus" "$corpus.log"
 done
+phase "libFuzzer runs"
 echo "sanitize.sh: sanitizer tests and libFuzzer runs passed"

@@ -22,6 +22,10 @@
 
 namespace stochtex::test_support {
 
+// The shipped rock material set (data/materials/rock_sandstone) and meshes (data/meshes).
+inline const std::string kRock = std::string(STOCHTEX_MATERIAL_DIR) + "/rock_sandstone/";
+inline const std::string kMeshes = std::string(STOCHTEX_SOURCE_DIR) + "/data/meshes/";
+
 // A fixture with an empty folder of its own, named after the test and the process, removed after.
 class FolderTest : public testing::Test {
  protected:
@@ -50,7 +54,7 @@ inline ImageF material_exemplar(const std::string& set, const std::vector<std::s
   int channels = 0;
   for (const auto& name : names) {
     maps.push_back(
-        read_image(std::string(STOCHTEX_MATERIAL_DIR) + "/" + set + "/" + name + ".png"));
+        read_image(std::filesystem::path(STOCHTEX_MATERIAL_DIR) / set / (name + ".png")));
     channels += maps.back().channels();
   }
   ImageF stacked(maps.front().width(), maps.front().height(), channels);

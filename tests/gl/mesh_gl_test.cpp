@@ -29,7 +29,7 @@ namespace {
 
 using namespace gl_test;
 
-const std::string kMeshes = std::string(STOCHTEX_SOURCE_DIR) + "/data/meshes/";
+using test_support::kMeshes;
 constexpr int kWidth = 128;
 constexpr int kHeight = 96;
 constexpr std::uint32_t kSeed = 3;

@@ -18,7 +18,7 @@
 namespace stochtex {
 namespace {
 
-const std::string kRock = std::string(STOCHTEX_MATERIAL_DIR) + "/rock_sandstone/";
+using test_support::kRock;
 
 ImageF rock(const std::string& map) {
   return read_image(kRock + map + ".png");

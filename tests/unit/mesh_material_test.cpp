@@ -23,8 +23,8 @@
 namespace stochtex {
 namespace {
 
-const std::string kMeshes = std::string(STOCHTEX_SOURCE_DIR) + "/data/meshes/";
-const std::string kRock = std::string(STOCHTEX_MATERIAL_DIR) + "/rock_sandstone/";
+using test_support::kMeshes;
+using test_support::kRock;
 
 void expect_near(const Vec3d& a, const Vec3d& b, double tolerance, const std::string& what) {
   EXPECT_NEAR(a.x, b.x, tolerance) << what;

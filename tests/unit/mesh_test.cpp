@@ -22,7 +22,7 @@ namespace {
 
 using MeshTest = test_support::FolderTest;
 
-const std::string kMeshes = std::string(STOCHTEX_SOURCE_DIR) + "/data/meshes/";
+using test_support::kMeshes;
 
 using test_support::white_noise_model;
 
