@@ -6,8 +6,6 @@ usage: fidelity_markdown.py TEST_OUTPUT SECONDS  (see scripts/fidelity.sh)
 import json
 import sys
 
-METHOD_ORDER = ["texton", "lrp", "gabor", "tiling"]
-
 
 def main():
     output, seconds = sys.argv[1], int(sys.argv[2])
@@ -15,8 +13,8 @@ def main():
              if line.startswith("fidelity {")]
     if not cases:
         sys.exit("fidelity_markdown.py: no 'fidelity' lines in the test output")
-    methods = [m for m in METHOD_ORDER if any(c["method"] == m for c in cases)]
-    methods += sorted({c["method"] for c in cases} - set(methods))
+    # The registry's order, in which the test prints its cases.
+    methods = list(dict.fromkeys(c["method"] for c in cases))
     exemplars = list(dict.fromkeys(c["exemplar"] for c in cases))
     by = {(c["method"], c["exemplar"]): c for c in cases}
     machine = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo")

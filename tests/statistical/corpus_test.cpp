@@ -13,6 +13,7 @@
 
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
+#include "shared.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex {
@@ -86,13 +87,8 @@ TEST_P(EveryCorpusImage, AnalysesAndRenders) {
   EXPECT_EQ(count, 17);  // the shipped exemplars, data/exemplars/ATTRIBUTION.md
 }
 
-std::vector<std::string> method_names() {
-  std::vector<std::string> names;
-  for (const auto& method : methods()) names.emplace_back(method.name);
-  return names;
-}
-
-INSTANTIATE_TEST_SUITE_P(Methods, EveryCorpusImage, ::testing::ValuesIn(method_names()),
+INSTANTIATE_TEST_SUITE_P(Methods, EveryCorpusImage,
+                         ::testing::ValuesIn(test_support::method_names()),
                          [](const auto& test) { return test.param; });
 
 }  // namespace

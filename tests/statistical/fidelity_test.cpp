@@ -19,17 +19,19 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
-#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/atomic_file.hpp"
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
+#include "shared.hpp"
 #include "spectral/adsn.hpp"
 #include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
@@ -78,52 +80,114 @@ void PrintTo(const Case& test, std::ostream* out) {
   *out << test.method << " on " << test.exemplar;
 }
 
-// The `gaussian` and `stochastic` exemplars of the corpus table, in its order.
-std::vector<std::string> gaussian_model_exemplars() {
-  std::ifstream table(std::string(STOCHTEX_TEXTURE_DIR) + "/ATTRIBUTION.md");
-  const std::regex row(R"(^\| `([^`]+\.png)` \| [^|]+ \| (gaussian|stochastic) \|)");
-  std::vector<std::string> names;
-  std::smatch match;
-  for (std::string line; std::getline(table, line);)
-    if (std::regex_search(line, match, row)) names.push_back(match[1]);
-  return names;
-}
-
 std::vector<Case> cases() {
   std::vector<Case> all;
-  for (const auto& [method, aim] : kAims)
-    for (const std::string& exemplar : gaussian_model_exemplars())
+  for (const std::string& method : test_support::method_names())
+    for (const std::string& exemplar : test_support::gaussian_model_exemplars())
       all.push_back({method, exemplar});
   return all;
 }
+
+// What the cases of one exemplar compare with, from ADSN samples alone: the spectral error of
+// compare's sample, the spread of the ratio and of the covariance error over kNoiseSeeds other
+// samples, and the sample's colour histogram error (sliced W2).
+struct GaussianReference {
+  double adsn_error = 0.0;
+  test_support::Sample ratio_noise;
+  test_support::Sample covariance_noise;
+  double adsn_histogram = 0.0;
+};
+
+GaussianReference make_reference(const ImageF& exemplar) {
+  const ImageF compared = adsn(exemplar.view(), kSide, kSide, kCompareSeed);
+  const int crop = welch_crop_size(exemplar.view(), compared.view());
+  const std::vector<double> target = welch_power_spectrum(exemplar.view(), crop);
+  const ColourStatistics target_statistics = colour_statistics(exemplar.view());
+  GaussianReference reference;
+  reference.adsn_error = relative_l1_distance(welch_power_spectrum(compared.view(), crop), target);
+  std::vector<double> noise_ratios;
+  std::vector<double> noise_covariances;
+  for (int k = 0; k < kNoiseSeeds; ++k) {
+    const ImageF sample = adsn(exemplar.view(), kSide, kSide, 100u + static_cast<std::uint32_t>(k));
+    noise_ratios.push_back(relative_l1_distance(welch_power_spectrum(sample.view(), crop), target) /
+                           reference.adsn_error);
+    noise_covariances.push_back(
+        covariance_error(colour_statistics(sample.view()), target_statistics));
+  }
+  reference.ratio_noise = test_support::summarise(noise_ratios);
+  reference.covariance_noise = test_support::summarise(noise_covariances);
+  reference.adsn_histogram = sliced_wasserstein(compared.view(), exemplar.view());
+  return reference;
+}
+
+std::filesystem::path reference_path(const std::filesystem::path& folder,
+                                     const std::string& exemplar_name) {
+  return folder / ("fidelity_reference_" + exemplar_name + ".json");
+}
+// JSON keeps a double exactly (nlohmann_json writes the shortest digits that read back the same).
+nlohmann::json reference_json(const GaussianReference& r) {
+  return {{"adsn_error", r.adsn_error},
+          {"ratio_noise", {r.ratio_noise.mean, r.ratio_noise.deviation}},
+          {"covariance_noise", {r.covariance_noise.mean, r.covariance_noise.deviation}},
+          {"adsn_histogram", r.adsn_histogram}};
+}
+GaussianReference reference_from_json(const nlohmann::json& j) {
+  return {
+      j.at("adsn_error").get<double>(),
+      {j.at("ratio_noise").at(0).get<double>(), j.at("ratio_noise").at(1).get<double>()},
+      {j.at("covariance_noise").at(0).get<double>(), j.at("covariance_noise").at(1).get<double>()},
+      j.at("adsn_histogram").get<double>()};
+}
+
+// The shared fixture's reference of `exemplar_name` when CTest made it, else made here.
+GaussianReference gaussian_reference(const std::string& exemplar_name, const ImageF& exemplar) {
+  if (const auto folder = test_support::shared_folder()) {
+    std::ifstream file(reference_path(*folder, exemplar_name));
+    if (file) return reference_from_json(nlohmann::json::parse(file));
+  }
+  return make_reference(exemplar);
+}
+
+// The fixture (FIXTURES_SETUP under CTest): each exemplar's reference, made once for the cases of
+// every method.
+class SharedFidelityReference : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SharedFidelityReference, Make) {
+  const auto folder = test_support::shared_folder();
+  if (!folder) GTEST_SKIP() << "STOCHTEX_TEST_CACHE is not set: the cases make their own";
+  const std::string& name = GetParam();
+  const ImageF exemplar = read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/" + name);
+  std::filesystem::create_directories(*folder);
+  write_file_atomically(reference_path(*folder, name),
+                        reference_json(make_reference(exemplar)).dump());
+}
+
+INSTANTIATE_TEST_SUITE_P(Shared, SharedFidelityReference,
+                         ::testing::ValuesIn(test_support::gaussian_model_exemplars()),
+                         [](const auto& test_case) {
+                           std::string name = test_case.param;
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
 
 class Fidelity : public ::testing::TestWithParam<Case> {};
 
 TEST_P(Fidelity, SpectrumAndCovarianceAtTheGaussianLevel) {
   const Case& test = GetParam();
-  const Aim& aim = kAims.find(test.method)->second;
+  const auto found_aim = kAims.find(test.method);
+  ASSERT_NE(found_aim, kAims.end()) << test.method << " has no aim: add its aim to kAims";
+  const Aim& aim = found_aim->second;
   const ImageF exemplar = read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/" + test.exemplar);
-  const ImageF compared = adsn(exemplar.view(), kSide, kSide, kCompareSeed);
-  const int crop = welch_crop_size(exemplar.view(), compared.view());
+  const int crop = welch_crop_size(exemplar.view(), exemplar.view());
   const std::vector<double> target = welch_power_spectrum(exemplar.view(), crop);
   const ColourStatistics target_statistics = colour_statistics(exemplar.view());
-  const auto spectral_error = [&](const ImageF& image) {
-    return relative_l1_distance(welch_power_spectrum(image.view(), crop), target);
-  };
-  const double adsn_error = spectral_error(compared);
+  const GaussianReference reference = gaussian_reference(test.exemplar, exemplar);
+  const double adsn_error = reference.adsn_error;
+  const test_support::Sample& ratio_noise = reference.ratio_noise;
+  const test_support::Sample& covariance_noise = reference.covariance_noise;
 
-  std::vector<double> noise_ratios;
-  std::vector<double> noise_covariances;
-  for (int k = 0; k < kNoiseSeeds; ++k) {
-    const ImageF sample = adsn(exemplar.view(), kSide, kSide, 100u + static_cast<std::uint32_t>(k));
-    noise_ratios.push_back(spectral_error(sample) / adsn_error);
-    noise_covariances.push_back(
-        covariance_error(colour_statistics(sample.view()), target_statistics));
-  }
-  const test_support::Sample ratio_noise = test_support::summarise(noise_ratios);
-  const test_support::Sample covariance_noise = test_support::summarise(noise_covariances);
-
-  const Model model = analyze(test.method, exemplar.view(), {}, 0, test.exemplar);
+  const Model model = test_support::default_model(test.method, test.exemplar, exemplar);
   std::vector<double> ratios;
   std::vector<double> covariances;
   std::vector<double> histograms;  // sliced W2 to the exemplar, for tiling
@@ -170,10 +234,9 @@ TEST_P(Fidelity, SpectrumAndCovarianceAtTheGaussianLevel) {
     EXPECT_LE(covariance, covariance_bound) << test.method << " on " << test.exemplar;
   } else {
     const double histogram = 0.5 * (histograms[0] + histograms[1]);
-    const double adsn_histogram = sliced_wasserstein(compared.view(), exemplar.view());
     line["histograms"] = histograms;
-    line["adsn_histogram"] = adsn_histogram;
-    EXPECT_LE(histogram, adsn_histogram) << test.method << " on " << test.exemplar;
+    line["adsn_histogram"] = reference.adsn_histogram;
+    EXPECT_LE(histogram, reference.adsn_histogram) << test.method << " on " << test.exemplar;
   }
   std::printf("fidelity %s\n", line.dump().c_str());
 }

@@ -14,6 +14,7 @@
 
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
+#include "shared.hpp"
 #include "spectral/adsn.hpp"
 #include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
@@ -91,7 +92,7 @@ TEST(GaborQuality, DefaultsStayNearTheAdsnLevel) {
   for (const std::string name :
        {"brushed_aluminium_grey_256.png", "grass_lawn_256.png", "grass_lawn_128.png"}) {
     const ImageF exemplar = read_image(kTextureDir + "/" + name);
-    const Model model = analyze("gabor", exemplar.view(), {}, 0, name);
+    const Model model = test_support::default_model("gabor", name, exemplar);
     const Errors e = measure(model, exemplar, 128, 3);
     print(name, e);
     EXPECT_LE(e.noise_spectral.mean - e.adsn_spectral.mean, spectral_bound(e, 0.5)) << name;

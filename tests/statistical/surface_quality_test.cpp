@@ -16,6 +16,7 @@
 #include "methods/texton/evaluate.hpp"
 #include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
+#include "shared.hpp"
 #include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 #include "stochtex/surface.hpp"
@@ -71,7 +72,7 @@ TEST(SurfaceQuality, OnAPlaneTheSpectrumAndVarianceAreThoseOfPlanarNoise) {
   const int crop = welch_crop_size(exemplar.view(), exemplar.view());
   const ColourStatistics target = colour_statistics(exemplar.view());
   for (const std::string method : {"texton", "gabor"}) {
-    const Model model = analyze(method, exemplar.view(), {}, 0, name);
+    const Model model = test_support::default_model(method, name, exemplar);
     std::vector<double> surface_spectral, planar_spectral, surface_cov, planar_cov;
     for (std::uint32_t seed = 1; seed <= kSeeds; ++seed) {
       const ImageF surface = render_plane(model, width, height, seed);
@@ -104,7 +105,7 @@ TEST(SurfaceQuality, OnAPlaneTheSpectrumAndVarianceAreThoseOfPlanarNoise) {
 // one (depth r, variance lambda r integral(h^2)) would give 1/3 of the variance.
 TEST(SurfaceQuality, OnASphereMeanAndVarianceFollowProposition3) {
   const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
-  const Model model = analyze("texton", exemplar.view(), {}, 0, "grass_lawn_128.png");
+  const Model model = test_support::default_model("texton", "grass_lawn_128.png", exemplar);
   const auto& texton = std::get<texton::TextonModel>(model.data().model);
   const int channels = model.channels();
   // integral(h^2) per channel: h on level 0, midpoint rule at 1/8 pixel (h is piecewise

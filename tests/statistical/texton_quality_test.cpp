@@ -14,6 +14,7 @@
 
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
+#include "shared.hpp"
 #include "spectral/adsn.hpp"
 #include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
@@ -45,7 +46,7 @@ ImageF render_texton(const Model& model, int width, int height, std::uint32_t se
 TEST(TextonQuality, SpectrumMeanAndCovarianceReachTheAdsnLevel) {
   for (const auto& name : kGaussianExemplars) {
     const ImageF exemplar = read_image(kTextureDir + "/" + name);
-    const Model model = analyze("texton", exemplar.view(), {}, 0, name);
+    const Model model = test_support::default_model("texton", name, exemplar);
     const int width = exemplar.width();
     const int height = exemplar.height();
     const int crop = welch_crop_size(exemplar.view(), exemplar.view());

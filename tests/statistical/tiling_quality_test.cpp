@@ -17,6 +17,7 @@
 #include "methods/tiling/model.hpp"
 #include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
+#include "shared.hpp"
 #include "spectral/adsn.hpp"
 #include "statistics.hpp"
 #include "stochtex/material.hpp"
@@ -99,7 +100,7 @@ TEST_P(TilingHistogram, IsPreservedUnlikeLinearBlendingOrAdsn) {
   {
     const std::string name = GetParam();
     const ImageF exemplar = read_image(kTextureDir + "/" + name);
-    const Model model = analyze("tiling", exemplar.view(), {}, 0, name);
+    const Model model = test_support::default_model("tiling", name, exemplar);
     const Model variance_only = analyze("tiling", exemplar.view(), {{"blend", 1}}, 0, name);
     const int side = exemplar.width();
     const Grid grid{{0.0, 0.0}, 1.0, side, side};
