@@ -4,7 +4,11 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$root/build}"
+source "$root/scripts/timing.sh"
 bash "$root/scripts/install-deps.sh"
+phase "Debian packages"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSTOCHTEX_WERROR=ON
 cmake --build "$build" --parallel
+phase "release build"
 ctest --test-dir "$build" --output-on-failure --parallel 2
+phase "release tests (every tier)"
