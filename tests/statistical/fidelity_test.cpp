@@ -15,7 +15,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -165,10 +164,7 @@ TEST_P(SharedFidelityReference, Make) {
 INSTANTIATE_TEST_SUITE_P(Shared, SharedFidelityReference,
                          ::testing::ValuesIn(test_support::gaussian_model_exemplars()),
                          [](const auto& test_case) {
-                           std::string name = test_case.param;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
+                           return test_support::test_name(test_case.param);
                          });
 
 class Fidelity : public ::testing::TestWithParam<Case> {};
@@ -243,11 +239,8 @@ TEST_P(Fidelity, SpectrumAndCovarianceAtTheGaussianLevel) {
 
 INSTANTIATE_TEST_SUITE_P(Shipped, Fidelity, ::testing::ValuesIn(cases()),
                          [](const auto& test_case) {
-                           std::string name =
-                               test_case.param.method + "_" + test_case.param.exemplar;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
+                           return test_support::test_name(test_case.param.method + "_" +
+                                                          test_case.param.exemplar);
                          });
 
 }  // namespace

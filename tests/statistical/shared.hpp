@@ -6,6 +6,7 @@
 // which only CTest sets; the tests load from it. Run by hand, without that variable, a test makes
 // what it needs itself, so a stale folder can never be read.
 
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -36,6 +37,13 @@ inline std::vector<std::string> method_names() {
   std::vector<std::string> names;
   for (const auto& method : methods()) names.emplace_back(method.name);
   return names;
+}
+
+// `text` as a GoogleTest parameter name: every character but letters and digits made '_'.
+inline std::string test_name(std::string text) {
+  for (char& c : text)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return text;
 }
 
 // The folder CTest's fixtures fill, when the test runs under CTest.

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -43,10 +42,8 @@ TEST_P(SharedModel, Make) {
 
 INSTANTIATE_TEST_SUITE_P(Shared, SharedModel, ::testing::ValuesIn(model_cases()),
                          [](const auto& test_case) {
-                           std::string name = test_case.param.first + "_" + test_case.param.second;
-                           for (char& c : name)
-                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                           return name;
+                           return test_support::test_name(test_case.param.first + "_" +
+                                                          test_case.param.second);
                          });
 
 }  // namespace
