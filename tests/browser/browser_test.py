@@ -1,15 +1,16 @@
 #!/usr/bin/python3
 """The web viewer in a real browser (docs/studio.md, "Browser parity").
 
-Analyses a small shipped exemplar with every method (and a texton mixing model), writes them with
-`stochtex export-web`, serves the folder over HTTP and loads the page in headless Chromium
-(SwiftShader's WebGL2). For each model and variant it reads the viewer's float values back
+Analyses a small shipped exemplar with every method of the registry (`stochtex methods --json`)
+and makes a texton mixing model, writes them with `stochtex export-web`, serves the folder over
+HTTP and loads the page in headless Chromium (SwiftShader's WebGL2). For each model and variant
+it checks that the viewer loaded that variant's export, reads the viewer's float values back
 (viewer.readPixels through the page's window.stochtexPage) and compares them with `stochtex
 render` of the same model, view and seed: pixel for pixel where the shader is the CPU's to float
-rounding, in variance when zoomed out 16x (the filtered render's), and it fails on any JavaScript
-console error.
+rounding, in variance when zoomed out 16x (the filtered render's). It checks the wheel and drag
+and a shader that does not compile, and fails on any JavaScript console error.
 
-Usage: browser_test.py STOCHTEX EXEMPLAR [--screenshots DIR] [--measure]
+Usage: browser_test.py STOCHTEX EXEMPLAR [--second EXEMPLAR] [--screenshots DIR] [--measure]
 Exit 77 (CTest's SKIP_RETURN_CODE) when chromium is not installed.
 """
 
@@ -33,19 +34,20 @@ SIZE = 128  # canvas side: SwiftShader on two shared cores is slow
 SEED = 7
 # (origin, scale) of the compared views: scale 1 off the origin, and zoomed out 16x.
 VIEWS = [((-40.0, 24.0), 1.0), ((-1000.0, 512.0), 16.0)]
-MODELS = ["texton", "tiling", "lrp", "gabor", "texton_mix"]
+# The manifest's fields that name a variant and do not change what the viewer draws.
+VARIANT_LABELS = ("variant", "shader_variant", "note")
 
 # The bounds, from what was measured on Chromium 156's SwiftShader here (docs/studio.md, "Browser
 # parity", has the numbers):
 # - where the web shader is the CPU's evaluator (every exact variant but gabor's, and lrp's and
 #   texton_mix's fast ones, which are their exact ones), largest |web - CPU| per value: measured
-#   at most 1.0e-6 (lrp) on this page's 128^2 views and 3.0e-6 (texton, lrp) on the studio's
-#   256^2 ones (studio_browser_test.py), bound ten times the first, three times the second;
+#   at most 1.0e-6 (lrp) on this page's 128^2 views and 3.0e-6 (texton, lrp) at scale 1 on the
+#   studio's 256^2 canvases, bound ten times the first, three times the second;
 EXACT_BOUND = 1e-5
 # - gabor's float-only shader (both variants: its exact one needs doubles): the tolerance
 #   docs/shaders.md gives it, 1e-3 of the image's standard deviation (the smallest channel's, of
 #   the CPU render at that view): bound 3.8e-5 at scale 1 and 7.2e-6 at 16, measured 2.2e-6 and
-#   5.4e-7 (on the studio's 256^2 views bound 3.8e-5 and 7.3e-6, measured 5.1e-6 and 1.0e-6);
+#   5.4e-7 (on the studio's 256^2 canvases bound 3.8e-5 and 7.3e-6, measured 5.1e-6 and 1.0e-6);
 GABOR_DEVIATIONS = 1e-3
 # - texton's and tiling's fast variant at scale 1: the fast path's bound (docs/shaders.md), 1/255;
 #   measured 4.1e-5 and 3.1e-4 with the web export's half-float textures;
@@ -67,6 +69,36 @@ def pixel_bound(method, shader_variant, scale, cpu):
     if shader_variant == "exact" or method not in ("texton", "tiling"):
         return EXACT_BOUND
     return FAST_BOUND if scale == 1 else None
+
+
+def registry_methods(stochtex):
+    """The names of the registry's methods (`stochtex methods --json`), in its order: the tests
+    check every method the binary has, a new one included."""
+    listed = subprocess.run([stochtex, "methods", "--json"], check=True, capture_output=True,
+                            text=True).stdout
+    return [method["name"] for method in json.loads(listed)]
+
+
+def compare(what, web, cpu, bound, scale):
+    """The failures of the viewer's values `web` (read_back's tuple) against the CPU render `cpu`
+    (parse_pfm's): the size and channels, the largest |web - cpu| against `bound` (None: not
+    compared) and, zoomed out (scale > 1), the variance within VARIANCE_BOUND of the CPU's."""
+    if web[:3] != cpu[:3]:
+        return [f"{what}: web {web[:3]} != cpu {cpu[:3]}"]
+    largest = max(abs(a - b) for a, b in zip(web[3], cpu[3]))
+    ratio = max(abs(w / c - 1) for w, c in zip(variances(web[3], web[2]),
+                                               variances(cpu[3], cpu[2])))
+    print(f"{what:32} scale {scale:4g}: max |web - cpu| {largest:.3g} "
+          f"(bound {bound if bound is None else f'{bound:.3g}'}), "
+          f"|variance / cpu's - 1| {ratio:.3g}")
+    failures = []
+    if bound is not None and not largest <= bound:
+        failures.append(f"{what} scale {scale:g}: max |web - cpu| {largest:.3g} exceeds "
+                        f"{bound:.3g}")
+    if scale > 1 and not ratio <= VARIANCE_BOUND:
+        failures.append(f"{what} scale {scale:g}: variance off the CPU's by {ratio:.3g}, beyond "
+                        f"{VARIANCE_BOUND:.3g}")
+    return failures
 
 
 def parse_pfm(data):
@@ -166,11 +198,53 @@ def run_page(driver, script, *arguments):
         raise RuntimeError(result)
 
 
-# The wheel zooms about the cursor, a drag pans, and every viewer of the page follows.
+def read_manifest(site, name, variant):
+    with open(os.path.join(site, "models", name, variant, "manifest.json")) as file:
+        return json.load(file)
+
+
+def same_files(site, name, first, second):
+    """Whether the model's `first` and `second` exports are one shader and data: the same files,
+    byte for byte, and manifests that differ only in VARIANT_LABELS. The viewer draws both the
+    same (it reads those labels only for its messages), so the values of one stand for both
+    (lrp's, gabor's and texton_mix's fast exports are their exact ones)."""
+    folders = [os.path.join(site, "models", name, variant) for variant in (first, second)]
+    names = sorted(os.listdir(folders[0]))
+    if names != sorted(os.listdir(folders[1])):
+        return False
+    for file_name in names:
+        if file_name == "manifest.json":
+            kept = [{key: value for key, value in read_manifest(site, name, variant).items()
+                     if key not in VARIANT_LABELS} for variant in (first, second)]
+            if kept[0] != kept[1]:
+                return False
+            continue
+        contents = []
+        for folder in folders:
+            with open(os.path.join(folder, file_name), "rb") as file:
+                contents.append(file.read())
+        if contents[0] != contents[1]:
+            return False
+    return True
+
+
+def check_loaded(driver, site, variant):
+    """Every viewer holds its model's `variant` manifest (as export-web wrote it): the page shows
+    the variant that its values are compared as."""
+    loaded = driver.execute_script(
+        "return Object.fromEntries([...window.stochtexPage.viewers].map("
+        "([name, viewer]) => [name, viewer.manifest]));")
+    return [f"{name} {variant}: the viewer holds the manifest of the "
+            f"{(manifest or {}).get('variant')} export, not of {variant}'s"
+            for name, manifest in loaded.items() if manifest != read_manifest(site, name, variant)]
+
+
+# The wheel zooms about the cursor, a drag pans, and every viewer of the page follows. Both start
+# from the view the comparisons left: a view set here would redraw every viewer once more.
 WHEEL = """
 const page = window.stochtexPage;
 const [first, second] = [...page.viewers.values()];
-page.setView({x: 10, y: 20, scale: 2});
+const before = first.getView();
 const canvas = document.querySelector('canvas');
 const box = canvas.getBoundingClientRect();
 const event = new WheelEvent('wheel', {clientX: Math.round(box.left) + 40,
@@ -182,16 +256,18 @@ const py = (event.clientY - box.top) * canvas.height / box.height;
 canvas.dispatchEvent(event);
 const view = first.getView();
 const other = second.getView();
-return [10 + 2 * px, 20 + 2 * py, view.x + view.scale * px, view.y + view.scale * py,
-        view.scale, [view.x, view.y, view.scale], [other.x, other.y, other.scale]];
+return [before.x + before.scale * px, before.y + before.scale * py,
+        view.x + view.scale * px, view.y + view.scale * py, before.scale,
+        [view.x, view.y, view.scale], [other.x, other.y, other.scale]];
 """
 
 
 def check_interaction(driver):
-    x, y, new_x, new_y, scale, view, other = driver.execute_script(WHEEL)
+    x, y, new_x, new_y, old_scale, view, other = driver.execute_script(WHEEL)
     failures = []
-    if abs(scale - 2 * math.exp(1.0)) > 1e-9:
-        failures.append(f"wheel: scale {scale} after a 500-pixel wheel step, not 2 e")
+    if abs(view[2] - old_scale * math.exp(1.0)) > 1e-9 * old_scale:
+        failures.append(f"wheel: scale {view[2]} after a 500-pixel wheel step from {old_scale}, "
+                        f"not e times that")
     if abs(new_x - x) > 1e-6 or abs(new_y - y) > 1e-6:
         failures.append(f"wheel: the point under the cursor moved from ({x}, {y}) to "
                         f"({new_x}, {new_y})")
@@ -201,14 +277,14 @@ def check_interaction(driver):
     # -scale x that.
     from selenium.webdriver.common.action_chains import ActionChains
     from selenium.webdriver.common.by import By
-    driver.execute_script("window.stochtexPage.setView({x: 10, y: 20, scale: 2});")
     canvas = driver.find_element(By.CSS_SELECTOR, "canvas")
     ActionChains(driver).move_to_element(canvas).click_and_hold().move_by_offset(30, 20) \
         .release().perform()
     views = driver.execute_script(
         "return [...window.stochtexPage.viewers.values()].map((v) => v.getView());")
-    expected = {"x": 10 - 2 * 30, "y": 20 - 2 * 20, "scale": 2}
-    if any(abs(view[k] - expected[k]) > 1e-9 for view in views for k in expected):
+    expected = {"x": view[0] - view[2] * 30, "y": view[1] - view[2] * 20, "scale": view[2]}
+    if any(abs(v[k] - expected[k]) > 1e-9 * max(1, abs(expected[k])) for v in views
+           for k in expected):
         failures.append(f"drag: the viewers are at {views}, not {expected}")
     return failures
 
@@ -279,7 +355,7 @@ def main():
     failures = []
     with tempfile.TemporaryDirectory(prefix="stochtex_browser_") as work:
         models = {}
-        for method in MODELS:
+        for method in registry_methods(args.stochtex) + ["texton_mix"]:
             path = os.path.join(work, f"{method}.stx")
             if method == "texton_mix":
                 command = [args.stochtex, "mix", args.exemplar, args.second or args.exemplar,
@@ -296,39 +372,41 @@ def main():
         try:
             url = f"http://127.0.0.1:{server.server_address[1]}/index.html?size={SIZE}"
             driver.get(url)
-            run_page(driver, "await window.stochtexPage.ready;")
+            # Every setView and setSeed redraws every loaded viewer, and on SwiftShader a draw
+            # takes up to seconds (gabor's): the seed and the first view are set while the page
+            # loads its models, so that its first draw is at them, and each variant's views are
+            # compared starting at the one the page is at.
+            view = VIEWS[0]
+            run_page(driver, "window.stochtexPage.setSeed(arguments[0]);"
+                     "window.stochtexPage.setView(arguments[1]);"
+                     "await window.stochtexPage.ready;",
+                     SEED, {"x": view[0][0], "y": view[0][1], "scale": view[1]})
             print(f"page loaded in {time.time() - start:.1f} s")
+            # The CPU's renders, by model and view: every variant is compared with the same one.
+            cpu_renders = {}
             for variant in ["exact", "fast"]:
-                run_page(driver, f"await window.stochtexPage.setVariant('{variant}');")
-                for origin, scale in VIEWS:
-                    run_page(driver, "window.stochtexPage.setSeed(arguments[0]);"
-                             "window.stochtexPage.setView(arguments[1]);",
-                             SEED, {"x": origin[0], "y": origin[1], "scale": scale})
-                    for method, path in models.items():
-                        manifest_path = os.path.join(site, "models", method, variant,
-                                                     "manifest.json")
-                        with open(manifest_path) as file:
-                            manifest = json.load(file)
-                        web = read_back(driver, method)
-                        cpu = cpu_render(args.stochtex, path, origin, scale, SEED, work)
-                        if web[:3] != cpu[:3]:
-                            failures.append(f"{method} {variant}: web {web[:3]} != cpu {cpu[:3]}")
-                            continue
-                        largest = max(abs(a - b) for a, b in zip(web[3], cpu[3]))
-                        web_var = variances(web[3], web[2])
-                        cpu_var = variances(cpu[3], cpu[2])
-                        ratio = max(abs(w / c - 1) for w, c in zip(web_var, cpu_var))
+                if variant != "exact":  # the page starts with the exact shaders
+                    run_page(driver, f"await window.stochtexPage.setVariant('{variant}');")
+                failures += check_loaded(driver, site, variant)
+                compared = {method: path for method, path in models.items()
+                            if variant == "exact" or not same_files(site, method, "exact", variant)}
+                for method in models:
+                    if method not in compared:
+                        print(f"{method} {variant}: the exact export's shader and data, compared")
+                for origin, scale in sorted(VIEWS, key=lambda other: other != view):
+                    if (origin, scale) != view:
+                        view = (origin, scale)
+                        run_page(driver, "window.stochtexPage.setView(arguments[0]);",
+                                 {"x": origin[0], "y": origin[1], "scale": scale})
+                    for method, path in compared.items():
+                        manifest = read_manifest(site, method, variant)
                         what = f"{method} {variant} ({manifest['shader_variant']} shader)"
+                        if (path, view) not in cpu_renders:
+                            cpu_renders[path, view] = cpu_render(args.stochtex, path, origin,
+                                                                 scale, SEED, work)
+                        cpu = cpu_renders[path, view]
                         bound = pixel_bound(method, manifest["shader_variant"], scale, cpu)
-                        print(f"{what:32} scale {scale:4g}: max |web - cpu| {largest:.3g} "
-                              f"(bound {bound if bound is None else f'{bound:.3g}'}), "
-                              f"|variance / cpu's - 1| {ratio:.3g}")
-                        if bound is not None and not largest <= bound:
-                            failures.append(f"{what} scale {scale:g}: max |web - cpu| "
-                                            f"{largest:.3g} exceeds {bound:.3g}")
-                        if scale > 1 and not ratio <= VARIANCE_BOUND:
-                            failures.append(f"{what} scale {scale:g}: variance off the CPU's "
-                                            f"by {ratio:.3g}, beyond {VARIANCE_BOUND:.3g}")
+                        failures += compare(what, read_back(driver, method), cpu, bound, scale)
             failures += check_interaction(driver)
             failures += check_compile_error(driver, site)
             if args.screenshots:
