@@ -30,6 +30,9 @@ struct MethodEntry {
   MethodInfo info;
   AnalyzeFunction analyze;
   AnalysisMemory analysis_memory;
+  double analysis_cost = 1.0;
+  const TargetCapability* target = nullptr;
+  const EditCapability* edit = nullptr;
 };
 
 // The entry of one alternative of MethodModel: its name, the summary and parameter record of its
@@ -63,7 +66,10 @@ MethodEntry entry_of() {
             else
               return MethodModel(analyze(exemplar, params, seed));
           },
-          row.analysis_memory};
+          row.analysis_memory,
+          row.analysis_cost,
+          row.target,
+          row.edit};
 }
 
 // The models analysed from one exemplar (`stochtex analyze -m`) have a registry row; the others
@@ -267,13 +273,87 @@ std::string methods_json() {
       }
       params.push_back(param);
     }
-    list.push_back({{"name", method.name},
-                    {"summary", method.summary},
-                    {"max_channels", method.max_channels},
-                    {"derives_normals", method.derives_normals},
-                    {"params", params}});
+    nlohmann::ordered_json entry{{"name", method.name},
+                                 {"summary", method.summary},
+                                 {"max_channels", method.max_channels},
+                                 {"derives_normals", method.derives_normals},
+                                 {"params", params}};
+    // The optional capabilities (methods/capabilities.hpp), present only where the method has one.
+    if (const TargetCapability* target = target_capability(method.name))
+      entry["target"] = {{"help", target->help}};
+    if (const EditCapability* edit = edit_capability(method.name)) {
+      auto fields = nlohmann::ordered_json::array();
+      for (const EditField& field : edit->fields)
+        fields.push_back({{"name", field.name},
+                          {"default", field.default_value},
+                          {"components", field.components},
+                          {"help", field.help}});
+      entry["edit"] = {{"summary", edit->summary}, {"groups", edit->groups}, {"fields", fields}};
+    }
+    list.push_back(entry);
   }
   return list.dump(2);
+}
+
+const TargetCapability* target_capability(std::string_view method) {
+  return find_entry(method).target;
+}
+
+const EditCapability* edit_capability(std::string_view method) {
+  for (const auto& entry : method_entries())
+    if (entry.info.name == method) return entry.edit;
+  return nullptr;
+}
+
+std::string methods_with(CapabilityKind kind) {
+  std::string names;
+  for (const auto& entry : method_entries())
+    if (kind == CapabilityKind::target ? entry.target != nullptr : entry.edit != nullptr)
+      names += (names.empty() ? "" : ", ") + std::string(entry.info.name);
+  return names;
+}
+
+double analysis_cost(std::string_view method) {
+  return find_entry(method).analysis_cost;
+}
+
+EditValues edit_values_from_json(const EditCapability& edit, const nlohmann::ordered_json& body) {
+  std::string keys = "group";
+  for (std::size_t i = 0; i < edit.fields.size(); ++i)
+    keys += (i + 1 == edit.fields.size() ? " and " : ", ") + std::string(edit.fields[i].name);
+  if (!body.is_object()) throw std::invalid_argument("an edit is a JSON object of " + keys);
+  EditValues values{std::string(edit.groups.front()), {}};
+  for (const auto& [key, value] : body.items()) {
+    const auto field = std::find_if(edit.fields.begin(), edit.fields.end(),
+                                    [&key](const EditField& f) { return f.name == key; });
+    if (key == "group") {
+      if (!value.is_string()) {
+        std::string names;
+        for (std::size_t i = 0; i < edit.groups.size(); ++i)
+          names += (i == 0                        ? ""
+                    : i + 1 == edit.groups.size() ? " or "
+                                                  : ", ") +
+                   std::string(edit.groups[i]);
+        throw std::invalid_argument("\"group\" must be " + names);
+      }
+      values.group = value.get<std::string>();
+    } else if (field == edit.fields.end()) {
+      throw std::invalid_argument("an edit has no \"" + key + "\"; it takes " + keys);
+    } else if (field->components == 1) {
+      if (!value.is_number())
+        throw std::invalid_argument("\"" + key + "\" must be a number, not " + value.dump());
+      values.numbers[key] = {value.get<double>()};
+    } else {
+      if (!value.is_array() || value.size() != static_cast<std::size_t>(field->components) ||
+          !std::all_of(value.begin(), value.end(), [](const auto& v) { return v.is_number(); }))
+        throw std::invalid_argument("\"" + key + "\" must be an array of " +
+                                    std::to_string(field->components) + " numbers, not " +
+                                    value.dump());
+      auto& numbers = values.numbers[key];
+      for (const auto& number : value) numbers.push_back(number.get<double>());
+    }
+  }
+  return values;
 }
 
 std::uint64_t analysis_peak_bytes(std::string_view method, int width, int height, int channels) {

@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "methods/capabilities.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex {
@@ -21,5 +22,23 @@ Model analyze_exemplar(std::string_view method, ImageView<const float> exemplar,
                        const ParamValues& params, std::uint32_t seed,
                        const std::string& source_name, const std::function<void(double)>& progress,
                        std::vector<MapInfo> maps);
+
+// The optional capabilities of a method's row (methods/capabilities.hpp), nullptr where it has
+// none; the front ends drive a method's extra features through these, never through its name.
+// (target_capability throws std::invalid_argument for an unknown method; edit_capability, asked
+// about a model's method, answers nullptr for one without a row, such as texton_mix.)
+const TargetCapability* target_capability(std::string_view method);
+const EditCapability* edit_capability(std::string_view method);
+// The names of the methods with the capability, in registry order, as "a, b" for a message.
+enum class CapabilityKind { target, edit };
+std::string methods_with(CapabilityKind kind);
+
+// The row's relative analysis cost per pixel and channel (RegistryRow::analysis_cost).
+double analysis_cost(std::string_view method);
+
+// An edit sent as JSON ({"group": name, FIELD: number or [x, y], ...}, each optional) read against
+// the capability's records; a std::invalid_argument of one sentence for a key or type it lacks.
+// The values themselves are checked by the capability's edit.
+EditValues edit_values_from_json(const EditCapability& edit, const nlohmann::ordered_json& body);
 
 }  // namespace stochtex

@@ -1,5 +1,5 @@
-// `stochtex analyze INPUT -m METHOD -o MODEL.stx`: exemplar (or, for lrp, a target spectrum) ->
-// model file.
+// `stochtex analyze INPUT -m METHOD -o MODEL.stx`: exemplar (or, for the methods whose registry
+// row has a target capability, a target spectrum) -> model file.
 
 #include "analyze_command.hpp"
 
@@ -13,14 +13,18 @@
 #include "commands.hpp"
 #include "io/image_io.hpp"
 #include "progress.hpp"
+#include "registry.hpp"
 #include "stochtex/material.hpp"
-#include "target_option.hpp"
 
 namespace stochtex::cli {
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
   auto* input = command->add_option("INPUT", options.input, "exemplar image (PNG, EXR or PFM)");
-  auto* target =
-      command->add_option("--target", options.target, std::string(kTargetHelp))->excludes(input);
+  std::string target_help = "continuous target spectrum instead of INPUT (" +
+                            methods_with(CapabilityKind::target) + " only):";
+  for (const MethodInfo& method : methods())
+    if (const TargetCapability* capability = target_capability(method.name))
+      target_help += " " + std::string(capability->help);
+  auto* target = command->add_option("--target", options.target, target_help)->excludes(input);
   command
       ->add_option("--map", options.maps,
                    "a material's map NAME[:KIND]=FILE instead of INPUT, repeatable: the maps of "
@@ -69,16 +73,25 @@ Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params) {
       [&](double fraction) { progress(fraction); });
 }
 
+// The model of `--target TEXT`, through the method's target capability.
+Model target_model(const AnalyzeOptions& options, const ParamValues& params) {
+  const TargetCapability* target = target_capability(options.method);
+  if (target == nullptr)
+    throw std::invalid_argument("--target is a continuous spectrum for --method " +
+                                methods_with(CapabilityKind::target) + " only, not " +
+                                options.method);
+  return target->model(options.target, params, options.seed);
+}
+
 }  // namespace
 
 Model run_analyze(const AnalyzeOptions& options) {
   const ParamValues params = resolve_params(options.method, parse_params(options.params));
-  if (!options.target.empty())
-    return target_model(options.target, options.method, params, options.seed);
+  if (!options.target.empty()) return target_model(options, params);
   if (!options.maps.empty()) return analyze_maps(options, params);
   if (options.input.empty())
-    throw std::invalid_argument(
-        "give an exemplar INPUT, a material's --map NAME=FILE or, for lrp, a --target spectrum");
+    throw std::invalid_argument("give an exemplar INPUT, a material's --map NAME=FILE or, for " +
+                                methods_with(CapabilityKind::target) + ", a --target spectrum");
   const ImageF exemplar = load_exemplar(options.input);
   Progress progress("analyse");
   progress.message(fmt::format("analysing {} with {}...", options.input, options.method));

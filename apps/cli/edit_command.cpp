@@ -1,23 +1,22 @@
-// `stochtex edit`: group editing of a Gabor noise model (Gabor noise by example, section 8). The
-// Gaussians of the model's spectrum are grouped automatically after the Wold decomposition
-// (periodic peaks, strongly anisotropic lines, the stochastic rest); an edit rotates, scales and
-// translates a group in frequency and changes its magnitude and bandwidth.
+// `stochtex edit`: group editing of a model, for the methods whose registry row has an edit
+// capability (methods/capabilities.hpp; gabor: section 8 of the Gabor noise paper). The options
+// come from the capabilities' records: a group, then one option per field.
 
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
-#include <variant>
+#include <string>
 #include <vector>
 
 #include "arguments.hpp"
 #include "commands.hpp"
-#include "io/image_io.hpp"
-#include "methods/gabor/edit_analysis.hpp"
-#include "model/model_data.hpp"
+#include "registry.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex::cli {
@@ -26,77 +25,76 @@ namespace {
 struct EditOptions {
   std::string model;
   std::string output;
-  gabor::EditRequest edit;
-  std::string translate = "0,0";
+  std::string group;
+  // Each field's option as typed (a pair is "X,Y"), for the fields of every editing method.
+  std::map<std::string, std::string, std::less<>> typed;
+  std::map<std::string, const EditField*, std::less<>> fields;
+  std::map<std::string, CLI::Option*, std::less<>> given;
   bool list_groups = false;
   bool json = false;
 };
 
-// --translate FX,FY within gabor::kMaxTranslation (the message quotes the text as typed).
-void parse_translation(const std::string& text, gabor::EditRequest& edit) {
-  const std::optional<Vec2d> t = parse_number_pair(text);
-  if (!t || !(std::abs(t->x) <= gabor::kMaxTranslation) ||
-      !(std::abs(t->y) <= gabor::kMaxTranslation))
-    throw std::invalid_argument(
-        "--translate must be FX,FY in cycles per pixel, each within [-1, 1], "
-        "e.g. 0.05,-0.1, not '" +
-        text + "'");
-  edit.translate_x = t->x;
-  edit.translate_y = t->y;
+// Every editing method's capability, in registry order.
+std::vector<const EditCapability*> edit_capabilities() {
+  std::vector<const EditCapability*> list;
+  for (const MethodInfo& method : methods())
+    if (const EditCapability* edit = edit_capability(method.name)) list.push_back(edit);
+  return list;
 }
 
-const gabor::GaborModel& gabor_model(const Model& model, const std::string& path) {
-  const auto* gabor = std::get_if<gabor::GaborModel>(&model.data().model);
-  if (gabor == nullptr)
-    throw std::invalid_argument(
-        fmt::format("'{}' is a {} model; `stochtex edit` edits gabor "
-                    "models only (stochtex analyze INPUT --method gabor)",
-                    path, model.method()));
-  return *gabor;
-}
-
-void list_groups(const gabor::GaborModel& model, const std::vector<gabor::WoldComponent>& labels,
-                 bool json) {
-  if (json) {
-    fmt::print("{}\n", gabor::groups_json(model, labels).dump(2));
-    return;
+// The numbers of the options given, read as their records say: a pair within its bound, quoted as
+// typed when it is not.
+EditValues edit_values(const EditOptions& options) {
+  EditValues values{options.group, {}};
+  for (const auto& [name, option] : options.given) {
+    if (option->count() == 0) continue;
+    const EditField& field = *options.fields.at(name);
+    const std::string& text = options.typed.at(name);
+    if (field.components == 1) {
+      double number = 0.0;
+      const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
+      if (ec != std::errc() || end != text.data() + text.size())
+        throw std::invalid_argument(fmt::format("--{} must be a number, not '{}'", name, text));
+      values.numbers[name] = {number};
+      continue;
+    }
+    const std::optional<Vec2d> pair = parse_number_pair(text);
+    if (!pair || !(std::abs(pair->x) <= field.max_abs) || !(std::abs(pair->y) <= field.max_abs))
+      throw std::invalid_argument(
+          fmt::format("--{} must be two numbers X,Y, each within [-{}, {}] ({}), not '{}'", name,
+                      field.max_abs, field.max_abs, field.help, text));
+    values.numbers[name] = {pair->x, pair->y};
   }
-  fmt::print("{:<14}{:>10}{:>16}\n", "group", "gaussians", "variance share");
-  for (const gabor::GroupShare& share : gabor::group_shares(model, labels))
-    fmt::print("{:<14}{:>10}{:>15.1f}%\n", gabor::component_name(share.component), share.gaussians,
-               100.0 * share.variance_share);
+  return values;
 }
 
 void add_edit_options(CLI::App* command, EditOptions& options) {
-  command->add_option("MODEL", options.model, "gabor model file (.stx)")->required();
+  const std::vector<const EditCapability*> capabilities = edit_capabilities();
+  command->add_option("MODEL", options.model, "model file (.stx)")->required();
   command->add_option("-o,--output", options.output, "edited model file to write (.stx)");
-  command->add_option("--group", options.edit.group, "which Gaussians the edit changes")
+  std::vector<std::string> groups;
+  for (const EditCapability* edit : capabilities)
+    for (std::string_view group : edit->groups)
+      if (std::find(groups.begin(), groups.end(), group) == groups.end())
+        groups.emplace_back(group);
+  if (!groups.empty()) options.group = groups.front();
+  command->add_option("--group", options.group, "which parts the edit changes")
       ->capture_default_str()
-      ->check(CLI::IsMember({"all", "periodic", "anisotropic", "stochastic"}));
-  command
-      ->add_option("--rotate", options.edit.rotate_degrees,
-                   "rotate the group's frequencies by DEG degrees, counter-clockwise")
-      ->capture_default_str();
-  command
-      ->add_option("--scale", options.edit.scale,
-                   "multiply the group's frequencies by S (> 1: finer detail)")
-      ->capture_default_str();
-  command
-      ->add_option("--translate", options.translate,
-                   "add FX,FY cycles per pixel to the group's frequencies")
-      ->capture_default_str();
-  command
-      ->add_option("--magnitude", options.edit.magnitude,
-                   "multiply the group's kernel magnitude K by this (the variance by its square)")
-      ->capture_default_str();
-  command
-      ->add_option("--bandwidth", options.edit.bandwidth,
-                   "multiply the group's bandwidth a by this power of two (< 1: sharper spectral "
-                   "Gaussians, longer-range kernels); each Gaussian keeps its variance")
-      ->capture_default_str();
+      ->check(CLI::IsMember(groups));
+  for (const EditCapability* edit : capabilities)
+    for (const EditField& field : edit->fields) {
+      const std::string name(field.name);
+      if (options.fields.contains(name)) continue;
+      options.fields[name] = &field;
+      std::string& typed = options.typed[name];
+      typed = field.components == 1 ? fmt::format("{}", field.default_value)
+                                    : fmt::format("{0},{0}", field.default_value);
+      options.given[name] = command->add_option("--" + name, typed, std::string(field.help))
+                                ->capture_default_str()
+                                ->type_name(field.components == 1 ? "NUMBER" : "X,Y");
+    }
   command->add_flag("--list-groups", options.list_groups,
-                    "print how many Gaussians and how much variance each group holds, and write "
-                    "nothing");
+                    "print what each group holds, and write nothing");
   command->add_flag("--json", options.json, "with --list-groups: print one JSON document");
 }
 
@@ -108,39 +106,39 @@ void run_edit(const EditOptions& options) {
     throw std::invalid_argument("edit needs -o OUT.stx for the edited model (or --list-groups)");
   if (options.json && !options.list_groups)
     throw std::invalid_argument("--json goes with --list-groups");
-  gabor::EditRequest request = options.edit;
-  parse_translation(options.translate, request);
-  const gabor::SpectrumEdit edit = gabor::spectrum_edit(request, "--");
+  const EditValues values = edit_values(options);
   if (!options.list_groups) check_output_path(options.output, false, options.model);
 
   const Model model = load_model(options.model);
-  const gabor::GaborModel& gabor = gabor_model(model, options.model);
-  const std::vector<gabor::WoldComponent> labels = gabor::wold_components(gabor);
+  const EditCapability* edit = edit_capability(model.method());
+  if (edit == nullptr)
+    throw std::invalid_argument(
+        fmt::format("'{}' is a {} model; `stochtex edit` edits {} models only (stochtex analyze "
+                    "INPUT --method {})",
+                    options.model, model.method(), methods_with(CapabilityKind::edit),
+                    methods_with(CapabilityKind::edit)));
+  const std::shared_ptr<const void> groups = edit->find_groups(model);
   if (options.list_groups) {
-    list_groups(gabor, labels, options.json);
+    if (options.json)
+      fmt::print("{}\n", edit->groups_json(model, groups.get()).dump(2));
+    else
+      fmt::print("{}", edit->groups_table(model, groups.get()));
     return;
   }
-
-  const std::vector<bool> selected = gabor::select_group(labels, request.group, "--");
-  gabor::GaborModel edited = gabor::edit_gaussians(gabor, selected, edit);
-  const std::size_t dropped = gabor.gaussians().size() - edited.gaussians().size();
-  save_model(Model(std::make_shared<const ModelData>(
-                 ModelData{model.params(), std::move(edited), model.data().maps})),
-             options.output);
-  fmt::print(
-      stderr, "wrote {} ({} group: {} Gaussians edited{})\n", options.output, options.edit.group,
-      static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true)),
-      dropped > 0 ? fmt::format(", {} moved beyond Nyquist or to zero and dropped", dropped) : "");
+  const EditResult edited = edit->edit(model, groups.get(), values, "--");
+  save_model(edited.model, options.output);
+  fmt::print(stderr, "wrote {} ({})\n", options.output, edited.summary);
 }
 
 }  // namespace
 
 Command add_edit_command(CLI::App& app) {
   auto options = std::make_shared<EditOptions>();
-  CLI::App* command = app.add_subcommand(
-      "edit",
-      "edit a gabor model's spectrum by groups of Gaussians: periodic peaks, anisotropic lines, "
-      "the stochastic rest (section 8 of the Gabor noise paper)");
+  // The editing methods' own descriptions (one today: gabor's).
+  std::string summary;
+  for (const EditCapability* edit : edit_capabilities())
+    summary += (summary.empty() ? "" : "; ") + std::string(edit->summary);
+  CLI::App* command = app.add_subcommand("edit", summary);
   add_edit_options(command, *options);
   return {command, [options] {
             run_edit(*options);

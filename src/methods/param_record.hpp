@@ -14,6 +14,7 @@
 #include <string_view>
 #include <type_traits>
 
+#include "methods/capabilities.hpp"
 #include "stochtex/model.hpp"
 
 namespace stochtex {
@@ -135,10 +136,11 @@ struct AnalysisMemory {
 };
 
 // A method's row of the registry (src/registry.cpp): its one-line summary, its parameter record,
-// its analysis's memory, the most channels it analyses and whether it derives a material's normal
-// map from the height (MethodInfo). Each method's
-// analysis.hpp returns it from `registry_row(std::type_identity<Model>)`, which the registry finds
-// by argument-dependent lookup for every alternative of MethodModel.
+// its analysis's memory, the most channels it analyses, whether it derives a material's normal
+// map from the height (MethodInfo), the relative cost of its analysis and its optional
+// capabilities (methods/capabilities.hpp). Each method's analysis.hpp returns it from
+// `registry_row(std::type_identity<Model>)`, which the registry finds by argument-dependent lookup
+// for every alternative of MethodModel.
 template <class P, std::size_t N>
 struct RegistryRow {
   std::string_view summary;
@@ -146,6 +148,11 @@ struct RegistryRow {
   AnalysisMemory analysis_memory;
   int max_channels = 4;
   bool derives_normals = true;  // MethodInfo::derives_normals
+  // The analysis's time per pixel and channel against the other methods' (about 1), by which
+  // `stochtex report` starts the longest analyses first.
+  double analysis_cost = 1.0;
+  const TargetCapability* target = nullptr;  // `stochtex analyze --target`
+  const EditCapability* edit = nullptr;      // `stochtex edit`, the studio's editor
 };
 
 }  // namespace stochtex

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "core/parallel.hpp"
+#include "registry.hpp"
 
 namespace stochtex {
 
@@ -31,7 +32,8 @@ int measure_all(std::vector<ExemplarResults>& exemplars, const std::vector<std::
   });
 
   // Every (exemplar, method) pair, the most expensive first so that the last tasks to start are
-  // short ones: gabor's analysis dominates and grows with the pixel and channel counts.
+  // short ones: an analysis grows with the pixel and channel counts, times its registry row's
+  // relative cost (gabor's sparse fit dominates).
   struct Task {
     std::size_t exemplar;
     std::size_t method;
@@ -42,7 +44,7 @@ int measure_all(std::vector<ExemplarResults>& exemplars, const std::vector<std::
     const double size =
         static_cast<double>(exemplars[i].image.pixel_count()) * exemplars[i].image.channels();
     for (std::size_t m = 0; m < methods.size(); ++m)
-      tasks.push_back({i, m, methods[m] == "gabor" ? 100.0 * size : size});
+      tasks.push_back({i, m, analysis_cost(methods[m]) * size});
   }
   std::stable_sort(tasks.begin(), tasks.end(),
                    [](const Task& a, const Task& b) { return a.cost > b.cost; });

@@ -200,45 +200,15 @@ bool allowed_host_header(const std::string& header) {
   return name == "localhost" || name == "[::1]" || name.starts_with("127.");
 }
 
-// The JSON body of an edit: {"group", "rotate", "scale", "translate": [fx, fy], "magnitude",
-// "bandwidth"}, each optional with `stochtex edit`'s default.
-gabor::EditRequest edit_request(const std::string& text) {
-  const auto body = nlohmann::ordered_json::parse(text, nullptr, false);
+// The JSON body of an edit ({"group", then the fields of the model's edit capability, each
+// optional with `stochtex edit`'s default}; the store reads it against the capability's records).
+nlohmann::ordered_json edit_body(const std::string& text) {
+  auto body = nlohmann::ordered_json::parse(text, nullptr, false);
   if (body.is_discarded() || !body.is_object())
     throw StudioError(400,
-                      "the body is not a JSON object; send {\"group\": name, \"rotate\": degrees, "
-                      "\"scale\": s, \"translate\": [fx, fy], \"magnitude\": k, \"bandwidth\": b}");
-  gabor::EditRequest request;
-  const auto number = [](const nlohmann::ordered_json& value, const std::string& key) {
-    if (!value.is_number())
-      throw StudioError(400, fmt::format("\"{}\" must be a number, not {}", key, value.dump()));
-    return value.get<double>();
-  };
-  for (const auto& [key, value] : body.items()) {
-    if (key == "group") {
-      if (!value.is_string())
-        throw StudioError(400, "\"group\" must be all, periodic, anisotropic or stochastic");
-      request.group = value.get<std::string>();
-    } else if (key == "rotate") {
-      request.rotate_degrees = number(value, key);
-    } else if (key == "scale") {
-      request.scale = number(value, key);
-    } else if (key == "magnitude") {
-      request.magnitude = number(value, key);
-    } else if (key == "bandwidth") {
-      request.bandwidth = number(value, key);
-    } else if (key == "translate") {
-      if (!value.is_array() || value.size() != 2)
-        throw StudioError(400, "\"translate\" must be [fx, fy] in cycles per pixel");
-      request.translate_x = number(value[0], key);
-      request.translate_y = number(value[1], key);
-    } else {
-      throw StudioError(400, fmt::format("an edit has no \"{}\"; it takes group, rotate, scale, "
-                                         "translate, magnitude and bandwidth",
-                                         key));
-    }
-  }
-  return request;
+                      "the body is not a JSON object; send {\"group\": name, ...} with the fields "
+                      "of the method's edit (`stochtex methods --json`: \"edit\")");
+  return body;
 }
 
 void add_routes(httplib::Server& server, StudioStore& store) {
@@ -349,15 +319,14 @@ void add_routes(httplib::Server& server, StudioStore& store) {
              }));
   server.Get("/api/models/" + kId + "/groups",
              guarded([&store](const httplib::Request& req, httplib::Response& res) {
-               send_json(res, store.gabor_groups(req.matches[1]));
+               send_json(res, store.edit_groups(req.matches[1]));
              }));
-  server.Post(
-      "/api/models/" + kId + "/edit",
-      with_body(kMaxJsonBody, [&store](const httplib::Request& req, httplib::Response& res,
-                                       const std::string& text) {
-        required_client(req);
-        send_json(res, {{"model", store.edit_model(req.matches[1], edit_request(text))}}, 201);
-      }));
+  server.Post("/api/models/" + kId + "/edit",
+              with_body(kMaxJsonBody, [&store](const httplib::Request& req, httplib::Response& res,
+                                               const std::string& text) {
+                required_client(req);
+                send_json(res, {{"model", store.edit_model(req.matches[1], edit_body(text))}}, 201);
+              }));
   server.Get("/api/models/" + kId + "/compare",
              guarded([&store](const httplib::Request& req, httplib::Response& res) {
                send_json(res, store.compare(req.matches[1], query_seed(req)));

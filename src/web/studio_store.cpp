@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "model/model_data.hpp"
+#include "registry.hpp"
 #include "report/compare.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/io.hpp"
@@ -176,9 +177,10 @@ struct StudioStore::StoredModel {
   // The web exports made so far, by ShaderVariant; guarded by web_mutex.
   mutable std::mutex web_mutex;
   mutable std::array<std::vector<WebFile>, 2> web;
-  // A gabor model's Wold labels (gabor::wold_components), found once; guarded by labels_mutex.
-  mutable std::mutex labels_mutex;
-  mutable std::optional<std::vector<gabor::WoldComponent>> labels;
+  // The model's groups for its edit capability (EditCapability::find_groups), found once;
+  // guarded by groups_mutex.
+  mutable std::mutex groups_mutex;
+  mutable std::shared_ptr<const void> groups;
 };
 
 StudioStore::StudioStore(StudioLimits limits, fs::path folder)
@@ -438,46 +440,36 @@ std::string StudioStore::model_file(const std::string& id) {
   return {bytes.begin(), bytes.end()};
 }
 
-const std::vector<gabor::WoldComponent>& StudioStore::gabor_labels(const StoredModel& stored,
-                                                                   const std::string& id) {
-  const auto* gabor = std::get_if<gabor::GaborModel>(&stored.model.data().model);
-  if (gabor == nullptr)
-    throw StudioError(400, fmt::format("model '{}' is a {} model; only gabor models have groups "
-                                       "to edit (run a gabor analysis)",
-                                       id, stored.model.method()));
-  std::lock_guard lock(stored.labels_mutex);
-  if (!stored.labels) stored.labels = gabor::wold_components(*gabor);
-  return *stored.labels;
+std::pair<const EditCapability*, std::shared_ptr<const void>> StudioStore::edit_groups(
+    const StoredModel& stored, const std::string& id) {
+  const EditCapability* edit = edit_capability(stored.model.method());
+  if (edit == nullptr)
+    throw StudioError(400,
+                      fmt::format("model '{}' is a {} model; only {} models have groups to "
+                                  "edit (run a {} analysis)",
+                                  id, stored.model.method(), methods_with(CapabilityKind::edit),
+                                  methods_with(CapabilityKind::edit)));
+  std::lock_guard lock(stored.groups_mutex);
+  if (!stored.groups) stored.groups = edit->find_groups(stored.model);
+  return {edit, stored.groups};
 }
 
-nlohmann::ordered_json StudioStore::gabor_groups(const std::string& id) {
+nlohmann::ordered_json StudioStore::edit_groups(const std::string& id) {
   const std::shared_ptr<const StoredModel> stored = find_model(id);
-  const auto& labels = gabor_labels(*stored, id);
-  return gabor::groups_json(std::get<gabor::GaborModel>(stored->model.data().model), labels);
+  const auto [edit, groups] = edit_groups(*stored, id);
+  return edit->groups_json(stored->model, groups.get());
 }
 
-std::string StudioStore::edit_model(const std::string& id, const gabor::EditRequest& request) {
-  gabor::SpectrumEdit edit;
+std::string StudioStore::edit_model(const std::string& id, const nlohmann::ordered_json& body) {
+  const std::shared_ptr<const StoredModel> stored = find_model(id);
+  const auto [edit, groups] = edit_groups(*stored, id);
+  std::optional<Model> edited;
   try {
-    edit = gabor::spectrum_edit(request, "");
+    const EditValues values = edit_values_from_json(*edit, body);
+    const std::lock_guard heavy(heavy_);
+    edited.emplace(edit->edit(stored->model, groups.get(), values, "").model);
   } catch (const std::invalid_argument& e) {
     throw StudioError(400, e.what());
-  }
-  const std::shared_ptr<const StoredModel> stored = find_model(id);
-  const auto& labels = gabor_labels(*stored, id);
-  const Model& model = stored->model;
-  std::optional<Model> edited;
-  {
-    const std::lock_guard heavy(heavy_);
-    try {
-      edited.emplace(std::make_shared<const ModelData>(
-          ModelData{model.params(),
-                    gabor::edit_gaussians(std::get<gabor::GaborModel>(model.data().model),
-                                          gabor::select_group(labels, request.group, ""), edit),
-                    model.data().maps}));
-    } catch (const std::invalid_argument& e) {
-      throw StudioError(400, e.what());
-    }
   }
   std::lock_guard lock(mutex_);
   const std::string edited_id = new_id();

@@ -19,7 +19,7 @@
 #include <string>
 #include <thread>
 
-#include "methods/gabor/edit_analysis.hpp"
+#include "methods/capabilities.hpp"
 #include "stochtex/gpu.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
@@ -90,12 +90,13 @@ class StudioStore {
   std::string render_png(const std::string& id, const RenderRequest& request);
   // `stochtex compare --json`'s numbers of a render at the exemplar's size against the exemplar.
   nlohmann::ordered_json compare(const std::string& id, std::uint32_t seed);
-  // The groups of the gabor model `id` (gabor::groups_json: `stochtex edit --list-groups --json`);
-  // a 400 for another method.
-  nlohmann::ordered_json gabor_groups(const std::string& id);
-  // Edits the gabor model `id` as `stochtex edit` does and stores the result as a new model (made
-  // from the same exemplar); its id. A 400 for another method or a bad edit.
-  std::string edit_model(const std::string& id, const gabor::EditRequest& request);
+  // The groups of the model `id` (its registry row's edit capability: `stochtex edit --list-groups
+  // --json`); a 400 for a method that has none.
+  nlohmann::ordered_json edit_groups(const std::string& id);
+  // Edits the model `id` as `stochtex edit` does, from the JSON edit `body` (registry.hpp,
+  // edit_values_from_json), and stores the result as a new model (made from the same exemplar);
+  // its id. A 400 for a method without the capability or a bad edit.
+  std::string edit_model(const std::string& id, const nlohmann::ordered_json& body);
 
   // The file `name` of the model's web export in `variant` (web_export.hpp: what the viewer
   // loads), made once per model and variant; a 404 for a name the export does not have.
@@ -112,9 +113,10 @@ class StudioStore {
 
   std::shared_ptr<const Exemplar> find_exemplar(const std::string& id);
   std::shared_ptr<const StoredModel> find_model(const std::string& id);
-  // The stored gabor model `id`'s Wold labels, found once; a 400 for another method.
-  const std::vector<gabor::WoldComponent>& gabor_labels(const StoredModel& stored,
-                                                        const std::string& id);
+  // The stored model `id`'s edit capability and its groups, found once; a 400 for a method that
+  // has none.
+  std::pair<const EditCapability*, std::shared_ptr<const void>> edit_groups(
+      const StoredModel& stored, const std::string& id);
   std::string new_id();
   std::filesystem::path scratch_path(const std::string& extension);
   std::string encode_png(ImageView<const float> image);

@@ -72,6 +72,11 @@ TEST(AnalysisMemory, RowsBoundTheMeasuredGrowthOfEachMethod) {
       // 1852 with 4, against the row's 2540.
       {"gabor", {}, "rock_sandstone", 128, 256, {"albedo", "normal", "roughness", "height", "ao"}},
   };
+  // Each method of the registry is measured: a new method fails here until it has a case.
+  for (const MethodInfo& method : methods())
+    EXPECT_TRUE(std::any_of(std::begin(cases), std::end(cases),
+                            [&](const Case& c) { return c.method == method.name; }))
+        << "method " << method.name << " has no case here: add one with sizes its analysis takes";
   std::map<std::string, double> costliest;  // each method's largest measured / row
   for (const Case& c : cases) {
     const ImageF exemplar = c.maps.empty() ? read_image(c.exemplar)

@@ -17,6 +17,7 @@
 #include "methods/texton/params.hpp"
 #include "methods/texton_mix/params.hpp"
 #include "methods/tiling/params.hpp"
+#include "registry.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex {
@@ -100,6 +101,44 @@ std::string refusal(std::string_view method, const Text& given) {
     return error.what();
   }
   return "";
+}
+
+// The rows' optional capabilities (methods/capabilities.hpp), which the front ends drive by them.
+TEST(Registry, CapabilitiesAreFoundThroughTheRows) {
+  EXPECT_NE(target_capability("lrp"), nullptr);
+  EXPECT_EQ(target_capability("texton"), nullptr);
+  EXPECT_THROW(target_capability("nosuch"), std::invalid_argument);
+  EXPECT_NE(edit_capability("gabor"), nullptr);
+  EXPECT_EQ(edit_capability("tiling"), nullptr);
+  EXPECT_EQ(edit_capability("texton_mix"), nullptr);  // a model's method without a row
+  EXPECT_EQ(methods_with(CapabilityKind::target), "lrp");
+  EXPECT_EQ(methods_with(CapabilityKind::edit), "gabor");
+  EXPECT_GT(analysis_cost("gabor"), analysis_cost("tiling"));
+  const auto listed = nlohmann::json::parse(methods_json());
+  for (const auto& method : listed) {
+    const std::string name = method["name"];
+    EXPECT_EQ(method.contains("target"), target_capability(name) != nullptr) << name;
+    EXPECT_EQ(method.contains("edit"), edit_capability(name) != nullptr) << name;
+  }
+}
+
+// An edit sent as JSON is read against the capability's fields: known keys, numbers, pairs.
+TEST(Registry, EditJsonFollowsTheFieldRecords) {
+  const EditCapability& edit = *edit_capability("gabor");
+  const EditValues values = edit_values_from_json(
+      edit, nlohmann::ordered_json::parse(R"({"group": "periodic", "rotate": 30,
+                                              "translate": [0.1, -0.2]})"));
+  EXPECT_EQ(values.group, "periodic");
+  EXPECT_EQ(values.numbers.at("rotate"), std::vector<double>{30.0});
+  EXPECT_EQ(values.numbers.at("translate"), (std::vector<double>{0.1, -0.2}));
+  EXPECT_FALSE(values.numbers.contains("scale"));  // not given: the default
+  EXPECT_EQ(edit_values_from_json(edit, nlohmann::ordered_json::object()).group, "all");
+  for (const char* bad : {R"({"spin": 1})", R"({"rotate": "10"})", R"({"translate": 0.1})",
+                          R"({"translate": [0.1]})", R"({"group": 3})", "[1, 2]"}) {
+    EXPECT_THROW(edit_values_from_json(edit, nlohmann::ordered_json::parse(bad)),
+                 std::invalid_argument)
+        << bad;
+  }
 }
 
 TEST(Params, EnumerationsAndSwitchesTakeNames) {

@@ -1,27 +1,30 @@
-// The gabor editor of the studio page (section 8 of the Gabor noise paper; docs/studio.md): pick
-// a group of the model's Gaussians (periodic, anisotropic, stochastic or all, with the counts and
-// variance shares of /api/models/<id>/groups), rotate, scale and translate it in frequency and
-// change its magnitude and bandwidth with sliders. Each change (debounced, one request in flight,
-// the latest wins) asks POST /api/models/<original>/edit for a new model made from the ORIGINAL
-// model, so edits never accumulate, and hands its id to onModel (the page loads it into the gabor
-// viewer). createEditor returns {show(model), edited, busy, reset()}: edited is the id of the
-// model shown (null: the original), busy is true while a change waits or is on its way.
+// The model editor of the studio page (docs/studio.md), for a method whose /api/methods entry has
+// an "edit" capability (today gabor's, section 8 of the Gabor noise paper): pick a group of the
+// model's parts (with the counts and variance shares of /api/models/<id>/groups) and move a slider
+// per field of the capability. Each change (debounced, one request in flight, the latest wins)
+// asks POST /api/models/<original>/edit for a new model made from the ORIGINAL model, so edits
+// never accumulate, and hands its id to onModel (the page loads it into the method's viewer).
+// createEditor returns {show(model, method, capability), method, edited, busy, reset()}: edited is
+// the id of the model shown (null: the original), busy is true while a change waits or is on its
+// way.
 
 const DEBOUNCE_MS = 150;
 
-// The sliders: `toValue` turns a slider position into the edit's value, `text` shows it.
+// The sliders of the capability's fields (`field`, and `component` for a pair): `toValue` turns a
+// slider position into the edit's value, `text` shows it. A field the capability does not list
+// keeps its slider hidden.
 const SLIDERS = [
-  { name: 'rotate', label: 'rotate', min: -180, max: 180, step: 1, start: 0,
+  { name: 'rotate', field: 'rotate', label: 'rotate', min: -180, max: 180, step: 1, start: 0,
     toValue: (v) => v, text: (v) => `${v}\u00b0` },
-  { name: 'scale', label: 'scale', min: -2, max: 2, step: 0.05, start: 0,
+  { name: 'scale', field: 'scale', label: 'scale', min: -2, max: 2, step: 0.05, start: 0,
     toValue: (v) => 2 ** v, text: (v) => `\u00d7${(2 ** v).toFixed(2)}` },
-  { name: 'translate-x', label: 'translate x', min: -0.25, max: 0.25, step: 0.005, start: 0,
+  { name: 'translate-x', field: 'translate', component: 0, label: 'translate x', min: -0.25, max: 0.25, step: 0.005, start: 0,
     toValue: (v) => v, text: (v) => `${v.toFixed(3)} cycles/pixel` },
-  { name: 'translate-y', label: 'translate y', min: -0.25, max: 0.25, step: 0.005, start: 0,
+  { name: 'translate-y', field: 'translate', component: 1, label: 'translate y', min: -0.25, max: 0.25, step: 0.005, start: 0,
     toValue: (v) => v, text: (v) => `${v.toFixed(3)} cycles/pixel` },
-  { name: 'magnitude', label: 'magnitude', min: 0, max: 4, step: 0.05, start: 1,
+  { name: 'magnitude', field: 'magnitude', label: 'magnitude', min: 0, max: 4, step: 0.05, start: 1,
     toValue: (v) => v, text: (v) => `\u00d7${v.toFixed(2)}` },
-  { name: 'bandwidth', label: 'bandwidth', min: -3, max: 3, step: 1, start: 0,
+  { name: 'bandwidth', field: 'bandwidth', label: 'bandwidth', min: -3, max: 3, step: 1, start: 0,
     toValue: (v) => 2 ** v, text: (v) => `\u00d72^${v}` },
 ];
 
@@ -37,6 +40,7 @@ function element(tag, properties = {}, children = []) {
 export function createEditor({ mount, api, onModel, showError }) {
   const group = element('select', { id: 'edit-group' });
   const inputs = new Map();
+  const rows = new Map();
   const grid = element('div', { className: 'edit-sliders' });
   for (const slider of SLIDERS) {
     const input = element('input', {
@@ -49,38 +53,41 @@ export function createEditor({ mount, api, onModel, showError }) {
       schedule();
     });
     inputs.set(slider.name, input);
-    grid.append(element('label', { htmlFor: input.id, textContent: slider.label }), input, shown);
+    const label = element('label', { htmlFor: input.id, textContent: slider.label });
+    rows.set(slider.name, [label, input, shown]);
+    grid.append(label, input, shown);
   }
   const resetButton = element('button', { type: 'button', textContent: 'reset' });
   const download = element('a', { id: 'download-edited', textContent: 'edited model (.stx)' });
   download.hidden = true;
   const status = element('span', { className: 'info' });
+  const legend = element('legend');
   mount.replaceChildren(element('fieldset', {}, [
-    element('legend', { textContent: 'Edit the gabor model (section 8 of the Gabor noise paper)' }),
+    legend,
     element('label', { textContent: 'group ' }, [group]),
     grid,
     element('div', { className: 'actions' }, [resetButton, download, status]),
   ]));
   mount.hidden = true;
 
-  const editor = { edited: null, busy: false };
+  const editor = { method: null, edited: null, busy: false };
   let original = null;
+  let fields = [];
+  let everything = 'all';  // the capability's first group, which selects every part
   let timer = 0;
   let inFlight = false;
   let again = false;
   let version = 0;  // counts the changes: only the latest one's model is shown
 
+  // The edit's JSON: the group, then each field of the capability from its sliders.
   function edit() {
-    const value = (name) => SLIDERS.find((s) => s.name === name).toValue(
-      Number(inputs.get(name).value));
-    return {
-      group: group.value,
-      rotate: value('rotate'),
-      scale: value('scale'),
-      translate: [value('translate-x'), value('translate-y')],
-      magnitude: value('magnitude'),
-      bandwidth: value('bandwidth'),
-    };
+    const body = { group: group.value };
+    for (const field of fields) {
+      const values = SLIDERS.filter((s) => s.field === field.name)
+        .map((s) => s.toValue(Number(inputs.get(s.name).value)));
+      body[field.name] = field.components === 1 ? values[0] : values;
+    }
+    return body;
   }
 
   function schedule() {
@@ -110,7 +117,7 @@ export function createEditor({ mount, api, onModel, showError }) {
       if (from === original && asked === version) {
         editor.edited = model;
         download.href = `/api/models/${model}.stx`;
-        download.download = 'gabor-edited.stx';
+        download.download = `${editor.method}-edited.stx`;
         download.hidden = false;
         await onModel(model);
         status.textContent = '';
@@ -142,7 +149,7 @@ export function createEditor({ mount, api, onModel, showError }) {
     version += 1;
     clearTimeout(timer);
     timer = 0;
-    group.value = 'all';
+    group.value = everything;
     editor.edited = null;
     editor.busy = inFlight;
     download.hidden = true;
@@ -153,15 +160,24 @@ export function createEditor({ mount, api, onModel, showError }) {
     if (original) onModel(null);
   };
 
-  // Shows the panel for the gabor model `model`, its sliders at rest.
-  editor.show = async (model) => {
+  // Shows the panel for `model` of `method`, whose edit capability (/api/methods) is `capability`,
+  // its sliders at rest.
+  editor.show = async (model, method, capability) => {
     original = model;
+    editor.method = method;
+    [everything] = capability.groups;
+    fields = capability.fields.filter((f) => SLIDERS.some((s) => s.field === f.name));
+    legend.textContent = `Edit the ${method} model: ${capability.summary}`;
+    for (const slider of SLIDERS) {
+      const shown = fields.some((f) => f.name === slider.field);
+      for (const part of rows.get(slider.name)) part.hidden = !shown;
+    }
     resetSliders();
     mount.hidden = false;
-    group.replaceChildren(new Option('all', 'all'));
+    group.replaceChildren(new Option(everything, everything));
     try {
       const doc = await (await api(`/api/models/${model}/groups`)).json();
-      group.options[0].textContent = `all (${doc.gaussians} Gaussians)`;
+      group.options[0].textContent = `${everything} (${doc.gaussians} Gaussians)`;
       for (const [name, share] of Object.entries(doc.groups)) {
         const option = new Option(
           `${name} (${share.gaussians} Gaussians, ${(100 * share.variance_share).toFixed(1)}% ` +

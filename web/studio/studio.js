@@ -1,7 +1,7 @@
 // The studio page: upload an exemplar, pick a method and its parameters (the form is made from
 // /api/methods), run the analysis with progress and cancel, then show each method's latest model
 // live in WebGL2 (web/viewer/) side by side at one view and seed, the compare numbers of each, a
-// CPU render and the downloads, and the gabor model's editor (editor.js). The API is described in
+// CPU render and the downloads, and the editor of a model whose method can edit (editor.js). The API is described in
 // docs/studio.md. window.stochtexStudio is the page's interface for scripts and the browser test:
 // group (the viewers, by method), shown (method -> {model, seconds}), editor (editor.js's),
 // loaded (a promise settled when the viewers have their models), setSeed(n) (the seed control's)
@@ -236,14 +236,16 @@ const live = {
 };
 window.stochtexStudio = live;
 
-// The gabor editor (editor.js): its edited model, when there is one, takes the gabor viewer.
+// The editor (editor.js) of the methods whose /api/methods entry has an "edit" capability: its
+// edited model, when there is one, takes that method's viewer.
 const editor = createEditor({
   mount: $('editor-mount'),
   api,
   showError,
-  // Only the gabor viewer redraws: a slider's change leaves the other methods' viewers alone.
+  // Only the edited method's viewer redraws: the other methods' viewers are left alone.
   onModel: () => {
-    live.loaded = loadViewer('gabor').then(() => live.group.viewers.get('gabor').render());
+    const method = editor.method;
+    live.loaded = loadViewer(method).then(() => live.group.viewers.get(method).render());
     live.loaded.catch((error) => showError(error.message));
     return live.loaded;
   },
@@ -251,7 +253,7 @@ const editor = createEditor({
 live.editor = editor;
 
 async function loadViewer(method) {
-  const model = (method === 'gabor' && editor.edited) || live.shown.get(method).model;
+  const model = (method === editor.method && editor.edited) || live.shown.get(method).model;
   await live.group.viewers.get(method).load(`/api/models/${model}/web/${live.variant}`);
 }
 
@@ -371,7 +373,8 @@ function showModel(status) {
   $('download-model').download = `${status.method}.stx`;
   state.method = status.method;
   updateShaderLink();
-  if (status.method === 'gabor') editor.show(status.model);
+  const capability = state.methods.find((m) => m.name === status.method).edit;
+  if (capability) editor.show(status.model, status.method, capability);
   addViewer(status);
   showRender();
 }

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <memory>
 #include <numbers>
 #include <span>
 #include <stdexcept>
+
+#include "model/model_data.hpp"
 
 namespace stochtex::gabor {
 
@@ -410,5 +414,97 @@ SpectrumEdit spectrum_edit(const EditRequest& request, std::string_view prefix) 
   edit.bandwidth_shift = -static_cast<int>(exponent);
   return edit;
 }
+
+namespace {
+
+constexpr std::array<std::string_view, 4> kGroupNames = {"all", "periodic", "anisotropic",
+                                                         "stochastic"};
+constexpr std::array<EditField, 5> kEditFields = {{
+    {"rotate", "rotate the group's frequencies by DEG degrees, counter-clockwise", 0.0},
+    {"scale", "multiply the group's frequencies by S (> 1: finer detail)", 1.0},
+    {"translate", "add FX,FY cycles per pixel to the group's frequencies", 0.0, 2, kMaxTranslation},
+    {"magnitude", "multiply the group's kernel magnitude K by this (the variance by its square)",
+     1.0},
+    {"bandwidth",
+     "multiply the group's bandwidth a by this power of two (< 1: sharper spectral Gaussians, "
+     "longer-range kernels); each Gaussian keeps its variance",
+     1.0},
+}};
+
+const GaborModel& gabor_of(const Model& model) {
+  const auto* gabor = std::get_if<GaborModel>(&model.data().model);
+  if (gabor == nullptr)
+    throw std::invalid_argument("a " + std::string(model.method()) + " model is not a gabor model");
+  return *gabor;
+}
+
+const std::vector<WoldComponent>& labels_of(const void* groups) {
+  return *static_cast<const std::vector<WoldComponent>*>(groups);
+}
+
+std::shared_ptr<const void> find_groups(const Model& model) {
+  return std::make_shared<const std::vector<WoldComponent>>(wold_components(gabor_of(model)));
+}
+
+nlohmann::ordered_json edit_groups_json(const Model& model, const void* groups) {
+  return groups_json(gabor_of(model), labels_of(groups));
+}
+
+std::string groups_table(const Model& model, const void* groups) {
+  std::array<char, 96> line{};
+  std::snprintf(line.data(), line.size(), "%-14s%10s%16s\n", "group", "gaussians",
+                "variance share");
+  std::string table = line.data();
+  for (const GroupShare& share : group_shares(gabor_of(model), labels_of(groups))) {
+    std::snprintf(line.data(), line.size(), "%-14s%10zu%15.1f%%\n",
+                  std::string(component_name(share.component)).c_str(), share.gaussians,
+                  100.0 * share.variance_share);
+    table += line.data();
+  }
+  return table;
+}
+
+EditResult edit(const Model& model, const void* groups, const EditValues& values,
+                std::string_view prefix) {
+  EditRequest request;
+  request.group = values.group;
+  const auto given = [&](std::string_view name, std::size_t component, double fallback) {
+    const auto found = values.numbers.find(name);
+    return found == values.numbers.end() || found->second.size() <= component
+               ? fallback
+               : found->second[component];
+  };
+  request.rotate_degrees = given("rotate", 0, request.rotate_degrees);
+  request.scale = given("scale", 0, request.scale);
+  request.translate_x = given("translate", 0, request.translate_x);
+  request.translate_y = given("translate", 1, request.translate_y);
+  request.magnitude = given("magnitude", 0, request.magnitude);
+  request.bandwidth = given("bandwidth", 0, request.bandwidth);
+  const SpectrumEdit spectrum = spectrum_edit(request, prefix);
+  const GaborModel& gabor = gabor_of(model);
+  const std::vector<bool> selected = select_group(labels_of(groups), request.group, prefix);
+  GaborModel edited = edit_gaussians(gabor, selected, spectrum);
+  const std::size_t dropped = gabor.gaussians().size() - edited.gaussians().size();
+  std::string summary = request.group + " group: " +
+                        std::to_string(std::count(selected.begin(), selected.end(), true)) +
+                        " Gaussians edited";
+  if (dropped > 0)
+    summary += ", " + std::to_string(dropped) + " moved beyond Nyquist or to zero and dropped";
+  return {Model(std::make_shared<const ModelData>(
+              ModelData{model.params(), std::move(edited), model.data().maps})),
+          std::move(summary)};
+}
+
+}  // namespace
+
+const EditCapability kEdit{
+    "edit a gabor model's spectrum by groups of Gaussians: periodic peaks, anisotropic lines, the "
+    "stochastic rest (section 8 of the Gabor noise paper)",
+    kGroupNames,
+    kEditFields,
+    &find_groups,
+    &edit_groups_json,
+    &groups_table,
+    &edit};
 
 }  // namespace stochtex::gabor

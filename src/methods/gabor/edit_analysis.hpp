@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "methods/capabilities.hpp"
 #include "methods/gabor/model.hpp"
 
 namespace stochtex::gabor {
@@ -122,5 +123,10 @@ SpectrumEdit spectrum_edit(const EditRequest& request, std::string_view prefix);
 // std::invalid_argument for another name.
 std::vector<bool> select_group(const std::vector<WoldComponent>& labels, std::string_view group,
                                std::string_view prefix);
+
+// The registry row's edit capability (methods/capabilities.hpp), through which `stochtex edit` and
+// the studio's editor drive the above: the groups "all" and the Wold components, the fields of
+// EditRequest (rotate in degrees, scale, translate FX,FY, magnitude, bandwidth).
+extern const EditCapability kEdit;
 
 }  // namespace stochtex::gabor

@@ -11,6 +11,7 @@
 
 #include "methods/lrp/model.hpp"
 #include "methods/lrp/params.hpp"
+#include "methods/lrp/target_analysis.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
 #include "stochtex/stochtex.hpp"
@@ -86,12 +87,13 @@ Model spectrum_model(const SpectrumTarget& target, const ParamValues& params = {
 
 // This method's row of the registry (src/registry.cpp).
 constexpr RegistryRow<Params, kFields.size()> registry_row(std::type_identity<LrpModel>) {
-  return {
-      "local random-phase noise (Gilet et al. 2014): windowed cosines with random "
-      "phases on a lattice, 9 (J + L) cosines and windows per channel and sample",
-      kFields,
-      {.per_pixel = 36, .per_channel = 12},
-      kMaxChannels};
+  return {.summary =
+              "local random-phase noise (Gilet et al. 2014): windowed cosines with random "
+              "phases on a lattice, 9 (J + L) cosines and windows per channel and sample",
+          .fields = kFields,
+          .analysis_memory = {.per_pixel = 36, .per_channel = 12},
+          .max_channels = kMaxChannels,
+          .target = &kTarget};
 }
 
 }  // namespace stochtex::lrp

@@ -1,4 +1,4 @@
-#include "target_option.hpp"
+#include "methods/lrp/target_analysis.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,8 +8,9 @@
 #include <vector>
 
 #include "methods/lrp/analysis.hpp"
+#include "stochtex/stochtex.hpp"
 
-namespace stochtex::cli {
+namespace stochtex::lrp {
 namespace {
 
 constexpr double kDefaultVariance = 0.01;
@@ -18,17 +19,13 @@ constexpr int kDefaultSize = 128;
 constexpr int kMaxSize = 1024;
 
 std::invalid_argument bad(const std::string& text, const std::string& why) {
-  return std::invalid_argument("--target '" + text + "': " + why +
+  return std::invalid_argument("the target spectrum '" + text + "': " + why +
                                " (e.g. ring:radius=0.2,width=0.02)");
 }
 
 }  // namespace
 
-Model target_model(const std::string& text, std::string_view method, const ParamValues& params,
-                   std::uint32_t seed) {
-  if (method != "lrp")
-    throw std::invalid_argument("--target is a continuous spectrum for --method lrp only, not " +
-                                std::string(method));
+Model target_model(const std::string& text, const ParamValues& params, std::uint32_t seed) {
   const auto colon = text.find(':');
   const std::string kind = text.substr(0, colon);
   if (kind != "ring" && kind != "gaussian" && kind != "anisotropic")
@@ -68,12 +65,11 @@ Model target_model(const std::string& text, std::string_view method, const Param
     throw bad(text, "size must be an even integer from 8 to 1024");
   const auto spectrum = [&] {
     try {
-      return kind == "ring"
-                 ? lrp::ring_spectrum(static_cast<int>(size), values["radius"], values["width"],
-                                      optional("variance", kDefaultVariance))
-                 : lrp::gaussian_spectrum(static_cast<int>(size), values["cx"], values["cy"],
-                                          values["along"], values["across"],
-                                          optional("variance", kDefaultVariance));
+      return kind == "ring" ? ring_spectrum(static_cast<int>(size), values["radius"],
+                                            values["width"], optional("variance", kDefaultVariance))
+                            : gaussian_spectrum(static_cast<int>(size), values["cx"], values["cy"],
+                                                values["along"], values["across"],
+                                                optional("variance", kDefaultVariance));
     } catch (const std::invalid_argument& e) {
       throw bad(text, e.what());
     }
@@ -84,9 +80,9 @@ Model target_model(const std::string& text, std::string_view method, const Param
   const double largest = kMaxExemplarValue;
   if (std::abs(mean) > largest || variance > largest * largest)
     throw bad(text, "the mean must be within +-1e6 and the variance at most 1e12");
-  lrp::SpectrumTarget target = spectrum();
+  SpectrumTarget target = spectrum();
   target.mean = mean;
-  return lrp::spectrum_model(target, params, seed);
+  return spectrum_model(target, params, seed);
 }
 
-}  // namespace stochtex::cli
+}  // namespace stochtex::lrp
