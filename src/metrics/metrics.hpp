@@ -37,6 +37,10 @@ double relative_l1_distance(std::span<const double> a, std::span<const double> r
 double spectral_error(ImageView<const float> image, ImageView<const float> reference, int crop);
 
 inline constexpr int default_sliced_directions = 64;
+// Sorts `values` ascending, to the same values as std::sort (none may be NaN), with Highway's
+// vectorised quicksort: the empirical quantile functions of the measures below.
+void sort_ascending(std::vector<double>& values);
+
 // Sliced Wasserstein-2 distance between the pixel colour distributions: sqrt of the mean over
 // directions of W2^2 between the 1-D projections. The directions are fixed (the same on every call
 // and platform), so the distance is deterministic and symmetric; a 1-channel image has the single

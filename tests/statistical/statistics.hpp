@@ -59,7 +59,7 @@ inline double histogram_distance(const ImageF& a, const ImageF& b, int c) {
     std::vector<double> values;
     for (int j = 0; j < image.height(); ++j)
       for (int i = 0; i < image.width(); ++i) values.push_back(image.at(i, j, c));
-    std::sort(values.begin(), values.end());
+    sort_ascending(values);
     return values;
   };
   const std::vector<double> x = sorted(a);
