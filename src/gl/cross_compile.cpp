@@ -110,13 +110,6 @@ class Cross {
 
 }  // namespace
 
-const LanguageRow& language_row(ShaderLanguage language) {
-  const auto index = static_cast<std::size_t>(language);
-  if (index >= kLanguageRows.size() || kLanguageRows[index].language != language)
-    throw std::logic_error("language_row: kLanguageRows is not in ShaderLanguage's order");
-  return kLanguageRows[index];
-}
-
 std::string front_end_errors(std::string_view source, ShaderLanguage language) {
   if (language == ShaderLanguage::msl)
     throw std::invalid_argument("front_end_errors: glslang has no Metal front end");

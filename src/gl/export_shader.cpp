@@ -455,7 +455,7 @@ std::string export_header(ShaderLanguage language, const std::string& what, cons
          << "// Paste or include after `#version 450`.\n// Bind";
   else
     text << "// " << what << " exported by\n// `stochtex export-shader --language "
-         << language_row(language).option << "` (" << language_row(language).title
+         << language_row(language).name << "` (" << language_row(language).title
          << "), cross-compiled from the GLSL 4.50\n// by glslang and SPIRV-Cross. "
          << language_row(language).placement << "\n// Bind";
   for (std::size_t i = 0; i < textures.size(); ++i)
