@@ -3,7 +3,8 @@
 // else that names them is made: the CLI's option, its help and `stochtex languages` (which
 // scripts read), the studio's `/api/languages` and its export route, the exporter's file names,
 // header comments and README, the cross-compiler (cross_compile.hpp) and the tests that cover
-// every language.
+// every language. A language's README section on binding the data is the template
+// readme/binding_<name>.md (readme.hpp); glsl, the methods' own source, has READMEs of its own.
 
 #include <array>
 #include <cstddef>
