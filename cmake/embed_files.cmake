@@ -2,7 +2,8 @@
 # Writes a C++ source defining `std::span<const EmbeddedFile> <ns>::embedded_files()` (declared by
 # the caller's header; core/embedded_file.hpp): one raw string per text file, named by its path
 # relative to ROOT ("methods/texton/evaluate.glsl", "studio/index.html"), so the files stay the
-# single source and editors see them as what they are: the GLSL of src/ and the web pages of web/.
+# single source and editors see them as what they are: the GLSL of src/, the exports' README
+# templates (src/gl/readme/) and the web pages of web/.
 # Reconfigures when one of them changes; the output is rewritten only when its text changes.
 function(stochtex_embed_text)
   cmake_parse_arguments(EMBED "" "OUTPUT;ROOT;NAMESPACE" "SOURCES" ${ARGN})

@@ -2,7 +2,8 @@
 # Checks that a refactor keeps the outputs byte-identical (docs/design.md §4): two builds of
 # `stochtex` (before and after) analyse the same exemplars with every method of the registry, then
 # render (point-sampled and zoomed out, PNG and PFM), export the shaders (both variants, every
-# language) and the web viewer, and render a mesh; every file must have the same bytes.
+# language of the new build's `stochtex languages`) and the web viewer, and render a mesh; every
+# file must have the same bytes.
 # Usage: bash scripts/same_outputs.sh OLD_STOCHTEX NEW_STOCHTEX [EXEMPLAR...]
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -20,7 +21,7 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 methods=$("$new" methods --json | python3 -c 'import json, sys; print(" ".join(m["name"] for m in json.load(sys.stdin)))')
-languages="glsl essl hlsl msl"
+languages=$("$new" languages --json | python3 -c 'import json, sys; print(" ".join(l["name"] for l in json.load(sys.stdin)))')
 
 # quiet COMMAND...: runs it, printing what it said only when it fails.
 quiet() {

@@ -31,6 +31,7 @@ Command add_export_web_command(CLI::App& app);
 Command add_edit_command(CLI::App& app);
 Command add_report_command(CLI::App& app);
 Command add_methods_command(CLI::App& app);
+Command add_languages_command(CLI::App& app);
 Command add_studio_command(CLI::App& app);
 
 }  // namespace stochtex::cli

@@ -1,11 +1,10 @@
-// `stochtex export-shader MODEL -o DIR [--variant exact|fast] [--language glsl|essl|hlsl|msl]`:
-// a self-contained shader library, its wrappers, the model's data images and a README for engines
-// (include/stochtex/gpu.hpp).
+// `stochtex export-shader MODEL -o DIR [--variant exact|fast] [--language NAME]`: a
+// self-contained shader library, its wrappers, the model's data images and a README for engines
+// (include/stochtex/gpu.hpp), in a language of the table src/gl/languages.hpp.
 
 #include <fmt/core.h>
 
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -14,22 +13,32 @@
 
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
+#include "gl/languages.hpp"
 #include "io/image_io.hpp"
-#include "stochtex/stochtex.hpp"
-#ifdef STOCHTEX_WITH_GL
 #include "stochtex/gpu.hpp"
-#endif
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex::cli {
 namespace {
 
-#ifdef STOCHTEX_WITH_GL
-// The --language names, as ShaderLanguage.
-const std::map<std::string, ShaderLanguage> kLanguages = {{"glsl", ShaderLanguage::glsl},
-                                                          {"essl", ShaderLanguage::essl},
-                                                          {"hlsl", ShaderLanguage::hlsl},
-                                                          {"msl", ShaderLanguage::msl}};
-#endif
+// --language's help, from the table: each name with its title and targets.
+std::string language_help() {
+  std::string text;
+  for (std::size_t i = 0; i < gl::kLanguageRows.size(); ++i) {
+    const gl::LanguageRow& row = gl::kLanguageRows[i];
+    text += fmt::format("{}{} ({} for {})",
+                        i == 0 ? "" : (i + 1 == gl::kLanguageRows.size() ? " or " : ", "), row.name,
+                        row.title, row.targets);
+  }
+  return text + "; both variants (`stochtex languages` lists them)";
+}
+
+// --language's choices: the table's names.
+std::vector<std::string> language_choices() {
+  std::vector<std::string> names;
+  for (const gl::LanguageRow& row : gl::kLanguageRows) names.emplace_back(row.name);
+  return names;
+}
 
 void export_shader_files([[maybe_unused]] const std::string& model_path,
                          [[maybe_unused]] const std::string& output,
@@ -38,7 +47,7 @@ void export_shader_files([[maybe_unused]] const std::string& model_path,
 #ifdef STOCHTEX_WITH_GL
   ShaderExportOptions options;
   options.variant = variant == "fast" ? ShaderVariant::fast : ShaderVariant::exact;
-  options.language = kLanguages.at(language);
+  options.language = gl::find_language(language)->language;
   ShaderExport files;
   try {
     files = export_shader(load_model(model_path), options);
@@ -81,7 +90,7 @@ Command add_export_shader_command(CLI::App& app) {
     std::string model;
     std::string output;
     std::string variant = "exact";
-    std::string language = "glsl";
+    std::string language{gl::language_row(ShaderExportOptions{}.language).name};
   };
   auto options = std::make_shared<Options>();
   auto* command = app.add_subcommand("export-shader",
@@ -96,12 +105,9 @@ Command add_export_shader_command(CLI::App& app) {
                    "the CPU in distribution)")
       ->capture_default_str()
       ->check(CLI::IsMember({"exact", "fast"}));
-  command
-      ->add_option("--language", options->language,
-                   "glsl (GLSL 4.50), essl (GLSL ES 3.00, WebGL2), hlsl (Shader Model 5, with a "
-                   "Unity Shader Graph function) or msl (Metal); both variants")
+  command->add_option("--language", options->language, language_help())
       ->capture_default_str()
-      ->check(CLI::IsMember({"glsl", "essl", "hlsl", "msl"}));
+      ->check(CLI::IsMember(language_choices()));
   return {command, [options] {
             export_shader_files(options->model, options->output, options->variant,
                                 options->language);

@@ -29,7 +29,8 @@ int run(int argc, char** argv) {
       cli::add_compare_command(app),       cli::add_info_command(app),
       cli::add_export_shader_command(app), cli::add_edit_command(app),
       cli::add_report_command(app),        cli::add_methods_command(app),
-      cli::add_export_web_command(app),    cli::add_studio_command(app)};
+      cli::add_languages_command(app),     cli::add_export_web_command(app),
+      cli::add_studio_command(app)};
 
   // CLI11's own usage errors follow the one-sentence rule too.
   app.failure_message([](const CLI::App*, const CLI::Error& error) {

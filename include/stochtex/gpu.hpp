@@ -128,13 +128,10 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
 //          its fast variant is exact.
 enum class ShaderVariant { exact, fast };
 
-// The language of an exported shader (`export-shader --language`):
-//   glsl: GLSL 4.50 (OpenGL 4.5), the method's own source. The default.
-//   essl: GLSL ES 3.00 (WebGL2, OpenGL ES 3.0);
-//   hlsl: HLSL Shader Model 5 (Direct3D 11, Unity, Unreal);
-//   msl:  Metal Shading Language 1.2.
-// essl, hlsl and msl are cross-compiled from the GLSL through SPIR-V (glslang, SPIRV-Cross), the
-// same for both variants.
+// The language of an exported shader (`export-shader --language`; `stochtex languages` lists each
+// with its title and targets, from the table of src/gl/languages.hpp). glsl (GLSL 4.50) is the
+// method's own source and the default; the others are cross-compiled from it through SPIR-V
+// (glslang, SPIRV-Cross), the same for both variants.
 enum class ShaderLanguage { glsl, essl, hlsl, msl };
 
 struct ShaderExportOptions {
@@ -186,7 +183,7 @@ struct TextFile {
 // a linear-space engine converts it to linear (or writes it unconverted to a non-sRGB target).
 // Needs no GL context.
 struct ShaderExport {
-  TextFile shader;  // stochtex_<method>.glsl, .essl, .hlsl or .metal
+  TextFile shader;  // stochtex_<method> with the language's extension (.glsl, .metal, ...)
   // Engine-shaped wrappers of `shader` (HLSL: a Unity Shader Graph custom function file).
   std::vector<TextFile> wrappers;
   std::vector<ShaderTexture> textures;  // each bound to the texture `stochtex_<name>`

@@ -1,6 +1,7 @@
 #pragma once
 // A text file compiled into the program by CMake (cmake/embed_files.cmake): the GLSL of src/ for
-// the GPU backend and the web pages of web/ for `stochtex studio` and `export-web`.
+// the GPU backend, the README templates of src/gl/readme/ for `export-shader` and the web pages of
+// web/ for `stochtex studio` and `export-web`.
 
 #include <span>
 #include <string_view>

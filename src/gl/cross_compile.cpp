@@ -82,6 +82,22 @@ constexpr std::array<Lack, 4> kLacks = {{
      "computes in double precision, which Metal does not have"},
 }};
 
+// SPIRV-Cross's backend for a cross-compiled language (a switch, so that the compiler asks for a
+// new language's).
+spvc_backend backend(ShaderLanguage language) {
+  switch (language) {
+    case ShaderLanguage::essl:
+      return SPVC_BACKEND_GLSL;
+    case ShaderLanguage::hlsl:
+      return SPVC_BACKEND_HLSL;
+    case ShaderLanguage::msl:
+      return SPVC_BACKEND_MSL;
+    case ShaderLanguage::glsl:
+      break;
+  }
+  throw std::logic_error("cross_compile: GLSL is not cross-compiled");
+}
+
 // SPIRV-Cross through its C API: one context per call, freed on every path.
 class Cross {
  public:
@@ -110,13 +126,6 @@ class Cross {
 
 }  // namespace
 
-const LanguageRow& language_row(ShaderLanguage language) {
-  const auto index = static_cast<std::size_t>(language);
-  if (index >= kLanguageRows.size() || kLanguageRows[index].language != language)
-    throw std::logic_error("language_row: kLanguageRows is not in ShaderLanguage's order");
-  return kLanguageRows[index];
-}
-
 std::string front_end_errors(std::string_view source, ShaderLanguage language) {
   if (language == ShaderLanguage::msl)
     throw std::invalid_argument("front_end_errors: glslang has no Metal front end");
@@ -141,11 +150,8 @@ std::string cross_compile(std::string_view library, std::string_view function,
   spvc_parsed_ir ir = nullptr;
   cross.check(spvc_context_parse_spirv(cross.context(), spirv.data(), spirv.size(), &ir),
               "parse the SPIR-V");
-  const spvc_backend backend = language == ShaderLanguage::essl   ? SPVC_BACKEND_GLSL
-                               : language == ShaderLanguage::hlsl ? SPVC_BACKEND_HLSL
-                                                                  : SPVC_BACKEND_MSL;
   spvc_compiler compiler = nullptr;
-  cross.check(spvc_context_create_compiler(cross.context(), backend, ir,
+  cross.check(spvc_context_create_compiler(cross.context(), backend(language), ir,
                                            SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &compiler),
               "create a compiler");
 
@@ -164,32 +170,42 @@ std::string cross_compile(std::string_view library, std::string_view function,
 
   spvc_compiler_options options = nullptr;
   cross.check(spvc_compiler_create_compiler_options(compiler, &options), "make options");
-  if (language == ShaderLanguage::essl) {
-    cross.check(spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_GLSL_VERSION, 300),
-                "set the version");
-    cross.check(spvc_compiler_options_set_bool(options, SPVC_COMPILER_OPTION_GLSL_ES, SPVC_TRUE),
-                "select ES");
-    cross.check(spvc_compiler_options_set_bool(
-                    options, SPVC_COMPILER_OPTION_GLSL_ES_DEFAULT_FLOAT_PRECISION_HIGHP, SPVC_TRUE),
-                "set highp");
-  } else if (language == ShaderLanguage::hlsl) {
-    cross.check(spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_HLSL_SHADER_MODEL, 50),
-                "set the shader model");
-    // GLSL's samplers all default to binding 0; without a binding the textures get no register(),
-    // so that the engine's compiler places them among its own.
-    spvc_resources resources = nullptr;
-    const spvc_reflected_resource* textures = nullptr;
-    std::size_t texture_count = 0;
-    cross.check(spvc_compiler_create_shader_resources(compiler, &resources), "list the resources");
-    cross.check(spvc_resources_get_resource_list_for_type(
-                    resources, SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, &textures, &texture_count),
-                "list the textures");
-    for (std::size_t i = 0; i < texture_count; ++i)
-      spvc_compiler_unset_decoration(compiler, textures[i].id, SpvDecorationBinding);
-  } else {
-    cross.check(spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_MSL_VERSION,
-                                               SPVC_MAKE_MSL_VERSION(1, 2, 0)),
-                "set the Metal version");
+  switch (language) {
+    case ShaderLanguage::essl:
+      cross.check(spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_GLSL_VERSION, 300),
+                  "set the version");
+      cross.check(spvc_compiler_options_set_bool(options, SPVC_COMPILER_OPTION_GLSL_ES, SPVC_TRUE),
+                  "select ES");
+      cross.check(
+          spvc_compiler_options_set_bool(
+              options, SPVC_COMPILER_OPTION_GLSL_ES_DEFAULT_FLOAT_PRECISION_HIGHP, SPVC_TRUE),
+          "set highp");
+      break;
+    case ShaderLanguage::hlsl: {
+      cross.check(
+          spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_HLSL_SHADER_MODEL, 50),
+          "set the shader model");
+      // GLSL's samplers all default to binding 0; without a binding the textures get no
+      // register(), so that the engine's compiler places them among its own.
+      spvc_resources resources = nullptr;
+      const spvc_reflected_resource* textures = nullptr;
+      std::size_t texture_count = 0;
+      cross.check(spvc_compiler_create_shader_resources(compiler, &resources),
+                  "list the resources");
+      cross.check(spvc_resources_get_resource_list_for_type(
+                      resources, SPVC_RESOURCE_TYPE_SAMPLED_IMAGE, &textures, &texture_count),
+                  "list the textures");
+      for (std::size_t i = 0; i < texture_count; ++i)
+        spvc_compiler_unset_decoration(compiler, textures[i].id, SpvDecorationBinding);
+      break;
+    }
+    case ShaderLanguage::msl:
+      cross.check(spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_MSL_VERSION,
+                                                 SPVC_MAKE_MSL_VERSION(1, 2, 0)),
+                  "set the Metal version");
+      break;
+    case ShaderLanguage::glsl:
+      break;
   }
   cross.check(spvc_compiler_install_compiler_options(compiler, options), "install the options");
   const char* text = nullptr;

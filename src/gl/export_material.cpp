@@ -8,6 +8,7 @@
 
 #include "gl/cross_compile.hpp"
 #include "gl/glsl_text.hpp"
+#include "gl/readme.hpp"
 #include "gl/shaders.hpp"
 #include "stochtex/error.hpp"
 
@@ -131,34 +132,37 @@ MaterialShader material_shader(std::span<const MapInfo> maps, int channels, std:
 
 std::string material_readme(const MaterialShader& material, ShaderLanguage language) {
   const bool glsl = language == ShaderLanguage::glsl || language == ShaderLanguage::essl;
-  std::ostringstream text;
-  text << "It returns every map of the material:\n\n    struct StochtexMaterial {\n";
+  std::vector<std::string> members;
+  std::vector<std::string> derived;
   for (const MaterialMember& member : material.members) {
     const MapInfo& map = member.map;
     const std::string declaration =
         std::string(glsl ? (member.vector ? "vec3" : "float") : hlsl_type(member)) + " " +
         member.name + ";";
     constexpr std::size_t kCommentColumn = 24;
-    text << "      " << declaration
-         << std::string(std::max(kCommentColumn, declaration.size() + 1) - declaration.size(), ' ')
-         << "// " << map_kind_name(map.kind) << " map `" << map.name << "`"
-         << (map.derived_from.empty() ? "" : ", derived from `" + map.derived_from + "`") << "\n";
+    members.push_back(
+        ReadmeTemplate("material_member")
+            .set("declaration", declaration)
+            .set("padding",
+                 std::string(std::max(kCommentColumn, declaration.size() + 1) - declaration.size(),
+                             ' '))
+            .set("kind", std::string(map_kind_name(map.kind)))
+            .set("map", map.name)
+            .flag("derived", !map.derived_from.empty())
+            .set("source", map.derived_from)
+            .text());
+    if (!map.derived_from.empty())
+      derived.push_back(ReadmeTemplate("material_derived")
+                            .set("member", member.name)
+                            .set("scale", glsl_float(static_cast<float>(map.slope_scale)))
+                            .set("source", map.derived_from)
+                            .text());
   }
-  text << "    };\n\nColour, height and scalar maps hold the values of `stochtex render`'s maps "
-          "(those of the\nanalysed files: PNG bytes / 255). A normal map is the unit "
-          "tangent-space normal\nnormalize(-s_x, -s_y, 1) of the slopes s the model keeps, x along "
-          "+p.x and y along -p.y (towards\nthe exemplar's first row: OpenGL's convention); "
-          "`stochtex render` writes it encoded as 0.5 + 0.5 n.\n";
-  for (const MaterialMember& member : material.members)
-    if (!member.map.derived_from.empty())
-      text << "`" << member.name << "` is derived from the height: "
-           << glsl_float(static_cast<float>(member.map.slope_scale)) << " times the gradient of `"
-           << member.map.derived_from
-           << "`, which the function\nestimates from the height at p +- dpdx and p +- dpdy: it "
-              "evaluates the noise 5 times instead of\nonce. On a grid (dpdx = (s, 0), dpdy = "
-              "(0, s)) these are `stochtex render`'s central differences;\nwith zero or parallel "
-              "derivatives the steps are one exemplar pixel along x and y.\n";
-  return text.str();
+  return ReadmeTemplate("material")
+      .set("members", join(members))
+      .flag("derived", !derived.empty())
+      .set("derived_maps", join(derived))
+      .text();
 }
 
 }  // namespace stochtex::gl

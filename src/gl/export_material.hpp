@@ -41,8 +41,9 @@ std::vector<MaterialMember> material_members(std::span<const MapInfo> maps);
 MaterialShader material_shader(std::span<const MapInfo> maps, int channels, std::string_view method,
                                const std::string& channels_function);
 
-// The README's account of the struct in `language`: its declaration in the language's types, what
-// each member holds, and what a derived normal map costs.
+// The README's account of the struct in `language` (the templates readme/material*.md): its
+// declaration in the language's types, what each member holds, and what a derived normal map
+// costs; paragraphs without a final newline.
 std::string material_readme(const MaterialShader& material, ShaderLanguage language);
 
 // A member's type in an HLSL or Metal declaration: float3 or float.

@@ -1,7 +1,8 @@
 #pragma once
 // The GLSL files compiled into the library: src/gl/*.glsl and src/methods/*/*.glsl, embedded as
 // strings by CMake (cmake/embed_files.cmake), so the files stay the single source and editors see
-// them as GLSL.
+// them as GLSL. The exports' README templates, src/gl/readme/*.md (readme.hpp), are embedded with
+// them.
 
 #include <span>
 #include <string>
@@ -12,7 +13,7 @@
 
 namespace stochtex::gl {
 
-// Every embedded GLSL file (generated: build/generated/shaders.cpp).
+// Every embedded GLSL file and README template (generated: build/generated/shaders.cpp).
 std::span<const EmbeddedFile> embedded_files();
 
 // The text of the GLSL file at `name`, its path under src/ ("gl/random.glsl",

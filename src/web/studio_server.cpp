@@ -21,7 +21,7 @@
 #include <thread>
 
 #include "core/file_message.hpp"
-#include "gl/cross_compile.hpp"
+#include "gl/languages.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/stochtex.hpp"
 #include "web/assets.hpp"
@@ -230,6 +230,9 @@ void add_routes(httplib::Server& server, StudioStore& store) {
   server.Get("/api/methods", guarded([](const httplib::Request&, httplib::Response& res) {
                res.set_content(methods_json(), kJson);
              }));
+  server.Get("/api/languages", guarded([](const httplib::Request&, httplib::Response& res) {
+               res.set_content(gl::languages_json(), kJson);
+             }));
   server.Post("/api/exemplars",
               with_body(store.limits().max_upload_bytes,
                         [&store](const httplib::Request& req, httplib::Response& res,
@@ -304,19 +307,23 @@ void add_routes(httplib::Server& server, StudioStore& store) {
                                               name),
                                std::string(content_type(name)));
              }));
-  server.Get("/api/models/" + kId + "/shader-(exact|fast)-(glsl|essl|hlsl|msl)\\.zip",
-             guarded([&store](const httplib::Request& req, httplib::Response& res) {
-               ShaderExportOptions options;
-               options.variant =
-                   req.matches[2] == "exact" ? ShaderVariant::exact : ShaderVariant::fast;
-               for (const gl::LanguageRow& row : gl::kLanguageRows)
-                 if (req.matches[3].str() == row.option) options.language = row.language;
-               res.set_content(store.shader_zip(req.matches[1], options), "application/zip");
-               res.set_header(
-                   "Content-Disposition",
-                   fmt::format("attachment; filename=\"{}-shader-{}-{}.zip\"", req.matches[1].str(),
-                               req.matches[2].str(), req.matches[3].str()));
-             }));
+  // Any word names the language, so that the table (gl/languages.hpp) is the one list of them.
+  server.Get(
+      "/api/models/" + kId + "/shader-(exact|fast)-([A-Za-z0-9_]+)\\.zip",
+      guarded([&store](const httplib::Request& req, httplib::Response& res) {
+        const gl::LanguageRow* language = gl::find_language(req.matches[3].str());
+        if (language == nullptr)
+          throw StudioError(404, fmt::format("there is no shader language '{}'; the export "
+                                             "writes {} (GET /api/languages)",
+                                             req.matches[3].str(), gl::language_names()));
+        ShaderExportOptions options;
+        options.variant = req.matches[2] == "exact" ? ShaderVariant::exact : ShaderVariant::fast;
+        options.language = language->language;
+        res.set_content(store.shader_zip(req.matches[1], options), "application/zip");
+        res.set_header("Content-Disposition",
+                       fmt::format("attachment; filename=\"{}-shader-{}-{}.zip\"",
+                                   req.matches[1].str(), req.matches[2].str(), language->name));
+      }));
   server.Get("/api/models/" + kId + "/groups",
              guarded([&store](const httplib::Request& req, httplib::Response& res) {
                send_json(res, store.edit_groups(req.matches[1]));

@@ -12,8 +12,8 @@ shader's tolerance, and in variance. That the viewer draws every model as the CP
 view and variant is browser_test.py's (export-web's page, the same viewer); this test checks that
 the studio shows the model it serves, at the view and seed its controls set. It then moves every
 slider of the gabor editor and checks the edited model against `stochtex edit` with the same
-values, byte for byte, and its viewer against the CLI's render. It fails on any JavaScript console
-error.
+values, byte for byte, and its viewer against the CLI's render. The shader download's language
+picker lists /api/languages and its link follows it. It fails on any JavaScript console error.
 
 Usage: studio_browser_test.py STOCHTEX EXEMPLAR [--screenshots DIR]
 Exit 77 (CTest's SKIP_RETURN_CODE) when chromium is not installed.
@@ -21,6 +21,7 @@ Exit 77 (CTest's SKIP_RETURN_CODE) when chromium is not installed.
 
 import argparse
 import base64
+import json
 import os
 import shutil
 import subprocess
@@ -166,6 +167,26 @@ def check_editor(driver, stochtex, url, original, original_cpu, work, failures):
                             f"{'exceeds' if close else 'within'} {bound:.3g}")
 
 
+def check_shader_link(driver, url, failures):
+    """The shader export's language picker lists /api/languages, its default picked, and the
+    download link follows the picked language."""
+    with urllib.request.urlopen(f"{url}/api/languages") as answer:
+        languages = json.load(answer)
+    listed = driver.execute_script(
+        "return [...document.getElementById('shader-language').options].map((o) => o.value);")
+    if listed != [language["name"] for language in languages]:
+        failures.append(f"shader export: the language picker lists {listed}, not /api/languages")
+    default = next(language["name"] for language in languages if language["default"])
+    for picked in [None, languages[-1]["name"]]:
+        if picked:
+            driver.execute_script("const select = document.getElementById('shader-language');"
+                                  "select.value = arguments[0];"
+                                  "select.dispatchEvent(new Event('change'));", picked)
+        link = driver.execute_script("return document.getElementById('download-shader').href;")
+        if not link.endswith(f"-exact-{picked or default}.zip"):
+            failures.append(f"shader export: the link {link} is not the {picked or default} one")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("stochtex")
@@ -220,6 +241,7 @@ def main():
                     common.run_page(driver, "window.stochtexStudio.setSeed(arguments[0]);"
                                     "window.stochtexStudio.group.setView(arguments[1]);",
                                     SEED, {"x": ORIGIN[0], "y": ORIGIN[1], "scale": SCALE})
+            check_shader_link(driver, url, failures)
             cpu_renders = {}
             for method, path in models.items():
                 cpu_renders[method] = common.cpu_render(args.stochtex, path, ORIGIN, SCALE, SEED,

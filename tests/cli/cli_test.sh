@@ -199,8 +199,19 @@ expect_json "methods --json" "$stochtex" methods --json
 methods=$(python3 -c 'import json, sys; print(" ".join(m["name"] for m in json.load(sys.stdin)))' \
   <"$work/stdout")
 if [[ -z $methods ]]; then fail "methods --json lists methods" "no method names"; fi
+expect_ok "languages" "$stochtex" languages && if ! grep -q "^glsl: GLSL 4.50" "$work/stdout"; then
+  fail "languages lists glsl" "stdout does not start a line with glsl: GLSL 4.50"
+fi
+expect_json "languages --json" "$stochtex" languages --json
+# Every export language of the table (src/gl/languages.hpp), never a list written here; the
+# cross-compiled ones are all but glsl, the methods' own source.
+languages=$(python3 -c 'import json, sys; print(" ".join(l["name"] for l in json.load(sys.stdin)))' \
+  <"$work/stdout")
+cross_languages=$(tr ' ' '\n' <<<"$languages" | grep -vx glsl | tr '\n' ' ')
+if [[ -z $cross_languages ]]; then fail "languages --json lists languages" "no language names"; fi
 expect_ok "--help" "$stochtex" --help
-for command in analyze mix render render-mesh synth gaussian compare info edit methods report studio; do
+for command in analyze mix render render-mesh synth gaussian compare info edit methods languages \
+  report studio; do
   expect_ok "$command --help" "$stochtex" "$command" --help
 done
 expect_parse_error "studio --port out of range" "$stochtex" studio --port 70000
@@ -304,7 +315,7 @@ for method in $methods; do
       expect_readme_files "export-shader $method --variant fast writes its README's files" \
         "${each}_fast"
     # The fast variant in every language (gabor's float-only shader included).
-    for language in essl hlsl msl; do
+    for language in $cross_languages; do
       expect_ok "export-shader $method --variant fast --language $language" "$stochtex" \
         export-shader "$each.stx" -o "${each}_fast_$language" --variant fast --language "$language" &&
         expect_readme_files "export-shader $method --variant fast --language $language writes" \
@@ -333,7 +344,7 @@ fi
 # export-shader --language: each target's files; a language the model cannot be written in
 # (gabor's doubles), an unknown language and folders that cannot take the files are refused with
 # nothing written. (tests/gl/export_language_test.cpp compiles and runs what is written.)
-for language in essl hlsl msl; do
+for language in $cross_languages; do
   expect_ok "export-shader --language $language" "$stochtex" export-shader "$model" \
     -o "$models/shader_$language" --language "$language" &&
     expect_file "export-shader --language $language writes the README" \
@@ -355,7 +366,7 @@ if expect_ok "export-shader --language glsl" "$stochtex" export-shader "$model" 
   fi
 fi
 if [[ -f $models/gabor.stx ]]; then
-  for language in essl hlsl msl; do
+  for language in $cross_languages; do
     expect_error "export-shader gabor --language $language" 2 "float-only shader with --variant fast" \
       "$stochtex" export-shader "$models/gabor.stx" -o "$out/gabor_$language" --language "$language"
   done
@@ -1200,7 +1211,7 @@ for field in mix mask; do
   if cmp -s "$models/$field-gl.png" "$models/$field-glh.png"; then pass; else
     fail "a $field model's hardware filter is its exact path" "$field-gl.png and $field-glh.png differ"
   fi
-  for language in glsl essl hlsl msl; do
+  for language in $languages; do
     expect_ok "export-shader of a $field model, $language" "$stochtex" export-shader \
       "$models/$field.stx" -o "$out/$field-$language" --language "$language"
     expect_file "the $field export's README" "$out/$field-$language/README.md"

@@ -221,9 +221,9 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
     const ExportCase& c = cases[k];
     const std::string method = c.method;
     for (const ShaderVariant variant : {ShaderVariant::exact, ShaderVariant::fast})
-      for (const ShaderLanguage language : {ShaderLanguage::glsl, ShaderLanguage::essl,
-                                            ShaderLanguage::hlsl, ShaderLanguage::msl}) {
-        const std::string name(gl::language_row(language).option);
+      for (const gl::LanguageRow& row : gl::kLanguageRows) {
+        const ShaderLanguage language = row.language;
+        const std::string name(row.name);
         SCOPED_TRACE(testing::Message()
                      << method << (variant == ShaderVariant::fast ? " fast " : " exact ") << name);
         const ShaderExportOptions options{variant, language};
@@ -236,7 +236,7 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
           } catch (const std::invalid_argument& e) {
             const std::string message = e.what();
             EXPECT_NE(message.find("the gabor shader"), std::string::npos) << message;
-            EXPECT_NE(message.find(gl::language_row(language).title), std::string::npos) << message;
+            EXPECT_NE(message.find(row.title), std::string::npos) << message;
             EXPECT_NE(message.find("double precision"), std::string::npos) << message;
             EXPECT_NE(message.find("--variant fast"), std::string::npos) << message;
             EXPECT_NE(message.find("--language glsl"), std::string::npos) << message;

@@ -183,10 +183,10 @@ TEST(ExportMaterial, EveryLanguageCompiles) {
   for (const Model& model : models) {
     const std::string method(model.method());
     const std::string function = "stochtex_" + method + "_material";
-    for (const ShaderLanguage language :
-         {ShaderLanguage::glsl, ShaderLanguage::essl, ShaderLanguage::hlsl, ShaderLanguage::msl}) {
+    for (const gl::LanguageRow& row : gl::kLanguageRows) {
+      const ShaderLanguage language = row.language;
       SCOPED_TRACE(method + " (" + std::to_string(model.channels()) + " channels) " +
-                   std::string(gl::language_row(language).option));
+                   std::string(row.name));
       const ShaderVariant variant = method == "gabor" && language != ShaderLanguage::glsl
                                         ? ShaderVariant::fast
                                         : ShaderVariant::exact;

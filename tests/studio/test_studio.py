@@ -175,6 +175,11 @@ def test_methods_are_the_registry(studio):
     assert studio.json("GET", "/api/methods") == json.loads(listed.stdout)
 
 
+def test_languages_are_the_table(studio):
+    listed = subprocess.run([STOCHTEX, "languages", "--json"], check=True, capture_output=True)
+    assert studio.json("GET", "/api/languages") == json.loads(listed.stdout)
+
+
 def test_upload_analyse_download(studio, grass, tmp_path):
     assert grass["width"] == 128 and grass["height"] == 128 and grass["channels"] == 3
     for picture in ["image", "gaussian"]:
@@ -227,8 +232,13 @@ def test_shader_export_downloads(studio, grass, tmp_path):
         assert "README.md" in files
         for name, content in files.items():
             assert content == (folder / name).read_bytes(), name
-    code, _, _ = studio.request("GET", f"/api/models/{model}/shader-exact-cuda.zip")
+    # Any word reaches the export, which names the languages it writes.
+    code, _, body = studio.request("GET", f"/api/models/{model}/shader-exact-cuda.zip")
     assert code == 404
+    message = json.loads(body)["error"]
+    assert "'cuda'" in message, message
+    for language in studio.json("GET", "/api/languages"):
+        assert language["name"] in message, message
 
 
 def test_bad_uploads_are_refused(studio):

@@ -1,11 +1,12 @@
 // The studio page: upload an exemplar, pick a method and its parameters (the form is made from
 // /api/methods), run the analysis with progress and cancel, then show each method's latest model
 // live in WebGL2 (web/viewer/) side by side at one view and seed, the compare numbers of each, a
-// CPU render and the downloads, and the editor of a model whose method can edit (editor.js). The API is described in
-// docs/studio.md. window.stochtexStudio is the page's interface for scripts and the browser test:
-// group (the viewers, by method), shown (method -> {model, seconds}), editor (editor.js's),
-// loaded (a promise settled when the viewers have their models), setSeed(n) (the seed control's)
-// and errors (the messages shown).
+// CPU render and the downloads (the shader export's languages from /api/languages), and the
+// editor of a model whose method can edit (editor.js). The API is described in docs/studio.md.
+// window.stochtexStudio is the page's interface for scripts and the browser test: group (the
+// viewers, by method), shown (method -> {model, seconds}), editor (editor.js's), loaded (a promise
+// settled when the viewers have their models), setSeed(n) (the seed control's) and errors (the
+// messages shown).
 import {createViewerGroup} from '../viewer/group.js';
 import {createEditor} from './editor.js';
 
@@ -357,6 +358,17 @@ function setUpLiveView() {
     });
 }
 
+// The languages of the shader export, as the server lists them (`stochtex languages --json`).
+async function loadLanguages() {
+  const select = $('shader-language');
+  for (const language of await (await api('/api/languages')).json()) {
+    const option = new Option(language.name, language.name, language.default, language.default);
+    option.title = `${language.title} for ${language.targets}`;
+    select.append(option);
+  }
+  if (state.model) updateShaderLink();
+}
+
 // The latest model's `stochtex export-shader` files in the chosen variant and language.
 function updateShaderLink() {
   const variant = $('shader-variant').value;
@@ -390,3 +402,4 @@ $('cancel').addEventListener('click', cancel);
 $('render').addEventListener('click', showRender);
 $('render-seed').addEventListener('change', showRender);
 loadMethods().catch((error) => showError(error.message));
+loadLanguages().catch((error) => showError(error.message));
