@@ -2,6 +2,7 @@
 # Bad inputs: missing, truncated, degenerate and corrupt files, out-of-range parameters and sizes,
 # unwritable outputs; each refused with its exit code and one sentence, nothing written.
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

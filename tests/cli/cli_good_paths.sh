@@ -3,6 +3,7 @@
 # bytes whatever the threads and CPU target, exports every method's shader in every language, and
 # edits a gabor model (the comparison report: cli_report.sh).
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

@@ -2,6 +2,7 @@
 # Large renders (docs/large-renders.md): regions, tiled and mip-mapped OpenEXR files, streaming
 # with bounded memory and the refusals before any work.
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

@@ -2,6 +2,7 @@
 # Materials (docs/materials.md): models of several maps, their renders, tiled maps, shader exports
 # and meshes, and the refusals.
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

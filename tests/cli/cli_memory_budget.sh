@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Memory budget and hostile sizes (docs/design.md §9).
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

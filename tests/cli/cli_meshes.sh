@@ -2,6 +2,7 @@
 # Meshes (docs/meshes.md): render-mesh with every mapping and method, on the CPU and the gl
 # backend, its determinism and its refusals of bad meshes and options.
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

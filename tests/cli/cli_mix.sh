@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Mix: texton noise mixing (texton paper section 7), its GPU twin and shader export.
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

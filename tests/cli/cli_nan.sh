@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # NaN, infinities and huge values (issue 19).
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

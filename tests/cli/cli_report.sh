@@ -3,6 +3,7 @@
 # two exemplars, its pages and pictures, its JSON numbers, and the same pictures whatever the
 # threads.
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

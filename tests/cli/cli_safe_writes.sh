@@ -3,6 +3,7 @@
 # the messages and codes of odd inputs; concurrent writers, a reader during a write and signals
 # during a write leave a complete file or none, and no temporary.
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 

@@ -4,6 +4,7 @@
 # own: the registry's methods, the texton model most checks render, every method's default model
 # and the gabor model that edit works on.
 # usage and running by hand: tests/cli/common.sh.
+# shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
 # A setup that fails leaves nothing for the sections to read, not the folder of an earlier run.
