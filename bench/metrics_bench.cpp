@@ -2,9 +2,8 @@
 // statistical tier and the report measure: the sliced Wasserstein distance of a 1024² colour render
 // to its 256² exemplar, whose cost is sorting each direction's projections.
 
-#include "metrics/metrics.hpp"
-
 #include "bench_support.hpp"
+#include "metrics/metrics.hpp"
 
 namespace stochtex::bench {
 namespace {
@@ -15,8 +14,7 @@ void BM_SlicedWasserstein(benchmark::State& state) {
   const int side = static_cast<int>(state.range(0));
   ImageF image(side, side, model.channels());
   render(model, Grid{{0.0, 0.0}, 1.0, side, side}, 1, image.view());
-  for (auto _ : state)
-    benchmark::DoNotOptimize(sliced_wasserstein(image.view(), exemplar.view()));
+  for (auto _ : state) benchmark::DoNotOptimize(sliced_wasserstein(image.view(), exemplar.view()));
   state.SetItemsProcessed(state.iterations() * std::int64_t{side} * side);
 }
 BENCHMARK(BM_SlicedWasserstein)->ArgNames({"side"})->Arg(1024)->Unit(benchmark::kMillisecond);
