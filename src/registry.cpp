@@ -325,7 +325,7 @@ EditValues edit_values_from_json(const EditCapability& edit, const nlohmann::ord
   EditValues values{std::string(edit.groups.front()), {}};
   for (const auto& [key, value] : body.items()) {
     const auto field = std::find_if(edit.fields.begin(), edit.fields.end(),
-                                    [&key](const EditField& f) { return f.name == key; });
+                                    [&name = key](const EditField& f) { return f.name == name; });
     if (key == "group") {
       if (!value.is_string()) {
         std::string names;

@@ -16,6 +16,7 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "io/image_io.hpp"
 #include "registry.hpp"
 #include "stochtex/stochtex.hpp"
 
