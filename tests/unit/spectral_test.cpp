@@ -1,16 +1,22 @@
-// FFT wrapper, periodic + smooth decomposition and ADSN (the Gaussian version of an exemplar).
+// FFT wrapper, periodic + smooth decomposition, ADSN (the Gaussian version of an exemplar), and the
+// analyses' generic algorithms: masks on the torus and k-means.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <numbers>
 #include <random>
 #include <vector>
 
+#include "core/hash.hpp"
 #include "spectral/adsn.hpp"
 #include "spectral/fft.hpp"
+#include "spectral/kmeans.hpp"
 #include "spectral/periodic.hpp"
+#include "spectral/torus_masks.hpp"
 
 namespace stochtex {
 namespace {
@@ -177,6 +183,62 @@ TEST(Adsn, IsDeterministicAndSeeded) {
   const ImageF c = adsn(exemplar.view(), 40, 40, 2);
   EXPECT_TRUE(std::equal(a.pixels().begin(), a.pixels().end(), b.pixels().begin()));
   EXPECT_FALSE(std::equal(a.pixels().begin(), a.pixels().end(), c.pixels().begin()));
+}
+
+TEST(TorusMasks, DistanceWrapsAroundTheBorder) {
+  // Every cell of an 8 x 8 torus is inside but (0, 0): the distance reaches it across the border.
+  const int size = 8;
+  std::vector<char> inside(static_cast<std::size_t>(size) * size, 1);
+  inside[0] = 0;
+  const std::vector<double> distance = periodic_distance_squared(inside, size);
+  const auto at = [&](int x, int y) { return distance[static_cast<std::size_t>(y) * size + x]; };
+  EXPECT_EQ(at(0, 0), 0.0);
+  EXPECT_EQ(at(1, 0), 1.0);
+  EXPECT_EQ(at(7, 0), 1.0);
+  EXPECT_EQ(at(7, 7), 2.0);
+  EXPECT_EQ(at(4, 4), 32.0);
+  EXPECT_EQ(at(6, 3), 13.0);
+}
+
+TEST(TorusMasks, PartsConnectDiagonallyAcrossTheBorder) {
+  // (0, 0) and (5, 5) touch diagonally across the corner of a 6 x 6 torus; (3, 2) is alone.
+  const int size = 6;
+  std::vector<char> inside(static_cast<std::size_t>(size) * size, 0);
+  const auto index = [&](int x, int y) { return static_cast<std::size_t>(y) * size + x; };
+  inside[index(0, 0)] = inside[index(5, 5)] = inside[index(3, 2)] = 1;
+  const std::vector<int> part = connected_parts(inside, size);
+  EXPECT_EQ(part[index(0, 0)], 0);
+  EXPECT_EQ(part[index(5, 5)], 0);
+  EXPECT_EQ(part[index(3, 2)], 1);
+  EXPECT_EQ(std::count(part.begin(), part.end(), -1), size * size - 3);
+}
+
+TEST(Kmeans, SeparatesDistantClusters) {
+  const std::vector<std::array<int, 2>> near{{0, 0}, {0, 1}, {1, 0}};
+  const std::vector<std::array<int, 2>> far{{100, 100}, {100, 101}, {101, 100}};
+  std::vector<std::array<int, 2>> points = near;
+  points.insert(points.end(), far.begin(), far.end());
+  for (std::uint32_t key = 0; key < 8; ++key) {
+    CounterRng rng(key);
+    std::vector<std::vector<std::array<int, 2>>> groups = kmeans(points, 2, 50, rng);
+    ASSERT_EQ(groups.size(), 2u);
+    for (auto& group : groups) std::sort(group.begin(), group.end());
+    std::sort(groups.begin(), groups.end());
+    EXPECT_EQ(groups[0], near) << "key " << key;
+    EXPECT_EQ(groups[1], far) << "key " << key;
+  }
+}
+
+TEST(Kmeans, GivesEveryGroupAPointWhenThereAreFewer) {
+  const std::vector<std::array<int, 2>> points{{1, 2}, {3, 4}};
+  CounterRng rng(1);
+  const std::vector<std::vector<std::array<int, 2>>> groups = kmeans(points, 3, 50, rng);
+  ASSERT_EQ(groups.size(), 3u);
+  const std::vector<std::array<int, 2>> first{points[0]};
+  const std::vector<std::array<int, 2>> second{points[1]};
+  EXPECT_EQ(groups[0], first);
+  EXPECT_EQ(groups[1], second);
+  EXPECT_EQ(groups[2], first);
 }
 
 }  // namespace

@@ -16,7 +16,9 @@
 #include "methods/lrp/structure_analysis.hpp"
 #include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
+#include "spectral/kmeans.hpp"
 #include "spectral/principal_components.hpp"
+#include "spectral/torus_masks.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/stochtex.hpp"
 
@@ -31,99 +33,9 @@ constexpr double kErosionEnergy = 0.75;
 // making Delta_S tiny and leaking the stratum's energy everywhere. Their energy is given back to
 // the strata in proportion, so the variance is kept.
 constexpr double kNegligibleEnergy = 1e-3;
+// Lloyd iterations of the k-means that breaks a stratum into sub-strata (spectral/kmeans.hpp).
 constexpr int kKmeansIterations = 50;
 constexpr int kMinWelchSize = 8;
-
-// Squared Euclidean distance transform of one line (Felzenszwalb & Huttenlocher 2012): d(p) =
-// min_q (p - q)^2 + f(q), f = 0 on features and `kFar` elsewhere.
-constexpr double kFar = 1e20;
-void distance_transform_1d(const std::vector<double>& f, std::vector<double>& d,
-                           std::vector<int>& v, std::vector<double>& z) {
-  const int n = static_cast<int>(f.size());
-  int k = 0;
-  v[0] = 0;
-  z[0] = -std::numeric_limits<double>::infinity();
-  z[1] = std::numeric_limits<double>::infinity();
-  for (int q = 1; q < n; ++q) {
-    double s = 0.0;
-    while (true) {
-      const int p = v[static_cast<std::size_t>(k)];
-      s = ((f[static_cast<std::size_t>(q)] + double(q) * q) -
-           (f[static_cast<std::size_t>(p)] + double(p) * p)) /
-          (2.0 * q - 2.0 * p);
-      if (s > z[static_cast<std::size_t>(k)] || k == 0) break;
-      --k;
-    }
-    if (s <= z[static_cast<std::size_t>(k)]) {
-      v[0] = q;
-      z[0] = -std::numeric_limits<double>::infinity();
-      z[1] = std::numeric_limits<double>::infinity();
-      k = 0;
-      continue;
-    }
-    ++k;
-    v[static_cast<std::size_t>(k)] = q;
-    z[static_cast<std::size_t>(k)] = s;
-    z[static_cast<std::size_t>(k) + 1] = std::numeric_limits<double>::infinity();
-  }
-  k = 0;
-  for (int q = 0; q < n; ++q) {
-    while (z[static_cast<std::size_t>(k) + 1] < q) ++k;
-    const int p = v[static_cast<std::size_t>(k)];
-    d[static_cast<std::size_t>(q)] = double(q - p) * (q - p) + f[static_cast<std::size_t>(p)];
-  }
-}
-
-// Squared distance from each bin of the size x size torus to the nearest bin outside `inside`:
-// the spectrum of a sampled noise is periodic, so strata wrap around the Nyquist border. Each line
-// is transformed three periods long and read in the middle, which is exact on the torus.
-std::vector<double> periodic_distance_squared(const std::vector<char>& inside, int size) {
-  const auto n = static_cast<std::size_t>(3 * size);
-  std::vector<double> f(n), d(n), z(n + 1), columns(inside.size()), result(inside.size());
-  std::vector<int> v(n);
-  const auto at = [size](int x, int y) { return static_cast<std::size_t>(y) * size + x; };
-  for (int x = 0; x < size; ++x) {
-    for (std::size_t i = 0; i < n; ++i)
-      f[i] = inside[at(x, static_cast<int>(i % size))] ? kFar : 0.0;
-    distance_transform_1d(f, d, v, z);
-    for (int y = 0; y < size; ++y) columns[at(x, y)] = d[static_cast<std::size_t>(y + size)];
-  }
-  for (int y = 0; y < size; ++y) {
-    for (std::size_t i = 0; i < n; ++i) f[i] = columns[at(static_cast<int>(i % size), y)];
-    distance_transform_1d(f, d, v, z);
-    for (int x = 0; x < size; ++x) result[at(x, y)] = d[static_cast<std::size_t>(x + size)];
-  }
-  return result;
-}
-
-// Labels of the 8-connected parts of `inside` on the size x size torus (-1 outside).
-std::vector<int> connected_parts(const std::vector<char>& inside, int size) {
-  std::vector<int> label(inside.size(), -1);
-  std::vector<int> stack;
-  int next = 0;
-  for (std::size_t start = 0; start < inside.size(); ++start) {
-    if (!inside[start] || label[start] >= 0) continue;
-    label[start] = next;
-    stack.push_back(static_cast<int>(start));
-    while (!stack.empty()) {
-      const int index = stack.back();
-      stack.pop_back();
-      const int x = index % size;
-      const int y = index / size;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const auto neighbour =
-              static_cast<std::size_t>(((y + dy + size) % size) * size + (x + dx + size) % size);
-          if (inside[neighbour] && label[neighbour] < 0) {
-            label[neighbour] = next;
-            stack.push_back(static_cast<int>(neighbour));
-          }
-        }
-    }
-    ++next;
-  }
-  return label;
-}
 
 struct Bin {
   int index = 0;  // ky * size + kx
@@ -132,81 +44,6 @@ struct Bin {
   double power = 0.0;  // power(k) + power(-k), or power(k) when k == -k
   bool self_paired = false;
 };
-
-// Lloyd's k-means of `points` into `clusters` groups, initialised on distinct points drawn with
-// `rng` (section 4.3: "k-means with random seeding"). Every group ends non-empty.
-std::vector<std::vector<std::array<int, 2>>> kmeans(const std::vector<std::array<int, 2>>& points,
-                                                    int clusters, CounterRng& rng) {
-  const std::size_t n = points.size();
-  const auto k_count = static_cast<std::size_t>(clusters);
-  std::vector<std::vector<std::array<int, 2>>> groups(k_count);
-  if (n <= k_count) {
-    // Fewer frequencies than cosines: each cosine gets one, cyclically (duplicates carry
-    // independent phases, so they still add power).
-    for (std::size_t j = 0; j < k_count; ++j) groups[j].push_back(points[j % n]);
-    return groups;
-  }
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::vector<std::array<double, 2>> centres(k_count);
-  for (std::size_t j = 0; j < k_count; ++j) {
-    const std::uint32_t draw = rng.next();
-    const std::size_t pick =
-        j + static_cast<std::size_t>((static_cast<std::uint64_t>(draw) * (n - j)) >> 32u);
-    std::swap(order[j], order[pick]);
-    centres[j] = {double(points[order[j]][0]), double(points[order[j]][1])};
-  }
-  std::vector<std::size_t> label(n, k_count);
-  for (int iteration = 0; iteration < kKmeansIterations; ++iteration) {
-    bool changed = false;
-    for (std::size_t i = 0; i < n; ++i) {
-      std::size_t best = 0;
-      double best_distance = std::numeric_limits<double>::infinity();
-      for (std::size_t j = 0; j < k_count; ++j) {
-        const double dx = points[i][0] - centres[j][0];
-        const double dy = points[i][1] - centres[j][1];
-        const double distance = dx * dx + dy * dy;
-        if (distance < best_distance) {
-          best_distance = distance;
-          best = j;
-        }
-      }
-      changed = changed || label[i] != best;
-      label[i] = best;
-    }
-    // An empty group takes the point farthest from its own centre (the classic repair).
-    std::vector<std::size_t> sizes(k_count, 0);
-    for (const std::size_t l : label) ++sizes[l];
-    for (std::size_t j = 0; j < k_count; ++j) {
-      if (sizes[j] > 0) continue;
-      std::size_t farthest = 0;
-      double farthest_distance = -1.0;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (sizes[label[i]] < 2) continue;
-        const double dx = points[i][0] - centres[label[i]][0];
-        const double dy = points[i][1] - centres[label[i]][1];
-        if (dx * dx + dy * dy > farthest_distance) {
-          farthest_distance = dx * dx + dy * dy;
-          farthest = i;
-        }
-      }
-      --sizes[label[farthest]];
-      label[farthest] = j;
-      sizes[j] = 1;
-      changed = true;
-    }
-    std::vector<std::array<double, 2>> sums(k_count, {0.0, 0.0});
-    for (std::size_t i = 0; i < n; ++i) {
-      sums[label[i]][0] += points[i][0];
-      sums[label[i]][1] += points[i][1];
-    }
-    for (std::size_t j = 0; j < k_count; ++j)
-      centres[j] = {sums[j][0] / double(sizes[j]), sums[j][1] / double(sizes[j])};
-    if (!changed) break;
-  }
-  for (std::size_t i = 0; i < n; ++i) groups[label[i]].push_back(points[i]);
-  return groups;
-}
 
 // Our addition (docs/methods/lrp.md, parameter `amplitudes`): an amplitude per frequency, so that
 // the expected spectrum of n_S follows the target inside the stratum instead of being flat at A_S
@@ -586,9 +423,11 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
     std::vector<std::array<int, 2>> points;
     for (std::size_t i = 0; i < by_depth.size(); ++i)
       if (kept_bin[i]) points.push_back({by_depth[i].second->sx, by_depth[i].second->sy});
-    // k-means with a seeded random initialisation: one stream per stratum.
+    // k-means with a seeded random initialisation (section 4.3: "k-means with random seeding"), one
+    // stream per stratum. With fewer frequencies than cosines each cosine gets one, cyclically
+    // (duplicates carry independent phases, so they still add power).
     CounterRng rng(cell_key(s, 0, key, Stream::analysis));
-    plan.substrata = kmeans(points, plan.sampling.cosines, rng);
+    plan.substrata = kmeans(points, plan.sampling.cosines, kKmeansIterations, rng);
     if (shaped) {
       plan.weights = frequency_weights(stratum, plan.substrata, pair_power, size);
     } else {

@@ -41,6 +41,9 @@ struct GroupSpec {
   bool operator==(const GroupSpec&) const = default;
 };
 
+// The exemplar sides a model takes: 2 to kMaxExemplarSide pixels.
+inline constexpr int kMaxExemplarSide = 1 << 16;
+
 // The plain data of a model, as analysis builds it and the model file stores it.
 struct TilingData {
   int channels = 0;

@@ -5,6 +5,7 @@
 // docs/methods/tiling.md.
 
 #include <array>
+#include <cstddef>
 
 #include "methods/param_record.hpp"
 #include "methods/tiling/model.hpp"
@@ -91,5 +92,11 @@ inline constexpr auto kParams = param_infos(kFields);
 // they differ from their defaults (TilingModel::to_record): a model with the defaults is
 // byte-identical to one made before the controls existed, and such an older file loads with them.
 inline constexpr std::size_t kFirstControl = 7;
+
+// Artist control i of kParams (i >= kFirstControl) in the data.
+inline double control(const TilingData& data, std::size_t index) {
+  const double values[] = {data.rotation, data.scale_jitter, data.sharpness, data.height_blend};
+  return values[index - kFirstControl];
+}
 
 }  // namespace stochtex::tiling

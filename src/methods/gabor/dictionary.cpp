@@ -1,0 +1,231 @@
+#include "methods/gabor/dictionary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "methods/gabor/model.hpp"
+
+namespace stochtex::gabor {
+namespace {
+
+using Complex = std::complex<float>;
+constexpr double kPi = std::numbers::pi;
+// The operators skip the bins where a band's kernel spectrum is below this fraction of its peak:
+// the level of the single-precision FFT's own rounding error (~1e-7 log2 n of the peak), not a
+// Gaussian's tail worth keeping. The fits change within the solver's tolerance (docs).
+constexpr float kSupportThreshold = 1e-6f;
+
+// Step of band b's sub-grid (section 5.3): about half the band's FWHM of 2^-b * size bins, so
+// neighbouring Gaussians overlap at half height, and a power of two that divides the size so the
+// band can be transformed on the coarse grid alone.
+int grid_step(int size, int band) {
+  const double target = std::ldexp(static_cast<double>(size), -band) / 2.0;
+  int step = 1;
+  while (2 * step <= target && size % (2 * step) == 0) step *= 2;
+  return step;
+}
+
+}  // namespace
+
+GaussianDictionary::GaussianDictionary(int width, int height, int narrowest)
+    : width_(width), height_(height), fft_(std::make_unique<Fft2d>(width, height)) {
+  const int longest = std::max(width, height);
+  const std::size_t plane = plane_size();
+  work_spectrum_.resize(fft_->spectrum_size());
+  sum_spectrum_.resize(fft_->spectrum_size());
+  // Band b has a FWHM of 2^-b cycles per pixel = 2^-b * size bins (section 4.3); the narrowest
+  // band kept spans `narrowest` bins of the longer side (one: the paper's), band 0 always.
+  for (int b = 0;
+       b < kMaxBands && (b == 0 || std::ldexp(static_cast<double>(longest), -b) >= narrowest);
+       ++b) {
+    Band band;
+    band.band = b;
+    const double sigma = bandwidth(b) / (2.0 * std::sqrt(kPi));  // cycles per pixel (eq. 3)
+    const int step_x = grid_step(width, b);
+    const int step_y = grid_step(height, b);
+    band.step_x = step_x;
+    band.step_y = step_y;
+    if (step_x > 1 || step_y > 1) {
+      band.coarse_fft = std::make_unique<Fft2d>(width / step_x, height / step_y);
+      band.coarse_plane.resize(band.coarse_fft->image_size());
+      band.coarse_spectrum.resize(band.coarse_fft->spectrum_size());
+      band.coarse_row.resize(band.coarse_fft->image_size());
+    }
+    band.mask.assign(plane, 0.0f);
+    band.kernel.assign(plane, 0.0f);
+    double squared = 0.0;
+    for (int y = 0; y < height; ++y) {
+      const int signed_y = y <= height / 2 ? y : y - height;
+      for (int x = 0; x < width; ++x) {
+        const int signed_x = x <= width / 2 ? x : x - width;
+        // The steps divide the sizes: the sub-grid is symmetric under m -> -m, so symmetric
+        // iterates stay symmetric.
+        if (x % step_x == 0 && y % step_y == 0)
+          band.mask[static_cast<std::size_t>(y) * width + x] = 1.0f;
+        double value = 0.0;
+        for (int ky = -2; ky <= 2; ++ky)
+          for (int kx = -2; kx <= 2; ++kx) {
+            const double fx = (signed_x + kx * width) / static_cast<double>(width);
+            const double fy = (signed_y + ky * height) / static_cast<double>(height);
+            value += std::exp(-(fx * fx + fy * fy) / (2.0 * sigma * sigma));
+          }
+        band.kernel[static_cast<std::size_t>(y) * width + x] = static_cast<float>(value);
+        squared += value * value;
+      }
+    }
+    const double norm = std::sqrt(squared);
+    band.mass = 0.0;
+    for (float& v : band.kernel) {
+      v = static_cast<float>(v / norm);
+      band.mass += v;
+    }
+    fft_->forward(band.kernel, work_spectrum_);
+    band.kernel_spectrum.resize(work_spectrum_.size());
+    for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
+      band.kernel_spectrum[i] = work_spectrum_[i].real();
+    // Support of the kernel's spectrum: a Gaussian of sd ~2^b / (2 pi 0.42) bins for band b.
+    const int half = fft_->spectrum_width();
+    float peak = 0.0f;
+    for (const float v : band.kernel_spectrum) peak = std::max(peak, std::abs(v));
+    int reach_x = 0;
+    int reach_y = 0;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < half; ++x)
+        if (std::abs(band.kernel_spectrum[static_cast<std::size_t>(y) * half + x]) >
+            kSupportThreshold * peak) {
+          reach_x = std::max(reach_x, x);
+          reach_y = std::max(reach_y, std::min(y, height - y));
+        }
+    const int coarse_width = width / step_x;
+    const int coarse_height = height / step_y;
+    for (int y = 0; y < height; ++y)
+      if (std::min(y, height - y) <= reach_y) {
+        band.support_rows.push_back(y);
+        band.support_coarse_rows.push_back(y % coarse_height);
+      }
+    for (int x = 0; x < width; ++x)
+      if (std::min(x, width - x) <= reach_x) {
+        band.support_columns.push_back(x);
+        band.support_coarse_columns.push_back(x % coarse_width);
+      }
+    bands_.push_back(std::move(band));
+  }
+}
+
+// A band on a sub-grid of steps (sx, sy) is an upsampled image of (W / sx) x (H / sy) values:
+// its DFT is the coarse DFT repeated sx x sy times, and decimating a full image to the sub-grid
+// folds its DFT onto the coarse one. So a sub-sampled band costs a coarse FFT, not a full one.
+void GaussianDictionary::apply(const std::vector<std::vector<float>>& alpha,
+                               std::vector<float>& spectrum) const {
+  std::fill(sum_spectrum_.begin(), sum_spectrum_.end(), Complex(0.0f, 0.0f));
+  const int half = width_ / 2 + 1;
+  for (std::size_t b = 0; b < bands_.size(); ++b) {
+    const Band& band = bands_[b];
+    const std::vector<float>& kernel = band.kernel_spectrum;
+    if (!band.coarse_fft) {
+      fft_->forward(alpha[b], work_spectrum_);
+      for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
+        sum_spectrum_[i] += work_spectrum_[i] * kernel[i];
+      continue;
+    }
+    const int coarse_width = width_ / band.step_x;
+    const int coarse_height = height_ / band.step_y;
+    const int coarse_half = coarse_width / 2 + 1;
+    for (int j = 0; j < coarse_height; ++j)
+      for (int i = 0; i < coarse_width; ++i)
+        band.coarse_plane[static_cast<std::size_t>(j) * coarse_width + i] =
+            alpha[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x];
+    band.coarse_fft->forward(band.coarse_plane, band.coarse_spectrum);
+    // The coarse DFT is Hermitian: its missing half comes from the conjugate at -k. Bin k of the
+    // full spectrum reads coarse bin k mod (coarse size), tiled row by row without divisions.
+    const std::size_t coarse_rows = static_cast<std::size_t>(coarse_height);
+    std::vector<Complex>& row = band.coarse_row;
+    for (std::size_t cy = 0; cy < coarse_rows; ++cy) {
+      const std::size_t mirror_y = (coarse_rows - cy) % coarse_rows;
+      for (int cx = 0; cx < coarse_width; ++cx)
+        row[static_cast<std::size_t>(cy) * coarse_width + cx] =
+            cx < coarse_half
+                ? band.coarse_spectrum[cy * coarse_half + cx]
+                : std::conj(band.coarse_spectrum[mirror_y * coarse_half + (coarse_width - cx)]);
+    }
+    // Only where the kernel's spectrum is not negligible.
+    for (std::size_t r = 0; r < band.support_rows.size(); ++r) {
+      const Complex* coarse =
+          &row[static_cast<std::size_t>(band.support_coarse_rows[r]) * coarse_width];
+      const std::size_t offset = static_cast<std::size_t>(band.support_rows[r]) * half;
+      for (std::size_t c = 0; c < band.support_columns.size(); ++c) {
+        const auto kx = static_cast<std::size_t>(band.support_columns[c]);
+        if (kx < static_cast<std::size_t>(half))
+          sum_spectrum_[offset + kx] +=
+              coarse[band.support_coarse_columns[c]] * kernel[offset + kx];
+      }
+    }
+  }
+  spectrum.resize(plane_size());
+  fft_->inverse(sum_spectrum_, spectrum);
+  if (!weights_.empty())
+    for (std::size_t i = 0; i < spectrum.size(); ++i) spectrum[i] *= weights_[i];
+}
+
+void GaussianDictionary::adjoint(std::span<const float> spectrum,
+                                 std::vector<std::vector<float>>& out) const {
+  // The kernels are even, so the adjoint of a convolution by them is the same convolution.
+  if (weights_.empty()) {
+    fft_->forward(spectrum, sum_spectrum_);
+  } else {
+    weighted_.resize(spectrum.size());
+    for (std::size_t i = 0; i < spectrum.size(); ++i) weighted_[i] = spectrum[i] * weights_[i];
+    fft_->forward(weighted_, sum_spectrum_);
+  }
+  out.resize(bands_.size());
+  const int half = width_ / 2 + 1;
+  for (std::size_t b = 0; b < bands_.size(); ++b) {
+    const Band& band = bands_[b];
+    const std::vector<float>& kernel = band.kernel_spectrum;
+    out[b].resize(plane_size());
+    if (!band.coarse_fft) {
+      for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
+        work_spectrum_[i] = sum_spectrum_[i] * kernel[i];
+      fft_->inverse(work_spectrum_, out[b]);
+      continue;
+    }
+    const int coarse_width = width_ / band.step_x;
+    const int coarse_height = height_ / band.step_y;
+    const int coarse_half = coarse_width / 2 + 1;
+    // Fold the product onto the coarse spectrum: every full bin k adds to coarse bin
+    // k mod (coarse size); bins where the kernel's spectrum is negligible are skipped. The full
+    // spectrum's missing half is the conjugate at -k (the kernel is even and real).
+    std::vector<Complex>& row = band.coarse_row;
+    std::fill(row.begin(), row.end(), Complex(0.0f, 0.0f));
+    for (std::size_t r = 0; r < band.support_rows.size(); ++r) {
+      const int ky = band.support_rows[r];
+      Complex* coarse = &row[static_cast<std::size_t>(band.support_coarse_rows[r]) * coarse_width];
+      const std::size_t offset = static_cast<std::size_t>(ky) * half;
+      const std::size_t mirror = static_cast<std::size_t>((height_ - ky) % height_) * half;
+      for (std::size_t c = 0; c < band.support_columns.size(); ++c) {
+        const auto kx = static_cast<std::size_t>(band.support_columns[c]);
+        const std::size_t mirrored = mirror + static_cast<std::size_t>(width_) - kx;
+        coarse[band.support_coarse_columns[c]] +=
+            kx < static_cast<std::size_t>(half)
+                ? sum_spectrum_[offset + kx] * kernel[offset + kx]
+                : std::conj(sum_spectrum_[mirrored]) * kernel[mirrored];
+      }
+    }
+    for (int cy = 0; cy < coarse_height; ++cy)
+      for (int cx = 0; cx < coarse_half; ++cx)
+        band.coarse_spectrum[static_cast<std::size_t>(cy) * coarse_half + cx] =
+            row[static_cast<std::size_t>(cy) * coarse_width + cx];
+    // Decimation keeps 1 / (sx sy) of the samples; Fft2d::inverse divides by the coarse size.
+    const auto fold = static_cast<float>(1.0 / (band.step_x * band.step_y));
+    for (Complex& value : band.coarse_spectrum) value *= fold;
+    band.coarse_fft->inverse(band.coarse_spectrum, band.coarse_plane);
+    std::fill(out[b].begin(), out[b].end(), 0.0f);
+    for (int j = 0; j < coarse_height; ++j)
+      for (int i = 0; i < coarse_width; ++i)
+        out[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x] =
+            band.coarse_plane[static_cast<std::size_t>(j) * coarse_width + i];
+  }
+}
+
+}  // namespace stochtex::gabor

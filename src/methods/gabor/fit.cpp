@@ -1,0 +1,249 @@
+#include "methods/gabor/fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+
+#include "spectral/fft.hpp"
+
+namespace stochtex::gabor {
+namespace {
+
+using Complex = std::complex<float>;
+// The FISTA steps keep a 10% margin under the diagonal majoriser (float rounding of the FFT
+// operators; a slightly short step only slows down).
+constexpr double kLipschitzMargin = 1.1;
+// Standard deviation, in bins, of the Gaussian that smooths the periodogram into the level of
+// the fit's data weights (spectrum_weights): wider than the periodogram's one-bin noise, narrower
+// than the spectral features the weights must follow.
+constexpr double kLevelSmoothing = 2.0;
+// FISTA checks the duality gap every this many iterations (a check costs one more S_n S_n^T).
+constexpr int kGapCheckInterval = 10;
+constexpr double kIntermediateGapFactor = 5.0;
+
+double dot(std::span<const float> a, std::span<const float> b) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) sum += static_cast<double>(a[i]) * b[i];
+  return sum;
+}
+
+}  // namespace
+
+DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const float> target,
+                       const std::vector<std::vector<float>>& alpha, double nu) {
+  // Primal: ||S_n(alpha) - s||^2 + nu sum(alpha), alpha >= 0. Its Lagrange dual (Kim et al. 2007,
+  // section III, with the sign constraint) is max_z -||z||^2 / 4 - z^T s subject to
+  // S_n^T z >= -nu. The dual point is the scaled residual z = -2 t r, r = s - S_n(alpha), with the
+  // best t that stays feasible: t <= nu / max(2 S_n^T r) and t* = r^T s / ||r||^2 unconstrained.
+  std::vector<float> model;
+  dictionary.apply(alpha, model);
+  std::vector<float> residual(model.size());
+  for (std::size_t i = 0; i < model.size(); ++i) residual[i] = target[i] - model[i];
+  std::vector<std::vector<float>> correlation;
+  dictionary.adjoint(residual, correlation);
+  double largest = 0.0;
+  double l1 = 0.0;
+  for (std::size_t b = 0; b < alpha.size(); ++b) {
+    for (const float c : correlation[b]) largest = std::max(largest, 2.0 * c);
+    for (const float a : alpha[b]) l1 += a;
+  }
+  const double residual_squared = dot(residual, residual);
+  const double residual_target = dot(residual, target);
+  DualityGap result;
+  result.primal = residual_squared + nu * l1;
+  double t = residual_squared > 0.0 ? residual_target / residual_squared : 0.0;
+  if (largest > 0.0) t = std::min(t, nu / largest);
+  t = std::max(t, 0.0);
+  result.dual = -t * t * residual_squared + 2.0 * t * residual_target;
+  result.gap = std::max(0.0, result.primal - result.dual);
+  return result;
+}
+
+SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const float> target,
+                         const FitOptions& options, const std::function<void(double)>& progress) {
+  const auto bands = static_cast<std::size_t>(dictionary.band_count());
+  const std::size_t plane = dictionary.plane_size();
+  if (target.size() != plane)
+    throw std::invalid_argument("fit_spectrum: the target does not match the dictionary");
+  SpectrumFit fit;
+  fit.alpha.assign(bands, std::vector<float>(plane, 0.0f));
+  // The unweighted residual ||S_n(alpha) - S_ex|| of (weighted) model and target.
+  const std::span<const float> weights = dictionary.weights();
+  const auto unweighted_norm = [&](std::span<const float> model) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < plane; ++i) {
+      const double difference = static_cast<double>(model[i]) - target[i];
+      sum += weights.empty()
+                 ? difference * difference
+                 : difference * difference / (static_cast<double>(weights[i]) * weights[i]);
+    }
+    return std::sqrt(sum);
+  };
+  fit.target_norm = unweighted_norm(std::vector<float>(plane, 0.0f));
+  std::vector<std::vector<float>> correlation;
+  dictionary.adjoint(target, correlation);
+  for (const auto& c : correlation)
+    for (const float v : c) fit.nu_max = std::max(fit.nu_max, 2.0 * v);
+  fit.residual_norm = fit.target_norm;
+  if (!(fit.nu_max > 0.0)) {
+    fit.converged = true;  // alpha = 0 is optimal for every nu
+    return fit;
+  }
+  // Gradient of ||A a - s||^2 is 2 A^T (A a - s). A has non-negative entries, so A^T A is
+  // majorised by the diagonal of its row sums D = A^T A 1 (diag(D) - A^T A is diagonally
+  // dominant): coefficient j steps by 1 / (2 D_j), i.e. FISTA in the variable D^1/2 a, whose
+  // Lipschitz constant is at most 2. Against the global step 1 / (2 ||A||^2) this lets the
+  // narrow bands and, with data weights, the weakly weighted bins move as fast as the rest.
+  std::vector<std::vector<float>> steps(bands);
+  {
+    for (std::size_t b = 0; b < bands; ++b) {
+      const std::span<const float> mask = dictionary.mask(static_cast<int>(b));
+      steps[b].assign(mask.begin(), mask.end());
+    }
+    std::vector<float> image;
+    dictionary.apply(steps, image);
+    std::vector<std::vector<float>> row_sums;
+    dictionary.adjoint(image, row_sums);
+    for (std::size_t b = 0; b < bands; ++b)
+      for (std::size_t i = 0; i < plane; ++i)
+        steps[b][i] = steps[b][i] > 0.0f && row_sums[b][i] > 0.0f
+                          ? static_cast<float>(1.0 / (2.0 * kLipschitzMargin * row_sums[b][i]))
+                          : 0.0f;
+  }
+
+  std::vector<std::vector<float>> extrapolated = fit.alpha;
+  std::vector<std::vector<float>> previous = fit.alpha;
+  std::vector<std::vector<float>> gradient;
+  std::vector<float> model;
+  std::vector<float> residual(plane);
+  // Only the bins of each band's sub-grid carry coefficients: the other entries stay zero.
+  // visit(band, index) runs over those, band by band, row by row.
+  const auto for_each_coefficient = [&](auto&& visit) {
+    for (std::size_t b = 0; b < bands; ++b) {
+      const int step_x = dictionary.step_x(static_cast<int>(b));
+      const int step_y = dictionary.step_y(static_cast<int>(b));
+      for (int y = 0; y < dictionary.height(); y += step_y)
+        for (int x = 0; x < dictionary.width(); x += step_x)
+          visit(b, static_cast<std::size_t>(y) * dictionary.width() + x);
+    }
+  };
+  // Homotopy (section 5.2): kappa = 1/2, 1/4, ..., then options.kappa, each step warm-started.
+  std::vector<double> kappas;
+  for (double kappa = 0.5; kappa > options.kappa; kappa *= 0.5) kappas.push_back(kappa);
+  kappas.push_back(options.kappa);
+  for (const double kappa : kappas) {
+    const double steps_before = fit.steps;
+    const double nu = kappa * fit.nu_max;
+    fit.nu = nu;
+    ++fit.steps;
+    fit.converged = false;
+    extrapolated = fit.alpha;
+    double momentum = 1.0;
+    for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
+      ++fit.iterations;
+      dictionary.apply(extrapolated, model);
+      for (std::size_t i = 0; i < plane; ++i) residual[i] = model[i] - target[i];
+      dictionary.adjoint(residual, gradient);
+      // Proximal step of nu ||a||_1 + indicator(a >= 0): a shifted, clipped gradient step.
+      const auto penalty = static_cast<float>(nu);
+      double restart_test = 0.0;
+      for_each_coefficient([&](std::size_t b, std::size_t i) {
+        previous[b][i] = fit.alpha[b][i];
+        const float step = steps[b][i];
+        const float value =
+            std::max(0.0f, extrapolated[b][i] - step * (2.0f * gradient[b][i] + penalty));
+        fit.alpha[b][i] = value;
+        // In the preconditioned variable: the inner product weighted by D = 1 / (2 step).
+        if (step > 0.0f)
+          restart_test +=
+              static_cast<double>(extrapolated[b][i] - value) * (value - previous[b][i]) / step;
+      });
+      // Adaptive restart (O'Donoghue & Candes 2015): when the step goes against the momentum,
+      // the momentum is reset. FISTA keeps its O(1/k^2) rate and gains linear convergence once
+      // the support of the sparse solution has settled.
+      if (restart_test > 0.0) momentum = 1.0;
+      const double next_momentum = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum * momentum));
+      const auto blend = static_cast<float>((momentum - 1.0) / next_momentum);
+      momentum = next_momentum;
+      for_each_coefficient([&](std::size_t b, std::size_t i) {
+        extrapolated[b][i] = fit.alpha[b][i] + blend * (fit.alpha[b][i] - previous[b][i]);
+      });
+      if (iteration % kGapCheckInterval == 0 || iteration == options.max_iterations) {
+        const DualityGap gap = duality_gap(dictionary, target, fit.alpha, nu);
+        fit.primal = gap.primal;
+        fit.gap = gap.gap;
+        // Intermediate homotopy steps only seed the next one: a looser gap is enough there.
+        const double tolerance = kappa == kappas.back()
+                                     ? options.gap_tolerance
+                                     : kIntermediateGapFactor * options.gap_tolerance;
+        if (gap.gap <= tolerance * gap.primal) {
+          fit.converged = true;
+          break;
+        }
+      }
+      if (progress)
+        progress((steps_before + static_cast<double>(iteration) / options.max_iterations) /
+                 static_cast<double>(kappas.size()));
+    }
+  }
+  dictionary.apply(fit.alpha, model);
+  fit.residual_norm = unweighted_norm(model);
+  return fit;
+}
+
+std::vector<float> periodogram(std::span<const float> plane, int width, int height) {
+  const Fft2d fft(width, height);
+  std::vector<Complex> spectrum(fft.spectrum_size());
+  fft.forward(plane, spectrum);
+  const int half = fft.spectrum_width();
+  const double pixels = static_cast<double>(width) * height;
+  const double normalisation = 1.0 / (pixels * pixels);
+  std::vector<float> result(static_cast<std::size_t>(width) * height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      // The other half-plane by Hermitian symmetry: X(-m) = conj(X(m)).
+      const bool stored = x < half;
+      const int sx = stored ? x : width - x;
+      const int sy = stored ? y : (height - y) % height;
+      const Complex value = spectrum[static_cast<std::size_t>(sy) * half + sx];
+      result[static_cast<std::size_t>(y) * width + x] =
+          static_cast<float>(std::norm(value) * normalisation);
+    }
+  return result;
+}
+
+std::vector<float> spectrum_weights(std::span<const float> periodogram, int width, int height,
+                                    double gamma) {
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  if (!(gamma > 0.0)) return {};
+  const Fft2d fft(width, height);
+  std::vector<float> blur(pixels);
+  double total = 0.0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double dx = std::min(x, width - x);
+      const double dy = std::min(y, height - y);
+      const double value =
+          std::exp(-(dx * dx + dy * dy) / (2.0 * kLevelSmoothing * kLevelSmoothing));
+      blur[static_cast<std::size_t>(y) * width + x] = static_cast<float>(value);
+      total += value;
+    }
+  for (float& v : blur) v = static_cast<float>(v / total);
+  std::vector<Complex> kernel(fft.spectrum_size());
+  std::vector<Complex> spectrum(fft.spectrum_size());
+  fft.forward(blur, kernel);
+  fft.forward(periodogram, spectrum);
+  // The blur is even and real: its DFT is real.
+  for (std::size_t i = 0; i < spectrum.size(); ++i) spectrum[i] *= kernel[i].real();
+  std::vector<float> level(pixels);
+  fft.inverse(spectrum, level);
+  const float peak = *std::max_element(level.begin(), level.end());
+  std::vector<float> weights(pixels, 1.0f);
+  if (!(peak > 0.0f)) return weights;
+  for (std::size_t i = 0; i < pixels; ++i)
+    weights[i] = static_cast<float>(std::pow(std::max(level[i] / peak, 1e-6f), -gamma));
+  return weights;
+}
+
+}  // namespace stochtex::gabor
