@@ -169,7 +169,7 @@ void GaussianDictionary::apply(const std::vector<std::vector<float>>& alpha,
 }
 
 void GaussianDictionary::adjoint(std::span<const float> spectrum,
-                                 std::vector<std::vector<float>>& out) const {
+                                 std::vector<std::vector<float>>& out, bool reuse) const {
   // The kernels are even, so the adjoint of a convolution by them is the same convolution.
   if (weights_.empty()) {
     fft_->forward(spectrum, sum_spectrum_);
@@ -183,6 +183,7 @@ void GaussianDictionary::adjoint(std::span<const float> spectrum,
   for (std::size_t b = 0; b < bands_.size(); ++b) {
     const Band& band = bands_[b];
     const std::vector<float>& kernel = band.kernel_spectrum;
+    const bool zero_off_grid = reuse && out[b].size() == plane_size();
     out[b].resize(plane_size());
     if (!band.coarse_fft) {
       for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
@@ -220,7 +221,7 @@ void GaussianDictionary::adjoint(std::span<const float> spectrum,
     const auto fold = static_cast<float>(1.0 / (band.step_x * band.step_y));
     for (Complex& value : band.coarse_spectrum) value *= fold;
     band.coarse_fft->inverse(band.coarse_spectrum, band.coarse_plane);
-    std::fill(out[b].begin(), out[b].end(), 0.0f);
+    if (!zero_off_grid) std::fill(out[b].begin(), out[b].end(), 0.0f);
     for (int j = 0; j < coarse_height; ++j)
       for (int i = 0; i < coarse_width; ++i)
         out[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x] =

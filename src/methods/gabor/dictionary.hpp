@@ -50,8 +50,12 @@ class GaussianDictionary {
 
   // spectrum = S_n(alpha); alpha holds band_count() planes.
   void apply(const std::vector<std::vector<float>>& alpha, std::vector<float>& spectrum) const;
-  // out = S_n^T(spectrum), zero off each band's grid.
-  void adjoint(std::span<const float> spectrum, std::vector<std::vector<float>>& out) const;
+  // out = S_n^T(spectrum), zero off each band's grid. With `reuse`, a plane of `out` that already
+  // has the plane's size is taken to hold an earlier adjoint of this dictionary (zero off its
+  // band's grid), and only its grid is written: an iterative solver keeps one buffer and saves
+  // clearing the whole plane of every band at every call.
+  void adjoint(std::span<const float> spectrum, std::vector<std::vector<float>>& out,
+               bool reuse = false) const;
   // Data weights w (width x height, positive): the operator becomes diag(w) S_n, so that a fit
   // minimises ||w (S_n(alpha) - S_ex)||^2 (a weighted data term; see spectrum_weights). Empty:
   // unweighted, eq. (8) as printed.

@@ -28,20 +28,28 @@ double dot(std::span<const float> a, std::span<const float> b) {
   return sum;
 }
 
-}  // namespace
+// The buffers of a duality-gap evaluation, kept by the fit across its checks: the correlation
+// alone is a plane per band.
+struct GapBuffers {
+  std::vector<float> model;
+  std::vector<float> residual;
+  std::vector<std::vector<float>> correlation;
+};
 
 DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const float> target,
-                       const std::vector<std::vector<float>>& alpha, double nu) {
+                       const std::vector<std::vector<float>>& alpha, double nu,
+                       GapBuffers& buffers) {
   // Primal: ||S_n(alpha) - s||^2 + nu sum(alpha), alpha >= 0. Its Lagrange dual (Kim et al. 2007,
   // section III, with the sign constraint) is max_z -||z||^2 / 4 - z^T s subject to
   // S_n^T z >= -nu. The dual point is the scaled residual z = -2 t r, r = s - S_n(alpha), with the
   // best t that stays feasible: t <= nu / max(2 S_n^T r) and t* = r^T s / ||r||^2 unconstrained.
-  std::vector<float> model;
+  std::vector<float>& model = buffers.model;
   dictionary.apply(alpha, model);
-  std::vector<float> residual(model.size());
+  std::vector<float>& residual = buffers.residual;
+  residual.resize(model.size());
   for (std::size_t i = 0; i < model.size(); ++i) residual[i] = target[i] - model[i];
-  std::vector<std::vector<float>> correlation;
-  dictionary.adjoint(residual, correlation);
+  std::vector<std::vector<float>>& correlation = buffers.correlation;
+  dictionary.adjoint(residual, correlation, true);
   double largest = 0.0;
   double l1 = 0.0;
   for (std::size_t b = 0; b < alpha.size(); ++b) {
@@ -58,6 +66,14 @@ DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const flo
   result.dual = -t * t * residual_squared + 2.0 * t * residual_target;
   result.gap = std::max(0.0, result.primal - result.dual);
   return result;
+}
+
+}  // namespace
+
+DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const float> target,
+                       const std::vector<std::vector<float>>& alpha, double nu) {
+  GapBuffers buffers;
+  return duality_gap(dictionary, target, alpha, nu, buffers);
 }
 
 SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const float> target,
@@ -115,6 +131,7 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
   std::vector<std::vector<float>> extrapolated = fit.alpha;
   std::vector<std::vector<float>> previous = fit.alpha;
   std::vector<std::vector<float>> gradient;
+  GapBuffers gap_buffers;
   std::vector<float> model;
   std::vector<float> residual(plane);
   // Only the bins of each band's sub-grid carry coefficients: the other entries stay zero.
@@ -144,7 +161,7 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
       ++fit.iterations;
       dictionary.apply(extrapolated, model);
       for (std::size_t i = 0; i < plane; ++i) residual[i] = model[i] - target[i];
-      dictionary.adjoint(residual, gradient);
+      dictionary.adjoint(residual, gradient, true);
       // Proximal step of nu ||a||_1 + indicator(a >= 0): a shifted, clipped gradient step.
       const auto penalty = static_cast<float>(nu);
       double restart_test = 0.0;
@@ -170,7 +187,7 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
         extrapolated[b][i] = fit.alpha[b][i] + blend * (fit.alpha[b][i] - previous[b][i]);
       });
       if (iteration % kGapCheckInterval == 0 || iteration == options.max_iterations) {
-        const DualityGap gap = duality_gap(dictionary, target, fit.alpha, nu);
+        const DualityGap gap = duality_gap(dictionary, target, fit.alpha, nu, gap_buffers);
         fit.primal = gap.primal;
         fit.gap = gap.gap;
         // Intermediate homotopy steps only seed the next one: a looser gap is enough there.
