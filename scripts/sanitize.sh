@@ -40,19 +40,39 @@ mesa_driver=$(find /usr/lib -name swrast_dri.so -print -quit)
 LD_PRELOAD=$mesa_driver ctest --test-dir "$build" -L "unit|cli|fuzz|studio" --output-on-failure \
   --parallel 2
 phase "sanitizer tests (unit, cli, fuzz, studio)"
-for fuzzer in "$build"/tests/*_fuzzer; do
+# One libFuzzer target for $seconds from a copy of its committed seeds; prints the failing input's
+# report and returns non-zero when it finds one.
+fuzz_one() {
+  local fuzzer=$1 name corpus
   name=$(basename "$fuzzer" _fuzzer)
   corpus=$(mktemp -d)
   cp "$root/tests/fuzz/corpus/$name"/* "$corpus"/
   echo "sanitize.sh: $name for ${seconds} s from $(ls "$corpus" | wc -l) seeds" >&2
-  (cd "$corpus" && "$fuzzer" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
-    -print_final_stats=1 "$corpus" 2>"$corpus.log") || {
+  if ! (cd "$corpus" && "$fuzzer" -max_total_time="$seconds" -rss_limit_mb=2048 -timeout=10 \
+    -print_final_stats=1 "$corpus" 2>"$corpus.log"); then
     tail -n 60 "$corpus.log" >&2
     echo "sanitize.sh: $name found a failing input (above)" >&2
-    exit 1
-  }
-  grep -E "^stat::(number_of_executed_units|new_units_added|peak_rss_mb)" "$corpus.log" >&2 || true
+    return 1
+  fi
+  grep -E "^stat::(number_of_executed_units|new_units_added|peak_rss_mb)" "$corpus.log" | \
+    sed "s/^/$name /" >&2 || true
   rm -rf "$corpus" "$corpus.log"
+}
+# Two targets at a time, one per core: each still has a core for its whole $seconds.
+failed=0
+running=0
+for fuzzer in "$build"/tests/*_fuzzer; do
+  fuzz_one "$fuzzer" &
+  running=$((running + 1))
+  if ((running == 2)); then
+    wait -n || failed=1
+    running=$((running - 1))
+  fi
 done
+while ((running > 0)); do
+  wait -n || failed=1
+  running=$((running - 1))
+done
+if ((failed)); then exit 1; fi
 phase "libFuzzer runs"
 echo "sanitize.sh: sanitizer tests and libFuzzer runs passed"
