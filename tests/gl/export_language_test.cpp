@@ -275,9 +275,8 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
           const std::string line =
               files.shader.text.substr(start, files.shader.text.find('\n', start) - start);
           for (const ShaderTexture& t : files.textures) {
-            const std::string parameters = std::string(t.depth == 1 ? "texture2d" : "texture3d") +
-                                           "<float> stochtex_" + t.name + ", sampler stochtex_" +
-                                           t.name + "Smplr";
+            std::string parameters = t.depth == 1 ? "texture2d" : "texture3d";
+            parameters += "<float> stochtex_" + t.name + ", sampler stochtex_" + t.name + "Smplr";
             EXPECT_NE(line.find(parameters), std::string::npos) << parameters;
           }
         }

@@ -30,7 +30,7 @@ class CpuTargets : public testing::Test {
 };
 
 ImageF corpus_crop(const std::string& name, int side) {
-  const ImageF image = read_image(std::string(STOCHTEX_TEXTURE_DIR) + "/" + name);
+  const ImageF image = read_image(std::filesystem::path(STOCHTEX_TEXTURE_DIR) / name);
   ImageF crop(side, side, image.channels());
   for (int y = 0; y < side; ++y)
     for (int x = 0; x < side; ++x)
