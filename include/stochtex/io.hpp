@@ -1,5 +1,5 @@
 #pragma once
-// Image files (library stochtex::io; stochtex::runtime needs none of it).
+// Image files (library stochtex::io; stochtex::runtime needs none of it), on disk or in memory.
 // Reading: PNG (8/16-bit; grey, grey+alpha, RGB, RGBA; palette expanded), OpenEXR (half/float),
 // PFM, recognised by their first bytes whatever the extension. Values become float32: PNG integers
 // are divided by 255 or 65535, float formats are kept.
@@ -7,12 +7,17 @@
 // rounded), .exr (float32), .pfm (1 or 3 channels). Files are written to a temporary of a unique
 // name in the same folder, synced, then renamed, so a failure or a concurrent writer never leaves
 // a partial output; only a missing path or a regular file is replaced. 1, 2, 3 or 4 channels.
-// Every failure throws stochtex::Error with one sentence naming the file and the problem; a bad
-// argument to write_image (unknown extension, bit depth other than 8 or 16, empty image) throws
-// std::invalid_argument.
+// A file and a buffer go through the same decoder and encoder: decode_image of a file's bytes
+// gives read_image's image or error, and encode_image gives the bytes write_image writes.
+// Every failure throws stochtex::Error with one sentence naming the file (or the buffer, by the
+// name the caller gives it) and the problem; a bad argument to write_image or encode_image
+// (unknown extension, bit depth other than 8 or 16, empty image) throws std::invalid_argument.
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "stochtex/error.hpp"
 #include "stochtex/image.hpp"
@@ -23,8 +28,19 @@ struct ImageReadLimits {
   std::int64_t max_pixels = std::int64_t{1} << 26;  // 64 Mpixel: refuse before allocating
 };
 
+// The formats write_image and encode_image write.
+enum class ImageFormat { png, exr, pfm };
+
 ImageF read_image(const std::filesystem::path& path, const ImageReadLimits& limits = {});
 void write_image(const std::filesystem::path& path, ImageView<const float> image,
                  int png_bit_depth = 8);
+
+// read_image of an image file's bytes held in memory. The messages call them `name`, written as
+// given (read_image's are the path in quotes): "the uploaded image is truncated...".
+ImageF decode_image(std::span<const std::uint8_t> bytes, const std::string& name,
+                    const ImageReadLimits& limits = {});
+// The bytes write_image would write for a file of `format`.
+std::vector<std::uint8_t> encode_image(ImageView<const float> image, ImageFormat format,
+                                       int png_bit_depth = 8);
 
 }  // namespace stochtex

@@ -15,12 +15,14 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <cinttypes>
 #include <climits>
 #include <cmath>
 #include <csetjmp>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <new>
 #include <span>
@@ -32,7 +34,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/file_message.hpp"
-#include "io/exr_file_stream.hpp"
+#include "io/image_streams.hpp"
 #include "io/png_sample.hpp"
 #include "stochtex/error.hpp"
 
@@ -46,16 +48,25 @@ struct FileCloser {
 };
 using File = std::unique_ptr<std::FILE, FileCloser>;
 
+// An image file's bytes being decoded: a stdio stream at its start (the file, or a buffer opened
+// with fmemopen), their count, and what the messages call them.
+struct Input {
+  std::FILE* file = nullptr;
+  std::uintmax_t bytes = 0;
+  std::string name;         // in stochtex's messages: the path in quotes, or the caller's name
+  std::string stream_name;  // in OpenEXR's messages: the path as it is, or the caller's name
+};
+
 // Refuses a declared size before anything proportional to it is allocated (docs/design.md §9).
-void check_size(const fs::path& path, std::int64_t width, std::int64_t height,
+void check_size(const std::string& name, std::int64_t width, std::int64_t height,
                 const ImageReadLimits& limits) {
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   if (width <= 0 || height <= 0)
     throw Error(ErrorCode::format,
-                quoted(path) + " declares a size of " + size + " pixels; the file is corrupt");
+                name + " declares a size of " + size + " pixels; the file is corrupt");
   if (width > INT_MAX || height > INT_MAX || width > limits.max_pixels / height)
     throw Error(ErrorCode::invalid_input,
-                quoted(path) + " is " + size + " pixels, more than the limit of " +
+                name + " is " + size + " pixels, more than the limit of " +
                     std::to_string(limits.max_pixels) + " pixels; use a smaller image");
 }
 
@@ -66,11 +77,11 @@ constexpr double kMaxDeflateRatio = 1032.0;
 // A tiny file declaring a huge image must not cost the image's memory: what the declared pixels
 // need at least, compressed as well as the format possibly can, is compared with the file's size
 // before anything proportional to the pixels is allocated (docs/design.md §9).
-void check_fits_file(const fs::path& path, std::int64_t width, std::int64_t height,
+void check_fits_file(const std::string& name, std::int64_t width, std::int64_t height,
                      double minimum_bytes, std::uintmax_t file_bytes) {
   if (minimum_bytes > static_cast<double>(file_bytes))
     throw Error(ErrorCode::format,
-                quoted(path) + " declares " + std::to_string(width) + "x" + std::to_string(height) +
+                name + " declares " + std::to_string(width) + "x" + std::to_string(height) +
                     " pixels, which need at least " +
                     std::to_string(static_cast<std::uintmax_t>(std::ceil(minimum_bytes))) +
                     " bytes, but the file has " + std::to_string(file_bytes) +
@@ -101,16 +112,27 @@ void read_png_bytes(png_structp png, png_bytep data, png_size_t length) {
     png_error(png, std::feof(file) ? "the file ends too early" : "read error");
 }
 
-// std::strerror rather than a std::string message: the longjmp out of png_error would skip the
-// string's destructor.
+// Where libpng's output goes, and what the stream threw: an exception must not cross libpng's C
+// frames, so it is kept here and rethrown once png_error's longjmp has left them.
+struct PngOutput {
+  Imf::OStream& stream;
+  std::exception_ptr failure;
+};
+
 void write_png_bytes(png_structp png, png_bytep data, png_size_t length) {
-  if (std::fwrite(data, 1, length, static_cast<std::FILE*>(png_get_io_ptr(png))) != length)
-    png_error(png, std::strerror(errno));
+  auto* output = static_cast<PngOutput*>(png_get_io_ptr(png));
+  try {
+    write_all(output->stream, data, length);
+    return;
+  } catch (...) {
+    output->failure = std::current_exception();
+  }
+  png_error(png, "the output failed");
 }
 
-void flush_png(png_structp png) {
-  std::fflush(static_cast<std::FILE*>(png_get_io_ptr(png)));
-}
+// The streams are flushed when the file is committed; libpng's default flush would take its
+// output for a FILE.
+void flush_png(png_structp) {}
 
 struct PngReader {
   PngErrorMessage error;
@@ -185,54 +207,52 @@ bool read_png_pixels(PngReader& reader, png_bytepp rows) {
   return true;
 }
 
-[[noreturn]] void throw_png_read_error(const fs::path& path, const PngReader& reader) {
-  throw Error(ErrorCode::format, quoted(path) + " is not a readable PNG image (" +
-                                     reader.error.text +
+[[noreturn]] void throw_png_read_error(const std::string& name, const PngReader& reader) {
+  throw Error(ErrorCode::format, name + " is not a readable PNG image (" + reader.error.text +
                                      "); it is truncated or corrupt, export it again");
 }
 
 // libpng allocates an ancillary chunk's declared length before reading it: every chunk must fit
 // in the file, whatever the limits above allow (docs/design.md §9).
-void check_png_chunks(const fs::path& path, std::FILE* file, std::uintmax_t file_bytes) {
+void check_png_chunks(const Input& input) {
   constexpr std::uintmax_t kSignatureBytes = 8;
   constexpr std::uintmax_t kChunkFrameBytes = 12;  // length, type and checksum
   std::uintmax_t position = kSignatureBytes;
   std::array<unsigned char, 4> length{};
-  while (position + 8 <= file_bytes) {  // a chunk's length and type are there
-    if (fseeko(file, static_cast<off_t>(position), SEEK_SET) != 0 ||
-        std::fread(length.data(), 1, length.size(), file) != length.size())
-      throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+  while (position + 8 <= input.bytes) {  // a chunk's length and type are there
+    if (fseeko(input.file, static_cast<off_t>(position), SEEK_SET) != 0 ||
+        std::fread(length.data(), 1, length.size(), input.file) != length.size())
+      throw Error(ErrorCode::io, "cannot read " + input.name + ": " + errno_message(errno));
     const std::uintmax_t data_bytes = std::uintmax_t{length[0]} << 24 |
                                       std::uintmax_t{length[1]} << 16 |
                                       std::uintmax_t{length[2]} << 8 | length[3];
-    if (kChunkFrameBytes + data_bytes > file_bytes - position)
-      throw Error(ErrorCode::format, quoted(path) + " declares a chunk of " +
+    if (kChunkFrameBytes + data_bytes > input.bytes - position)
+      throw Error(ErrorCode::format, input.name + " declares a chunk of " +
                                          std::to_string(data_bytes) +
                                          " bytes past the end of the file; it is truncated or "
                                          "corrupt");
     position += kChunkFrameBytes + data_bytes;
   }
-  if (std::fseek(file, 0, SEEK_SET) != 0)
-    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+  if (std::fseek(input.file, 0, SEEK_SET) != 0)
+    throw Error(ErrorCode::io, "cannot read " + input.name + ": " + errno_message(errno));
 }
 
-ImageF read_png(const fs::path& path, std::FILE* file, const ImageReadLimits& limits,
-                std::uintmax_t file_bytes) {
-  check_png_chunks(path, file, file_bytes);
+ImageF read_png(const Input& input, const ImageReadLimits& limits) {
+  check_png_chunks(input);
   PngReader reader;
   set_png_limits(reader.png, limits);
   PngLayout layout;
-  if (!read_png_layout(reader, file, layout)) throw_png_read_error(path, reader);
-  check_size(path, layout.width, layout.height, limits);
+  if (!read_png_layout(reader, input.file, layout)) throw_png_read_error(input.name, reader);
+  check_size(input.name, layout.width, layout.height, limits);
   // The pixels are one zlib stream (PNG specification §10).
-  check_fits_file(path, layout.width, layout.height,
+  check_fits_file(input.name, layout.width, layout.height,
                   static_cast<double>(layout.width) * layout.height * layout.stored_bits_per_pixel /
                       8.0 / kMaxDeflateRatio,
-                  file_bytes);
+                  input.bytes);
   const bool sixteen_bit = layout.bit_depth == 16;
   if (layout.channels < 1 || layout.channels > 4 || (layout.bit_depth != 8 && !sixteen_bit) ||
       layout.row_bytes != std::size_t{layout.width} * layout.channels * (sixteen_bit ? 2 : 1))
-    throw Error(ErrorCode::format, quoted(path) + " has an unsupported PNG pixel layout (" +
+    throw Error(ErrorCode::format, input.name + " has an unsupported PNG pixel layout (" +
                                        std::to_string(layout.channels) + " channels of " +
                                        std::to_string(layout.bit_depth) +
                                        " bits); convert it to 8- or 16-bit grey or RGB(A)");
@@ -240,7 +260,7 @@ ImageF read_png(const fs::path& path, std::FILE* file, const ImageReadLimits& li
   std::vector<png_byte> bytes(layout.row_bytes * layout.height);
   std::vector<png_bytep> rows(layout.height);
   for (png_uint_32 y = 0; y < layout.height; ++y) rows[y] = bytes.data() + y * layout.row_bytes;
-  if (!read_png_pixels(reader, rows.data())) throw_png_read_error(path, reader);
+  if (!read_png_pixels(reader, rows.data())) throw_png_read_error(input.name, reader);
 
   ImageF image(static_cast<int>(layout.width), static_cast<int>(layout.height), layout.channels);
   std::span<float> pixels = image.pixels();
@@ -273,10 +293,10 @@ struct PngWriter {
   PngWriter& operator=(const PngWriter&) = delete;
 };
 
-bool write_png_rows(PngWriter& writer, std::FILE* file, png_uint_32 width, png_uint_32 height,
+bool write_png_rows(PngWriter& writer, PngOutput& output, png_uint_32 width, png_uint_32 height,
                     int color_type, int bit_depth, png_bytepp rows) {
   if (setjmp(png_jmpbuf(writer.png))) return false;
-  png_set_write_fn(writer.png, file, write_png_bytes, flush_png);
+  png_set_write_fn(writer.png, &output, write_png_bytes, flush_png);
   png_set_IHDR(writer.png, writer.info, width, height, bit_depth, color_type, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(writer.png, writer.info);
@@ -285,7 +305,7 @@ bool write_png_rows(PngWriter& writer, std::FILE* file, png_uint_32 width, png_u
   return true;
 }
 
-void write_png(std::FILE* file, ImageView<const float> image, int bit_depth) {
+void write_png(Imf::OStream& stream, ImageView<const float> image, int bit_depth) {
   constexpr std::array<int, 4> color_types = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
                                               PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGBA};
   const std::size_t bytes_per_sample = bit_depth == 16 ? 2 : 1;
@@ -308,28 +328,58 @@ void write_png(std::FILE* file, ImageView<const float> image, int bit_depth) {
     }
   }
   PngWriter writer;
-  if (!write_png_rows(writer, file, static_cast<png_uint_32>(image.width),
+  PngOutput output{stream, nullptr};
+  if (!write_png_rows(writer, output, static_cast<png_uint_32>(image.width),
                       static_cast<png_uint_32>(image.height), color_types[image.channels - 1],
-                      bit_depth, rows.data()))
+                      bit_depth, rows.data())) {
+    if (output.failure) std::rethrow_exception(output.failure);
     throw std::runtime_error(writer.error.text);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
 // OpenEXR.
 
-struct ExrErrorMessage {
-  char text[256] = {};
+// What OpenEXR's core library reads a header from, and the message of its last error.
+struct ExrHeaderInput {
+  const Input& input;
+  char error[256] = {};
 };
 
 void on_exr_error(exr_const_context_t context, exr_result_t, const char* message) {
   void* user_data = nullptr;
   if (exr_get_user_data(context, &user_data) == EXR_ERR_SUCCESS && user_data)
-    std::snprintf(static_cast<ExrErrorMessage*>(user_data)->text, sizeof(ExrErrorMessage::text),
+    std::snprintf(static_cast<ExrHeaderInput*>(user_data)->error, sizeof(ExrHeaderInput::error),
                   "%s", message);
 }
 
-[[noreturn]] void throw_exr_read_error(const fs::path& path, const std::string& problem) {
-  throw Error(ErrorCode::format, quoted(path) + " is not a readable OpenEXR image (" + problem +
+// The core library's reads, as pread: up to `size` bytes at `offset`, fewer at the end. It is
+// called from C, so it reports a failure through `error` rather than by throwing.
+std::int64_t read_exr_bytes(exr_const_context_t context, void* user_data, void* buffer,
+                            std::uint64_t size, std::uint64_t offset,
+                            exr_stream_error_func_ptr_t error) {
+  const Input& input = static_cast<ExrHeaderInput*>(user_data)->input;
+  if (offset >= input.bytes) return 0;
+  std::clearerr(input.file);
+  if (fseeko(input.file, static_cast<off_t>(offset), SEEK_SET) != 0) {
+    error(context, EXR_ERR_READ_IO, "Unable to seek to requested position");
+    return -1;
+  }
+  const std::size_t got = std::fread(buffer, 1, size, input.file);
+  if (got < size && std::ferror(input.file)) {
+    error(context, EXR_ERR_READ_IO, "Unable to read %" PRIu64 " bytes: %s", size,
+          std::strerror(errno));
+    return -1;
+  }
+  return static_cast<std::int64_t>(got);
+}
+
+std::int64_t exr_input_bytes(exr_const_context_t, void* user_data) {
+  return static_cast<std::int64_t>(static_cast<ExrHeaderInput*>(user_data)->input.bytes);
+}
+
+[[noreturn]] void throw_exr_read_error(const std::string& name, const std::string& problem) {
+  throw Error(ErrorCode::format, name + " is not a readable OpenEXR image (" + problem +
                                      "); it is truncated or corrupt, export it again");
 }
 
@@ -364,29 +414,31 @@ double max_exr_expansion(exr_compression_t compression) {
 // the best ratio of the part's compression. A chunk's buffer is allocated at its nominal size (a
 // whole tile or block of lines, even past the data window): beyond a small allowance it must be
 // one the file could fill (docs/design.md §9).
-void check_exr_header(const fs::path& path, const ImageReadLimits& limits,
-                      std::uintmax_t file_bytes) {
-  ExrErrorMessage error;
+void check_exr_header(const Input& input, const ImageReadLimits& limits) {
+  ExrHeaderInput header{input};
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
   init.error_handler_fn = on_exr_error;
-  init.user_data = &error;
+  init.user_data = &header;
+  init.read_fn = read_exr_bytes;
+  init.size_fn = exr_input_bytes;
   struct Context {
     exr_context_t handle = nullptr;
     ~Context() { exr_finish(&handle); }
   } context;
-  const exr_result_t started = exr_start_read(&context.handle, path.c_str(), &init);
-  if (started != EXR_ERR_SUCCESS || error.text[0])
-    throw_exr_read_error(path, error.text[0] ? error.text : exr_get_default_error_message(started));
+  const exr_result_t started = exr_start_read(&context.handle, input.stream_name.c_str(), &init);
+  if (started != EXR_ERR_SUCCESS || header.error[0])
+    throw_exr_read_error(input.name,
+                         header.error[0] ? header.error : exr_get_default_error_message(started));
   int parts = 0;
   if (exr_get_count(context.handle, &parts) != EXR_ERR_SUCCESS || parts < 1)
-    throw_exr_read_error(path, "no image part");
+    throw_exr_read_error(input.name, "no image part");
   for (int part = 0; part < parts; ++part) {
     exr_attr_box2i_t window{};
     if (exr_get_data_window(context.handle, part, &window) != EXR_ERR_SUCCESS)
-      throw_exr_read_error(path, "no data window");
+      throw_exr_read_error(input.name, "no data window");
     const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1;
     const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
-    check_size(path, width, height, limits);
+    check_size(input.name, width, height, limits);
     exr_storage_t storage{};
     exr_compression_t compression{};
     std::int32_t chunks = 0;
@@ -397,9 +449,9 @@ void check_exr_header(const fs::path& path, const ImageReadLimits& limits,
         exr_get_compression(context.handle, part, &compression) != EXR_ERR_SUCCESS ||
         exr_get_chunk_count(context.handle, part, &chunks) != EXR_ERR_SUCCESS ||
         exr_get_chunk_unpacked_size(context.handle, part, &chunk_bytes) != EXR_ERR_SUCCESS)
-      throw_exr_read_error(path, "no chunk layout");
+      throw_exr_read_error(input.name, "no chunk layout");
     if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED)
-      throw Error(ErrorCode::format, quoted(path) +
+      throw Error(ErrorCode::format, input.name +
                                          " holds deep data, which is not supported; save it as "
                                          "a flat image");
     double pixel_bytes = 0.0;
@@ -411,21 +463,21 @@ void check_exr_header(const fs::path& path, const ImageReadLimits& limits,
     }
     const double expansion = max_exr_expansion(compression);
     constexpr double kChunkAllowance = 16 << 20;
-    check_fits_file(path, width, height,
+    check_fits_file(input.name, width, height,
                     std::max(16.0 * chunks + pixel_bytes / expansion,
                              (static_cast<double>(chunk_bytes) - kChunkAllowance) / expansion),
-                    file_bytes);
+                    input.bytes);
   }
 }
 
 // Y, (Y, A), (R, G, B) or (R, G, B, A), in that order.
-std::vector<const char*> exr_channel_names(const fs::path& path, const Imf::ChannelList& list) {
+std::vector<const char*> exr_channel_names(const std::string& name, const Imf::ChannelList& list) {
   std::vector<const char*> names;
   if (list.findChannel("R") && list.findChannel("G") && list.findChannel("B")) {
     names = {"R", "G", "B"};
   } else if (list.findChannel("Y")) {
     if (list.findChannel("RY") || list.findChannel("BY"))
-      throw Error(ErrorCode::format, quoted(path) +
+      throw Error(ErrorCode::format, name +
                                          " stores colour as luminance and chroma (Y, RY, BY), "
                                          "which is not supported; save it as R, G, B");
     names = {"Y"};
@@ -433,30 +485,31 @@ std::vector<const char*> exr_channel_names(const fs::path& path, const Imf::Chan
     std::string found;
     for (auto channel = list.begin(); channel != list.end(); ++channel)
       found += (found.empty() ? "" : ", ") + std::string(channel.name());
-    throw Error(ErrorCode::format, quoted(path) + " has no Y or R, G, B channels (it has: " +
+    throw Error(ErrorCode::format, name + " has no Y or R, G, B channels (it has: " +
                                        (found.empty() ? "none" : found) +
                                        "); save the image with R, G, B or Y channels");
   }
   if (list.findChannel("A")) names.push_back("A");
-  for (const char* name : names) {
-    const Imf::Channel& channel = *list.findChannel(name);
+  for (const char* channel_name : names) {
+    const Imf::Channel& channel = *list.findChannel(channel_name);
     if (channel.xSampling != 1 || channel.ySampling != 1)
-      throw Error(ErrorCode::format, quoted(path) + " has a subsampled " + name +
+      throw Error(ErrorCode::format, name + " has a subsampled " + channel_name +
                                          " channel, which is not supported; save it at full "
                                          "resolution");
   }
   return names;
 }
 
-ImageF read_exr(const fs::path& path, const ImageReadLimits& limits, std::uintmax_t file_bytes) {
-  check_exr_header(path, limits, file_bytes);
+ImageF read_exr(const Input& input, const ImageReadLimits& limits) {
+  check_exr_header(input, limits);
   try {
-    Imf::InputFile file(path.c_str());
+    FileInputStream stream(input.file, input.bytes, input.stream_name.c_str());
+    Imf::InputFile file(stream);
     const Imath::Box2i window = file.header().dataWindow();
     const std::int64_t width = std::int64_t{window.max.x} - window.min.x + 1;
     const std::int64_t height = std::int64_t{window.max.y} - window.min.y + 1;
-    check_size(path, width, height, limits);
-    const std::vector<const char*> names = exr_channel_names(path, file.header().channels());
+    check_size(input.name, width, height, limits);
+    const std::vector<const char*> names = exr_channel_names(input.name, file.header().channels());
     const int channels = static_cast<int>(names.size());
     ImageF image(static_cast<int>(width), static_cast<int>(height), channels);
     Imf::FrameBuffer frame_buffer;
@@ -472,11 +525,11 @@ ImageF read_exr(const fs::path& path, const ImageReadLimits& limits, std::uintma
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
-    throw_exr_read_error(path, e.what());
+    throw_exr_read_error(input.name, e.what());
   }
 }
 
-void write_exr(std::FILE* file, const fs::path& temporary, ImageView<const float> image) {
+void write_exr(Imf::OStream& stream, ImageView<const float> image) {
   const auto& names = exr_written_channel_names(image.channels);
   Imf::Header header(image.width, image.height);
   header.compression() = Imf::ZIP_COMPRESSION;
@@ -488,7 +541,6 @@ void write_exr(std::FILE* file, const fs::path& temporary, ImageView<const float
                                                    sizeof(float) * image.channels,
                                                    sizeof(float) * image.row_stride));
   }
-  ExrFileStream stream(file, temporary.c_str());
   Imf::OutputFile output(stream, header);
   output.setFrameBuffer(frame_buffer);
   output.writePixels(image.height);
@@ -524,10 +576,10 @@ bool parse_number(const std::string& text, T& value) {
   return error == std::errc{} && stop == end;
 }
 
-ImageF read_pfm(const fs::path& path, std::FILE* file, const ImageReadLimits& limits,
-                std::uintmax_t file_bytes) {
+ImageF read_pfm(const Input& input, const ImageReadLimits& limits) {
+  std::FILE* file = input.file;
   const auto corrupt = [&](const std::string& problem) {
-    return Error(ErrorCode::format, quoted(path) + " is not a readable PFM image (" + problem +
+    return Error(ErrorCode::format, input.name + " is not a readable PFM image (" + problem +
                                         "); it is truncated or corrupt, export it again");
   };
   std::string magic, width_text, height_text, scale_text;
@@ -542,17 +594,18 @@ ImageF read_pfm(const fs::path& path, std::FILE* file, const ImageReadLimits& li
   float scale = 0.0f;
   if (!parse_number(scale_text, scale) || !std::isfinite(scale) || scale == 0.0f)
     throw corrupt("invalid scale '" + scale_text + "'");
-  check_size(path, width, height, limits);
+  check_size(input.name, width, height, limits);
 
   const int channels = magic == "PF" ? 3 : 1;
   const std::size_t row_bytes = static_cast<std::size_t>(width) * channels * sizeof(float);
   const std::size_t pixel_bytes = row_bytes * static_cast<std::size_t>(height);
   const off_t header_bytes = ftello(file);
   if (header_bytes < 0)
-    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
+    throw Error(ErrorCode::io, "cannot read " + input.name + ": " + errno_message(errno));
   // Uncompressed: the pixels need exactly their size after the header.
-  check_fits_file(path, width, height,
-                  static_cast<double>(header_bytes) + static_cast<double>(pixel_bytes), file_bytes);
+  check_fits_file(input.name, width, height,
+                  static_cast<double>(header_bytes) + static_cast<double>(pixel_bytes),
+                  input.bytes);
 
   const bool little_endian = scale < 0.0f;
   ImageF image(static_cast<int>(width), static_cast<int>(height), channels);
@@ -574,37 +627,132 @@ ImageF read_pfm(const fs::path& path, std::FILE* file, const ImageReadLimits& li
   return image;
 }
 
-void write_pfm(std::FILE* file, ImageView<const float> image) {
+void write_pfm(Imf::OStream& stream, ImageView<const float> image) {
   const std::string header = std::string(image.channels == 3 ? "PF" : "Pf") + "\n" +
                              std::to_string(image.width) + " " + std::to_string(image.height) +
                              "\n-1.0\n";
   const std::size_t row_values = static_cast<std::size_t>(image.width) * image.channels;
   std::vector<unsigned char> bytes(row_values * 4);
-  bool written = std::fwrite(header.data(), 1, header.size(), file) == header.size();
-  for (int y = image.height - 1; y >= 0 && written; --y) {
+  write_all(stream, header.data(), header.size());
+  for (int y = image.height - 1; y >= 0; --y) {
     const float* row = image.row(y);
     for (std::size_t i = 0; i < row_values; ++i) {
       const auto word = std::bit_cast<std::uint32_t>(row[i]);
       for (int b = 0; b < 4; ++b) bytes[4 * i + b] = static_cast<unsigned char>(word >> (8 * b));
     }
-    written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+    write_all(stream, bytes.data(), bytes.size());
   }
-  if (!written) throw std::system_error(errno, std::generic_category());
 }
 
 // ---------------------------------------------------------------------------------------------
+// The formats. read_image and decode_image give an image to the first row that recognises its
+// first bytes; write_image picks the row of its path's extension, encode_image the row of its
+// format. A new format is one row; one that is only read has no encoder (nullptr), and
+// write_image refuses its extension.
 
-enum class Format { png, exr, pfm };
+// How many of an image's first bytes the rows' signatures look at.
+constexpr std::size_t kSignatureBytes = 8;
 
-Format output_format(const fs::path& path) {
+struct Codec {
+  ImageFormat format;
+  const char* name;       // in messages: "PNG"
+  const char* extension;  // what write_image writes the format for, in lower case: ".png"
+  bool (*recognises)(std::span<const unsigned char> first_bytes);
+  ImageF (*decode)(const Input& input, const ImageReadLimits& limits);
+  void (*encode)(Imf::OStream& stream, ImageView<const float> image, int png_bit_depth);
+};
+
+const std::array<Codec, 3> kCodecs = {{
+    {ImageFormat::png, "PNG", ".png",
+     [](std::span<const unsigned char> first) {
+       return first.size() >= 8 && png_sig_cmp(first.data(), 0, 8) == 0;
+     },
+     read_png, write_png},
+    {ImageFormat::exr, "OpenEXR", ".exr",
+     [](std::span<const unsigned char> first) {
+       return first.size() >= 4 && first[0] == 0x76 && first[1] == 0x2f && first[2] == 0x31 &&
+              first[3] == 0x01;
+     },
+     read_exr,
+     [](Imf::OStream& stream, ImageView<const float> image, int) { write_exr(stream, image); }},
+    {ImageFormat::pfm, "PFM", ".pfm",
+     [](std::span<const unsigned char> first) {
+       return first.size() >= 2 && first[0] == 'P' && (first[1] == 'F' || first[1] == 'f');
+     },
+     read_pfm,
+     [](Imf::OStream& stream, ImageView<const float> image, int) { write_pfm(stream, image); }},
+}};
+
+// The rows' `field` that `keep` keeps, as "a, b or c".
+template <typename Keep>
+std::string one_of(const char* Codec::*field, Keep keep) {
+  std::vector<const char*> words;
+  for (const Codec& codec : kCodecs)
+    if (keep(codec)) words.push_back(codec.*field);
+  std::string text;
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    if (i > 0) text += i + 1 == words.size() ? " or " : ", ";
+    text += words[i];
+  }
+  return text;
+}
+
+bool is_written(const Codec& codec) {
+  return codec.encode != nullptr;
+}
+
+const Codec& output_codec(const fs::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension == ".png") return Format::png;
-  if (extension == ".exr") return Format::exr;
-  if (extension == ".pfm") return Format::pfm;
+  for (const Codec& codec : kCodecs)
+    if (is_written(codec) && extension == codec.extension) return codec;
   throw std::invalid_argument("cannot write " + quoted(path) + ": unsupported extension '" +
-                              extension + "'; use .png, .exr or .pfm");
+                              extension + "'; use " + one_of(&Codec::extension, is_written));
+}
+
+[[noreturn]] void throw_empty(const std::string& name) {
+  throw Error(ErrorCode::format, name + " is empty (0 bytes), not an image");
+}
+
+ImageF decode(const Input& input, const ImageReadLimits& limits) {
+  std::array<unsigned char, kSignatureBytes> first{};
+  const std::size_t first_bytes = std::fread(first.data(), 1, first.size(), input.file);
+  if (std::ferror(input.file))
+    throw Error(ErrorCode::io, "cannot read " + input.name + ": " + errno_message(errno));
+  if (first_bytes == 0) throw_empty(input.name);
+  if (std::fseek(input.file, 0, SEEK_SET) != 0)
+    throw Error(ErrorCode::io, "cannot read " + input.name + ": " + errno_message(errno));
+  for (const Codec& codec : kCodecs)
+    if (codec.recognises({first.data(), first_bytes})) return codec.decode(input, limits);
+  const std::string formats = one_of(&Codec::name, [](const Codec&) { return true; });
+  throw Error(ErrorCode::format, input.name + " is not a " + formats +
+                                     " image (its first bytes match none of them); convert it to "
+                                     "one of these formats");
+}
+
+// The checks of write_image's and encode_image's arguments, in that order; each message begins
+// with `cannot` ("cannot write 'out.png'").
+void check_image_shape(ImageView<const float> image, const std::string& cannot) {
+  if (!image.data || image.width < 1 || image.height < 1 || image.channels < 1 ||
+      image.channels > 4)
+    throw std::invalid_argument(cannot + ": the image is " + std::to_string(image.width) + "x" +
+                                std::to_string(image.height) + " pixels with " +
+                                std::to_string(image.channels) +
+                                " channels; it needs at least one pixel and 1 to 4 channels");
+}
+
+void check_bit_depth(const Codec& codec, int png_bit_depth, const std::string& cannot) {
+  if (codec.format == ImageFormat::png && png_bit_depth != 8 && png_bit_depth != 16)
+    throw std::invalid_argument(cannot + ": PNG bit depth " + std::to_string(png_bit_depth) +
+                                " is not supported; use 8 or 16");
+}
+
+void check_channels(const Codec& codec, int channels, const std::string& cannot) {
+  if (codec.format == ImageFormat::pfm && channels != 1 && channels != 3)
+    throw Error(ErrorCode::invalid_input,
+                cannot + ": PFM holds 1 or 3 channels and the image has " +
+                    std::to_string(channels) + "; write .exr or .png instead");
 }
 
 }  // namespace
@@ -619,79 +767,79 @@ ImageF read_image(const fs::path& path, const ImageReadLimits& limits) {
   File file(std::fopen(path.c_str(), "rb"));
   if (!file)
     throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
-
-  std::array<unsigned char, 8> magic{};
-  const std::size_t magic_bytes = std::fread(magic.data(), 1, magic.size(), file.get());
-  if (std::ferror(file.get()))
-    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
-  if (magic_bytes == 0)
-    throw Error(ErrorCode::format, quoted(path) + " is empty (0 bytes), not an image");
-  if (std::fseek(file.get(), 0, SEEK_SET) != 0)
-    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
   std::error_code size_error;
-  const std::uintmax_t file_bytes = fs::file_size(path, size_error);
+  const std::uintmax_t bytes = fs::file_size(path, size_error);
   if (size_error)
     throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + size_error.message());
+  return decode({file.get(), bytes, quoted(path), path.string()}, limits);
+}
 
-  if (magic_bytes == magic.size() && png_sig_cmp(magic.data(), 0, magic.size()) == 0)
-    return read_png(path, file.get(), limits, file_bytes);
-  if (magic_bytes >= 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 &&
-      magic[3] == 0x01) {
-    file.reset();
-    return read_exr(path, limits, file_bytes);
-  }
-  if (magic_bytes >= 2 && magic[0] == 'P' && (magic[1] == 'F' || magic[1] == 'f'))
-    return read_pfm(path, file.get(), limits, file_bytes);
-  throw Error(ErrorCode::format, quoted(path) +
-                                     " is not a PNG, OpenEXR or PFM image (its first bytes match "
-                                     "none of them); convert it to one of these formats");
+ImageF decode_image(std::span<const std::uint8_t> bytes, const std::string& name,
+                    const ImageReadLimits& limits) {
+  if (name.empty())
+    throw std::invalid_argument("decode_image: the bytes need a name for the messages");
+  if (bytes.empty()) throw_empty(name);
+  // fmemopen takes a void *; a stream opened for reading never writes through it.
+  File file(fmemopen(const_cast<std::uint8_t*>(bytes.data()), bytes.size(), "rb"));
+  if (!file) throw std::bad_alloc();
+  return decode({file.get(), bytes.size(), name, name}, limits);
 }
 
 void write_image(const fs::path& path, ImageView<const float> image, int png_bit_depth) {
-  if (!image.data || image.width < 1 || image.height < 1 || image.channels < 1 ||
-      image.channels > 4)
-    throw std::invalid_argument("cannot write " + quoted(path) + ": the image is " +
-                                std::to_string(image.width) + "x" + std::to_string(image.height) +
-                                " pixels with " + std::to_string(image.channels) +
-                                " channels; it needs at least one pixel and 1 to 4 channels");
-  const Format format = output_format(path);
-  if (format == Format::png && png_bit_depth != 8 && png_bit_depth != 16)
-    throw std::invalid_argument("cannot write " + quoted(path) + ": PNG bit depth " +
-                                std::to_string(png_bit_depth) + " is not supported; use 8 or 16");
-  check_output_channels(path, image.channels);
+  const std::string cannot = "cannot write " + quoted(path);
+  check_image_shape(image, cannot);
+  const Codec& codec = output_codec(path);
+  check_bit_depth(codec, png_bit_depth, cannot);
+  check_channels(codec, image.channels, cannot);
 
   AtomicFile file(path);
   try {
-    switch (format) {
-      case Format::png:
-        write_png(file.stream(), image, png_bit_depth);
-        break;
-      case Format::exr:
-        write_exr(file.stream(), file.temporary(), image);
-        break;
-      case Format::pfm:
-        write_pfm(file.stream(), image);
-        break;
-    }
+    FileOutputStream stream(file.stream(), file.temporary().c_str());
+    codec.encode(stream, image, png_bit_depth);
   } catch (const std::exception& e) {
-    throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": " + e.what());
+    throw Error(ErrorCode::io, cannot + ": " + e.what());
   }
   file.commit();
 }
 
+std::vector<std::uint8_t> encode_image(ImageView<const float> image, ImageFormat format,
+                                       int png_bit_depth) {
+  const auto codec = std::find_if(kCodecs.begin(), kCodecs.end(), [&](const Codec& row) {
+    return row.format == format && is_written(row);
+  });
+  if (codec == kCodecs.end())
+    throw std::invalid_argument("encode_image: no encoder for image format " +
+                                std::to_string(static_cast<int>(format)));
+  const std::string cannot = std::string("cannot encode the image as ") + codec->name;
+  check_image_shape(image, cannot);
+  check_bit_depth(*codec, png_bit_depth, cannot);
+  check_channels(*codec, image.channels, cannot);
+
+  BufferOutputStream stream("the encoded image");
+  try {
+    codec->encode(stream, image, png_bit_depth);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(ErrorCode::io, cannot + ": " + e.what());
+  }
+  return stream.take();
+}
+
+ImageFormat output_image_format(const fs::path& path) {
+  return output_codec(path).format;
+}
+
 bool is_exr_output(const fs::path& path) {
-  return output_format(path) == Format::exr;
+  return output_image_format(path) == ImageFormat::exr;
 }
 
 void check_output_channels(const fs::path& path, int channels) {
-  if (output_format(path) == Format::pfm && channels != 1 && channels != 3)
-    throw Error(ErrorCode::invalid_input,
-                "cannot write " + quoted(path) + ": PFM holds 1 or 3 channels and the image has " +
-                    std::to_string(channels) + "; write .exr or .png instead");
+  check_channels(output_codec(path), channels, "cannot write " + quoted(path));
 }
 
 void check_output_path(const fs::path& path, bool image, const fs::path& input) {
-  if (image) output_format(path);
+  if (image) output_codec(path);
   check_output_target(path);
   if (!input.empty()) check_output_is_not_input(path, input);
 }

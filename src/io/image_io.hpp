@@ -14,8 +14,11 @@ namespace stochtex {
 void check_output_path(const std::filesystem::path& path, bool image,
                        const std::filesystem::path& input = {});
 
-// Whether `path` names an OpenEXR output (extension .exr in any case); std::invalid_argument for
-// an extension write_image does not know.
+// The format write_image writes `path` in, by its extension (.png, .exr or .pfm in any case);
+// std::invalid_argument for an extension it does not know.
+ImageFormat output_image_format(const std::filesystem::path& path);
+
+// Whether `path` names an OpenEXR output (output_image_format is exr).
 bool is_exr_output(const std::filesystem::path& path);
 
 // Checks that an image of `channels` channels can be written to `path` (PFM holds 1 or 3), so

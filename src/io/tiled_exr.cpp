@@ -17,7 +17,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/file_message.hpp"
-#include "io/exr_file_stream.hpp"
+#include "io/image_streams.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
@@ -77,7 +77,7 @@ void write_tiled_exrs(std::span<const TiledExrFile> files, const Grid& grid,
   std::size_t current = 0;  // the file being opened or written, for the messages
   try {
     Imf::setGlobalThreadCount(options.threads);
-    std::vector<std::unique_ptr<ExrFileStream>> streams;
+    std::vector<std::unique_ptr<FileOutputStream>> streams;
     std::vector<std::unique_ptr<Imf::TiledOutputFile>> outputs;
     for (; current < files.size(); ++current) {
       const TiledExrFile& file = files[current];
@@ -92,8 +92,8 @@ void write_tiled_exrs(std::span<const TiledExrFile> files, const Grid& grid,
       for (int c = 0; c < file.channels; ++c)
         header.channels().insert(names[c], Imf::Channel(type));
       atomic.push_back(std::make_unique<AtomicFile>(file.path));
-      streams.push_back(std::make_unique<ExrFileStream>(atomic.back()->stream(),
-                                                        atomic.back()->temporary().c_str()));
+      streams.push_back(std::make_unique<FileOutputStream>(atomic.back()->stream(),
+                                                           atomic.back()->temporary().c_str()));
       outputs.push_back(
           std::make_unique<Imf::TiledOutputFile>(*streams.back(), header, options.threads));
     }

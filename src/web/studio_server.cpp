@@ -5,30 +5,24 @@
 #include <malloc.h>
 #include <pthread.h>
 #include <signal.h>
-#include <stdlib.h>
 #include <sys/socket.h>
 
 #include <atomic>
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <optional>
 #include <random>
 #include <regex>
-#include <system_error>
 #include <thread>
 
-#include "core/file_message.hpp"
 #include "gl/languages.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/stochtex.hpp"
 #include "web/assets.hpp"
 
 namespace stochtex::web {
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -37,29 +31,6 @@ constexpr std::string_view kClientCookie = "stochtex_client=";
 const std::regex kClientId("[0-9a-f]{16}");
 const std::string kId = "([0-9a-f]{16})";  // the ids the store makes
 constexpr std::size_t kMaxJsonBody = 64 * 1024;
-
-// The private temporary folder of one server, removed with everything in it at the end.
-class TemporaryFolder {
- public:
-  TemporaryFolder() {
-    std::string pattern = (fs::temp_directory_path() / "stochtex-studio-XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr)
-      throw Error(ErrorCode::io, "cannot create the studio's temporary folder in " +
-                                     quoted(fs::temp_directory_path()) + ": " +
-                                     errno_message(errno) + "; set TMPDIR to a writable folder");
-    path_ = pattern;
-  }
-  ~TemporaryFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TemporaryFolder(const TemporaryFolder&) = delete;
-  TemporaryFolder& operator=(const TemporaryFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 void send_json(httplib::Response& res, const nlohmann::ordered_json& doc, int status = 200) {
   res.status = status;
@@ -375,8 +346,7 @@ void serve_studio(const StudioOptions& options,
   // own rather than left in the request threads' heaps, where glibc's dynamic threshold would put
   // them after the first free: the server's memory then follows what it holds.
   ::mallopt(M_MMAP_THRESHOLD, 256 * 1024);
-  const TemporaryFolder folder;
-  StudioStore store(options.limits, folder.path());
+  StudioStore store(options.limits);
   httplib::Server server;
   server.new_task_queue = [] { return new httplib::ThreadPool(8); };
   server.set_payload_max_length(options.limits.max_upload_bytes);

@@ -19,10 +19,9 @@ struct StudioOptions {
 bool is_loopback_host(const std::string& host);
 
 // Binds to options.host:options.port, calls `listening` with the URL served
-// ("http://127.0.0.1:8080/"), then serves until SIGINT, SIGTERM or SIGHUP arrives; removes its
-// temporary folder before it returns. Throws Error when it cannot bind or make its folder. Call
-// it before other threads are started: it blocks those signals in this thread and every thread
-// started after, and waits for them in a thread of its own.
+// ("http://127.0.0.1:8080/"), then serves until SIGINT, SIGTERM or SIGHUP arrives. Throws Error
+// when it cannot bind. Call it before other threads are started: it blocks those signals in this
+// thread and every thread started after, and waits for them in a thread of its own.
 void serve_studio(const StudioOptions& options,
                   const std::function<void(const std::string& url)>& listening);
 

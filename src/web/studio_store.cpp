@@ -8,18 +8,15 @@
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <new>
 #include <optional>
 #include <random>
-#include <sstream>
 #include <string_view>
-#include <system_error>
 #include <utility>
 #include <vector>
 
+#include "io/image_io.hpp"
 #include "model/model_data.hpp"
 #include "registry.hpp"
 #include "report/compare.hpp"
@@ -29,8 +26,6 @@
 #include "web/web_export.hpp"
 
 namespace stochtex::web {
-
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -57,19 +52,10 @@ const char* state_name(State state) {
 // Thrown by the progress callback of a cancelled analysis.
 struct Cancelled {};
 
-std::string read_bytes(const fs::path& path) {
-  std::ifstream file(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << file.rdbuf();
-  if (!file) throw StudioError(500, "the server could not read back its own temporary file");
-  return std::move(bytes).str();
-}
-
-void write_bytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  file.close();
-  if (!file) throw StudioError(500, "the server could not write its temporary file");
+// An image's file bytes in `format`, as the HTTP answers hold them.
+std::string encode(ImageView<const float> image, ImageFormat format, int png_bit_depth = 8) {
+  const std::vector<std::uint8_t> bytes = encode_image(image, format, png_bit_depth);
+  return {bytes.begin(), bytes.end()};
 }
 
 // `entries` (name, bytes) as a zip archive, every file dated 1980-01-01 (zip's earliest time), so
@@ -104,25 +90,6 @@ std::string zip_archive(const std::vector<std::pair<std::string, std::string>>& 
   }
   check(archive_write_close(writer.get()));
   return bytes;
-}
-
-// Removes the file when it goes out of scope.
-struct ScratchFile {
-  fs::path path;
-  ~ScratchFile() {
-    std::error_code ignored;
-    fs::remove(path, ignored);
-  }
-};
-
-// `message` with every mention of `path` (quoted) replaced by `name`.
-std::string rename_file_in_message(std::string message, const fs::path& path,
-                                   const std::string& name) {
-  const std::string quoted_path = "'" + path.string() + "'";
-  for (std::size_t at = message.find(quoted_path); at != std::string::npos;
-       at = message.find(quoted_path, at + name.size()))
-    message.replace(at, quoted_path.size(), name);
-  return message;
 }
 
 template <typename Map>
@@ -183,8 +150,7 @@ struct StudioStore::StoredModel {
   mutable std::shared_ptr<const void> groups;
 };
 
-StudioStore::StudioStore(StudioLimits limits, fs::path folder)
-    : limits_(limits), folder_(std::move(folder)) {
+StudioStore::StudioStore(StudioLimits limits) : limits_(limits) {
   std::random_device random;
   id_state_ = (std::uint64_t{random()} << 32) ^ random();
   worker_ = std::thread([this] { work(); });
@@ -208,42 +174,29 @@ std::string StudioStore::new_id() {
   return fmt::format("{:016x}", z ^ (z >> 31));
 }
 
-fs::path StudioStore::scratch_path(const std::string& extension) {
-  std::lock_guard lock(mutex_);
-  return folder_ / fmt::format("scratch-{}{}", next_file_++, extension);
-}
-
-std::string StudioStore::encode_png(ImageView<const float> image) {
-  const ScratchFile file{scratch_path(".png")};
-  write_image(file.path, image);
-  return read_bytes(file.path);
-}
-
 nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
   if (bytes.size() > limits_.max_upload_bytes)
     throw StudioError(413, fmt::format("the upload is {} bytes, more than the limit of {} bytes; "
                                        "upload a smaller image",
                                        bytes.size(), limits_.max_upload_bytes));
   auto exemplar = std::make_shared<Exemplar>();
-  {
-    const ScratchFile file{scratch_path(".upload")};
-    write_bytes(file.path, bytes);
-    const std::int64_t side = limits_.max_exemplar_side;
-    try {
-      exemplar->image = read_image(file.path, {.max_pixels = side * side});
-      validate_exemplar(exemplar->image.view(), kUploadName);
-    } catch (const Error& e) {
-      std::string message = rename_file_in_message(e.what(), file.path, kUploadName);
-      if (e.code() == ErrorCode::invalid_input &&
-          message.find("more than the limit") != std::string::npos)
-        message =
-            fmt::format("{} (the studio takes exemplars up to {}x{} pixels)", message, side, side);
-      throw StudioError(400, message);
-    }
+  const std::int64_t side = limits_.max_exemplar_side;
+  try {
+    exemplar->image =
+        decode_image({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()},
+                     kUploadName, {.max_pixels = side * side});
+    validate_exemplar(exemplar->image.view(), kUploadName);
+  } catch (const Error& e) {
+    std::string message = e.what();
+    if (e.code() == ErrorCode::invalid_input &&
+        message.find("more than the limit") != std::string::npos)
+      message =
+          fmt::format("{} (the studio takes exemplars up to {}x{} pixels)", message, side, side);
+    throw StudioError(400, message);
   }
   {
     const std::lock_guard heavy(heavy_);
-    exemplar->png = encode_png(exemplar->image.view());
+    exemplar->png = encode(exemplar->image.view(), ImageFormat::png);
   }
   std::lock_guard lock(mutex_);
   const std::string id = new_id();
@@ -270,7 +223,7 @@ std::string StudioStore::exemplar_png(const std::string& id, bool gaussian) {
   if (cached.empty()) {
     const ImageView<const float> image = exemplar->image.view();
     const ImageF version = gaussian_version(image, image.width, image.height, 1);
-    cached = encode_png(version.view());
+    cached = encode(version.view(), ImageFormat::png);
   }
   return cached;
 }
@@ -515,10 +468,8 @@ std::string StudioStore::shader_zip(const std::string& id, const ShaderExportOpt
   for (const TextFile& wrapper : files.wrappers) entries.emplace_back(wrapper.name, wrapper.text);
   for (const ShaderTexture& texture : files.textures) {
     const std::string name = texture.file_name();
-    const ScratchFile file{scratch_path(fs::path(name).extension().string())};
-    write_image(file.path, texture.image.view(),
-                texture.encoding == TextureEncoding::png16 ? 16 : 8);
-    entries.emplace_back(name, read_bytes(file.path));
+    entries.emplace_back(name, encode(texture.image.view(), output_image_format(name),
+                                      texture.encoding == TextureEncoding::png16 ? 16 : 8));
   }
   entries.emplace_back("README.md", files.readme);
   return zip_archive(entries);
@@ -540,7 +491,7 @@ std::string StudioStore::render_png(const std::string& id, const RenderRequest& 
   const std::lock_guard heavy(heavy_);
   ImageF image(request.width, request.height, stored->model.channels());
   render(stored->model, grid, request.seed, image.view());
-  return encode_png(image.view());
+  return encode(image.view(), ImageFormat::png);
 }
 
 nlohmann::ordered_json StudioStore::compare(const std::string& id, std::uint32_t seed) {

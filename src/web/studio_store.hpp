@@ -1,16 +1,15 @@
 #pragma once
 // What `stochtex studio` holds (docs/studio.md): the uploaded exemplars, the analyses (run one at
 // a time by one worker thread, from a bounded queue, at most one queued or running per browser
-// client) and the models they made, each kept up to a count and the oldest evicted. Files that
-// the image and model code needs are written to the store's own temporary folder under names the
-// store makes; nothing from a request names a file. Every failure is a StudioError: an HTTP status
-// and one sentence for the JSON error body.
+// client) and the models they made, each kept up to a count and the oldest evicted. Images and
+// models are decoded and encoded in memory: the store writes no file, and nothing from a request
+// names one. Every failure is a StudioError: an HTTP status and one sentence for the JSON error
+// body.
 
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
-#include <filesystem>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -59,8 +58,7 @@ struct RenderRequest {
 
 class StudioStore {
  public:
-  // `folder`: an existing, private, empty folder the store may write to (and the caller removes).
-  StudioStore(StudioLimits limits, std::filesystem::path folder);
+  explicit StudioStore(StudioLimits limits);
   ~StudioStore();  // cancels the running analysis and stops the worker
   StudioStore(const StudioStore&) = delete;
   StudioStore& operator=(const StudioStore&) = delete;
@@ -118,18 +116,14 @@ class StudioStore {
   std::pair<const EditCapability*, std::shared_ptr<const void>> edit_groups(
       const StoredModel& stored, const std::string& id);
   std::string new_id();
-  std::filesystem::path scratch_path(const std::string& extension);
-  std::string encode_png(ImageView<const float> image);
   void work();
   void run(Analysis& analysis);
   void evict_analyses();
 
   StudioLimits limits_;
-  std::filesystem::path folder_;
   std::mutex mutex_;  // guards everything below but the heavy-work mutex
   std::condition_variable wake_;
   bool stopping_ = false;
-  std::uint64_t next_file_ = 0;
   std::uint64_t id_state_ = 0;
   std::map<std::string, std::shared_ptr<const Exemplar>> exemplars_;
   std::deque<std::string> exemplar_order_;

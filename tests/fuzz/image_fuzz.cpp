@@ -1,6 +1,7 @@
-// Deterministic mutation fuzzing of read_image (docs/design.md §9): small valid PNG, OpenEXR and
-// PFM files are damaged in seeded, reproducible ways, and every damaged file must either read as
-// a consistent image or throw stochtex::Error. Any other exception, or a crash, fails the test.
+// Deterministic mutation fuzzing of read_image and decode_image (docs/design.md §9): small valid
+// PNG, OpenEXR and PFM files are damaged in seeded, reproducible ways, and every damaged file must
+// either read as a consistent image or throw stochtex::Error, and its bytes must decode from
+// memory to the same image or the same error. Any other exception, or a crash, fails the test.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -20,6 +21,7 @@
 
 #include "io/image_io.hpp"
 #include "stochtex/error.hpp"
+#include "test_support.hpp"
 
 namespace stochtex {
 namespace {
@@ -42,7 +44,7 @@ void write_bytes(const fs::path& path, const Bytes& bytes) {
 }
 
 struct Seed {
-  std::string name;
+  std::string name;  // with the extension of its format
   Bytes bytes;
   bool png = false;
 };
@@ -167,6 +169,33 @@ void mutate(Bytes& bytes, std::mt19937& random) {
   }
 }
 
+// What reading gave: an image, or the code and message of the stochtex::Error thrown, with the
+// file's name in the message, quoted (stochtex's words for a file) or not (OpenEXR's, and the
+// name decode_image is given here), replaced by "<name>".
+struct Outcome {
+  ImageF image;
+  bool refused = false;
+  ErrorCode code = ErrorCode::numerical;
+  std::string message;
+};
+
+template <typename Read>
+Outcome outcome_of(const Read& read, const std::string& name) {
+  Outcome outcome;
+  try {
+    outcome.image = read();
+  } catch (const Error& error) {
+    outcome.refused = true;
+    outcome.code = error.code();
+    outcome.message = error.what();
+    for (const std::string& spelling : {"'" + name + "'", name})
+      for (std::size_t at = outcome.message.find(spelling); at != std::string::npos;
+           at = outcome.message.find(spelling, at))
+        outcome.message.replace(at, spelling.size(), "<name>");
+  }
+  return outcome;
+}
+
 TEST(ImageFuzz, MutatedFilesReadOrThrowError) {
   const fs::path folder =
       fs::temp_directory_path() / ("stochtex_image_fuzz_" + std::to_string(::getpid()));
@@ -188,16 +217,35 @@ TEST(ImageFuzz, MutatedFilesReadOrThrowError) {
     write_bytes(mutated_path, bytes);
     const std::string context = "iteration " + std::to_string(iteration) + " from " + seed.name;
     try {
-      const ImageF image = read_image(mutated_path, limits);
+      const Outcome file =
+          outcome_of([&] { return read_image(mutated_path, limits); }, mutated_path.string());
+      const Outcome memory =
+          outcome_of([&] { return decode_image(bytes, mutated_path.string(), limits); },
+                     mutated_path.string());
+      ASSERT_EQ(memory.refused, file.refused) << context << ": " << file.message << memory.message;
+      if (file.refused) {
+        ASSERT_EQ(memory.code, file.code) << context;
+        ASSERT_EQ(memory.message, file.message) << context;
+        ++errors_thrown;
+        continue;
+      }
+      const ImageF& image = file.image;
       ASSERT_GT(image.width(), 0) << context;
       ASSERT_GT(image.height(), 0) << context;
       ASSERT_GE(image.channels(), 1) << context;
       ASSERT_LE(image.channels(), 4) << context;
       ASSERT_LE(static_cast<std::int64_t>(image.pixel_count()), limits.max_pixels) << context;
       ASSERT_EQ(image.pixels().size(), image.pixel_count() * image.channels()) << context;
+      ASSERT_EQ(memory.image.width(), image.width()) << context;
+      ASSERT_EQ(memory.image.height(), image.height()) << context;
+      ASSERT_EQ(memory.image.channels(), image.channels()) << context;
+      // OpenEXR 3.1 gives some damaged chunks the pixels of a buffer it never wrote (valgrind:
+      // allocated by Imf::newCompressor), which differ from one read to the next: only the
+      // pixels of the other formats are compared.
+      if (!seed.name.ends_with(".exr")) {
+        ASSERT_TRUE(test_support::same_bytes(memory.image, image)) << context;
+      }
       ++images_read;
-    } catch (const Error&) {
-      ++errors_thrown;
     } catch (const std::exception& e) {
       FAIL() << context << " threw something other than stochtex::Error: " << e.what();
     }

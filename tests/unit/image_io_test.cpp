@@ -347,10 +347,11 @@ TEST_F(ImageIoTest, HugeDeclaredSizesAreRefusedBeforeAllocating) {
   EXPECT_EQ(read_error_code(file("huge.exr")), ErrorCode::invalid_input);
 }
 
-// In a child process (a death test), reads `path` with an address space that may grow by 64 MiB
-// only: exits 0 when the read is refused cleanly, and dies when anything near the declared size is
-// allocated.
-[[noreturn]] void read_with_little_memory(const fs::path& path) {
+// In a child process (a death test), reads `path` (or decodes its bytes, with `from_memory`) with
+// an address space that may grow by 64 MiB only: exits 0 when the read is refused cleanly, and
+// dies when anything near the declared size is allocated.
+[[noreturn]] void read_with_little_memory(const fs::path& path, bool from_memory) {
+  const Bytes bytes = from_memory ? read_bytes(path) : Bytes();
   std::ifstream statm("/proc/self/statm");
   std::uint64_t pages = 0;
   statm >> pages;
@@ -358,7 +359,10 @@ TEST_F(ImageIoTest, HugeDeclaredSizesAreRefusedBeforeAllocating) {
   const rlimit address_space{limit, limit};
   ::setrlimit(RLIMIT_AS, &address_space);
   try {
-    read_image(path);
+    if (from_memory)
+      decode_image(bytes, "the upload");
+    else
+      read_image(path);
   } catch (const Error&) {
     std::_Exit(0);
   }
@@ -366,7 +370,9 @@ TEST_F(ImageIoTest, HugeDeclaredSizesAreRefusedBeforeAllocating) {
 }
 
 void expect_refused_without_allocating(const fs::path& path) {
-  EXPECT_EXIT(read_with_little_memory(path), testing::ExitedWithCode(0), "") << path;
+  for (const bool from_memory : {false, true})
+    EXPECT_EXIT(read_with_little_memory(path, from_memory), testing::ExitedWithCode(0), "")
+        << path << (from_memory ? " from memory" : "");
 }
 
 void append_u32_little_endian(Bytes& bytes, std::uint32_t value) {
@@ -503,6 +509,117 @@ TEST_F(ImageIoTest, WritingLeavesOnlyTheOutputAndReplacesAnOldOne) {
   for (const auto& path : folder_contents()) names.push_back(path.filename().string());
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"out.exr", "out.pfm", "out.png"}));
+}
+
+// The error `decode_image` of `bytes` throws, its message naming the buffer "the upload".
+Error decode_error(const Bytes& bytes, const ImageReadLimits& limits = {}) {
+  try {
+    decode_image(bytes, "the upload", limits);
+  } catch (const Error& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("the upload ", 0), 0u)
+        << "the message begins with the buffer's name: " << error.what();
+    return error;
+  }
+  ADD_FAILURE() << "decoding did not throw";
+  return Error(ErrorCode::numerical, "");
+}
+
+TEST_F(ImageIoTest, BuffersHoldTheFilesBytes) {
+  const ImageF rgba = make_image(23, 9, 4, [](int x, int y, int c) {
+    return static_cast<float>((x * 4099 + y * 1601 + c * 12345) % 65536) / 65535.0f;
+  });
+  const ImageF rgb = make_image(13, 11, 3, [](int x, int y, int c) {
+    return static_cast<float>(x * 100 + y) * 1e-3f - static_cast<float>(c) * 7.5f;
+  });
+  const ImageF grey = make_image(5, 7, 1, [](int x, int y, int) {
+    return std::ldexp(static_cast<float>(x - 2) * 0.3183099f, y - 3);
+  });
+  struct Case {
+    const char* name;
+    ImageFormat format;
+    const ImageF& image;
+    int bit_depth;
+  };
+  for (const Case& test :
+       {Case{"rgba8.png", ImageFormat::png, rgba, 8},
+        Case{"rgba16.png", ImageFormat::png, rgba, 16},
+        Case{"grey16.png", ImageFormat::png, grey, 16}, Case{"rgba.exr", ImageFormat::exr, rgba, 8},
+        Case{"grey.exr", ImageFormat::exr, grey, 8}, Case{"rgb.pfm", ImageFormat::pfm, rgb, 8},
+        Case{"grey.pfm", ImageFormat::pfm, grey, 8}}) {
+    write_image(file(test.name), test.image.view(), test.bit_depth);
+    const Bytes written = read_bytes(file(test.name));
+    const std::vector<std::uint8_t> encoded =
+        encode_image(test.image.view(), test.format, test.bit_depth);
+    EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), written) << test.name;
+    const ImageF decoded = decode_image(written, test.name);
+    EXPECT_TRUE(test_support::same_bytes(decoded, read_image(file(test.name)))) << test.name;
+  }
+  EXPECT_EQ(output_image_format(file("A.PNG")), ImageFormat::png);
+  EXPECT_EQ(output_image_format(file("a.Exr")), ImageFormat::exr);
+  EXPECT_EQ(output_image_format(file("a.pfm")), ImageFormat::pfm);
+}
+
+TEST_F(ImageIoTest, BadBuffersAreRefusedWithASentenceNamingThem) {
+  const ImageF image = make_image(32, 32, 3, [](int x, int y, int c) {
+    return static_cast<float>((x * 37 + y * 11 + c) % 256) / 255.0f;
+  });
+  for (const ImageFormat format : {ImageFormat::png, ImageFormat::exr, ImageFormat::pfm}) {
+    const std::vector<std::uint8_t> whole = encode_image(image.view(), format);
+    const Bytes half(whole.begin(), whole.begin() + static_cast<std::ptrdiff_t>(whole.size() / 2));
+    const Error error = decode_error(half);
+    EXPECT_EQ(error.code(), ErrorCode::format) << error.what();
+    EXPECT_NE(std::string(error.what()).find("truncated"), std::string::npos) << error.what();
+  }
+
+  // The same refusals as the files, in the same words but for the name.
+  const Bytes huge_png = handmade_png(100000, 100000, 8, 0, {0, 1});
+  write_bytes(file("huge.png"), huge_png);
+  const std::string pfm_header = "PF\n4096 4096\n-1.0\n";
+  const Bytes huge_pfm(pfm_header.begin(), pfm_header.end());
+  write_bytes(file("huge.pfm"), huge_pfm);
+  for (const auto& [name, bytes] :
+       {std::pair{"huge.png", huge_png}, std::pair{"huge.pfm", huge_pfm}}) {
+    std::string from_file;
+    try {
+      read_image(file(name));
+    } catch (const Error& error) {
+      from_file = error.what();
+    }
+    const std::string quoted_path = "'" + file(name).string() + "'";
+    ASSERT_EQ(from_file.rfind(quoted_path, 0), 0u) << from_file;
+    const Error error = decode_error(bytes);
+    EXPECT_EQ(std::string(error.what()), "the upload" + from_file.substr(quoted_path.size()));
+  }
+  EXPECT_EQ(decode_error(huge_png).code(), ErrorCode::invalid_input);
+  EXPECT_EQ(decode_error(huge_pfm).code(), ErrorCode::format);
+
+  EXPECT_EQ(std::string(decode_error({}).what()), "the upload is empty (0 bytes), not an image");
+  const Error noise = decode_error({'h', 'e', 'l', 'l', 'o'});
+  EXPECT_EQ(noise.code(), ErrorCode::format);
+  EXPECT_NE(std::string(noise.what()).find("not a PNG, OpenEXR or PFM image"), std::string::npos)
+      << noise.what();
+  ImageReadLimits limits;
+  limits.max_pixels = 255;
+  const std::vector<std::uint8_t> small =
+      encode_image(ImageF(16, 16, 1, 0.5f).view(), ImageFormat::png);
+  EXPECT_EQ(decode_error(Bytes(small.begin(), small.end()), limits).code(),
+            ErrorCode::invalid_input);
+  EXPECT_THROW(decode_image(small, ""), std::invalid_argument);
+}
+
+TEST_F(ImageIoTest, BadEncodeArgumentsAreRefused) {
+  const ImageF image(2, 2, 4, 0.5f);
+  EXPECT_THROW(encode_image(image.view(), ImageFormat::png, 12), std::invalid_argument);
+  EXPECT_THROW(encode_image(ImageF().view(), ImageFormat::exr), std::invalid_argument);
+  try {
+    encode_image(image.view(), ImageFormat::pfm);
+    FAIL() << "a 4-channel PFM was encoded";
+  } catch (const Error& error) {
+    EXPECT_EQ(error.code(), ErrorCode::invalid_input);
+    EXPECT_EQ(std::string(error.what()),
+              "cannot encode the image as PFM: PFM holds 1 or 3 channels and the image has 4; "
+              "write .exr or .png instead");
+  }
 }
 
 TEST_F(ImageIoTest, BadWriteArgumentsAreInvalidArguments) {

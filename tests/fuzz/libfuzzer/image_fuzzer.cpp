@@ -1,24 +1,22 @@
-// Coverage-guided fuzzing (libFuzzer) of the image readers (docs/design.md §9): the input is a file
-// of any format, recognised by its first bytes as read_image does (PNG, OpenEXR, PFM; the seed
-// corpus in tests/fuzz/corpus/image has each). Every input must read as a consistent image or be
-// refused with stochtex::Error; anything else (another exception, a crash, a sanitizer report, an
+// Coverage-guided fuzzing (libFuzzer) of the image readers (docs/design.md §9): the input is an
+// image file's bytes in any format, decoded from memory by decode_image, which shares read_image's
+// decoders and recognises the format by its first bytes (PNG, OpenEXR, PFM; the seed corpus in
+// tests/fuzz/corpus/image has each). Every input must decode to a consistent image or be refused
+// with stochtex::Error; anything else (another exception, a crash, a sanitizer report, an
 // allocation beyond libFuzzer's -rss_limit_mb) is a finding. Built by scripts/sanitize.sh.
 
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <string>
 
-#include "input_file.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string& input_path = write_input_file("image", "", data, size);
   try {
     stochtex::ImageReadLimits limits;
     limits.max_pixels = std::int64_t{1} << 20;
-    const stochtex::ImageF image = stochtex::read_image(input_path, limits);
+    const stochtex::ImageF image = stochtex::decode_image({data, size}, "the input", limits);
     const auto expected = static_cast<std::size_t>(image.width()) *
                           static_cast<std::size_t>(image.height()) *
                           static_cast<std::size_t>(image.channels());
