@@ -21,7 +21,7 @@ flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-po
 # compile, though beside other work; -O2 stays until a quiet measurement says otherwise.)
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
-  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags -fsanitize=fuzzer-no-link" \
+  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" \
   -DSTOCHTEX_LIBFUZZER=ON -DSTOCHTEX_BUILD_BENCH=OFF -DSTOCHTEX_BUILD_PYTHON=OFF \
   -DSTOCHTEX_BUILD_SLOW_TESTS=OFF -DSTOCHTEX_TEST_TIMEOUT_SCALE=4 \
   -DSTOCHTEX_SIMD_DISABLED_TARGETS="HWY_SSSE3|HWY_AVX3_DL|HWY_SSE4|HWY_AVX2"
