@@ -17,8 +17,8 @@
 
 #include "arrays.hpp"
 #include "core/memory_budget.hpp"
-#include "core/parallel.hpp"
 #include "model/map_layout.hpp"
+#include "renderer/plan.hpp"
 #include "report/compare.hpp"
 #include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
@@ -149,36 +149,44 @@ py::dict split_image(const Model& model, const py::array& image) {
   return maps;
 }
 
-// The grid of a render request, checked as the CLI checks it: sizes, threads, positions and the
-// memory budget (docs/design.md §9; a larger image is rendered in pieces with offset, or as a
-// dask array, whose chunks each stay within it).
-Grid checked_grid(int width, int height, std::array<double, 2> origin, double scale, int threads,
-                  std::array<std::int64_t, 2> offset) {
+// A render request: its grid and its render options (threads).
+struct RenderJob {
+  Grid grid;
+  RenderOptions options;
+};
+
+// A render request checked as the CLI checks it: sizes, threads, positions and the memory budget,
+// within which threads=0 takes as many cores as fit (renderer::budgeted_threads, docs/design.md
+// §9; a larger image is rendered in pieces with offset, or as a dask array, whose chunks each
+// stay within it).
+RenderJob checked_render(int width, int height, std::array<double, 2> origin, double scale,
+                         int threads, std::array<std::int64_t, 2> offset) {
   if (width < 1 || height < 1 || width > (1 << 16) || height > (1 << 16))
     throw py::value_error("render's width and height must be between 1 and 65536, not " +
                           std::to_string(width) + "x" + std::to_string(height));
   if (threads < 0 || threads > kMaxThreads)
     throw py::value_error("threads must be 0 (all) to " + std::to_string(kMaxThreads));
-  const Grid grid{{origin[0], origin[1]}, scale, width, height, offset[0], offset[1]};
-  check_grid(grid, "render's grid");
-  check_memory_budget(
-      render_peak_bytes(width, height, RenderOptions{}.tile_size, 1, resolve_thread_count(threads)),
-      "rendering " + std::to_string(width) + "x" + std::to_string(height) + " pixels",
+  RenderJob job;
+  job.grid = {{origin[0], origin[1]}, scale, width, height, offset[0], offset[1]};
+  check_grid(job.grid, "render's grid");
+  job.options.threads = renderer::budgeted_threads(
+      width, height, job.options.tile_size, job.options.supersample, threads,
+      [&](int) {
+        return "rendering " + std::to_string(width) + "x" + std::to_string(height) + " pixels";
+      },
       "render it in pieces with offset, or with stochtex.dask.render");
-  return grid;
+  return job;
 }
 
 py::dict render_material(const Model& model, int width, int height, std::array<double, 2> origin,
                          double scale, std::uint32_t seed, int threads,
                          std::array<std::int64_t, 2> offset) {
-  const Grid grid = checked_grid(width, height, origin, scale, threads, offset);
-  RenderOptions options;
-  options.threads = threads;
+  const RenderJob job = checked_render(width, height, origin, scale, threads, offset);
   std::vector<NamedImage> maps;
   {
     py::gil_scoped_release release;
-    maps = render_maps(model, grid, [&](const Grid& part, ImageView<float> out) {
-      render(model, part, seed, out, options);
+    maps = render_maps(model, job.grid, [&](const Grid& part, ImageView<float> out) {
+      render(model, part, seed, out, job.options);
     });
   }
   py::dict result;
@@ -190,13 +198,11 @@ py::array_t<float> render_model(const Model& model, int width, int height,
                                 std::array<double, 2> origin, double scale, std::uint32_t seed,
                                 int threads, std::array<std::int64_t, 2> offset,
                                 const py::object& progress) {
-  const Grid grid = checked_grid(width, height, origin, scale, threads, offset);
+  RenderJob job = checked_render(width, height, origin, scale, threads, offset);
   OutputArray output = output_array(width, height, model.channels());
-  RenderOptions options;
-  options.threads = threads;
-  options.progress = progress_hook(progress);
+  job.options.progress = progress_hook(progress);
   py::gil_scoped_release release;
-  render(model, grid, seed, output.view, options);
+  render(model, job.grid, seed, output.view, job.options);
   return output.array;
 }
 

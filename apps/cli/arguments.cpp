@@ -3,7 +3,6 @@
 #include <fmt/core.h>
 
 #include <cmath>
-#include <cstdint>
 #include <exception>
 #include <regex>
 #include <stdexcept>
@@ -20,42 +19,24 @@ std::optional<Size> parse_size(const std::string& text) {
   return Size{std::stoi(match[1]), std::stoi(match[2])};
 }
 
-bool fits_in_memory(std::int64_t width, std::int64_t height) {
-  return width <= kMaxInMemorySide && height <= kMaxInMemorySide &&
-         width * height <= kMaxInMemoryPixels;
-}
-
-namespace {
-
-Size parsed_size(const std::string& text) {
+Size size_option(const std::string& text) {
   const std::optional<Size> size = parse_size(text);
   if (!size)
     throw std::invalid_argument("--size must be WIDTHxHEIGHT, e.g. 512x512, not '" + text + "'");
   return *size;
 }
 
-}  // namespace
-
 Size output_size(const std::string& text) {
-  const Size size = parsed_size(text);
-  if (size.width < 1 || size.height < 1 || !fits_in_memory(size.width, size.height))
+  const Size size = size_option(text);
+  if (size.width < 1 || size.height < 1 || !renderer::fits_in_memory(size.width, size.height))
     throw std::invalid_argument(
         fmt::format("--size {} is out of range: each side must be 1 to {} and the "
                     "image at most {} pixels",
-                    text, kMaxInMemorySide, kMaxInMemoryPixels));
+                    text, renderer::kMaxInMemorySide, renderer::kMaxInMemoryPixels));
   return size;
 }
 
-Size render_size(const std::string& text) {
-  const Size size = parsed_size(text);
-  if (size.width < 1 || size.height < 1 || size.width > kMaxStreamedSide ||
-      size.height > kMaxStreamedSide)
-    throw std::invalid_argument(fmt::format("--size {} is out of range: each side must be 1 to {}",
-                                            text, kMaxStreamedSide));
-  return size;
-}
-
-Region parse_region(const std::string& text, Size frame) {
+renderer::PixelRegion parse_region(const std::string& text) {
   static const std::regex pattern(R"((\d{1,7}),(\d{1,7}),(\d{1,7}),(\d{1,7}))");
   std::smatch match;
   if (!std::regex_match(text, match, pattern))
@@ -63,16 +44,7 @@ Region parse_region(const std::string& text, Size frame) {
         "--region must be X,Y,WIDTH,HEIGHT in pixels of the --size image, "
         "e.g. 0,0,256,256, not '" +
         text + "'");
-  const Region region{std::stoi(match[1]), std::stoi(match[2]), std::stoi(match[3]),
-                      std::stoi(match[4])};
-  if (region.width < 1 || region.height < 1 ||
-      std::int64_t{region.x} + region.width > frame.width ||
-      std::int64_t{region.y} + region.height > frame.height)
-    throw std::invalid_argument(fmt::format(
-        "--region {} is not inside the {}x{} image of --size: it needs a width and height of at "
-        "least 1 and X + WIDTH <= {}, Y + HEIGHT <= {}",
-        text, frame.width, frame.height, frame.width, frame.height));
-  return region;
+  return {std::stoi(match[1]), std::stoi(match[2]), std::stoi(match[3]), std::stoi(match[4])};
 }
 
 std::optional<Vec2d> parse_number_pair(const std::string& text) {

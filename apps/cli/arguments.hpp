@@ -4,12 +4,12 @@
 // own error sentence around them; the ones here throw std::invalid_argument (a usage error) or,
 // for files, stochtex::Error.
 
-#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "renderer/plan.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex::cli {
@@ -22,31 +22,17 @@ struct Size {
 // WIDTHxHEIGHT with 1 to 7 digits per side, or nothing.
 std::optional<Size> parse_size(const std::string& text);
 
-// An image held in memory (render, synth, gaussian, render-mesh) has each side at most 32768 and
-// at most 64 Mpixel (an 8192 x 8192 image, 1 GiB of RGBA floats), so that larger requests are
-// refused up front rather than attempted as multi-gigabyte allocations. A render streamed to a
-// tiled OpenEXR file has sides up to kMaxStreamedSide and any number of pixels.
-inline constexpr int kMaxInMemorySide = 32768;
-inline constexpr std::int64_t kMaxInMemoryPixels = std::int64_t{1} << 26;
-inline constexpr int kMaxStreamedSide = 1 << 20;
-bool fits_in_memory(std::int64_t width, std::int64_t height);
+// A --size, WIDTHxHEIGHT; its range is the command's to check. render and synth check it with the
+// rest of their request (renderer::plan_render), where a streamed output allows larger sides.
+Size size_option(const std::string& text);
 
-// The --size of an image held in memory.
+// The --size of an image held in memory: each side 1 to renderer::kMaxInMemorySide and at most
+// renderer::kMaxInMemoryPixels.
 Size output_size(const std::string& text);
 
-// The --size of render and synth: each side 1 to kMaxStreamedSide; the output format's limits
-// are checked with its region.
-Size render_size(const std::string& text);
-
-// The --region X,Y,WIDTH,HEIGHT of render and synth: pixels [X, X + WIDTH) x [Y, Y + HEIGHT) of
-// the `frame` image, at least one pixel and inside it.
-struct Region {
-  int x = 0;
-  int y = 0;
-  int width = 0;
-  int height = 0;
-};
-Region parse_region(const std::string& text, Size frame);
+// The --region X,Y,WIDTH,HEIGHT of render and synth, in pixels of the --size image; whether it
+// lies inside that image is checked with the rest of the request (renderer::plan_render).
+renderer::PixelRegion parse_region(const std::string& text);
 
 // The pair, or nothing when `text` is not two finite numbers separated by a comma (spaces
 // allowed around them).

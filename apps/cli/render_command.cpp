@@ -5,9 +5,6 @@
 
 #include <fmt/core.h>
 
-#include <algorithm>
-#include <cstdint>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -17,14 +14,9 @@
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "core/memory_budget.hpp"
-#include "core/parallel.hpp"
-#include "io/image_io.hpp"
-#include "io/tiled_exr.hpp"
 #include "progress.hpp"
-#include "stochtex/material.hpp"
-#ifdef STOCHTEX_WITH_GL
-#include "stochtex/gpu.hpp"
-#endif
+#include "renderer/backends.hpp"
+#include "renderer/render_file.hpp"
 
 namespace stochtex::cli {
 
@@ -99,306 +91,48 @@ void add_render_options(CLI::App* command, RenderSettings& settings, std::string
 
 namespace {
 
-// Sets the CPU target named by --cpu-target; refuses one this machine cannot run.
-void use_cpu_target(const std::string& name) {
-  set_cpu_target(name == "best" ? available_cpu_targets().back() : available_cpu_target(name));
-}
-
-// What a render writes: the grid of its region of the --size image and, for a tiled OpenEXR
-// output, the file's options (streamed set).
-struct RenderPlan {
-  Grid grid;
-  bool streamed = false;
-  TiledExrOptions exr;
-};
-
-RenderPlan render_plan(const RenderSettings& settings, const std::string& output) {
-  const Size size = render_size(settings.size);
-  const Region region = settings.region.empty() ? Region{0, 0, size.width, size.height}
-                                                : parse_region(settings.region, size);
+// The settings as the renderer takes them: the text of --size, --region and --origin parsed (their
+// ranges are the renderer's to check), each kept for its refusals.
+renderer::RenderRequest render_request(const RenderSettings& settings) {
+  renderer::RenderRequest request;
+  const Size size = size_option(settings.size);
+  request.width = size.width;
+  request.height = size.height;
+  if (!settings.region.empty()) request.region = parse_region(settings.region);
   const std::optional<Vec2d> origin = parse_number_pair(settings.origin);
   if (!origin)
     throw std::invalid_argument("--origin must be X,Y in exemplar pixels, e.g. 1000,-250.5, not '" +
                                 settings.origin + "'");
-  RenderPlan plan;
-  plan.grid = {*origin, settings.scale, region.width, region.height, region.x, region.y};
-  const std::string what = settings.region.empty() ? fmt::format("--size {}", settings.size)
-                                                   : fmt::format("--region {}", settings.region);
-  const bool exr = is_exr_output(output);
-  const bool in_memory = fits_in_memory(region.width, region.height);
-  plan.streamed = exr && (settings.tiled || settings.mipmap || settings.half || !in_memory);
-  if ((settings.tiled || settings.mipmap || settings.half) && !exr)
-    throw std::invalid_argument(
-        "--tiled, --mipmap and --half write a tiled OpenEXR file: name the output .exr, not '" +
-        output + "'");
-  if (settings.mipmap && !settings.region.empty())
-    throw std::invalid_argument(
-        "--mipmap cannot be combined with --region: a region has no mip levels of its own; render "
-        "the whole --size image with --mipmap");
-  if (!plan.streamed && !in_memory)
-    throw std::invalid_argument(fmt::format(
-        "{} is {} pixels; {} output is rendered in memory and holds at most {} pixels and {} a "
-        "side: write a .exr file, which is streamed tile by tile",
-        what, static_cast<std::int64_t>(region.width) * region.height,
-        std::filesystem::path(output).extension().string(), kMaxInMemoryPixels, kMaxInMemorySide));
-  if (plan.streamed && settings.backend == "gl" && !in_memory)
-    throw std::invalid_argument(fmt::format(
-        "{} is {}x{} pixels, more than --backend gl renders ({} pixels and {} a side); use "
-        "--backend cpu, which streams it tile by tile",
-        what, region.width, region.height, kMaxInMemoryPixels, kMaxInMemorySide));
-  plan.exr.mipmap = settings.mipmap;
-  plan.exr.half = settings.half;
-  // CLI11's range check lets NaN through (every comparison with it is false): the grid check
-  // refuses it with the origin and positions beyond the precise range (render.hpp); each mip
-  // level's grid too, since its last pixels may reach further than level 0's.
-  const std::string request =
-      fmt::format("--origin {} with --scale {} and {}", settings.origin, settings.scale, what);
-  for (const Grid& level : tiled_exr_levels(plan.grid, plan.streamed && settings.mipmap))
-    check_grid(level, request);
-  return plan;
-}
-
-// Each thread holds one tile's samples (docs/design.md §9): with --threads 0 as many cores work
-// as the memory budget allows; a request beyond it is refused before the model is loaded or
-// analysed. A streamed render holds one strip of kExrTileSide rows, not the image.
-int render_threads(const RenderSettings& settings, const RenderPlan& plan) {
-  const int held_rows = plan.streamed ? std::min(kExrTileSide, plan.grid.height) : plan.grid.height;
-  const auto peak = [&](int threads) {
-    return render_peak_bytes(plan.grid.width, held_rows, settings.tile, settings.supersample,
-                             threads);
-  };
-  int threads = resolve_thread_count(settings.threads);
-  if (settings.threads == 0)
-    while (threads > 1 && peak(threads) > kMemoryBudgetBytes) --threads;
-  check_memory_budget(
-      peak(threads),
-      fmt::format("rendering {}x{} pixels with --supersample {}, --tile {} and {} "
-                  "threads",
-                  plan.grid.width, held_rows, settings.supersample, settings.tile, threads),
-      "use fewer --threads or a smaller --supersample, --tile or --size");
-  return threads;
-}
-
-// A tiled file is refused before any work when its pixels, uncompressed, do not fit in the free
-// space of the output's folder: float pixels are written uncompressed, half ones compress by a
-// third (docs/large-renders.md).
-void check_disk_space(const RenderPlan& plan, int channels, const std::string& output) {
-  const std::filesystem::path folder = std::filesystem::absolute(output).parent_path();
-  std::error_code error;
-  const std::filesystem::space_info space = std::filesystem::space(folder, error);
-  const std::uint64_t bytes = tiled_exr_pixels(plan.grid, plan.exr.mipmap) *
-                              static_cast<std::uint64_t>(channels) * (plan.exr.half ? 2 : 4);
-  if (!error && bytes > space.available)
-    throw Error(
-        ErrorCode::io,
-        fmt::format("cannot write '{}': its {}x{} pixels{} take {:.1f} GB uncompressed, "
-                    "more than the {:.1f} GB free in '{}'; free disk space, add --half or "
-                    "render a smaller --size or --region",
-                    output, plan.grid.width, plan.grid.height,
-                    plan.exr.mipmap ? " and mip levels" : "", static_cast<double>(bytes) / 1e9,
-                    static_cast<double>(space.available) / 1e9, folder.string()));
-}
-
-// Renders grids (the whole image, or one strip after another of a tiled file) with the settings'
-// backend, one progress bar across all of them: `total_pixels` is the pixels of every grid.
-class GridRenderer {
- public:
-  GridRenderer(const Model& model, const RenderSettings& settings, int threads,
-               std::uint64_t total_pixels)
-      : model_(model), seed_(settings.seed), total_(static_cast<double>(total_pixels)) {
-    options_.threads = threads;
-    options_.tile_size = settings.tile;
-    options_.supersample = settings.supersample;
-    options_.filter = !settings.no_filter;
-    if (settings.backend != "gl") return;
-#ifdef STOCHTEX_WITH_GL
-    gpu_options_.filter = options_.filter;
-    gpu_options_.texture_filter =
-        settings.gl_filter == "hardware" ? GlFilter::hardware : GlFilter::exact;
-    if (options_.supersample != 1)
-      throw std::invalid_argument("--supersample is a CPU reference: use it with --backend cpu");
-    gl_ = std::make_unique<GlRenderer>(model);
-#else
-    throw Error(ErrorCode::io,
-                "this stochtex was built without the OpenGL backend "
-                "(STOCHTEX_BUILD_GL=OFF); use --backend cpu");
-#endif
-  }
-
-  void operator()(const Grid& grid, ImageView<float> out) {
-    const double pixels = static_cast<double>(grid.width) * grid.height;
-#ifdef STOCHTEX_WITH_GL
-    if (gl_) {
-      gl_->render(grid, seed_, out, gpu_options_);
-      done_ += pixels;
-      progress_(done_ / total_);
-      return;
-    }
-#endif
-    options_.progress = [&](double fraction) { progress_((done_ + fraction * pixels) / total_); };
-    render(model_, grid, seed_, out, options_);
-    done_ += pixels;
-  }
-
- private:
-  const Model& model_;
-  std::uint32_t seed_;
-  double total_;
-  double done_ = 0.0;
-  RenderOptions options_;
-  Progress progress_{"render "};
-#ifdef STOCHTEX_WITH_GL
-  GpuRenderOptions gpu_options_;
-  std::unique_ptr<GlRenderer> gl_;
-#endif
-};
-
-// A material's maps, each written to the output named with {map} replaced by the map's name,
-// after all are rendered (docs/materials.md).
-constexpr std::string_view kMapField = "{map}";
-
-std::string map_output(std::string output, std::string_view name) {
-  for (auto at = output.find(kMapField); at != std::string::npos;
-       at = output.find(kMapField, at + name.size()))
-    output.replace(at, kMapField.size(), name);
-  return output;
-}
-
-// The channels of each map's image as split_maps writes it.
-int written_channels(const MapInfo& map) {
-  return map.kind == MapKind::normal ? 3 : map.channels;
-}
-
-// Checks a material's outputs before the render: {map} in the name exactly when the model has
-// maps, every map's file writable, in memory and within the memory budget (the render, the maps
-// cut from it and one map's encoded copy).
-void check_map_outputs(const Model& model, const RenderPlan& plan, const std::string& output,
-                       const std::string& input) {
-  const bool per_map = output.find(kMapField) != std::string::npos;
-  if (model.maps().empty()) {
-    if (per_map)
-      throw std::invalid_argument("'" + output + "' names a file per map with {map}, but '" +
-                                  input + "' is a model of one image; remove {map}");
-    return;
-  }
-  std::string names;
-  for (const MapInfo& map : model.maps()) names += (names.empty() ? "" : ", ") + map.name;
-  if (!per_map)
-    throw std::invalid_argument("'" + input + "' is a material of maps " + names +
-                                ": name the output with {map}, one file per map, e.g. -o "
-                                "out_{map}.png");
-  std::uint64_t bytes_per_pixel = 4 * static_cast<std::uint64_t>(model.channels());
-  for (const MapInfo& map : model.maps()) {
-    const std::string path = map_output(output, map.name);
-    check_output_path(path, true, input);
-    check_output_channels(path, written_channels(map));
-    // The map cut from the render and its encoded copy, or the strip of every map's file.
-    bytes_per_pixel += (plan.streamed ? 8 : 6) * static_cast<std::uint64_t>(written_channels(map));
-  }
-  // In memory: the whole grid; streamed: one strip and its margin (render_maps).
-  const std::uint64_t rows = plan.streamed ? kExrTileSide + 2 : plan.grid.height;
-  check_memory_budget(
-      bytes_per_pixel * static_cast<std::uint64_t>(plan.grid.width + 2) * rows,
-      fmt::format("rendering the {} maps of a {}x{} material{}", model.maps().size(),
-                  plan.grid.width, plan.streamed ? static_cast<int>(rows) : plan.grid.height,
-                  plan.streamed ? " strip" : ""),
-      "render a smaller --size, or --region pieces");
-}
-
-// The pixels render_maps renders for `grid`: with a derived normal map, a one-pixel margin.
-std::uint64_t material_pixels(const Model& model, const Grid& grid) {
-  const bool margin = std::any_of(model.maps().begin(), model.maps().end(),
-                                  [](const MapInfo& map) { return !map.derived_from.empty(); });
-  return static_cast<std::uint64_t>(grid.width + (margin ? 2 : 0)) *
-         static_cast<std::uint64_t>(grid.height + (margin ? 2 : 0));
-}
-
-// A material's maps to one tiled .exr file each, strip by strip: each strip is one render_maps
-// call for every map (docs/materials.md).
-void stream_maps(const Model& model, const RenderPlan& plan, int threads,
-                 const RenderSettings& settings, const std::string& output) {
-  std::vector<TiledExrFile> files;
-  for (const MapInfo& map : model.maps())
-    files.push_back({map_output(output, map.name), written_channels(map)});
-  std::uint64_t pixels = 0;
-  for (const Grid& level : tiled_exr_levels(plan.grid, plan.exr.mipmap))
-    for (int row = 0; row < level.height; row += kExrTileSide) {
-      Grid strip = level;
-      strip.height = std::min(kExrTileSide, level.height - row);
-      pixels += material_pixels(model, strip);
-    }
-  GridRenderer renderer(model, settings, threads, pixels);
-  TiledExrOptions options = plan.exr;
-  options.threads = threads;
-  write_tiled_exrs(files, plan.grid, options, [&](const Grid& strip, ImageView<float> out) {
-    const std::vector<NamedImage> maps = render_maps(
-        model, strip, [&](const Grid& part, ImageView<float> into) { renderer(part, into); });
-    int first = 0;
-    for (const auto& [name, map] : maps) {
-      for (int y = 0; y < strip.height; ++y)
-        for (int x = 0; x < strip.width; ++x)
-          for (int c = 0; c < map.channels(); ++c) out.at(x, y, first + c) = map.at(x, y, c);
-      first += map.channels();
-    }
-  });
-}
-
-void render_model(const Model& model, const RenderPlan& plan, int threads,
-                  const RenderSettings& settings, const std::string& output) {
-  const Grid& grid = plan.grid;
-  if (!model.maps().empty() && plan.streamed) {
-    stream_maps(model, plan, threads, settings, output);
-    return;
-  }
-  if (!model.maps().empty()) {
-    GridRenderer renderer(model, settings, threads, material_pixels(model, grid));
-    const std::vector<NamedImage> maps = render_maps(
-        model, grid, [&](const Grid& part, ImageView<float> out) { renderer(part, out); });
-    for (const auto& [name, map] : maps)
-      write_image(map_output(output, name), map.view(), settings.bit_depth);
-    return;
-  }
-  if (!plan.streamed) {
-    ImageF image(grid.width, grid.height, model.channels());
-    GridRenderer(model, settings, threads, static_cast<std::uint64_t>(grid.width) * grid.height)(
-        grid, image.view());
-    write_image(output, image.view(), settings.bit_depth);
-    return;
-  }
-  GridRenderer renderer(model, settings, threads, tiled_exr_pixels(grid, plan.exr.mipmap));
-  TiledExrOptions options = plan.exr;
-  options.threads = threads;
-  write_tiled_exr(output, grid, model.channels(), options,
-                  [&](const Grid& strip, ImageView<float> out) { renderer(strip, out); });
+  request.origin = *origin;
+  request.scale = settings.scale;
+  request.seed = settings.seed;
+  request.threads = settings.threads;
+  request.supersample = settings.supersample;
+  request.tile = settings.tile;
+  request.filter = !settings.no_filter;
+  if (settings.cpu_target != "best") request.cpu_target = available_cpu_target(settings.cpu_target);
+  request.backend = settings.backend == "gl" ? renderer::Backend::gl : renderer::Backend::cpu;
+  request.gl_filter = settings.gl_filter == "hardware" ? GlFilter::hardware : GlFilter::exact;
+  request.tiled = settings.tiled;
+  request.mipmap = settings.mipmap;
+  request.half = settings.half;
+  request.bit_depth = settings.bit_depth;
+  request.text = {settings.size, settings.region, settings.origin};
+  return request;
 }
 
 }  // namespace
 
 void render_to_file(const std::function<Model()>& make_model, const RenderSettings& settings,
                     const std::string& output, const std::string& input) {
-  check_output_path(map_output(output, "map"), true, input);
-  const RenderPlan plan = render_plan(settings, output);
-  const int threads = render_threads(settings, plan);
-  use_cpu_target(settings.cpu_target);
-  const Model model = make_model();
-  check_map_outputs(model, plan, output, input);
-  if (model.maps().empty()) check_output_channels(output, model.channels());
-  if (plan.streamed) {
-    int channels = model.channels();  // a material's: every map's file
-    if (!model.maps().empty()) {
-      channels = 0;
-      for (const MapInfo& map : model.maps()) channels += written_channels(map);
-    }
-    check_disk_space(plan, channels,
-                     map_output(output, model.maps().empty() ? "" : model.maps().front().name));
+  const renderer::RenderRequest request = render_request(settings);
+  std::vector<std::string> written;
+  {
+    Progress progress("render ");
+    written = renderer::render_to_file(make_model, request, output, input, renderer::make_backend,
+                                       [&](double fraction) { progress(fraction); });
   }
-  render_model(model, plan, threads, settings, output);
-  if (model.maps().empty()) {
-    fmt::print(stderr, "wrote {}\n", output);
-    return;
-  }
-  for (const MapInfo& map : model.maps())
-    fmt::print(stderr, "wrote {}\n", map_output(output, map.name));
+  for (const std::string& file : written) fmt::print(stderr, "wrote {}\n", file);
 }
 
 Command add_render_command(CLI::App& app) {

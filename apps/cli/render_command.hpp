@@ -33,12 +33,10 @@ struct RenderSettings {
 // and the render options.
 void add_render_options(CLI::App* command, RenderSettings& settings, std::string& output);
 
-// Checks --size, --region, --origin, the output path (which may not be the `input` file) and, for a
-// tiled OpenEXR output, the free disk space, then renders the model that `make_model` returns
-// (called after those checks, so that usage errors come first) with the settings' backend and
-// writes the image to `output`: in memory, or strip by strip into a tiled OpenEXR file for .exr
-// output beyond the in-memory limit or with --tiled, --mipmap or --half. An output format that
-// cannot hold the model's channels is refused before the render.
+// Renders the model that `make_model` returns to `output` as the settings say, on their backend,
+// printing a progress bar and the files written: renderer::render_to_file, which checks the
+// request and the output (which may not be the `input` file) before it calls `make_model`, so
+// that usage errors come first.
 void render_to_file(const std::function<Model()>& make_model, const RenderSettings& settings,
                     const std::string& output, const std::string& input);
 

@@ -18,10 +18,8 @@
 #include "core/parallel.hpp"
 #include "io/image_io.hpp"
 #include "progress.hpp"
+#include "renderer/backends.hpp"
 #include "stochtex/mesh_render.hpp"
-#ifdef STOCHTEX_WITH_GL
-#include "stochtex/gpu.hpp"
-#endif
 
 namespace stochtex::cli {
 namespace {
@@ -93,12 +91,9 @@ int run(const Options& o) {
                                             o.surface.surface_mni, o.surface.triplanar_sharpness));
   std::optional<SurfaceMapping> mapping;
   if (o.mapping != "uv") mapping = mapping_from_name(o.mapping);
-#ifndef STOCHTEX_WITH_GL
-  if (o.backend == "gl")
-    throw Error(ErrorCode::io,
-                "this stochtex was built without the OpenGL backend "
-                "(STOCHTEX_BUILD_GL=OFF); use --backend cpu");
-#endif
+  const renderer::Backend backend =
+      o.backend == "gl" ? renderer::Backend::gl : renderer::Backend::cpu;
+  renderer::check_backend_built(backend);
   const int threads = resolve_thread_count(o.threads);
   check_memory_budget(render_peak_bytes(size.width, size.height, 32, 1, threads),
                       fmt::format("rendering {} pixels on {} threads", o.size, threads),
@@ -119,14 +114,13 @@ int run(const Options& o) {
         "{}: {} models have no {} mapping; use --mapping triplanar-linear or uv, which every "
         "method has",
         o.model, model.method(), o.mapping));
-#ifdef STOCHTEX_WITH_GL
   // (a material is refused by render_mesh_gl with its own sentence)
-  if (o.backend == "gl" && mapping && model.maps().empty() && !gl_supports_mapping(model, *mapping))
+  if (backend == renderer::Backend::gl && mapping && model.maps().empty() &&
+      !renderer::backend_supports_mapping(backend, model, *mapping))
     throw std::invalid_argument(fmt::format(
         "{}: the gl backend has no GLSL {} mapping for {} models; use --backend cpu, or "
         "--mapping uv, which every method has on the gl backend",
         o.model, o.mapping, model.method()));
-#endif
   const Mesh mesh = read_mesh(o.mesh);
   if (!mapping && mesh.uvs.empty())
     throw std::invalid_argument(
@@ -142,13 +136,10 @@ int run(const Options& o) {
   options.threads = threads;
   ImageF image(size.width, size.height, channels);
   const Camera view = make_camera(camera, mesh, size);
-#ifdef STOCHTEX_WITH_GL
-  if (o.backend == "gl") render_mesh_gl(model, mesh, view, options, o.seed, image.view());
-#endif
-  if (o.backend == "cpu") {
+  {
     Progress progress("render-mesh ");
     options.progress = [&](double fraction) { progress(fraction); };
-    render_mesh(model, mesh, view, options, o.seed, image.view());
+    renderer::render_mesh_on(backend, model, mesh, view, options, o.seed, image.view());
   }
   write_image(o.output, image.view());
   fmt::print(stderr, "wrote {}\n", o.output);

@@ -14,6 +14,31 @@
 #endif
 
 namespace stochtex::cli {
+namespace {
+
+// Serves until SIGINT or SIGTERM.
+void serve([[maybe_unused]] const std::string& host, [[maybe_unused]] int port) {
+#ifdef STOCHTEX_WITH_GL
+  web::StudioOptions studio;
+  studio.host = host;
+  studio.port = port;
+  if (!web::is_loopback_host(studio.host))
+    fmt::print(stderr,
+               "stochtex studio: warning: listening on {}, not loopback: anyone who can reach "
+               "this address can use the studio\n",
+               studio.host);
+  web::serve_studio(studio, [](const std::string& url) {
+    fmt::print("stochtex studio: serving {}\n", url);
+    std::fflush(stdout);
+  });
+#else
+  throw Error(ErrorCode::io,
+              "this stochtex was built without the OpenGL backend "
+              "(STOCHTEX_BUILD_GL=OFF), which studio needs");
+#endif
+}
+
+}  // namespace
 
 Command add_studio_command(CLI::App& app) {
   struct Options {
@@ -35,25 +60,8 @@ Command add_studio_command(CLI::App& app) {
   command->footer(
       "\nOpen the printed address in a browser. Ctrl-C (SIGINT) or SIGTERM stops the server.");
   return {command, [options] {
-#ifdef STOCHTEX_WITH_GL
-            web::StudioOptions studio;
-            studio.host = options->host;
-            studio.port = options->port;
-            if (!web::is_loopback_host(studio.host))
-              fmt::print(stderr,
-                         "stochtex studio: warning: listening on {}, not loopback: anyone who can "
-                         "reach this address can use the studio\n",
-                         studio.host);
-            web::serve_studio(studio, [](const std::string& url) {
-              fmt::print("stochtex studio: serving {}\n", url);
-              std::fflush(stdout);
-            });
+            serve(options->host, options->port);
             return 0;
-#else
-            throw Error(ErrorCode::io,
-                        "this stochtex was built without the OpenGL backend "
-                        "(STOCHTEX_BUILD_GL=OFF), which studio needs");
-#endif
           }};
 }
 

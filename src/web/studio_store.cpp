@@ -19,6 +19,7 @@
 #include "io/image_io.hpp"
 #include "model/model_data.hpp"
 #include "registry.hpp"
+#include "renderer/plan.hpp"
 #include "report/compare.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/io.hpp"
@@ -483,14 +484,24 @@ std::string StudioStore::render_png(const std::string& id, const RenderRequest& 
                                        most, request.width, request.height));
   const auto stored = find_model(id);
   const Grid grid{request.origin, request.scale, request.width, request.height};
+  // As many cores as the memory budget allows, as `stochtex render --threads 0` takes; a view of
+  // at most max_render_side squared pixels is far within it.
+  RenderOptions options;
   try {
     check_grid(grid, "the render's view");
+    options.threads = renderer::budgeted_threads(
+        request.width, request.height, options.tile_size, options.supersample, 0,
+        [&](int threads) {
+          return fmt::format("rendering {}x{} pixels on {} threads", request.width, request.height,
+                             threads);
+        },
+        "ask for a smaller one");
   } catch (const std::invalid_argument& e) {
     throw StudioError(400, e.what());
   }
   const std::lock_guard heavy(heavy_);
   ImageF image(request.width, request.height, stored->model.channels());
-  render(stored->model, grid, request.seed, image.view());
+  render(stored->model, grid, request.seed, image.view(), options);
   return encode(image.view(), ImageFormat::png);
 }
 
