@@ -89,21 +89,29 @@ struct KernelShape {
   // `value`, tapered to 0 at the cut (kTaperScale); false where the envelope is truncated (beyond
   // e^-pi). exp and cos are the float polynomials of core/float_math.hpp, which the vectorised and
   // GLSL twins share.
-  bool at(float wx, float wy, float phase, float dx, float dy, float& value) const noexcept {
-    const float envelope = ex * dx * dx + exy * dx * dy + ey * dy * dy;
-    if (envelope >= kPiF) return false;
-    const float t = std::min((kPiF - envelope) * kTaperScale, 1.0f);
-    const float taper = t * t * (3.0f - 2.0f * t);
-    float attenuation = 0.0f;
-    if (filtered) {
-      attenuation = dxx * wx * wx + dxy * wx * wy + dyy * wy * wy;
-      const float mapped_x = fxx * wx + fxy * wy;
-      wy = fxy * wx + fyy * wy;
-      wx = mapped_x;
-    }
-    value = exp_float(-envelope - attenuation) * cos_turns(wx * dx + wy * dy + phase) * taper;
-    return true;
-  }
+  bool at(float wx, float wy, float phase, float dx, float dy, float& value) const noexcept;
 };
+
+// The kernel's arithmetic that the scalar reference and the vectorised evaluator (simd.cpp)
+// share, source for source: kernel_envelope and kernel_value.
+#include "methods/gabor/kernel.inc"
+
+// kernel.inc's operations on single values: the scalar reference.
+struct ScalarOps {
+  static float constant(float c) noexcept { return c; }
+  static float min(float a, float b) noexcept { return std::min(a, b); }
+  static float neg(float v) noexcept { return -v; }
+  static float exp(float v) noexcept { return exp_float(v); }
+  static float cos(float v) noexcept { return cos_turns(v); }
+};
+
+inline bool KernelShape::at(float wx, float wy, float phase, float dx, float dy,
+                            float& value) const noexcept {
+  const ScalarOps ops;
+  const float envelope = kernel_envelope(ops, *this, dx, dy);
+  if (envelope >= kPiF) return false;
+  value = kernel_value(ops, *this, filtered, envelope, wx, wy, phase, dx, dy);
+  return true;
+}
 
 }  // namespace stochtex::gabor

@@ -1,8 +1,9 @@
 // Gabor noise's kernel sums, one impulse per SIMD lane (simd.hpp). Compiled once per SIMD target by
-// Highway's foreach_target.h; impulse_sum dispatches to the best one at run time. Every vector
-// operation below is the scalar reference's (evaluate.hpp, model.cpp, core/hash.hpp) in its order:
-// no fused multiply-add (the build sets -ffp-contract=off), the same constants, truncating
-// conversions; the values of one sample are then added in the reference's order.
+// Highway's foreach_target.h; impulse_sum dispatches to the best one at run time. The kernel's
+// arithmetic is the scalar reference's own source (kernel.inc); every other vector operation below
+// is the reference's (evaluate.hpp, model.cpp, core/hash.hpp) in its order: no fused multiply-add
+// (the build sets -ffp-contract=off), the same constants, truncating conversions; the values of
+// one sample are then added in the reference's order.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "methods/gabor/simd.cpp"
@@ -30,6 +31,17 @@ using VU = hn::Vec<DU>;
 using VI = hn::Vec<DI>;
 constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
 constexpr std::size_t kCapacity = ImpulseCache::kCapacity;
+
+#include "methods/gabor/kernel.inc"
+
+// kernel.inc's operations in every lane.
+struct VectorOps {
+  static VF constant(float c) { return hn::Set(DF(), c); }
+  static VF min(VF a, VF b) { return hn::Min(a, b); }
+  static VF neg(VF v) { return hn::Neg(v); }
+  static VF exp(VF v) { return ExpFloat(DF(), v); }
+  static VF cos(VF v) { return CosTurns(DF(), v); }
+};
 
 // Impulses first .. first + n - 1 of cell (x, y) into `list` (simd.hpp's five lists): the draws of
 // texton::CellCache (positions, after the count's `chunks` uniforms) and of GridKernels::draw
@@ -88,31 +100,11 @@ template <bool Filtered>
 float evaluate_pending(const KernelShape& shape, const Pending& pending, std::size_t count,
                        float sum) {
   const DF df;
-  const VF dx = hn::Load(df, pending.field[0]);
-  const VF dy = hn::Load(df, pending.field[1]);
-  VF wx = hn::Load(df, pending.field[3]);
-  VF wy = hn::Load(df, pending.field[4]);
-  const VF envelope = hn::Load(df, pending.field[2]);
-  VF exponent = hn::Neg(envelope);
-  const VF t = hn::Min(hn::Mul(hn::Sub(hn::Set(df, kPiF), envelope), hn::Set(df, kTaperScale)),
-                       hn::Set(df, 1.0f));
-  const VF taper =
-      hn::Mul(hn::Mul(t, t), hn::Sub(hn::Set(df, 3.0f), hn::Mul(hn::Set(df, 2.0f), t)));
-  if constexpr (Filtered) {
-    const VF attenuation = hn::Add(hn::Add(hn::Mul(hn::Mul(hn::Set(df, shape.dxx), wx), wx),
-                                           hn::Mul(hn::Mul(hn::Set(df, shape.dxy), wx), wy)),
-                                   hn::Mul(hn::Mul(hn::Set(df, shape.dyy), wy), wy));
-    exponent = hn::Sub(exponent, attenuation);
-    const VF mapped_x =
-        hn::Add(hn::Mul(hn::Set(df, shape.fxx), wx), hn::Mul(hn::Set(df, shape.fxy), wy));
-    wy = hn::Add(hn::Mul(hn::Set(df, shape.fxy), wx), hn::Mul(hn::Set(df, shape.fyy), wy));
-    wx = mapped_x;
-  }
-  // Unfiltered, the reference subtracts an attenuation of +0, which leaves every value as it is.
-  const VF argument =
-      hn::Add(hn::Add(hn::Mul(wx, dx), hn::Mul(wy, dy)), hn::Load(df, pending.field[5]));
+  const auto field = [&](std::size_t f) HWY_ATTR { return hn::Load(df, pending.field[f]); };
   HWY_ALIGN float values[kMaxLanes] = {};
-  hn::Store(hn::Mul(hn::Mul(ExpFloat(df, exponent), CosTurns(df, argument)), taper), df, values);
+  hn::Store(HWY_NAMESPACE::kernel_value(VectorOps{}, shape, Filtered, field(2), field(3), field(4),
+                                        field(5), field(0), field(1)),
+            df, values);
   for (std::size_t i = 0; i < count; ++i) sum += values[i];
   return sum;
 }
@@ -127,15 +119,10 @@ float add_kernels(const KernelShape& shape, const float* list, std::uint32_t n, 
   const std::size_t lanes = hn::Lanes(df);
   const VF ox = hn::Set(df, offset_x);
   const VF oy = hn::Set(df, offset_y);
-  const VF ex = hn::Set(df, shape.ex);
-  const VF exy = hn::Set(df, shape.exy);
-  const VF ey = hn::Set(df, shape.ey);
   for (std::uint32_t j = 0; j < n; j += static_cast<std::uint32_t>(lanes)) {
     const VF dx = hn::Sub(ox, hn::Load(df, list + j));
     const VF dy = hn::Sub(oy, hn::Load(df, list + kCapacity + j));
-    const VF envelope =
-        hn::Add(hn::Add(hn::Mul(hn::Mul(ex, dx), dx), hn::Mul(hn::Mul(exy, dx), dy)),
-                hn::Mul(hn::Mul(ey, dy), dy));
+    const VF envelope = HWY_NAMESPACE::kernel_envelope(VectorOps{}, shape, dx, dy);
     const auto inside = hn::And(hn::FirstN(df, n - j), hn::Lt(envelope, hn::Set(df, kPiF)));
     if (hn::AllFalse(df, inside)) continue;
     const VF fields[Pending::kFields] = {dx,

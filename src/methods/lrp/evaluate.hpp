@@ -2,6 +2,7 @@
 // Building blocks of the LRP noise evaluator, in the restricted subset of docs/design.md §4
 // (uint32/float, flat arrays, no allocation) so that they can be mirrored in GLSL.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -26,9 +27,31 @@ inline constexpr float kPhaseStep = 1.0f / static_cast<float>(1u << (32u - kPick
 
 inline constexpr float kClampStart = 0.5f;
 inline constexpr float kClampEnd = 1.0f;
+
+// The arithmetic that the scalar reference and the vectorised evaluator (simd.cpp) share, source
+// for source: the window, frequency clamping, a node's cosines and a stratum's term.
+#include "methods/lrp/kernel.inc"
+
+// kernel.inc's operations on single values: the scalar reference.
+struct ScalarOps {
+  static float constant(float c) noexcept { return c; }
+  static float abs(float v) noexcept { return std::abs(v); }
+  static float sqrt(float v) noexcept { return std::sqrt(v); }
+  static float min(float a, float b) noexcept { return std::min(a, b); }
+  static float cos(float v) noexcept { return cos_turns(v); }
+  static float select(bool condition, float a, float b) noexcept { return condition ? a : b; }
+  static bool none(bool condition) noexcept { return !condition; }
+};
+
 inline float clamp_weight(float cycles) noexcept {
-  const float weight = (kClampEnd - cycles) * (1.0f / (kClampEnd - kClampStart));
-  return weight <= 0.0f ? 0.0f : (weight >= 1.0f ? 1.0f : weight);
+  return clamp_weight(ScalarOps{}, cycles);
+}
+
+// w at squared distance `r2` (in units of the lattice spacing) from the polynomial form
+// (window.hpp), 0 beyond the window's radius.
+inline float window_from_square(const std::array<float, kWindowTerms>& coefficients,
+                                float r2) noexcept {
+  return window_from_square(ScalarOps{}, coefficients, r2);
 }
 
 // The lattice node nearest (u, v), in lattice units, as 64-bit indices, and the offset from it,
@@ -118,12 +141,8 @@ inline StratumSum stratum_sum(const StratumTables& tables, const StratumDraw& st
         const float fx = tables.frequencies[2 * pick];
         const float fy = tables.frequencies[2 * pick + 1];
         const float phase = draw_phase(draw);
-        float c = cos_turns(fx * px + fy * py + phase);
-        if constexpr (Filtered) {
-          const float along_a = std::abs(fx * axes[0] + fy * axes[1]);
-          const float along_b = std::abs(fx * axes[2] + fy * axes[3]);
-          c *= clamp_weight(along_a > along_b ? along_a : along_b);
-        }
+        float c = node_cosine(ScalarOps{}, fx, fy, phase, px, py);
+        if constexpr (Filtered) c *= frequency_clamp(ScalarOps{}, fx, fy, axes.data());
         local += tables.weights != nullptr ? tables.weights[pick] * c : c;
       }
       result.sum += w * local;

@@ -261,13 +261,12 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
                                 {stratum.inverse_spacing, stratum.spacing_float,
                                  stratum.first_substratum, stratum.cosines, seeds[s]},
                                 window_coefficients_, p, axes);
-      float scale = stratum.amplitude;
       // The variance of equation (1) at x is A_S^2 J_S / 2 sum_i w_i(x)^2, which varies over a
       // lattice cell (measured in docs/methods/lrp.md); dividing by sqrt(sum_i w_i^2) over its
       // mean makes it constant without changing its mean. The nearest node is within 0.71 of x,
       // so window_square >= w(0.71)^2 > 0.
-      if (normalise) scale *= std::sqrt(mean_envelope / window_square);
-      noise[stratum.channel] += scale * sum;
+      noise[stratum.channel] += stratum_term(ScalarOps{}, stratum.amplitude, normalise,
+                                             mean_envelope, window_square, sum);
     }
     finish_sample<Channels, Filtered>(noise, positions, footprints, index, seed, out);
   }

@@ -1,8 +1,9 @@
 // LRP noise's random strata, one sample per SIMD lane (simd.hpp). Compiled once per SIMD target by
 // Highway's foreach_target.h; random_strata_noise dispatches to the best one at run time.
-// Every vector operation below is the scalar reference's (evaluate.hpp, model.cpp) in its order:
-// no fused multiply-add (the build sets -ffp-contract=off), the same constants, truncating
-// conversions, and lanes that skip a node keep their sums by selection.
+// The window, frequency clamping, the cosines and a stratum's term are the scalar reference's own
+// source (kernel.inc); every other vector operation below is the reference's (evaluate.hpp,
+// model.cpp) in its order: no fused multiply-add (the build sets -ffp-contract=off), the same
+// constants, truncating conversions, and lanes that skip a node keep their sums by selection.
 
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "methods/lrp/simd.cpp"
@@ -24,28 +25,18 @@ using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(float);
 
-// window_from_square (window.hpp) in every lane; 0 where t <= 0.
-HWY_INLINE VF window(DF df, const std::array<float, kWindowTerms>& coefficients, VF r2) {
-  const VF t = hn::Sub(hn::Set(df, 1.0f), hn::Mul(r2, hn::Set(df, 1.0f / kWindowRadiusSquared)));
-  const auto inside = hn::Gt(t, hn::Zero(df));
-  VF sum = hn::Set(df, coefficients[kWindowTerms - 1]);
-  for (int m = kWindowTerms - 2; m >= 0; --m)
-    sum = hn::Add(hn::Mul(sum, t), hn::Set(df, coefficients[static_cast<std::size_t>(m)]));
-  const VF root = hn::Sqrt(hn::IfThenElse(inside, t, hn::Zero(df)));
-  return hn::IfThenElseZero(inside, hn::Mul(hn::Mul(sum, t), root));
-}
+#include "methods/lrp/kernel.inc"
 
-// clamp_weight (evaluate.hpp) of the larger of |f.a| and |f.b| in every lane.
-HWY_INLINE VF clamp_weight(DF df, VF fx, VF fy, const VF (&axes)[4]) {
-  const VF along_a = hn::Abs(hn::Add(hn::Mul(fx, axes[0]), hn::Mul(fy, axes[1])));
-  const VF along_b = hn::Abs(hn::Add(hn::Mul(fx, axes[2]), hn::Mul(fy, axes[3])));
-  const VF cycles = hn::IfThenElse(hn::Gt(along_a, along_b), along_a, along_b);
-  const VF weight = hn::Mul(hn::Sub(hn::Set(df, kClampEnd), cycles),
-                            hn::Set(df, 1.0f / (kClampEnd - kClampStart)));
-  return hn::IfThenElse(
-      hn::Le(weight, hn::Zero(df)), hn::Zero(df),
-      hn::IfThenElse(hn::Ge(weight, hn::Set(df, 1.0f)), hn::Set(df, 1.0f), weight));
-}
+// kernel.inc's operations in every lane.
+struct VectorOps {
+  static VF constant(float c) { return hn::Set(DF(), c); }
+  static VF abs(VF v) { return hn::Abs(v); }
+  static VF sqrt(VF v) { return hn::Sqrt(v); }
+  static VF min(VF a, VF b) { return hn::Min(a, b); }
+  static VF cos(VF v) { return CosTurns(DF(), v); }
+  static VF select(hn::Mask<DF> condition, VF a, VF b) { return hn::IfThenElse(condition, a, b); }
+  static bool none(hn::Mask<DF> condition) { return hn::AllFalse(DF(), condition); }
+};
 
 // At most this many distinct nodes in one pass are read by selection between broadcasts; more
 // are gathered (a gather of 16 lanes costs more than the cosine it feeds).
@@ -81,6 +72,7 @@ HWY_INLINE VF node_sum(DF df, const PassLists& pass, std::uint32_t count, VF px,
       return value;
     }
   };
+  const VectorOps ops;
   VF local = hn::Zero(df);
   for (std::uint32_t j = 0; j < count; ++j) {
     const VF fx = field(j);
@@ -89,14 +81,12 @@ HWY_INLINE VF node_sum(DF df, const PassLists& pass, std::uint32_t count, VF px,
     if constexpr (Filtered) {
       // A cosine faded out in every lane adds +-0 to `local`, which starts at +0 and so is never
       // -0: skipping it changes no bit.
-      clamp = clamp_weight(df, fx, fy, axes);
+      clamp = frequency_clamp(ops, fx, fy, axes);
       if (hn::AllTrue(df, hn::Eq(clamp, hn::Zero(df)))) continue;
     }
-    const VF phase = field(2 * count + j);
-    const VF weight = field(3 * count + j);
-    VF c = CosTurns(df, hn::Add(hn::Add(hn::Mul(fx, px), hn::Mul(fy, py)), phase));
-    if constexpr (Filtered) c = hn::Mul(c, clamp);
-    local = hn::Add(local, hn::Mul(weight, c));
+    VF c = node_cosine(ops, fx, fy, field(2 * count + j), px, py);
+    if constexpr (Filtered) c = c * clamp;
+    local = local + field(3 * count + j) * c;
   }
   return local;
 }
@@ -168,7 +158,7 @@ void strata_lanes(const RandomStrata& strata, int channels, std::span<const Vec2
       for (int dx = -1; dx <= 1; ++dx) {
         const VF rx = hn::Sub(ox, hn::Set(df, static_cast<float>(dx)));
         const VF ry = hn::Sub(oy, hn::Set(df, static_cast<float>(dy)));
-        const VF w = window(df, *strata.window, hn::Add(hn::Mul(rx, rx), hn::Mul(ry, ry)));
+        const VF w = window_from_square(VectorOps{}, *strata.window, rx * rx + ry * ry);
         hn::Store(w, df, weight_lanes);
         const VF px = hn::Mul(rx, hn::Set(df, draw.spacing));
         const VF py = hn::Mul(ry, hn::Set(df, draw.spacing));
@@ -217,11 +207,11 @@ void strata_lanes(const RandomStrata& strata, int channels, std::span<const Vec2
         }
       }
     }
-    VF scale = hn::Set(df, stratum.amplitude);
-    if (strata.normalise)
-      scale = hn::Mul(scale, hn::Sqrt(hn::Div(hn::Set(df, strata.mean_envelope), window_square)));
     float* lane_noise = channel_noise[stratum.channel];
-    hn::Store(hn::Add(hn::Load(df, lane_noise), hn::Mul(scale, sum)), df, lane_noise);
+    hn::Store(
+        hn::Load(df, lane_noise) + stratum_term(VectorOps{}, stratum.amplitude, strata.normalise,
+                                                strata.mean_envelope, window_square, sum),
+        df, lane_noise);
   }
   for (std::size_t lane = 0; lane < count; ++lane)
     for (int c = 0; c < channels; ++c)

@@ -69,7 +69,8 @@ inline double kaiser_bessel_window(double y) {
 // The same window as a polynomial in t = 1 - (y / 1.5)^2 for the evaluator (no special function,
 // mirrorable in GLSL): w = t sqrt(t) sum_m c_m t^m, the series of I_3 with
 // c_m = (3 pi / 2)^(2m+3) / (m! (m+3)! I_3(3 pi)). The terms are positive, so Horner's scheme in
-// float has no cancellation; 20 terms leave a truncation below 1e-12.
+// float has no cancellation; 20 terms leave a truncation below 1e-12. The evaluator reads it with
+// window_from_square (evaluate.hpp).
 inline constexpr int kWindowTerms = 20;
 inline std::array<float, kWindowTerms> window_coefficients() {
   std::array<float, kWindowTerms> coefficients{};
@@ -81,16 +82,6 @@ inline std::array<float, kWindowTerms> window_coefficients() {
     term *= half * half / ((m + 1.0) * (m + 4.0));
   }
   return coefficients;
-}
-
-// w at squared distance `r2` (in units of the lattice spacing) from the polynomial form.
-inline float window_from_square(const std::array<float, kWindowTerms>& coefficients,
-                                float r2) noexcept {
-  const float t = 1.0f - r2 * (1.0f / kWindowRadiusSquared);
-  if (t <= 0.0f) return 0.0f;
-  float sum = coefficients[kWindowTerms - 1];
-  for (int m = kWindowTerms - 2; m >= 0; --m) sum = sum * t + coefficients[m];
-  return sum * t * std::sqrt(t);
 }
 
 // int_0^inf r w^2(r) dr, the constant of equation (3) (the paper: ~0.1126), by composite Simpson

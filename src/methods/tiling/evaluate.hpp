@@ -22,6 +22,53 @@ inline constexpr float kGaussianMean = 0.5f;
 inline constexpr float kGaussianDeviation = 1.0f / 6.0f;
 // Eq. (22)'s factor 1 / (sigma sqrt(2)) of the erf: Phi(g) = (1 + erf((g - mu) kErfScale)) / 2.
 inline constexpr float kErfScale = 1.0f / (kGaussianDeviation * 1.41421356237f);
+// The coefficients of erf_rational (below).
+inline constexpr double kErfNumerator[] = {
+    -2.72614225801306e-10, 2.77068142495902e-08,  -2.10102402082508e-06, -5.69250639462346e-05,
+    -7.34990630326855e-04, -2.95459980854025e-03, -1.60960333262415e-02};
+inline constexpr double kErfDenominator[] = {-1.45660718464996e-05, -2.13374055278905e-04,
+                                             -1.68282697438203e-03, -7.37332916720468e-03,
+                                             -1.42647390514189e-02};
+inline constexpr double kErfClamp = 4.0;
+
+// 1 / sqrt(3), of the triangle lattice's geometry (triangle_lattice below).
+inline constexpr double kInverseSqrt3 = 0.57735026918962576;
+
+// The arithmetic that the scalar reference and the vectorised evaluator (simd.cpp) share, source
+// for source: the lattice and the wrap, the blend weights, the bilinear fetch, erf and the look-up
+// tables.
+#include "methods/tiling/kernel.inc"
+
+// kernel.inc's operations on single values: the scalar reference.
+struct ScalarOps {
+  using F = float;
+  using I = int;
+  using D = double;
+  static float f(float c) noexcept { return c; }
+  static int i(int c) noexcept { return c; }
+  static double d(double c) noexcept { return c; }
+  static float floor(float v) noexcept { return std::floor(v); }
+  static double floor(double v) noexcept { return std::floor(v); }
+  static int to_int(float v) noexcept { return static_cast<int>(v); }
+  static float to_float(int v) noexcept { return static_cast<float>(v); }
+  template <typename T>
+  static T select(bool condition, T a, T b) noexcept {
+    return condition ? a : b;
+  }
+  static int add_where(bool condition, int x, int y) noexcept {
+    if (condition) x += y;
+    return x;
+  }
+  static int subtract_unless(bool condition, int x, int y) noexcept {
+    if (!condition) x -= y;
+    return x;
+  }
+  static float sqrt(float v) noexcept { return std::sqrt(v); }
+  static float erf(float x) noexcept {
+    return static_cast<float>(erf_ratio(ScalarOps{}, static_cast<double>(x)));
+  }
+  static float gather(const float* base, int index) noexcept { return base[index]; }
+};
 
 // The three vertices of the equilateral-triangle (simplex) lattice around a point and their
 // blending weights (section 5.1, after Perlin 2001). Vertex (i, j) of the skewed lattice sits at
@@ -37,11 +84,11 @@ struct LatticePoint {
   float from_vertex_y[3];
 };
 
-inline constexpr double kInverseSqrt3 = 0.57735026918962576;
-
 // p in skewed lattice units: vertex (i, j) at (i, j).
 inline Vec2d skewed_position(Vec2d p, double edge) noexcept {
-  return {(p.x - p.y * kInverseSqrt3) / edge, (2.0 * kInverseSqrt3 * p.y) / edge};
+  Vec2d skewed;
+  skew(ScalarOps{}, p.x, p.y, edge, skewed.x, skewed.y);
+  return skewed;
 }
 
 inline LatticePoint triangle_lattice(Vec2d p, double edge) noexcept {
@@ -58,18 +105,9 @@ inline LatticePoint triangle_lattice(Vec2d p, double edge) noexcept {
   const auto fy = static_cast<float>(skewed_y - cell_y);
   LatticePoint out;
   // Lower triangle (0,0) (1,0) (0,1) or upper triangle (1,1) (0,1) (1,0) of the skewed cell.
-  const bool lower = fx + fy < 1.0f;
+  const bool lower = triangle_weights(ScalarOps{}, fx, fy, out.weight);
   const int dx[3] = {lower ? 0 : 1, lower ? 1 : 0, lower ? 0 : 1};
   const int dy[3] = {lower ? 0 : 1, lower ? 0 : 1, lower ? 1 : 0};
-  if (lower) {
-    out.weight[0] = 1.0f - fx - fy;
-    out.weight[1] = fx;
-    out.weight[2] = fy;
-  } else {
-    out.weight[0] = fx + fy - 1.0f;
-    out.weight[1] = 1.0f - fx;
-    out.weight[2] = 1.0f - fy;
-  }
   for (int v = 0; v < 3; ++v) {
     out.vertex_x[v] = base_x + dx[v];
     out.vertex_y[v] = base_y + dy[v];
@@ -157,10 +195,9 @@ inline Point2f patch_shift(const PatchTransform& m, float from_x, float from_y,
 // p wrapped into the exemplar's period [0, width) x [0, height), formed in double so that
 // p = 1e7 keeps its fraction (docs/design.md §4); offsets are then added in float.
 inline Point2f wrap_position(Vec2d p, int width, int height) noexcept {
-  const auto w = static_cast<double>(width);
-  const auto h = static_cast<double>(height);
-  return {static_cast<float>(p.x - w * std::floor(p.x / w)),
-          static_cast<float>(p.y - h * std::floor(p.y / h))};
+  const ScalarOps ops;
+  return {static_cast<float>(wrap(ops, p.x, static_cast<double>(width))),
+          static_cast<float>(wrap(ops, p.y, static_cast<double>(height)))};
 }
 
 // The random patch of a lattice vertex (Algorithm 1: uv + hash(v)): a whole-pixel offset, uniform
@@ -194,72 +231,36 @@ struct MipLevel {
 // Adds weight * (bilinear, periodic) level(x, y) to acc; x, y in exemplar pixels, any sign.
 inline void fetch_bilinear(const MipLevel& level, int channels, float x, float y, float weight,
                            float* acc) noexcept {
-  const float u = x * level.texels_per_pixel_x - 0.5f;
-  const float v = y * level.texels_per_pixel_y - 0.5f;
-  const float cell_u = std::floor(u);
-  const float cell_v = std::floor(v);
-  const float tu = u - cell_u;
-  const float tv = v - cell_v;
-  // Periodic wrap by a float division rather than an integer modulo (several times slower); the
-  // two tests correct the rounding of the quotient at the period's ends.
-  const auto width = static_cast<float>(level.width);
-  const auto height = static_cast<float>(level.height);
-  int x0 = static_cast<int>(cell_u - width * std::floor(cell_u / width));
-  int y0 = static_cast<int>(cell_v - height * std::floor(cell_v / height));
-  if (x0 >= level.width) x0 -= level.width;
-  if (y0 >= level.height) y0 -= level.height;
-  if (x0 < 0) x0 += level.width;
-  if (y0 < 0) y0 += level.height;
-  const int x1 = x0 + 1 == level.width ? 0 : x0 + 1;
-  const int y1 = y0 + 1 == level.height ? 0 : y0 + 1;
-  const float w00 = weight * (1.0f - tu) * (1.0f - tv);
-  const float w10 = weight * tu * (1.0f - tv);
-  const float w01 = weight * (1.0f - tu) * tv;
-  const float w11 = weight * tu * tv;
-  const float* r0 = level.texels + static_cast<std::ptrdiff_t>(y0) * level.width * channels;
-  const float* r1 = level.texels + static_cast<std::ptrdiff_t>(y1) * level.width * channels;
+  const BilinearTaps<ScalarOps> taps = bilinear_taps(
+      ScalarOps{},
+      {level.texels_per_pixel_x, level.texels_per_pixel_y, static_cast<float>(level.width),
+       static_cast<float>(level.height), level.width, level.height},
+      x, y, weight);
+  const float* r0 = level.texels + static_cast<std::ptrdiff_t>(taps.y0) * level.width * channels;
+  const float* r1 = level.texels + static_cast<std::ptrdiff_t>(taps.y1) * level.width * channels;
+  const int x0 = taps.x0 * channels;
+  const int x1 = taps.x1 * channels;
   for (int c = 0; c < channels; ++c)
-    acc[c] += w00 * r0[x0 * channels + c] + w10 * r0[x1 * channels + c] +
-              w01 * r1[x0 * channels + c] + w11 * r1[x1 * channels + c];
+    acc[c] += bilinear_sum(taps, r0[x0 + c], r0[x1 + c], r1[x0 + c], r1[x1 + c]);
 }
 
 // erf(x) to 1e-7 (tested), with IEEE operations only, so that the vectorised evaluator (simd.cpp)
 // repeats it bit for bit, which libm's erff has no twin for: the odd rational x P(x^2) / Q(x^2) of
 // Eigen's generic_fast_erf_float (also XLA's ErfImpl32), clamped to [-4, 4] where erf is +-1 in
 // float, evaluated in double (6.5e-8 from erf there; 4.4e-7 in float).
-inline constexpr double kErfNumerator[] = {
-    -2.72614225801306e-10, 2.77068142495902e-08,  -2.10102402082508e-06, -5.69250639462346e-05,
-    -7.34990630326855e-04, -2.95459980854025e-03, -1.60960333262415e-02};
-inline constexpr double kErfDenominator[] = {-1.45660718464996e-05, -2.13374055278905e-04,
-                                             -1.68282697438203e-03, -7.37332916720468e-03,
-                                             -1.42647390514189e-02};
-inline constexpr double kErfClamp = 4.0;
-
 inline float erf_rational(float x) noexcept {
-  double t = x;
-  t = t < -kErfClamp ? -kErfClamp : (t > kErfClamp ? kErfClamp : t);
-  const double t2 = t * t;
-  double p = kErfNumerator[0];
-  for (std::size_t i = 1; i < std::size(kErfNumerator); ++i) p = p * t2 + kErfNumerator[i];
-  double q = kErfDenominator[0];
-  for (std::size_t i = 1; i < std::size(kErfDenominator); ++i) q = q * t2 + kErfDenominator[i];
-  return static_cast<float>(t * p / q);
+  return ScalarOps::erf(x);
 }
 
 // Eq. (22): the Gaussian value g of eq. (20) mapped to the uniform look-up-table parameter U.
 inline float gaussian_to_uniform(float g) noexcept {
-  return 0.5f + 0.5f * erf_rational((g - kGaussianMean) * kErfScale);
+  return gaussian_to_uniform(ScalarOps{}, g);
 }
 
 // Linear interpolation in a table of `size` >= 2 cells centred on (k + 1/2) / size, clamped at
 // the ends (a texture fetch with clamp-to-edge addressing): returns the fraction towards `first`+1.
 inline float table_coordinate(float u, int size, int& first) noexcept {
-  const float last = static_cast<float>(size - 1);
-  float x = u * static_cast<float>(size) - 0.5f;
-  x = x < 0.0f ? 0.0f : (x > last ? last : x);
-  first = static_cast<int>(x);
-  if (first > size - 2) first = size - 2;
-  return x - static_cast<float>(first);
+  return table_coordinate(ScalarOps{}, u, size, first);
 }
 
 // A normal map's slopes s = (ds/dx, ds/dv) under the artist controls (issue 18) go through T in a

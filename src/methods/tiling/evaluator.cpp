@@ -14,15 +14,6 @@
 #include "methods/tiling/simd.hpp"
 
 namespace stochtex::tiling {
-namespace {
-
-float table_lookup(const float* table, int size, float g) noexcept {
-  int cell = 0;
-  const float t = table_coordinate(gaussian_to_uniform(g), size, cell);
-  return table[cell] + t * (table[cell + 1] - table[cell]);
-}
-
-}  // namespace
 
 double TilingModel::footprint_width(const Footprint* footprint) noexcept {
   if (footprint == nullptr) return 0.0;
@@ -132,10 +123,8 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
       for (int c = 0; c < channels; ++c) acc[c] += w * patch[v][c];
     }
   }
-  // Eq. (8)/(13): (sum w G - E[G]) / sqrt(sum w^2) + E[G], with sum w = 1; eq. (3) for linear.
-  const float inverse_norm = data_.blend == Blend::linear ? 1.0f : 1.0f / std::sqrt(weight_squares);
-  for (int c = 0; c < channels; ++c)
-    g[c] = (acc[c] - data_.blend_mean[c]) * inverse_norm + data_.blend_mean[c];
+  blend_to_gaussian(ScalarOps{}, channels, data_.blend == Blend::linear, data_.blend_mean.data(),
+                    weight_squares, acc, g);
   return data_.scale_jitter > 0.0 ? split_level(weighted_lod / weight_squares) : lod;
 }
 
@@ -146,41 +135,21 @@ void TilingModel::inverse_at_level(const float* g, int level, float* out) const 
     const float* gg = g + group.first;
     float* o = out + group.first;
     if (group.transform == GroupTransform::lut) {
-      // Trilinear fetch of the 3-D table at U of eq. (22), [z][y][x][colour] layout.
-      const std::span<const float> lut = level_lut(level);
-      const int n = data_.lut_size;
-      int cell[3];
-      float t[3];
-      for (int c = 0; c < 3; ++c) t[c] = table_coordinate(gaussian_to_uniform(gg[c]), n, cell[c]);
-      const std::ptrdiff_t step_y = static_cast<std::ptrdiff_t>(n) * 3;
-      const std::ptrdiff_t step_z = step_y * n;
-      const float* base = lut.data() + cell[2] * step_z + cell[1] * step_y + cell[0] * 3;
-      float acc[3];
-      for (int c = 0; c < 3; ++c) {
-        const float* p = base + c;
-        const float x00 = p[0] + t[0] * (p[3] - p[0]);
-        const float x10 = p[step_y] + t[0] * (p[step_y + 3] - p[step_y]);
-        const float x01 = p[step_z] + t[0] * (p[step_z + 3] - p[step_z]);
-        const float x11 = p[step_z + step_y] + t[0] * (p[step_z + step_y + 3] - p[step_z + step_y]);
-        const float y0 = x00 + t[1] * (x10 - x00);
-        const float y1 = x01 + t[1] * (x11 - x01);
-        acc[c] = y0 + t[2] * (y1 - y0);
-      }
-      for (int c = 0; c < 3; ++c) o[c] = acc[c];
+      // Trilinear fetch of the 3-D table at U of eq. (22).
+      const float* lut = level_lut(level).data();
+      lut_value(
+          ScalarOps{}, data_.lut_size, gg,
+          [&](int corner, std::ptrdiff_t offset) { return (lut + corner)[offset]; }, o);
     } else if (group.transform == GroupTransform::decorrelated) {
       // 1-D tables per decorrelated channel, then back to the group's basis.
       const int cc = group.channels;
-      const float* basis = data_.colour_basis.data() + group.first_basis;
-      const float* mean = data_.colour_mean.data() + group.first_mean;
       float decorrelated[kMaxChannels];
       for (int c = 0; c < cc; ++c)
         decorrelated[c] = table_lookup(
-            tables.data() + static_cast<std::ptrdiff_t>(group.first_table + c) * size, size, gg[c]);
-      for (int c = 0; c < cc; ++c) {
-        float value = mean[c];
-        for (int k = 0; k < cc; ++k) value += basis[c * cc + k] * decorrelated[k];
-        o[c] = value;
-      }
+            ScalarOps{}, tables.data() + static_cast<std::ptrdiff_t>(group.first_table + c) * size,
+            0, size, gg[c]);
+      from_decorrelated(ScalarOps{}, cc, data_.colour_basis.data() + group.first_basis,
+                        data_.colour_mean.data() + group.first_mean, decorrelated, o);
     } else if (group.transform == GroupTransform::radial) {
       // The magnitude from the (prefiltered) radial table, along g's direction from the centre.
       const float dx = gg[0] - kGaussianMean;
@@ -195,7 +164,8 @@ void TilingModel::inverse_at_level(const float* g, int level, float* out) const 
       o[0] = magnitude * dx;
       o[1] = magnitude * dy;
     } else {
-      o[0] = table_lookup(tables.data() + static_cast<std::ptrdiff_t>(group.first_table) * size,
+      o[0] = table_lookup(ScalarOps{},
+                          tables.data() + static_cast<std::ptrdiff_t>(group.first_table) * size, 0,
                           size, gg[0]);
     }
   }
@@ -211,7 +181,7 @@ void TilingModel::inverse_transform(const float* g, LevelOfDetail lod, float* ou
   if (lod.blend > 0.0f) {
     float coarse[kMaxChannels];
     inverse_at_level(g, lod.level + 1, coarse);
-    for (int c = 0; c < channels; ++c) out[c] += lod.blend * (coarse[c] - out[c]);
+    for (int c = 0; c < channels; ++c) out[c] = interpolate(out[c], coarse[c], lod.blend);
   }
 }
 
