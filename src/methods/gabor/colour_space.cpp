@@ -99,13 +99,27 @@ Matrix joint_diagonalizer(const std::vector<Matrix>& correlations, int n) {
         const double s = std::sin(theta);
         if (std::abs(s) <= kThreshold) continue;
         rotated = true;
-        Eigen::MatrixXd givens = Eigen::MatrixXd::Identity(n, n);
-        givens(p, p) = c;
-        givens(p, q) = -s;
-        givens(q, p) = s;
-        givens(q, q) = c;
-        rotation = rotation * givens;
-        for (auto& a : matrices) a = givens.transpose() * a * givens;
+        // The Givens rotation G (G_pp = G_qq = c, G_pq = -s, G_qp = s) changes columns p and q of
+        // `rotation` (rotation G) and rows then columns p and q of each matrix (G^T A G): each
+        // new entry is the sum of the same two products a dense product would add to zeros.
+        const auto rotate_columns = [&](Eigen::MatrixXd& m) {
+          for (int i = 0; i < n; ++i) {
+            const double mp = m(i, p);
+            const double mq = m(i, q);
+            m(i, p) = c * mp + s * mq;
+            m(i, q) = -s * mp + c * mq;
+          }
+        };
+        rotate_columns(rotation);
+        for (auto& a : matrices) {
+          for (int j = 0; j < n; ++j) {
+            const double ap = a(p, j);
+            const double aq = a(q, j);
+            a(p, j) = c * ap + s * aq;
+            a(q, j) = -s * ap + c * aq;
+          }
+          rotate_columns(a);
+        }
       }
     if (!rotated) break;
   }

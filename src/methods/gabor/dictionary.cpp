@@ -104,11 +104,16 @@ GaussianDictionary::GaussianDictionary(int width, int height, int narrowest)
         band.support_rows.push_back(y);
         band.support_coarse_rows.push_back(y % coarse_height);
       }
-    for (int x = 0; x < width; ++x)
-      if (std::min(x, width - x) <= reach_x) {
-        band.support_columns.push_back(x);
-        band.support_coarse_columns.push_back(x % coarse_width);
-      }
+    for (int x = 0; x < width; ++x) {
+      if (std::min(x, width - x) > reach_x) continue;
+      std::vector<ColumnRun>& runs = x < half ? band.stored_runs : band.mirrored_runs;
+      const int coarse_x = x % coarse_width;
+      if (!runs.empty() && runs.back().column + runs.back().length == x &&
+          runs.back().coarse_column + runs.back().length == coarse_x)
+        ++runs.back().length;
+      else
+        runs.push_back({x, coarse_x, 1});
+    }
     bands_.push_back(std::move(band));
   }
 }
@@ -149,16 +154,21 @@ void GaussianDictionary::apply(const std::vector<std::vector<float>>& alpha,
                 ? band.coarse_spectrum[cy * coarse_half + cx]
                 : std::conj(band.coarse_spectrum[mirror_y * coarse_half + (coarse_width - cx)]);
     }
-    // Only where the kernel's spectrum is not negligible.
+    // Only where the kernel's spectrum is not negligible. The complex values are read as
+    // (real, imaginary) float pairs, so that a run is one loop the compiler can vectorise.
     for (std::size_t r = 0; r < band.support_rows.size(); ++r) {
-      const Complex* coarse =
-          &row[static_cast<std::size_t>(band.support_coarse_rows[r]) * coarse_width];
+      const float* coarse = reinterpret_cast<const float*>(
+          &row[static_cast<std::size_t>(band.support_coarse_rows[r]) * coarse_width]);
       const std::size_t offset = static_cast<std::size_t>(band.support_rows[r]) * half;
-      for (std::size_t c = 0; c < band.support_columns.size(); ++c) {
-        const auto kx = static_cast<std::size_t>(band.support_columns[c]);
-        if (kx < static_cast<std::size_t>(half))
-          sum_spectrum_[offset + kx] +=
-              coarse[band.support_coarse_columns[c]] * kernel[offset + kx];
+      float* sum = reinterpret_cast<float*>(&sum_spectrum_[offset]);
+      for (const ColumnRun& run : band.stored_runs) {
+        float* __restrict into = sum + 2 * run.column;
+        const float* __restrict in = coarse + 2 * run.coarse_column;
+        const float* __restrict gain = &kernel[offset + run.column];
+        for (int i = 0; i < run.length; ++i) {
+          into[2 * i] += in[2 * i] * gain[i];
+          into[2 * i + 1] += in[2 * i + 1] * gain[i];
+        }
       }
     }
   }
@@ -197,20 +207,36 @@ void GaussianDictionary::adjoint(std::span<const float> spectrum,
     // Fold the product onto the coarse spectrum: every full bin k adds to coarse bin
     // k mod (coarse size); bins where the kernel's spectrum is negligible are skipped. The full
     // spectrum's missing half is the conjugate at -k (the kernel is even and real).
+    // As float pairs, run by run (apply); the runs of the other half-plane read their bins
+    // backwards from the stored conjugates.
     std::vector<Complex>& row = band.coarse_row;
     std::fill(row.begin(), row.end(), Complex(0.0f, 0.0f));
+    const auto* sum = reinterpret_cast<const float*>(sum_spectrum_.data());
     for (std::size_t r = 0; r < band.support_rows.size(); ++r) {
       const int ky = band.support_rows[r];
-      Complex* coarse = &row[static_cast<std::size_t>(band.support_coarse_rows[r]) * coarse_width];
+      auto* coarse = reinterpret_cast<float*>(
+          &row[static_cast<std::size_t>(band.support_coarse_rows[r]) * coarse_width]);
       const std::size_t offset = static_cast<std::size_t>(ky) * half;
       const std::size_t mirror = static_cast<std::size_t>((height_ - ky) % height_) * half;
-      for (std::size_t c = 0; c < band.support_columns.size(); ++c) {
-        const auto kx = static_cast<std::size_t>(band.support_columns[c]);
-        const std::size_t mirrored = mirror + static_cast<std::size_t>(width_) - kx;
-        coarse[band.support_coarse_columns[c]] +=
-            kx < static_cast<std::size_t>(half)
-                ? sum_spectrum_[offset + kx] * kernel[offset + kx]
-                : std::conj(sum_spectrum_[mirrored]) * kernel[mirrored];
+      for (const ColumnRun& run : band.stored_runs) {
+        float* __restrict into = coarse + 2 * run.coarse_column;
+        const float* __restrict in = sum + 2 * (offset + run.column);
+        const float* __restrict gain = &kernel[offset + run.column];
+        for (int i = 0; i < run.length; ++i) {
+          into[2 * i] += in[2 * i] * gain[i];
+          into[2 * i + 1] += in[2 * i + 1] * gain[i];
+        }
+      }
+      for (const ColumnRun& run : band.mirrored_runs) {
+        // Bin x reads the conjugate at mirror + width - x: i steps backwards through it.
+        const std::size_t first = mirror + static_cast<std::size_t>(width_ - run.column);
+        float* __restrict into = coarse + 2 * run.coarse_column;
+        const float* __restrict in = sum + 2 * first;
+        const float* __restrict gain = &kernel[first];
+        for (int i = 0; i < run.length; ++i) {
+          into[2 * i] += in[-2 * i] * gain[-i];
+          into[2 * i + 1] += -in[-2 * i + 1] * gain[-i];
+        }
       }
     }
     for (int cy = 0; cy < coarse_height; ++cy)

@@ -63,6 +63,13 @@ class GaussianDictionary {
   std::span<const float> weights() const { return weights_; }
 
  private:
+  // Columns column .. column + length - 1 of the full plane, which fold onto coarse columns
+  // coarse_column .. coarse_column + length - 1.
+  struct ColumnRun {
+    int column = 0;
+    int coarse_column = 0;
+    int length = 0;
+  };
   struct Band {
     int band = 0;
     std::vector<float> mask;
@@ -78,11 +85,12 @@ class GaussianDictionary {
     // Where kernel_spectrum is not negligible (above kSupportThreshold of its peak): a wide
     // Gaussian's spectrum is narrow, so a coarse band's products and folds run over these rows
     // (0 .. height - 1) and columns (0 .. width - 1, both half-planes) only, with the coarse bins
-    // they map to.
+    // they map to. The columns are runs that map to consecutive coarse columns, in increasing
+    // order: those of the stored half-plane (x < width / 2 + 1), then those of the other half.
     std::vector<int> support_rows;
     std::vector<int> support_coarse_rows;
-    std::vector<int> support_columns;
-    std::vector<int> support_coarse_columns;
+    std::vector<ColumnRun> stored_runs;
+    std::vector<ColumnRun> mirrored_runs;
   };
   int width_;
   int height_;

@@ -50,11 +50,19 @@ DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const flo
   for (std::size_t i = 0; i < model.size(); ++i) residual[i] = target[i] - model[i];
   std::vector<std::vector<float>>& correlation = buffers.correlation;
   dictionary.adjoint(residual, correlation, true);
+  // Off its band's grid, alpha and the correlation are zero: only the grid is visited (skipping
+  // zeros changes neither the largest value, which starts at 0, nor the sum).
   double largest = 0.0;
   double l1 = 0.0;
   for (std::size_t b = 0; b < alpha.size(); ++b) {
-    for (const float c : correlation[b]) largest = std::max(largest, 2.0 * c);
-    for (const float a : alpha[b]) l1 += a;
+    const int step_x = dictionary.step_x(static_cast<int>(b));
+    const int step_y = dictionary.step_y(static_cast<int>(b));
+    for (int y = 0; y < dictionary.height(); y += step_y)
+      for (int x = 0; x < dictionary.width(); x += step_x) {
+        const std::size_t i = static_cast<std::size_t>(y) * dictionary.width() + x;
+        largest = std::max(largest, 2.0 * correlation[b][i]);
+        l1 += alpha[b][i];
+      }
   }
   const double residual_squared = dot(residual, residual);
   const double residual_target = dot(residual, target);

@@ -42,7 +42,8 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
                          const FitOptions& options,
                          const std::function<void(double)>& progress = {});
 
-// Duality gap of eq. (8) at a non-negative alpha, and its primal objective.
+// Duality gap of eq. (8) at a non-negative alpha (zero off each band's grid, as a fit's), and its
+// primal objective.
 struct DualityGap {
   double primal = 0;
   double dual = 0;
