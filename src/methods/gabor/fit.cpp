@@ -143,14 +143,16 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
   std::vector<float> model;
   std::vector<float> residual(plane);
   // Only the bins of each band's sub-grid carry coefficients: the other entries stay zero.
-  // visit(band, index) runs over those, band by band, row by row.
-  const auto for_each_coefficient = [&](auto&& visit) {
+  // band_visitor(band) gives the visit(index) of that band's bins (it takes the band's planes
+  // once); they run band by band, row by row.
+  const auto for_each_coefficient = [&](auto&& band_visitor) {
     for (std::size_t b = 0; b < bands; ++b) {
+      auto visit = band_visitor(b);
       const int step_x = dictionary.step_x(static_cast<int>(b));
       const int step_y = dictionary.step_y(static_cast<int>(b));
       for (int y = 0; y < dictionary.height(); y += step_y)
         for (int x = 0; x < dictionary.width(); x += step_x)
-          visit(b, static_cast<std::size_t>(y) * dictionary.width() + x);
+          visit(static_cast<std::size_t>(y) * dictionary.width() + x);
     }
   };
   // Homotopy (section 5.2): kappa = 1/2, 1/4, ..., then options.kappa, each step warm-started.
@@ -173,16 +175,18 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
       // Proximal step of nu ||a||_1 + indicator(a >= 0): a shifted, clipped gradient step.
       const auto penalty = static_cast<float>(nu);
       double restart_test = 0.0;
-      for_each_coefficient([&](std::size_t b, std::size_t i) {
-        previous[b][i] = fit.alpha[b][i];
-        const float step = steps[b][i];
-        const float value =
-            std::max(0.0f, extrapolated[b][i] - step * (2.0f * gradient[b][i] + penalty));
-        fit.alpha[b][i] = value;
-        // In the preconditioned variable: the inner product weighted by D = 1 / (2 step).
-        if (step > 0.0f)
-          restart_test +=
-              static_cast<double>(extrapolated[b][i] - value) * (value - previous[b][i]) / step;
+      for_each_coefficient([&](std::size_t b) {
+        return [&restart_test, penalty, alpha = fit.alpha[b].data(), last = previous[b].data(),
+                from = extrapolated[b].data(), step_of = steps[b].data(),
+                slope = gradient[b].data()](std::size_t i) {
+          last[i] = alpha[i];
+          const float step = step_of[i];
+          const float value = std::max(0.0f, from[i] - step * (2.0f * slope[i] + penalty));
+          alpha[i] = value;
+          // In the preconditioned variable: the inner product weighted by D = 1 / (2 step).
+          if (step > 0.0f)
+            restart_test += static_cast<double>(from[i] - value) * (value - last[i]) / step;
+        };
       });
       // Adaptive restart (O'Donoghue & Candes 2015): when the step goes against the momentum,
       // the momentum is reset. FISTA keeps its O(1/k^2) rate and gains linear convergence once
@@ -191,8 +195,11 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
       const double next_momentum = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum * momentum));
       const auto blend = static_cast<float>((momentum - 1.0) / next_momentum);
       momentum = next_momentum;
-      for_each_coefficient([&](std::size_t b, std::size_t i) {
-        extrapolated[b][i] = fit.alpha[b][i] + blend * (fit.alpha[b][i] - previous[b][i]);
+      for_each_coefficient([&](std::size_t b) {
+        return [blend, alpha = fit.alpha[b].data(), last = previous[b].data(),
+                to = extrapolated[b].data()](std::size_t i) {
+          to[i] = alpha[i] + blend * (alpha[i] - last[i]);
+        };
       });
       if (iteration % kGapCheckInterval == 0 || iteration == options.max_iterations) {
         const DualityGap gap = duality_gap(dictionary, target, fit.alpha, nu, gap_buffers);
