@@ -100,9 +100,10 @@ Matrix joint_diagonalizer(const std::vector<Matrix>& correlations, int n) {
         if (std::abs(s) <= kThreshold) continue;
         rotated = true;
         // The Givens rotation G (G_pp = G_qq = c, G_pq = -s, G_qp = s) changes columns p and q of
-        // `rotation` (rotation G) and rows then columns p and q of each matrix (G^T A G): each
-        // new entry is the sum of the same two products a dense product would add to zeros.
-        const auto rotate_columns = [&](Eigen::MatrixXd& m) {
+        // `rotation` (rotation G) and rows then columns p and q of each matrix (G^T A G, the rows
+        // as the columns of A^T): each new entry is the sum of the same two products a dense
+        // product would add to zeros.
+        const auto rotate_columns = [&](auto&& m) {
           for (int i = 0; i < n; ++i) {
             const double mp = m(i, p);
             const double mq = m(i, q);
@@ -112,12 +113,7 @@ Matrix joint_diagonalizer(const std::vector<Matrix>& correlations, int n) {
         };
         rotate_columns(rotation);
         for (auto& a : matrices) {
-          for (int j = 0; j < n; ++j) {
-            const double ap = a(p, j);
-            const double aq = a(q, j);
-            a(p, j) = c * ap + s * aq;
-            a(q, j) = -s * ap + c * aq;
-          }
+          rotate_columns(a.transpose());
           rotate_columns(a);
         }
       }

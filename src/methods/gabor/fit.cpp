@@ -28,6 +28,19 @@ double dot(std::span<const float> a, std::span<const float> b) {
   return sum;
 }
 
+// Runs over the bins of each band's sub-grid, the only ones that carry coefficients (the other
+// entries stay zero), band by band, row by row: band_visitor(band) gives the visit(index) of that
+// band's bins, so that it takes the band's planes once.
+template <typename BandVisitor>
+void for_each_coefficient(const GaussianDictionary& dictionary, BandVisitor&& band_visitor) {
+  for (int b = 0; b < dictionary.band_count(); ++b) {
+    auto visit = band_visitor(static_cast<std::size_t>(b));
+    for (int y = 0; y < dictionary.height(); y += dictionary.step_y(b))
+      for (int x = 0; x < dictionary.width(); x += dictionary.step_x(b))
+        visit(static_cast<std::size_t>(y) * dictionary.width() + x);
+  }
+}
+
 // The buffers of a duality-gap evaluation, kept by the fit across its checks: the correlation
 // alone is a plane per band.
 struct GapBuffers {
@@ -54,16 +67,12 @@ DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const flo
   // zeros changes neither the largest value, which starts at 0, nor the sum).
   double largest = 0.0;
   double l1 = 0.0;
-  for (std::size_t b = 0; b < alpha.size(); ++b) {
-    const int step_x = dictionary.step_x(static_cast<int>(b));
-    const int step_y = dictionary.step_y(static_cast<int>(b));
-    for (int y = 0; y < dictionary.height(); y += step_y)
-      for (int x = 0; x < dictionary.width(); x += step_x) {
-        const std::size_t i = static_cast<std::size_t>(y) * dictionary.width() + x;
-        largest = std::max(largest, 2.0 * correlation[b][i]);
-        l1 += alpha[b][i];
-      }
-  }
+  for_each_coefficient(dictionary, [&](std::size_t b) {
+    return [&largest, &l1, c = correlation[b].data(), a = alpha[b].data()](std::size_t i) {
+      largest = std::max(largest, 2.0 * c[i]);
+      l1 += a[i];
+    };
+  });
   const double residual_squared = dot(residual, residual);
   const double residual_target = dot(residual, target);
   DualityGap result;
@@ -142,19 +151,6 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
   GapBuffers gap_buffers;
   std::vector<float> model;
   std::vector<float> residual(plane);
-  // Only the bins of each band's sub-grid carry coefficients: the other entries stay zero.
-  // band_visitor(band) gives the visit(index) of that band's bins (it takes the band's planes
-  // once); they run band by band, row by row.
-  const auto for_each_coefficient = [&](auto&& band_visitor) {
-    for (std::size_t b = 0; b < bands; ++b) {
-      auto visit = band_visitor(b);
-      const int step_x = dictionary.step_x(static_cast<int>(b));
-      const int step_y = dictionary.step_y(static_cast<int>(b));
-      for (int y = 0; y < dictionary.height(); y += step_y)
-        for (int x = 0; x < dictionary.width(); x += step_x)
-          visit(static_cast<std::size_t>(y) * dictionary.width() + x);
-    }
-  };
   // Homotopy (section 5.2): kappa = 1/2, 1/4, ..., then options.kappa, each step warm-started.
   std::vector<double> kappas;
   for (double kappa = 0.5; kappa > options.kappa; kappa *= 0.5) kappas.push_back(kappa);
@@ -175,7 +171,7 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
       // Proximal step of nu ||a||_1 + indicator(a >= 0): a shifted, clipped gradient step.
       const auto penalty = static_cast<float>(nu);
       double restart_test = 0.0;
-      for_each_coefficient([&](std::size_t b) {
+      for_each_coefficient(dictionary, [&](std::size_t b) {
         return [&restart_test, penalty, alpha = fit.alpha[b].data(), last = previous[b].data(),
                 from = extrapolated[b].data(), step_of = steps[b].data(),
                 slope = gradient[b].data()](std::size_t i) {
@@ -195,7 +191,7 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
       const double next_momentum = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum * momentum));
       const auto blend = static_cast<float>((momentum - 1.0) / next_momentum);
       momentum = next_momentum;
-      for_each_coefficient([&](std::size_t b) {
+      for_each_coefficient(dictionary, [&](std::size_t b) {
         return [blend, alpha = fit.alpha[b].data(), last = previous[b].data(),
                 to = extrapolated[b].data()](std::size_t i) {
           to[i] = alpha[i] + blend * (alpha[i] - last[i]);
