@@ -1,5 +1,6 @@
 // Histogram-preserving tiling and blending costs (docs/design.md §10): analysis time for 128²,
-// 256² and 512² colour exemplars with both transports, and evaluation cost per sample through
+// 256² and 512² colour exemplars with both transports, the load of a 512² colour model file (its
+// prefiltered tables are rebuilt, pyramid.hpp), and evaluation cost per sample through
 // `render` at 1 and 2 threads for the Gaussian fast path (section 6.1: 3 fetches) and the full
 // path (3 fetches + one T^-1 look-up), point-sampled and filtered (scale 8).
 
@@ -9,6 +10,7 @@
 #include <exception>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "bench_support.hpp"
 #include "stochtex/stochtex.hpp"
@@ -44,6 +46,25 @@ void BM_TilingAnalysis(benchmark::State& state) {
 BENCHMARK(BM_TilingAnalysis)
     ->ArgNames({"side", "transport"})
     ->ArgsProduct({{128, 256, 512}, {0, 1}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+// Reading a model file of the 512² colour exemplar from memory: transport 0 (sliced, a 3-D table)
+// or 1 (per channel, three 1-D tables).
+void BM_TilingLoad(benchmark::State& state) {
+  std::vector<std::uint8_t> bytes;
+  try {
+    bytes = serialize_model(analyze("tiling", colour_exemplar().view(),
+                                    {{"transport", static_cast<double>(state.range(0))}}, 0));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(deserialize_model(bytes, "bench.stx"));
+}
+BENCHMARK(BM_TilingLoad)
+    ->ArgNames({"transport"})
+    ->DenseRange(0, 1)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

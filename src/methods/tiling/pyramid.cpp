@@ -4,10 +4,12 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <numbers>
 
 #include "core/colour_statistics.hpp"
 #include "methods/tiling/evaluate.hpp"
+#include "methods/tiling/simd.hpp"
 #include "stochtex/image.hpp"
 
 namespace stochtex::tiling {
@@ -24,10 +26,12 @@ std::vector<double> level_variances(const std::vector<float>& texels, int width,
   return channel_variances(level, channel_means(level));
 }
 
-// One row of a banded matrix: entries first .. first + weights.size() - 1.
-struct KernelRow {
-  int first = 0;
+// A sparse matrix by rows (SparseRows, simd.hpp).
+struct Kernel {
+  std::vector<std::size_t> first{0};
+  std::vector<std::int32_t> cells;
   std::vector<float> weights;
+  SparseRows rows() const { return {first.data(), cells.data(), weights.data(), first.size() - 1}; }
 };
 
 // The prefiltered inverse of a pyramid level (our reading of Deliot & Heitz 2019, section
@@ -37,60 +41,70 @@ struct KernelRow {
 // var(G_l), so T^-1_l(g) = E[T^-1(z)], z ~ N(g, r^2). At the top level (one texel, r = sigma)
 // a constant fetch returns the exemplar's mean colour, not T^-1(1/2), its median. The expectation
 // is a midpoint rule over `kPrefilterStrata` equal-probability strata of N(g, r^2), each read from
-// the table like the evaluator does (linear interpolation in the erf parameterisation, eq. 22);
-// row i is the table cell at g_i = 1/2 + sigma Phi^-1((i + 1/2) / size).
-std::vector<KernelRow> prefilter_kernel(int size, double residual_deviation) {
-  std::vector<KernelRow> rows(static_cast<std::size_t>(size));
-  std::vector<double> strata(kPrefilterStrata);
+// the table like the evaluator does (linear interpolation in the erf parameterisation, eq. 22, in
+// lanes: table_coordinates); row i is the table cell at g_i = 1/2 + sigma Phi^-1((i + 1/2) /
+// size). A row touches at most 2 kPrefilterStrata cells however wide it spreads: only those are
+// kept, as the float weights the sums multiply by. A zero weight adds nothing to a sum of the
+// finite values a table holds.
+Kernel prefilter_kernel(int size, double residual_deviation) {
+  Kernel kernel;
+  kernel.first.reserve(static_cast<std::size_t>(size) + 1);
+  std::array<double, kPrefilterStrata> strata{};
   for (int q = 0; q < kPrefilterStrata; ++q)
     strata[q] = normal_quantile((q + 0.5) / kPrefilterStrata);
-  std::vector<double> dense(static_cast<std::size_t>(size));
+  std::array<float, kPrefilterStrata> g{};
+  std::array<std::int32_t, kPrefilterStrata> cells{};
+  std::array<float, kPrefilterStrata> fractions{};
+  std::array<std::int32_t, 2 * kPrefilterStrata> touched{};
+  std::array<std::int32_t, 2 * kPrefilterStrata> row_cells{};
+  std::array<float, 2 * kPrefilterStrata> row_weights{};
+  std::vector<double> dense(static_cast<std::size_t>(size), 0.0);
   for (int i = 0; i < size; ++i) {
-    std::fill(dense.begin(), dense.end(), 0.0);
     const double centre = kGaussianMean + kGaussianDeviation * normal_quantile((i + 0.5) / size);
-    int first = size;
-    int last = -1;
+    for (int q = 0; q < kPrefilterStrata; ++q)
+      g[q] = static_cast<float>(centre + residual_deviation * strata[q]);
+    table_coordinates(g.data(), g.size(), size, cells.data(), fractions.data());
+    bool ascending = true;
     for (int q = 0; q < kPrefilterStrata; ++q) {
-      const auto g = static_cast<float>(centre + residual_deviation * strata[q]);
-      int cell = 0;
-      const float t = table_coordinate(gaussian_to_uniform(g), size, cell);
-      dense[cell] += (1.0 - t) / kPrefilterStrata;
-      dense[cell + 1] += static_cast<double>(t) / kPrefilterStrata;
-      first = std::min(first, cell);
-      last = std::max(last, cell + 1);
+      const float t = fractions[q];
+      dense[cells[q]] += (1.0 - t) / kPrefilterStrata;
+      dense[cells[q] + 1] += static_cast<double>(t) / kPrefilterStrata;
+      ascending = ascending && (q == 0 || cells[q] >= cells[q - 1]);
     }
-    rows[i].first = first;
-    rows[i].weights.assign(dense.begin() + first, dense.begin() + last + 1);
+    // The cells touched, in ascending order: the strata ascend, and so do their cells unless
+    // rounding turns one back (then they are sorted).
+    std::size_t count = 0;
+    for (int q = 0; q < kPrefilterStrata; ++q)
+      for (const std::int32_t cell : {cells[q], cells[q] + 1})
+        if (!ascending || count == 0 || cell > touched[count - 1]) touched[count++] = cell;
+    auto end = touched.begin() + static_cast<std::ptrdiff_t>(count);
+    if (!ascending) {
+      std::sort(touched.begin(), end);
+      end = std::unique(touched.begin(), end);
+    }
+    std::size_t kept = 0;
+    for (auto cell = touched.begin(); cell != end; ++cell) {
+      const auto weight = static_cast<float>(dense[*cell]);
+      if (weight != 0.0f) {
+        row_cells[kept] = *cell;
+        row_weights[kept++] = weight;
+      }
+      dense[*cell] = 0.0;
+    }
+    kernel.cells.insert(kernel.cells.end(), row_cells.begin(), row_cells.begin() + kept);
+    kernel.weights.insert(kernel.weights.end(), row_weights.begin(), row_weights.begin() + kept);
+    kernel.first.push_back(kernel.cells.size());
   }
-  return rows;
+  return kernel;
 }
 
-// out[i] = sum_a K[i][a] in[a] along one axis of a table with `stride` floats between cells and
-// `count` independent lines, each line's origin given by line_origin(line). Each sum adds its
-// terms in the order of a; the sums of a block of lines and components run side by side (a
-// model load is bound by this loop: one sum at a time waits on every addition).
-template <typename Origin>
-void apply_kernel(const std::vector<KernelRow>& rows, const std::vector<float>& in,
-                  std::vector<float>& out, std::size_t stride, std::size_t lines, int components,
-                  Origin line_origin) {
-  constexpr std::size_t kBlock = 8;
-  std::array<std::size_t, kBlock * 3> origins{};
-  std::array<double, kBlock * 3> sums{};
-  for (std::size_t line = 0; line < lines; line += kBlock) {
-    std::size_t chains = 0;
-    for (std::size_t l = line; l < std::min(line + kBlock, lines); ++l)
-      for (int c = 0; c < components; ++c) origins[chains++] = line_origin(l) + c;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      std::fill_n(sums.begin(), chains, 0.0);
-      const float* from = in.data() + static_cast<std::size_t>(rows[i].first) * stride;
-      for (std::size_t k = 0; k < rows[i].weights.size(); ++k) {
-        const float weight = rows[i].weights[k];  // a float product, added in double
-        for (std::size_t j = 0; j < chains; ++j) sums[j] += weight * from[origins[j] + k * stride];
-      }
-      for (std::size_t j = 0; j < chains; ++j)
-        out[origins[j] + i * stride] = static_cast<float>(sums[j]);
-    }
-  }
+// out = K in along one axis of a table of `blocks` blocks, each of K's rows of cells of `width`
+// contiguous floats: out[b][i][j] = sum_k K[i][k] in[b][k][j] (apply_rows, in lanes).
+void apply_kernel(const Kernel& kernel, const float* in, float* out, std::size_t blocks,
+                  std::size_t width) {
+  const SparseRows rows = kernel.rows();
+  for (std::size_t b = 0; b < blocks; ++b)
+    apply_rows(rows, in + b * rows.rows * width, out + b * rows.rows * width, width);
 }
 
 // prefilter_kernel for a radial table (GroupTransform::radial): the level's texel is the mean g of
@@ -162,7 +176,7 @@ void prefilter_levels(const TilingData& d, const TilingLayout& layout,
       level_variances(texels.front(), d.width, d.height, d.channels);
   for (std::size_t l = 0; l < texels.size(); ++l) {
     const std::vector<double> variance =
-        level_variances(texels[l], widths[l], heights[l], d.channels);
+        l == 0 ? base_variance : level_variances(texels[l], widths[l], heights[l], d.channels);
     const auto residual = [&](int channel) {
       return l == 0 ? 0.0 : std::sqrt(std::max(0.0, base_variance[channel] - variance[channel]));
     };
@@ -174,12 +188,25 @@ void prefilter_levels(const TilingData& d, const TilingLayout& layout,
         std::vector<float> scratch(lut.size());
         // Axis c of the table is channel first + c of G; the layout is [z][y][x][colour].
         const int f = group.first;
-        apply_kernel(prefilter_kernel(d.lut_size, residual(f)), lut, scratch, 3, n * n, 3,
-                     [&](std::size_t line) { return line * n * 3; });
-        apply_kernel(prefilter_kernel(d.lut_size, residual(f + 1)), scratch, lut, n * 3, n * n, 3,
-                     [&](std::size_t line) { return (line / n) * n * n * 3 + (line % n) * 3; });
-        apply_kernel(prefilter_kernel(d.lut_size, residual(f + 2)), lut, scratch, n * n * 3, n * n,
-                     3, [&](std::size_t line) { return line * 3; });
+        // Along x through the transposed table [x][z][y][colour], whose x cells are contiguous.
+        const auto transpose = [n](const std::vector<float>& from, std::vector<float>& to,
+                                   bool back) {
+          for (std::size_t zy = 0; zy < n * n; ++zy)
+            for (std::size_t x = 0; x < n; ++x)
+              for (std::size_t c = 0; c < 3; ++c) {
+                const std::size_t table = (zy * n + x) * 3 + c;
+                const std::size_t transposed = (x * n * n + zy) * 3 + c;
+                to[back ? table : transposed] = from[back ? transposed : table];
+              }
+        };
+        transpose(lut, scratch, false);
+        apply_kernel(prefilter_kernel(d.lut_size, residual(f)), scratch.data(), lut.data(), 1,
+                     n * n * 3);
+        transpose(lut, scratch, true);
+        apply_kernel(prefilter_kernel(d.lut_size, residual(f + 1)), scratch.data(), lut.data(), n,
+                     n * 3);
+        apply_kernel(prefilter_kernel(d.lut_size, residual(f + 2)), lut.data(), scratch.data(), 1,
+                     n * n * 3);
         lut = std::move(scratch);
         continue;
       }
@@ -193,10 +220,9 @@ void prefilter_levels(const TilingData& d, const TilingLayout& layout,
       // Table k of a group is read at channel first + k of G.
       const int count = group.transform == GroupTransform::direct ? 1 : group.channels;
       for (int k = 0; k < count; ++k) {
-        const int t = group.first_table + k;
-        const auto size = static_cast<std::size_t>(d.table_size);
-        apply_kernel(prefilter_kernel(d.table_size, residual(group.first + k)), d.tables, tables, 1,
-                     1, 1, [&](std::size_t) { return static_cast<std::size_t>(t) * size; });
+        const std::size_t offset = static_cast<std::size_t>(group.first_table + k) * d.table_size;
+        apply_kernel(prefilter_kernel(d.table_size, residual(group.first + k)),
+                     d.tables.data() + offset, tables.data() + offset, 1, 1);
       }
     }
     level_luts.insert(level_luts.end(), lut.begin(), lut.end());

@@ -14,6 +14,8 @@
 #include <hwy/foreach_target.h>  // IWYU pragma: keep
 #include <hwy/highway.h>
 
+#include <algorithm>
+
 #include "core/cpu_target.hpp"
 #include "core/hash.hpp"
 #include "core/simd_math.hpp"
@@ -338,6 +340,59 @@ void EvaluateLanes(const SimdTiling& m, std::span<const Vec2d> positions,
     Lanes(m, positions, i, levels, blends, seed, out, first);
 }
 
+void TableCoordinates(const float* g, std::size_t count, int size, std::int32_t* cells,
+                      float* fractions) {
+  const DF df;
+  const DI di;
+  const VectorOps ops;
+  const std::size_t lanes = hn::Lanes(df);
+  HWY_ALIGN float in[kMaxLanes] = {};
+  HWY_ALIGN float t[kMaxLanes];
+  HWY_ALIGN std::int32_t c[kMaxLanes];
+  for (std::size_t i = 0; i < count; i += lanes) {
+    const std::size_t n = std::min(lanes, count - i);
+    std::copy_n(g + i, n, in);
+    VI cell;
+    hn::Store(table_coordinate(ops, gaussian_to_uniform(ops, hn::Load(df, in)), size, cell), df, t);
+    hn::Store(cell, di, c);
+    std::copy_n(t, n, fractions + i);
+    std::copy_n(c, n, cells + i);
+  }
+}
+
+// apply_rows: the sums of a block of kSums double vectors of neighbouring j run side by side
+// (enough to hide the latency of the additions); the j the blocks leave take the scalar loop.
+void ApplyRows(const SparseRows& m, const float* in, float* out, std::size_t width) {
+  constexpr std::size_t kSums = 8;
+  const DD dd;
+  const DFH dfh;
+  const std::size_t half = hn::Lanes(dd);
+  const std::size_t block = kSums * half;
+  for (std::size_t i = 0; i < m.rows; ++i) {
+    float* row = out + i * width;
+    std::size_t j = 0;
+    for (; j + block <= width; j += block) {
+      VD sums[kSums];
+      for (VD& sum : sums) sum = hn::Zero(dd);
+      for (std::size_t k = m.first[i]; k < m.first[i + 1]; ++k) {
+        const auto weight = hn::Set(dfh, m.weights[k]);
+        const float* from = in + static_cast<std::size_t>(m.cells[k]) * width + j;
+        for (std::size_t s = 0; s < kSums; ++s)
+          sums[s] =
+              hn::Add(sums[s], hn::PromoteTo(dd, hn::Mul(weight, hn::LoadU(dfh, from + s * half))));
+      }
+      for (std::size_t s = 0; s < kSums; ++s)
+        hn::StoreU(hn::DemoteTo(dfh, sums[s]), dfh, row + j + s * half);
+    }
+    for (; j < width; ++j) {
+      double sum = 0.0;
+      for (std::size_t k = m.first[i]; k < m.first[i + 1]; ++k)
+        sum += m.weights[k] * in[static_cast<std::size_t>(m.cells[k]) * width + j];
+      row[j] = static_cast<float>(sum);
+    }
+  }
+}
+
 }  // namespace stochtex::tiling::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -350,6 +405,21 @@ void evaluate_lanes(const SimdTiling& model, std::span<const Vec2d> positions,
                     const std::int32_t* levels, const float* blends, std::uint32_t seed,
                     ImageView<float> out, std::size_t first) noexcept {
   HWY_DYNAMIC_DISPATCH(EvaluateLanes)(model, positions, levels, blends, seed, out, first);
+  end_simd_call();
+}
+
+HWY_EXPORT(TableCoordinates);
+
+void table_coordinates(const float* g, std::size_t count, int size, std::int32_t* cells,
+                       float* fractions) noexcept {
+  HWY_DYNAMIC_DISPATCH(TableCoordinates)(g, count, size, cells, fractions);
+  end_simd_call();
+}
+
+HWY_EXPORT(ApplyRows);
+
+void apply_rows(const SparseRows& matrix, const float* in, float* out, std::size_t width) noexcept {
+  HWY_DYNAMIC_DISPATCH(ApplyRows)(matrix, in, out, width);
   end_simd_call();
 }
 

@@ -59,4 +59,23 @@ void evaluate_lanes(const SimdTiling& model, std::span<const Vec2d> positions,
                     const std::int32_t* levels, const float* blends, std::uint32_t seed,
                     ImageView<float> out, std::size_t first) noexcept;
 
+// The prefilter of the tables (pyramid.cpp), in lanes with the scalar reference's bytes:
+// fractions[i] = table_coordinate(gaussian_to_uniform(g[i]), size, cells[i]) for i < count.
+void table_coordinates(const float* g, std::size_t count, int size, std::int32_t* cells,
+                       float* fractions) noexcept;
+
+// A sparse matrix by rows: row i's entries are (cells[k], weights[k]) for k in first[i] ..
+// first[i + 1] - 1, in ascending cell order.
+struct SparseRows {
+  const std::size_t* first = nullptr;
+  const std::int32_t* cells = nullptr;
+  const float* weights = nullptr;
+  std::size_t rows = 0;
+};
+
+// out[i][j] = sum_k weights[k] in[cells[k]][j] for every row i and j < width, `in` and `out`
+// holding rows of `width` contiguous floats: each product in float, added in double in the order
+// of k, rounded to float, as the scalar loop `sum += weight * value` does.
+void apply_rows(const SparseRows& matrix, const float* in, float* out, std::size_t width) noexcept;
+
 }  // namespace stochtex::tiling
