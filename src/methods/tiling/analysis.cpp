@@ -23,19 +23,31 @@ ImageView<const float> interleaved(const std::vector<float>& values, int width, 
   return {values.data(), width, height, channels, static_cast<std::ptrdiff_t>(width) * channels};
 }
 
-// Sort keys of (value, index) pairs: an order-preserving uint32 image of the float in the high
-// half, the index in the low half.
-std::uint64_t sort_key(float value, std::size_t index) {
+// An order-preserving uint32 image of a float (-0 before +0), and its inverse.
+std::uint32_t sortable_bits(float value) {
   std::uint32_t bits = 0;
   std::memcpy(&bits, &value, sizeof bits);
-  bits = (bits & 0x80000000u) != 0u ? ~bits : (bits | 0x80000000u);
-  return (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(index);
+  return (bits & 0x80000000u) != 0u ? ~bits : (bits | 0x80000000u);
 }
 
-// Indices of `values` in ascending order (ties by index), as the keys of sort_key sorted: the keys
-// are distinct, so every sort puts them in the same order. The sliced transport sorts millions of
-// projections: Highway's vectorised quicksort (VQSort) takes a third of the time of the 4-pass LSD
-// radix sort it replaced (docs/performance.md), which stays where VQSort has no 64-bit keys.
+float from_sortable_bits(std::uint32_t bits) {
+  bits = (bits & 0x80000000u) != 0u ? (bits & 0x7fffffffu) : ~bits;
+  float value = 0.0f;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
+// Sort keys of (value, index) pairs: sortable_bits of the value in the high half, the index in the
+// low half.
+std::uint64_t sort_key(float value, std::size_t index) {
+  return (static_cast<std::uint64_t>(sortable_bits(value)) << 32) |
+         static_cast<std::uint64_t>(index);
+}
+
+// Indices of `values` in ascending order (ties by index), as the keys of sort_key sorted. The keys
+// are distinct, so every sort puts them in the same order: the sliced transport sorts millions of
+// projections with Highway's vectorised quicksort (VQSort, docs/performance.md), or with a 4-pass
+// LSD radix sort where VQSort has no 64-bit lanes.
 void argsort(std::span<const float> values, std::vector<std::uint64_t>& keys,
              std::vector<std::uint64_t>& scratch) {
   const std::size_t count = values.size();
@@ -54,6 +66,19 @@ void argsort(std::span<const float> values, std::vector<std::uint64_t>& keys,
     for (const std::uint64_t key : keys) scratch[offsets[(key >> shift) & 0xffu]++] = key;
     keys.swap(scratch);
   }
+}
+
+// `values` in ascending order (-0 before +0), as argsort orders them, through their sortable_bits:
+// for the target side of a transport, which needs the values and not their indices.
+void sort_values(std::span<const float> values, std::vector<std::uint32_t>& keys,
+                 std::span<float> sorted) {
+  keys.resize(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) keys[i] = sortable_bits(values[i]);
+  if (hwy::Sorter::HaveFloat64())
+    hwy::Sorter()(keys.data(), keys.size(), hwy::SortAscending());
+  else
+    std::sort(keys.begin(), keys.end());
+  for (std::size_t k = 0; k < keys.size(); ++k) sorted[k] = from_sortable_bits(keys[k]);
 }
 
 std::size_t index_of(std::uint64_t key) {
@@ -216,8 +241,7 @@ std::vector<float> sliced_transport_to_points(std::span<const float> source,
   const std::size_t target_count = target.size() / static_cast<std::size_t>(dims);
   std::vector<float> projection(target_count);
   std::vector<float> sorted(target_count);
-  std::vector<std::uint64_t> keys;
-  std::vector<std::uint64_t> scratch;
+  std::vector<std::uint32_t> keys;
   return sliced_transport(
       source, dims, iterations, seed, [&](const double* direction, std::span<float> quantiles) {
         for (std::size_t i = 0; i < target_count; ++i) {
@@ -225,8 +249,7 @@ std::vector<float> sliced_transport_to_points(std::span<const float> source,
           for (int c = 0; c < dims; ++c) dot += direction[c] * target[i * dims + c];
           projection[i] = static_cast<float>(dot);
         }
-        argsort(projection, keys, scratch);
-        for (std::size_t k = 0; k < target_count; ++k) sorted[k] = projection[index_of(keys[k])];
+        sort_values(projection, keys, sorted);
         for (std::size_t k = 0; k < quantiles.size(); ++k)
           quantiles[k] = sorted_quantile(
               sorted, (static_cast<double>(k) + 0.5) / static_cast<double>(quantiles.size()));
