@@ -12,13 +12,28 @@ source "$root/scripts/timing.sh"
 bash "$root/scripts/install-deps.sh" --sanitize
 phase "sanitizer packages"
 flags="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+# On a machine with AVX-512 that is the one SIMD target compiled: the build's baseline is then
+# x86-64-v4, with the AES and PCLMUL that Highway's AVX-512 target also needs, so AVX-512 is
+# Highway's static target and the targets below it are not compiled. Elsewhere the build has the
+# portable target and AVX-512 (STOCHTEX_SIMD_DISABLED_TARGETS below).
+has_avx512_baseline() {
+  local cpu_flags feature
+  cpu_flags=" $(grep -m1 '^flags' /proc/cpuinfo 2>/dev/null) "
+  for feature in avx512f avx512bw avx512cd avx512dq avx512vl avx2 bmi1 bmi2 f16c fma abm movbe \
+    aes pclmulqdq; do
+    [[ $cpu_flags == *" $feature "* ]] || return 1
+  done
+}
+if has_avx512_baseline; then
+  flags="$flags -march=x86-64-v4 -maes -mpclmul"
+fi
 # Warnings are checked by the gcc build of scripts/test.sh; clang's differ, so no -Werror here.
 # Only what this script runs is built (no statistical or GL test programs, benchmarks or Python
 # module), with line tables only for debug information: enough for the sanitizers' reports to name
-# file and line. Of the SIMD targets, the portable one (4 lanes) and AVX-512 (16 lanes): texton's
-# evaluator alone took 7 minutes to compile instrumented for all four (CMakeLists.txt), and the
-# release build checks every target's bytes. (-O1 was tried: lrp's and gabor's SIMD files then took 1.6 and 2.9 times as long to
-# compile, though beside other work; -O2 stays until a quiet measurement says otherwise.)
+# file and line. Of the SIMD targets, AVX-512 alone where the machine has it (above), else the
+# portable one (4 lanes) and AVX-512 (16 lanes): texton's evaluator alone took 7 minutes to compile
+# instrumented for all four (CMakeLists.txt), and the release build checks every target's bytes.
+# (-O1 was measured twice and not taken: docs/reliability.md.)
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only -DNDEBUG" \
   -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" \

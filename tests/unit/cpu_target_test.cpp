@@ -226,8 +226,12 @@ std::vector<ImageF> renders(const Model& model, const std::vector<Grid>& grids) 
 }
 
 TEST_F(CpuTargets, EveryTargetGivesTheReferencesBytes) {
-  // An x86-64 machine runs SSE4 at least: the test must compare a vector target.
-  ASSERT_GE(available_cpu_targets().size(), 3u);
+  // The test must compare a hardware vector target: an x86-64 machine runs SSE4 at least (the
+  // sanitizer build on an AVX-512 machine compiles AVX-512 alone, scripts/sanitize.sh).
+  const std::vector<CpuTarget> targets = available_cpu_targets();
+  ASSERT_TRUE(std::any_of(targets.begin(), targets.end(), [](CpuTarget target) {
+    return target != CpuTarget::reference && target != CpuTarget::portable;
+  }));
   for (const Case& c : cases()) {
     const Model model = c.make();
     expect_the_references_bytes([&] { return outputs(model); }, c.name);
