@@ -47,7 +47,8 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # Mesa's software OpenGL driver (llvmpipe in swrast_dri.so) leaks 128 bytes at every
 # eglTerminate and is unloaded by it, so LeakSanitizer sees a leak from an unknown module that no
 # suppression can name. Kept loaded, the driver's memory stays reachable from its own globals and
-# stochtex's allocations are still checked (docs/reliability.md).
+# stochtex's allocations are still checked (docs/reliability.md). The CLI checks put it back for
+# stochtex alone (tests/cli/common.sh): their other processes started slowly with it.
 mesa_driver=$(find /usr/lib -name swrast_dri.so -print -quit)
 # Every CLI check runs here, its GL renders included: keeping one per method
 # (STOCHTEX_CLI_GL=one-per-method, tests/cli/common.sh) saved about 4% of the CLI tests' time
