@@ -23,14 +23,20 @@
 namespace stochtex::cli {
 namespace {
 
+// One field's option: its record, its text as typed (a pair is "X,Y"; CLI11 writes into it) and
+// the option, which says whether it was given.
+struct FieldOption {
+  const EditField* field = nullptr;
+  std::string typed;
+  CLI::Option* option = nullptr;
+};
+
 struct EditOptions {
   std::string model;
   std::string output;
   std::string group;
-  // Each field's option as typed (a pair is "X,Y"), for the fields of every editing method.
-  std::map<std::string, std::string, std::less<>> typed;
-  std::map<std::string, const EditField*, std::less<>> fields;
-  std::map<std::string, CLI::Option*, std::less<>> given;
+  // The fields of every editing method, by name (a map: each text keeps its address).
+  std::map<std::string, FieldOption, std::less<>> fields;
   bool list_groups = false;
   bool json = false;
 };
@@ -47,10 +53,10 @@ std::vector<const EditCapability*> edit_capabilities() {
 // typed when it is not.
 EditValues edit_values(const EditOptions& options) {
   EditValues values{options.group, {}};
-  for (const auto& [name, option] : options.given) {
-    if (option->count() == 0) continue;
-    const EditField& field = *options.fields.at(name);
-    const std::string& text = options.typed.at(name);
+  for (const auto& [name, given] : options.fields) {
+    if (given.option->count() == 0) continue;
+    const EditField& field = *given.field;
+    const std::string& text = given.typed;
     if (field.components == 1) {
       double number = 0.0;
       const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), number);
@@ -86,13 +92,13 @@ void add_edit_options(CLI::App* command, EditOptions& options) {
     for (const EditField& field : edit->fields) {
       const std::string name(field.name);
       if (options.fields.contains(name)) continue;
-      options.fields[name] = &field;
-      std::string& typed = options.typed[name];
-      typed = field.components == 1 ? fmt::format("{}", field.default_value)
-                                    : fmt::format("{0},{0}", field.default_value);
-      options.given[name] = command->add_option("--" + name, typed, std::string(field.help))
-                                ->capture_default_str()
-                                ->type_name(field.components == 1 ? "NUMBER" : "X,Y");
+      FieldOption& given = options.fields[name];
+      given.field = &field;
+      given.typed = field.components == 1 ? fmt::format("{}", field.default_value)
+                                          : fmt::format("{0},{0}", field.default_value);
+      given.option = command->add_option("--" + name, given.typed, std::string(field.help))
+                         ->capture_default_str()
+                         ->type_name(field.components == 1 ? "NUMBER" : "X,Y");
     }
   command->add_flag("--list-groups", options.list_groups,
                     "print what each group holds, and write nothing");
