@@ -46,8 +46,8 @@ std::uint64_t sort_key(float value, std::size_t index) {
 
 // Indices of `values` in ascending order (ties by index), as the keys of sort_key sorted. The keys
 // are distinct, so every sort puts them in the same order: the sliced transport sorts millions of
-// projections with Highway's vectorised quicksort (VQSort, docs/performance.md), or with a 4-pass
-// LSD radix sort where VQSort has no 64-bit lanes.
+// projections with Highway's vectorised quicksort (VQSort, docs/methods/tiling.md), or with a
+// 4-pass LSD radix sort where VQSort has no 64-bit lanes.
 void argsort(std::span<const float> values, std::vector<std::uint64_t>& keys,
              std::vector<std::uint64_t>& scratch) {
   const std::size_t count = values.size();
