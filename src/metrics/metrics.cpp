@@ -20,12 +20,13 @@
 #include "spectral/fft.hpp"
 
 namespace stochtex {
-namespace {
 
 void require_pixels(ImageView<const float> image, const char* function) {
   if (image.width < 1 || image.height < 1 || image.channels < 1 || image.data == nullptr)
     throw std::invalid_argument(std::string(function) + ": the image is empty");
 }
+
+namespace {
 
 void require_same_channels(ImageView<const float> a, ImageView<const float> b,
                            const char* function) {

@@ -15,6 +15,9 @@
 
 namespace stochtex {
 
+// Throws std::invalid_argument ("FUNCTION: the image is empty") unless `image` has pixels.
+void require_pixels(ImageView<const float> image, const char* function);
+
 // Welch power spectrum: mean of |FFT|^2 of Hann-windowed, mean-removed square crops of side
 // `crop` with 50% overlap, summed over channels. Returned as crop x crop values, row-major with
 // the vertical frequency as the row, DC at (0, 0) (both half-planes: the spectrum is symmetric).

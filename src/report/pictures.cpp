@@ -8,15 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "metrics/metrics.hpp"
+
 namespace stochtex {
 namespace {
 
 using Rgb = std::array<float, 3>;
-
-void require_pixels(ImageView<const float> image, const char* function) {
-  if (image.width < 1 || image.height < 1 || image.channels < 1 || image.data == nullptr)
-    throw std::invalid_argument(std::string(function) + ": the image is empty");
-}
 
 // The plotting colour of channel c of an image with `channels` channels.
 Rgb channel_colour(int channels, int c) {

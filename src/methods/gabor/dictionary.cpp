@@ -10,7 +10,6 @@ namespace stochtex::gabor {
 namespace {
 
 using Complex = std::complex<float>;
-constexpr double kPi = std::numbers::pi;
 // The operators skip the bins where a band's kernel spectrum is below this fraction of its peak:
 // the level of the single-precision FFT's own rounding error (~1e-7 log2 n of the peak), not a
 // Gaussian's tail worth keeping. The fits change within the solver's tolerance (docs).

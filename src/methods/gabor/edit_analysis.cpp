@@ -76,8 +76,6 @@ std::string_view component_name(WoldComponent component) {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
 // Standard deviation of band b's spectral Gaussians, a_b / (2 sqrt(pi)) (eq. 3), and their full
 // width at half maximum, 2^-b cycles per pixel (section 4.3).
 double spectral_deviation(int band) {

@@ -24,7 +24,6 @@
 namespace stochtex::gabor {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 // The kernel is truncated where its envelope exp(-pi a^2 |x|^2) falls to e^-pi, at r = 1/a
 // (section 6.1), and tapered before that (kTaperScale). With u = pi a^2 |x|^2 its energy is
 // (1 / a^2) times the integral over [0, pi) of e^-2u w(u)^2, against 1 / (2 a^2) untruncated; the

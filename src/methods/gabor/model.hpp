@@ -33,7 +33,8 @@ inline constexpr std::size_t kMaxGaussians = std::size_t{1} << 22;
 // Constants of the evaluator (GaborModel::evaluate), shared with its GLSL twin (gl_twin.hpp).
 // pi as a float, for the kernel's truncation test: the kernel's support ends where its envelope
 // exp(-e) falls to e^-pi (r = 1/a, section 6.1).
-inline constexpr auto kPiF = static_cast<float>(std::numbers::pi);
+inline constexpr double kPi = std::numbers::pi;
+inline constexpr auto kPiF = static_cast<float>(kPi);
 // The kernel fades out before that cut instead of jumping there by e^-pi of its amplitude (our
 // addition; docs/methods/gabor.md, "Kernel taper"): it is multiplied by smoothstep(t) = t^2 (3 -
 // 2t) with t = min((pi - e) kTaperScale, 1), which changes only the envelope's last 1 / kTaperScale

@@ -22,9 +22,6 @@ namespace {
 // 1 to kMaxChannels (stochtex.hpp; a material's maps side by side); strata per channel: 1 to
 // kMaxStrataPerChannel (model.hpp).
 static_assert(kParams[1].name == "strata" && kParams[1].max_value == kMaxStrataPerChannel);
-constexpr double kMinSpacing = 0.25;  // Delta_S = T sqrt(J_S / (2 |S|)) >= 1/2 for any stratum
-constexpr double kMaxSpacing = 1e6;
-constexpr double kMaxAmplitude = 1e6;
 // w_f^2 = n_k J_S P'(f) / E_S <= 2^20 * 2000 (analysis.cpp, frequency_weights).
 constexpr double kMaxWeight = 1e5;
 

@@ -19,9 +19,6 @@ constexpr int kMaxStructureCosines = 2000;
 constexpr double kMaxStructureValues = 1 << 24;  // floats of the cosine table (64 MiB)
 constexpr double kMaxTurbulence = 256.0;
 constexpr int kMaxTurbulenceStrata = 16;
-constexpr double kMinSpacing = 0.25;
-constexpr double kMaxSpacing = 1e6;
-constexpr double kMaxAmplitude = 1e6;
 
 bool power_of_two(std::int64_t n) {
   return n > 0 && (n & (n - 1)) == 0;
