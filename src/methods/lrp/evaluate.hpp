@@ -14,6 +14,12 @@
 
 namespace stochtex::lrp {
 
+// Limits on a stratum a model file may hold (model.cpp, structure_model.cpp): its lattice spacing
+// Delta_S = T sqrt(J_S / (2 |S|)) >= 1/2 for any stratum, and its amplitude.
+inline constexpr double kMinSpacing = 0.25;
+inline constexpr double kMaxSpacing = 1e6;
+inline constexpr double kMaxAmplitude = 1e6;
+
 // Frequency clamping (section 6.4): the weight of a cosine of `cycles` cycles per output pixel
 // along the footprint's longer axis. A frequency below the Nyquist limit 1/2 is kept whole, so a
 // render at scale 1 keeps the exemplar's whole spectrum (no frequency of the model exceeds 1/2
@@ -21,12 +27,6 @@ namespace stochtex::lrp {
 // cosines that the sampling rate cannot represent fade out instead of aliasing at full strength.
 // One draw per cosine (section 4.3): its low kPickBits bits pick a frequency of the sub-stratum by
 // multiply-shift, its top 32 - kPickBits bits are the phase, on a grid of kPhaseStep turns.
-// Limits on a stratum a model file may hold (model.cpp, structure_model.cpp): its lattice spacing
-// Delta_S = T sqrt(J_S / (2 |S|)) >= 1/2 for any stratum, and its amplitude.
-inline constexpr double kMinSpacing = 0.25;
-inline constexpr double kMaxSpacing = 1e6;
-inline constexpr double kMaxAmplitude = 1e6;
-
 inline constexpr std::uint32_t kPickBits = 20;
 inline constexpr std::uint32_t kPickMask = (1u << kPickBits) - 1u;
 inline constexpr float kPhaseStep = 1.0f / static_cast<float>(1u << (32u - kPickBits));
