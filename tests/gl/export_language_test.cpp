@@ -24,7 +24,7 @@
 #include "stochtex/gpu.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::export_language_test {
 namespace {
 
 using namespace gl_test;
@@ -382,4 +382,4 @@ TEST(ExportLanguage, EsslRunsOnOpenGlEs30AndMatchesTheCpu) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::export_language_test

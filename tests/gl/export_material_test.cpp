@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <type_traits>
@@ -25,7 +26,7 @@
 #include "stochtex/material.hpp"
 #include "stochtex_gl_twins.hpp"
 
-namespace stochtex {
+namespace stochtex::export_material_test {
 namespace {
 
 using namespace gl_test;
@@ -37,8 +38,8 @@ Model rock(const std::string& method, const std::vector<std::string>& names,
            const ParamValues& params, int side, const MaterialOptions& options = {}) {
   std::vector<ImageF> images;
   for (const std::string& name : names)
-    images.push_back(
-        read_image(std::string(STOCHTEX_MATERIAL_DIR) + "/rock_sandstone/" + name + ".png"));
+    images.push_back(read_image(std::filesystem::path(STOCHTEX_MATERIAL_DIR) / "rock_sandstone" /
+                                (name + ".png")));
   std::vector<MaterialMap> maps;
   for (std::size_t m = 0; m < names.size(); ++m)
     maps.push_back({names[m], {}, images[m].view().sub(0, 0, side, side), names[m] + ".png"});
@@ -337,4 +338,4 @@ TEST(ExportMaterial, ReservedWordsAreNotMembers) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::export_material_test

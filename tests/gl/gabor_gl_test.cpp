@@ -21,7 +21,7 @@
 #include "methods/gabor/gl_twin.hpp"
 #include "model/model_data.hpp"
 
-namespace stochtex {
+namespace stochtex::gabor_gl_test {
 namespace {
 
 using namespace gl_test;
@@ -352,4 +352,4 @@ TEST(GlGabor, AModelWithoutGaussiansRendersItsMean) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::gabor_gl_test

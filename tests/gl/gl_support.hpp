@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -111,7 +112,7 @@ inline MaterialFiles material_files(const std::string& set, const std::vector<st
   MaterialFiles files;
   for (const auto& name : names)
     files.images.push_back(
-        read_image(std::string(STOCHTEX_MATERIAL_DIR) + "/" + set + "/" + name + ".png"));
+        read_image(std::filesystem::path(STOCHTEX_MATERIAL_DIR) / set / (name + ".png")));
   for (std::size_t i = 0; i < names.size(); ++i)
     files.maps.push_back(
         {prefix + names[i], default_map_kind(names[i]), files.images[i].view(), names[i] + ".png"});

@@ -21,7 +21,7 @@
 #include "stochtex/gpu.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::gl_test {
 namespace {
 
 using namespace gl_test;
@@ -365,4 +365,4 @@ TEST(Gl, RefusesGridsBeyondThePreciseRange) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::gl_test

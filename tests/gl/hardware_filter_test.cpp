@@ -17,7 +17,7 @@
 #include "gl/twin.hpp"
 #include "io/image_io.hpp"
 
-namespace stochtex {
+namespace stochtex::hardware_filter_test {
 namespace {
 
 using namespace gl_test;
@@ -229,4 +229,4 @@ TEST(GlHardwareFilter, TheFastExportIsWhatTheRendererRuns) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::hardware_filter_test

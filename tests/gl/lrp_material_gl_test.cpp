@@ -15,7 +15,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::lrp_material_gl_test {
 namespace {
 
 using namespace gl_test;
@@ -73,4 +73,4 @@ TEST(Gl, ModelsOfManyChannelsWithoutMapsAreNotExported) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::lrp_material_gl_test

@@ -24,7 +24,7 @@
 #include "stochtex/mesh.hpp"
 #include "stochtex/mesh_render.hpp"
 
-namespace stochtex {
+namespace stochtex::mesh_gl_test {
 namespace {
 
 using namespace gl_test;
@@ -262,4 +262,4 @@ TEST(GlMesh, AMaterialOffUvIsRefused) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::mesh_gl_test

@@ -14,7 +14,7 @@
 #include "gl/languages.hpp"
 #include "gl/shaders.hpp"
 
-namespace stochtex {
+namespace stochtex::readme_test {
 namespace {
 
 using gl::fill_template;
@@ -78,4 +78,4 @@ TEST(ReadmeTemplate, EveryCrossCompiledLanguageHasItsBindingSection) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::readme_test

@@ -22,7 +22,7 @@
 #include "stochtex/gpu.hpp"
 #include "stochtex/surface.hpp"
 
-namespace stochtex {
+namespace stochtex::surface_gl_test {
 namespace {
 
 using gl_test::kTextureDir;
@@ -213,4 +213,4 @@ TEST(GlSurface, AMappingWithoutGlslIsRefused) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::surface_gl_test

@@ -19,7 +19,7 @@
 #include "stochtex/gpu.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::tiling_material_gl_test {
 namespace {
 
 using namespace gl_test;
@@ -165,4 +165,4 @@ TEST(Gl, TilingGroupsThroughTheThreeDTableAreRefused) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::tiling_material_gl_test

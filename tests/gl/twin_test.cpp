@@ -23,7 +23,7 @@
 #include "model/model_data.hpp"
 #include "stochtex_gl_twins.hpp"
 
-namespace stochtex {
+namespace stochtex::twin_test {
 namespace {
 
 using namespace gl_test;
@@ -193,4 +193,4 @@ TEST(GlTwin, TextonMixMatchesTheCpuReference) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::twin_test

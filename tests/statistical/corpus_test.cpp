@@ -16,7 +16,7 @@
 #include "shared.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::corpus_test {
 namespace {
 
 // The photos a Gaussian model is meant for take the shared fixture's default models (shared.hpp),
@@ -97,4 +97,4 @@ INSTANTIATE_TEST_SUITE_P(Methods, EveryCorpusImage,
                          [](const auto& test) { return test.param; });
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::corpus_test

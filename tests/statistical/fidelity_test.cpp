@@ -35,7 +35,7 @@
 #include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::fidelity_test {
 namespace {
 
 constexpr int kSide = 1024;
@@ -244,4 +244,4 @@ INSTANTIATE_TEST_SUITE_P(Shipped, Fidelity, ::testing::ValuesIn(cases()),
                          });
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::fidelity_test

@@ -20,7 +20,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::gabor_quality_test {
 namespace {
 
 const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
@@ -282,4 +282,4 @@ TEST(GaborFiltering, MinifiedRendersMatchTheSupersampledReference) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::gabor_quality_test

@@ -21,7 +21,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::lrp_material_test {
 namespace {
 
 using test_support::material_exemplar;
@@ -156,4 +156,4 @@ TEST(LrpMaterial, RenderedCorrelationMatrixMatchesTheExemplars) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::lrp_material_test

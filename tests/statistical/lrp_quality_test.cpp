@@ -19,7 +19,7 @@
 #include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::lrp_quality_test {
 namespace {
 
 const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
@@ -241,4 +241,4 @@ TEST(LrpFiltering, MinifiedRenderAgainstTheSupersampledReference) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::lrp_quality_test

@@ -22,7 +22,7 @@
 #include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::lrp_structure_test {
 namespace {
 
 const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
@@ -271,4 +271,4 @@ TEST(LrpStructure, TurbulenceAndPlacementStayContinuous) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::lrp_structure_test

@@ -16,7 +16,7 @@
 #include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::material_normals_test {
 namespace {
 
 using test_support::Sample;
@@ -71,4 +71,4 @@ TEST(MaterialNormals, DerivedSlopesHaveTheExemplarsMeanSquare) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::material_normals_test

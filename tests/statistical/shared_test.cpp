@@ -14,7 +14,7 @@
 #include "io/image_io.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::shared_test {
 namespace {
 
 using ModelCase = std::pair<std::string, std::string>;  // method, exemplar file name
@@ -47,4 +47,4 @@ INSTANTIATE_TEST_SUITE_P(Shared, SharedModel, ::testing::ValuesIn(model_cases())
                          });
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::shared_test

@@ -21,7 +21,7 @@
 #include "stochtex/stochtex.hpp"
 #include "stochtex/surface.hpp"
 
-namespace stochtex {
+namespace stochtex::surface_quality_test {
 namespace {
 
 using test_support::pooled;
@@ -161,4 +161,4 @@ TEST(SurfaceQuality, OnASphereMeanAndVarianceFollowProposition3) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::surface_quality_test

@@ -21,7 +21,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::texton_material_test {
 namespace {
 
 using test_support::correlation_matrix;
@@ -149,4 +149,4 @@ TEST(TextonMaterial, JointAnalysisKeepsTheCrossMapCorrelationsAndSpectra) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::texton_material_test

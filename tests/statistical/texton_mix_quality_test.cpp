@@ -17,7 +17,7 @@
 #include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::texton_mix_quality_test {
 namespace {
 
 using test_support::mean_spectrum;
@@ -231,4 +231,4 @@ TEST(TextonMixQuality, NoStepInMeanOrVarianceAcrossRegionBorders) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::texton_mix_quality_test

@@ -19,7 +19,7 @@
 #include "statistics.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::texton_quality_test {
 namespace {
 
 using test_support::mean_spectrum;
@@ -166,4 +166,4 @@ TEST(TextonFiltering, MinifiedRenderMatchesTheSupersampledReference) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::texton_quality_test

@@ -20,7 +20,7 @@
 #include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::tiling_material_test {
 namespace {
 
 using test_support::correlation_matrix;
@@ -91,4 +91,4 @@ TEST(TilingMaterial, MapsKeepTheirHistogramsAndCrossCorrelations) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::tiling_material_test

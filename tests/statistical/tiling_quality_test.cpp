@@ -23,7 +23,7 @@
 #include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::tiling_quality_test {
 namespace {
 
 using tiling::LatticePoint;
@@ -641,4 +641,4 @@ TEST(TilingGaussian, FastPathReproducesARandomPhaseTexture) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::tiling_quality_test

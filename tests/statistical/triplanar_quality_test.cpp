@@ -19,7 +19,7 @@
 #include "stochtex/stochtex.hpp"
 #include "stochtex/surface.hpp"
 
-namespace stochtex {
+namespace stochtex::triplanar_quality_test {
 namespace {
 
 const std::string kTextureDir = STOCHTEX_TEXTURE_DIR;
@@ -154,4 +154,4 @@ TEST(TilingTriplanarQuality, OverlapKeepsVarianceAndHistogramWhereLinearLosesThe
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::triplanar_quality_test

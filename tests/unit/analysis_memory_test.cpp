@@ -22,7 +22,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::analysis_memory_test {
 namespace {
 
 // The peak resident size, in bytes, of a child process that analyses the side x side top-left crop
@@ -131,4 +131,4 @@ TEST(AnalysisMemory, AnExemplarBeyondTheBudgetIsRefusedBeforeAnyWork) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::analysis_memory_test

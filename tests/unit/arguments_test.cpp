@@ -17,7 +17,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::arguments_test {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -171,4 +171,4 @@ TEST(Arguments, ModelArrayValuesBeyondTheRangeAreRefused) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::arguments_test

@@ -18,7 +18,7 @@
 #include "stochtex/error.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::atomic_file_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -149,4 +149,4 @@ TEST_F(AtomicFileTest, ASignalRemovesTheTemporaries) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::atomic_file_test

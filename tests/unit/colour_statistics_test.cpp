@@ -9,7 +9,7 @@
 
 #include "spectral/principal_components.hpp"
 
-namespace stochtex {
+namespace stochtex::colour_statistics_test {
 namespace {
 
 ImageF random_image(int width, int height, int channels, std::uint32_t seed) {
@@ -78,4 +78,4 @@ TEST(PrincipalComponents, IncreasingVariancesAndUnitAxesAsColumns) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::colour_statistics_test

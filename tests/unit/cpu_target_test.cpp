@@ -18,7 +18,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::cpu_target_test {
 namespace {
 
 using test_support::same_bytes;
@@ -262,4 +262,4 @@ TEST_F(CpuTargets, GaborCellsBeyondACacheSlotGiveTheReferencesBytes) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::cpu_target_test

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace stochtex {
+namespace stochtex::float_math_test {
 namespace {
 
 TEST(FloatMath, CosineInTurnsIsAccurate) {
@@ -36,4 +36,4 @@ TEST(FloatMath, ExponentialIsWithinTwoUlp) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::float_math_test

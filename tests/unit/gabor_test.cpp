@@ -29,7 +29,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex::gabor {
+namespace stochtex::gabor::gabor_test {
 namespace {
 
 // The probability that the table returns i: its own column's share plus the columns that alias
@@ -885,4 +885,4 @@ TEST(GaborEvaluate, StripsSpanAtMostTheCacheColumns) {
 }
 
 }  // namespace
-}  // namespace stochtex::gabor
+}  // namespace stochtex::gabor::gabor_test

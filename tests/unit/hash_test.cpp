@@ -12,7 +12,7 @@
 
 #include "core/cell_count.hpp"
 
-namespace stochtex {
+namespace stochtex::hash_test {
 namespace {
 
 // Upper critical value of the chi-square distribution with `dof` degrees of freedom at tail
@@ -200,4 +200,4 @@ TEST(WholeMeanTest, CountsOfAWholeMeanNeverVary) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::hash_test

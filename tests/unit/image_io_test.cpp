@@ -24,7 +24,7 @@
 #include "stochtex/error.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::image_io_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -631,4 +631,4 @@ TEST_F(ImageIoTest, BadWriteArgumentsAreInvalidArguments) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::image_io_test

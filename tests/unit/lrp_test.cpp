@@ -20,7 +20,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex::lrp {
+namespace stochtex::lrp::lrp_test {
 namespace {
 
 using test_support::expect_corruptions_rejected;
@@ -737,4 +737,4 @@ TEST(LrpMaterial, ChannelStreamsAreDistinctAndSkipTheTurbulence) {
 }
 
 }  // namespace
-}  // namespace stochtex::lrp
+}  // namespace stochtex::lrp::lrp_test

@@ -15,7 +15,7 @@
 #include "stochtex/io.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::material_test {
 namespace {
 
 using test_support::kRock;
@@ -303,4 +303,4 @@ TEST(Material, NormalMapsDeriveFromTheHeight) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::material_test

@@ -20,7 +20,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::mesh_material_test {
 namespace {
 
 using test_support::kMeshes;
@@ -359,4 +359,4 @@ TEST(MeshBump, AMaterialWithoutColourIsRefused) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::mesh_material_test

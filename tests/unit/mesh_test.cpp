@@ -17,7 +17,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::mesh_test {
 namespace {
 
 using MeshTest = test_support::FolderTest;
@@ -206,4 +206,4 @@ TEST(MeshRender, RefusesBeforeWork) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::mesh_test

@@ -12,7 +12,7 @@
 
 #include "spectral/adsn.hpp"
 
-namespace stochtex {
+namespace stochtex::metrics_test {
 namespace {
 
 // Uniform white noise in [-amplitude, amplitude] (variance amplitude^2 / 3) from raw mt19937 words:
@@ -431,4 +431,4 @@ TEST(Comparison, AveragingKeepsABiasedSpectrum) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::metrics_test

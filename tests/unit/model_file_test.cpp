@@ -13,7 +13,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::model_file_test {
 namespace {
 
 Model small_model(int channels) {
@@ -186,4 +186,4 @@ TEST(ModelFile, NonFiniteValuesAreRejected) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::model_file_test

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <thread>
 
-namespace stochtex {
+namespace stochtex::parallel_test {
 namespace {
 
 // A cancelled progress hook (Ctrl-C in the Python module) stops the work like a failed task:
@@ -48,4 +48,4 @@ TEST(ParallelFor, RunsEveryTaskOnceAndReportsTheTotal) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::parallel_test

@@ -20,7 +20,7 @@
 #include "registry.hpp"
 #include "stochtex/stochtex.hpp"
 
-namespace stochtex {
+namespace stochtex::params_test {
 namespace {
 
 TEST(Registry, ListsTextonWithDescribedParameters) {
@@ -298,4 +298,4 @@ TEST(Params, DocsTablesFollowTheRecords) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::params_test

@@ -10,7 +10,7 @@
 
 #include "metrics/metrics.hpp"
 
-namespace stochtex {
+namespace stochtex::pictures_test {
 namespace {
 
 TEST(SpectrumPicture, ACosineLightsItsTwoFrequenciesAroundTheCentre) {
@@ -148,4 +148,4 @@ TEST(Downscale, AveragesTheAreaEachOutputPixelCovers) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::pictures_test

@@ -10,7 +10,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::render_test {
 namespace {
 
 const Model& test_model() {
@@ -169,4 +169,4 @@ TEST(Render, FarFromTheOriginIsAsPreciseAsAtTheOrigin) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::render_test

@@ -15,7 +15,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex::renderer {
+namespace stochtex::renderer::renderer_test {
 namespace {
 
 // The sentence `plan_render(request, output)` refuses the request with.
@@ -144,4 +144,4 @@ TEST_F(RendererFile, WritesThePlainRendersBytesInMemoryAndStreamed) {
 }
 
 }  // namespace
-}  // namespace stochtex::renderer
+}  // namespace stochtex::renderer::renderer_test

@@ -12,7 +12,7 @@
 #include "report/measure_all.hpp"
 #include "report/measures.hpp"
 
-namespace stochtex {
+namespace stochtex::report_test {
 namespace {
 
 // One row per measure: scripts and the CLI find a measure by its keys, so none may repeat.
@@ -110,4 +110,4 @@ TEST(MeasureAll, AFailingMethodIsRecordedNotThrown) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::report_test

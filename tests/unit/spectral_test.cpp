@@ -18,7 +18,7 @@
 #include "spectral/periodic.hpp"
 #include "spectral/torus_masks.hpp"
 
-namespace stochtex {
+namespace stochtex::spectral_test {
 namespace {
 
 ImageF random_image(int width, int height, int channels, unsigned seed) {
@@ -242,4 +242,4 @@ TEST(Kmeans, GivesEveryGroupAPointWhenThereAreFewer) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::spectral_test

@@ -16,7 +16,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::surface_test {
 namespace {
 
 using test_support::white_noise_model;
@@ -250,4 +250,4 @@ TEST(SurfaceNoise, ContinuousAcrossATriangleEdge) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::surface_test

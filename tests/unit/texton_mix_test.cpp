@@ -11,7 +11,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::texton_mix_test {
 namespace {
 
 ImageF noise_image(int width, int height, int channels, std::uint32_t seed, float sd) {
@@ -191,4 +191,4 @@ TEST(TextonMix, BadInputIsRefusedWithOneSentence) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::texton_mix_test

@@ -21,7 +21,7 @@
 #include "stochtex/surface.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::texton_test {
 namespace {
 
 // A 3-channel model of a random exemplar, for its texton and mean.
@@ -297,4 +297,4 @@ TEST(TextonPoints, BalancedPointsAreUniformAndEvenlySpreadInTheirCell) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::texton_test

@@ -19,7 +19,7 @@
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
 
-namespace stochtex {
+namespace stochtex::tiled_exr_test {
 namespace {
 
 using TiledExrTest = test_support::FolderTest;
@@ -171,4 +171,4 @@ TEST_F(TiledExrTest, SeveralFilesTakeTheirChannelsOfOneStrip) {
 }
 
 }  // namespace
-}  // namespace stochtex
+}  // namespace stochtex::tiled_exr_test

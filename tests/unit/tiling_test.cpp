@@ -26,7 +26,7 @@
 #include "stochtex/surface.hpp"
 #include "test_support.hpp"
 
-namespace stochtex::tiling {
+namespace stochtex::tiling::tiling_test {
 namespace {
 
 using test_support::same_bytes;
@@ -1071,4 +1071,4 @@ TEST(TilingParams, RegistryDescribesTheMethod) {
 }
 
 }  // namespace
-}  // namespace stochtex::tiling
+}  // namespace stochtex::tiling::tiling_test
