@@ -33,7 +33,10 @@ import urllib.request
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import browser_test as common  # noqa: E402 (the browser and comparison helpers)
 
-SIZE = 256  # the studio's canvases
+# The viewers' side: browser_test's 128 (the page's `?size=`; a draw on SwiftShader costs about its
+# pixel count), and the page's own 256 when the screenshot is taken.
+SIZE = common.SIZE
+SCREENSHOT_SIZE = 256
 SEED = 7
 # The compared view, browser_test's zoomed out 16x: the filtered draw (an unfiltered one fails the
 # variance), and on SwiftShader gabor's cheaper view (every draw of 256^2 takes seconds).
@@ -137,7 +140,7 @@ const started = performance.now();
 """
 
 
-def check_editor(driver, stochtex, url, original, original_cpu, work, failures):
+def check_editor(driver, stochtex, url, original, original_cpu, work, size, failures):
     """Every slider moved: the edited model is `stochtex edit` of the original with the sliders'
     values, byte for byte; the gabor viewer shows it (equal to `stochtex render` of its .stx) and
     differs from the original's render `original_cpu` beyond that bound (the edit shows)."""
@@ -156,7 +159,7 @@ def check_editor(driver, stochtex, url, original, original_cpu, work, failures):
                             "--rotate 30 --scale 1.414 --translate 0.01,-0.02 --magnitude 1.5 "
                             "--bandwidth 2` of the original")
     web = common.read_back(driver, "gabor")
-    edited_cpu = common.cpu_render(stochtex, path, ORIGIN, SCALE, SEED, work, SIZE)
+    edited_cpu = common.cpu_render(stochtex, path, ORIGIN, SCALE, SEED, work, size)
     for name, cpu, close in [("edited", edited_cpu, True), ("original", original_cpu, False)]:
         bound = common.pixel_bound("gabor", "exact", SCALE, cpu)
         largest = max(abs(a - b) for a, b in zip(web[3], cpu[3]))
@@ -201,6 +204,7 @@ def main():
         return 1
 
     from selenium.webdriver.common.by import By
+    size = SCREENSHOT_SIZE if args.screenshots else SIZE
     start = time.time()
     failures = []
     server, url = start_studio(args.stochtex)
@@ -208,7 +212,7 @@ def main():
     try:
         with tempfile.TemporaryDirectory(prefix="stochtex_studio_browser_") as work:
             driver.set_window_size(1400, 1400)
-            driver.get(f"{url}/")
+            driver.get(f"{url}/?size={size}")
             # The file input is hidden in its drop zone: shown so that WebDriver may type in it.
             upload = driver.find_element(By.ID, "exemplar-file")
             driver.execute_script("arguments[0].style.display = 'block';", upload)
@@ -245,13 +249,13 @@ def main():
             cpu_renders = {}
             for method, path in models.items():
                 cpu_renders[method] = common.cpu_render(args.stochtex, path, ORIGIN, SCALE, SEED,
-                                                        work, SIZE)
+                                                        work, size)
                 bound = common.pixel_bound(method, "exact", SCALE, cpu_renders[method])
                 failures += common.compare(method, common.read_back(driver, method),
                                            cpu_renders[method], bound, SCALE)
             edit_start = time.time()
             check_editor(driver, args.stochtex, url, models["gabor"], cpu_renders["gabor"],
-                         work, failures)
+                         work, size, failures)
             print(f"gabor editor checked in {time.time() - edit_start:.1f} s")
             if args.screenshots:
                 os.makedirs(args.screenshots, exist_ok=True)

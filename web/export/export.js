@@ -4,7 +4,7 @@
 // window.stochtexPage is the page's interface for scripts and the browser test:
 //   ready (a promise, settled once every model is loaded), viewers (name -> viewer),
 //   setVariant(name) (a promise), setView(view), setSeed(n), and errors (the messages shown).
-import {createViewerGroup} from '../viewer/group.js';
+import {canvasSize, createViewerGroup} from '../viewer/group.js';
 
 const status = document.getElementById('status');
 const seedInput = document.getElementById('seed');
@@ -19,10 +19,7 @@ function fail(error) {
   console.error(message);
 }
 
-const size = (() => {
-  const asked = Number(new URLSearchParams(location.search).get('size') || 256);
-  return Number.isInteger(asked) && asked >= 16 && asked <= 2048 ? asked : 256;
-})();
+const size = canvasSize();
 
 let variant = 'exact';
 const group = createViewerGroup({

@@ -7,7 +7,7 @@
 // viewers, by method), shown (method -> {model, seconds}), editor (editor.js's), loaded (a promise
 // settled when the viewers have their models), setSeed(n) (the seed control's) and errors (the
 // messages shown).
-import {createViewerGroup} from '../viewer/group.js';
+import {canvasSize, createViewerGroup} from '../viewer/group.js';
 import {createEditor} from './editor.js';
 
 const $ = (id) => document.getElementById(id);
@@ -15,6 +15,8 @@ const $ = (id) => document.getElementById(id);
 const state = { methods: [], exemplar: null, analysis: null, model: null, method: null, polling: 0 };
 
 const errors = [];
+// The viewers' side in pixels: `?size=N` (the browser test's smaller ones draw faster), else 256.
+const size = canvasSize();
 
 function showError(message) {
   $('error').textContent = message || '';
@@ -271,8 +273,10 @@ function addViewer(status) {
   const figure = document.createElement('figure');
   figure.id = `figure-${status.method}`;
   const canvas = document.createElement('canvas');
-  canvas.width = 256;
-  canvas.height = 256;
+  canvas.width = size;
+  canvas.height = size;
+  canvas.style.width = `${size}px`;
+  canvas.style.height = `${size}px`;
   const caption = document.createElement('figcaption');
   caption.textContent = `${status.method}, analysed in ${status.seconds.toFixed(2)} s`;
   figure.append(canvas, caption);

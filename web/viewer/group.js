@@ -5,7 +5,14 @@
 //   const viewer = group.add(name, canvas);   // a viewer (viewer.js) at the group's view and seed
 //   group.setView({x, y, scale}); group.setSeed(n);   // every viewer, redrawn
 //   group.remove(name);
+//   canvasSize()   // the page's viewer side, from its `?size=N`
 import {createViewer} from './viewer.js';
+
+// The side in pixels of a page's viewers: the page's `?size=N` (16 to 2048), else 256.
+export function canvasSize() {
+  const asked = Number(new URLSearchParams(location.search).get('size') || 256);
+  return Number.isInteger(asked) && asked >= 16 && asked <= 2048 ? asked : 256;
+}
 
 export function createViewerGroup(options = {}) {
   const viewers = new Map();
