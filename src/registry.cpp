@@ -287,7 +287,14 @@ std::string methods_json() {
         fields.push_back({{"name", field.name},
                           {"default", field.default_value},
                           {"components", field.components},
-                          {"help", field.help}});
+                          {"help", field.help},
+                          {"slider",
+                           {{"min", field.slider.low},
+                            {"max", field.slider.high},
+                            {"step", field.slider.step},
+                            {"octaves", field.slider.octaves},
+                            {"prefix", field.slider.prefix},
+                            {"suffix", field.slider.suffix}}}});
       entry["edit"] = {{"summary", edit->summary}, {"groups", edit->groups}, {"fields", fields}};
     }
     list.push_back(entry);

@@ -28,6 +28,18 @@ struct TargetCapability {
   Model (*model)(const std::string& text, const ParamValues& params, std::uint32_t seed);
 };
 
+// How the studio's editor moves a field: a slider (one per component) of positions low to high in
+// steps of `step`, a position p standing for the value p or, for a factor moved in octaves, 2^p.
+// The value is shown as `prefix`, its 3 significant digits, `suffix`.
+struct EditSlider {
+  double low = 0.0;
+  double high = 0.0;
+  double step = 0.0;
+  bool octaves = false;
+  std::string_view prefix = {};
+  std::string_view suffix = {};
+};
+
 // One value an edit takes: `stochtex edit --NAME`, the key NAME of the studio's JSON edit.
 struct EditField {
   std::string_view name;
@@ -37,6 +49,7 @@ struct EditField {
   // [-max_abs, max_abs] (checked where it is typed, so that the message can quote the text).
   int components = 1;
   double max_abs = 0.0;
+  EditSlider slider;
 };
 
 // An edit as asked for: a group name and the numbers of the fields given (a field not given keeps

@@ -122,6 +122,26 @@ TEST(Registry, CapabilitiesAreFoundThroughTheRows) {
   }
 }
 
+// The studio's editor builds its sliders from the fields' records: each slider's range holds the
+// field's default (its position: the default, or its log2 for a factor moved in octaves).
+TEST(Registry, EditSlidersStartAtTheFieldsDefaults) {
+  for (const auto& method : nlohmann::json::parse(methods_json())) {
+    if (!method.contains("edit")) continue;
+    for (const auto& field : method["edit"]["fields"]) {
+      const auto& slider = field.at("slider");
+      const double step = slider.at("step");
+      const double low = slider.at("min");
+      const double high = slider.at("max");
+      const double value = field.at("default");
+      const double start = slider.at("octaves").get<bool>() ? std::log2(value) : value;
+      EXPECT_GT(step, 0.0) << field;
+      EXPECT_LE(low, start) << field;
+      EXPECT_GE(high, start) << field;
+      EXPECT_LT(low, high) << field;
+    }
+  }
+}
+
 // An edit sent as JSON is read against the capability's fields: known keys, numbers, pairs.
 TEST(Registry, EditJsonFollowsTheFieldRecords) {
   const EditCapability& edit = *edit_capability("gabor");

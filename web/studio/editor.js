@@ -10,23 +10,25 @@
 
 const DEBOUNCE_MS = 150;
 
-// The sliders of the capability's fields (`field`, and `component` for a pair): `toValue` turns a
-// slider position into the edit's value, `text` shows it. A field the capability does not list
-// keeps its slider hidden.
-const SLIDERS = [
-  { name: 'rotate', field: 'rotate', label: 'rotate', min: -180, max: 180, step: 1, start: 0,
-    toValue: (v) => v, text: (v) => `${v}\u00b0` },
-  { name: 'scale', field: 'scale', label: 'scale', min: -2, max: 2, step: 0.05, start: 0,
-    toValue: (v) => 2 ** v, text: (v) => `\u00d7${(2 ** v).toFixed(2)}` },
-  { name: 'translate-x', field: 'translate', component: 0, label: 'translate x', min: -0.25, max: 0.25, step: 0.005, start: 0,
-    toValue: (v) => v, text: (v) => `${v.toFixed(3)} cycles/pixel` },
-  { name: 'translate-y', field: 'translate', component: 1, label: 'translate y', min: -0.25, max: 0.25, step: 0.005, start: 0,
-    toValue: (v) => v, text: (v) => `${v.toFixed(3)} cycles/pixel` },
-  { name: 'magnitude', field: 'magnitude', label: 'magnitude', min: 0, max: 4, step: 0.05, start: 1,
-    toValue: (v) => v, text: (v) => `\u00d7${v.toFixed(2)}` },
-  { name: 'bandwidth', field: 'bandwidth', label: 'bandwidth', min: -3, max: 3, step: 1, start: 0,
-    toValue: (v) => 2 ** v, text: (v) => `\u00d72^${v}` },
-];
+// The sliders of a capability's fields, from each field's `slider` record (/api/methods): one per
+// component (a pair's named -x and -y), whose position p stands for the value p, or 2^p for a
+// factor moved in octaves. `toValue` turns a position into the edit's value, `text` shows it.
+function slidersOf(capability) {
+  const sliders = [];
+  for (const field of capability.fields) {
+    const { min, max, step, octaves, prefix, suffix } = field.slider;
+    const toValue = (v) => (octaves ? 2 ** v : v);
+    const start = octaves ? Math.log2(field.default) : field.default;
+    const text = (v) => `${prefix}${Number(toValue(v).toPrecision(3))}${suffix}`;
+    const axes = field.components === 1 ? [''] : ['x', 'y'];
+    for (const axis of axes)
+      sliders.push({
+        name: axis ? `${field.name}-${axis}` : field.name, label: `${field.name} ${axis}`.trim(),
+        field: field.name, min, max, step, start, toValue, text,
+      });
+  }
+  return sliders;
+}
 
 function element(tag, properties = {}, children = []) {
   const made = Object.assign(document.createElement(tag), properties);
@@ -40,23 +42,8 @@ function element(tag, properties = {}, children = []) {
 export function createEditor({ mount, api, onModel, showError }) {
   const group = element('select', { id: 'edit-group' });
   const inputs = new Map();
-  const rows = new Map();
   const grid = element('div', { className: 'edit-sliders' });
-  for (const slider of SLIDERS) {
-    const input = element('input', {
-      id: `edit-${slider.name}`, type: 'range', min: slider.min, max: slider.max,
-      step: slider.step, value: slider.start,
-    });
-    const shown = element('output', { htmlFor: input.id, textContent: slider.text(slider.start) });
-    input.addEventListener('input', () => {
-      shown.value = slider.text(Number(input.value));
-      schedule();
-    });
-    inputs.set(slider.name, input);
-    const label = element('label', { htmlFor: input.id, textContent: slider.label });
-    rows.set(slider.name, [label, input, shown]);
-    grid.append(label, input, shown);
-  }
+  let sliders = [];
   const resetButton = element('button', { type: 'button', textContent: 'reset' });
   const download = element('a', { id: 'download-edited', textContent: 'edited model (.stx)' });
   download.hidden = true;
@@ -83,11 +70,31 @@ export function createEditor({ mount, api, onModel, showError }) {
   function edit() {
     const body = { group: group.value };
     for (const field of fields) {
-      const values = SLIDERS.filter((s) => s.field === field.name)
+      const values = sliders.filter((s) => s.field === field.name)
         .map((s) => s.toValue(Number(inputs.get(s.name).value)));
       body[field.name] = field.components === 1 ? values[0] : values;
     }
     return body;
+  }
+
+  // One slider per component of the capability's fields, each showing its value.
+  function buildSliders(capability) {
+    sliders = slidersOf(capability);
+    inputs.clear();
+    grid.replaceChildren();
+    for (const slider of sliders) {
+      const input = element('input', {
+        id: `edit-${slider.name}`, type: 'range', min: slider.min, max: slider.max,
+        step: slider.step, value: slider.start,
+      });
+      const shown = element('output', { htmlFor: input.id, textContent: slider.text(slider.start) });
+      input.addEventListener('input', () => {
+        shown.value = slider.text(Number(input.value));
+        schedule();
+      });
+      inputs.set(slider.name, input);
+      grid.append(element('label', { htmlFor: input.id, textContent: slider.label }), input, shown);
+    }
   }
 
   function schedule() {
@@ -141,7 +148,7 @@ export function createEditor({ mount, api, onModel, showError }) {
     clearTimeout(timer);
     timer = 0;
     again = false;
-    for (const slider of SLIDERS) {
+    for (const slider of sliders) {
       const input = inputs.get(slider.name);
       input.value = slider.start;
       input.dispatchEvent(new Event('input'));
@@ -166,12 +173,9 @@ export function createEditor({ mount, api, onModel, showError }) {
     original = model;
     editor.method = method;
     [everything] = capability.groups;
-    fields = capability.fields.filter((f) => SLIDERS.some((s) => s.field === f.name));
+    fields = capability.fields;
     legend.textContent = `Edit the ${method} model: ${capability.summary}`;
-    for (const slider of SLIDERS) {
-      const shown = fields.some((f) => f.name === slider.field);
-      for (const part of rows.get(slider.name)) part.hidden = !shown;
-    }
+    buildSliders(capability);
     resetSliders();
     mount.hidden = false;
     group.replaceChildren(new Option(everything, everything));

@@ -417,16 +417,33 @@ namespace {
 
 constexpr std::array<std::string_view, 4> kGroupNames = {"all", "periodic", "anisotropic",
                                                          "stochastic"};
+// The studio's sliders span the useful part of each range: a quarter turn of frequencies either
+// way, a quarter of the Nyquist band of translation, up to 4 times the magnitude and 3 octaves of
+// scale and bandwidth.
 constexpr std::array<EditField, 5> kEditFields = {{
-    {"rotate", "rotate the group's frequencies by DEG degrees, counter-clockwise", 0.0},
-    {"scale", "multiply the group's frequencies by S (> 1: finer detail)", 1.0},
-    {"translate", "add FX,FY cycles per pixel to the group's frequencies", 0.0, 2, kMaxTranslation},
-    {"magnitude", "multiply the group's kernel magnitude K by this (the variance by its square)",
-     1.0},
-    {"bandwidth",
-     "multiply the group's bandwidth a by this power of two (< 1: sharper spectral Gaussians, "
-     "longer-range kernels); each Gaussian keeps its variance",
-     1.0},
+    {.name = "rotate",
+     .help = "rotate the group's frequencies by DEG degrees, counter-clockwise",
+     .default_value = 0.0,
+     .slider = {.low = -180.0, .high = 180.0, .step = 1.0, .suffix = "\u00b0"}},
+    {.name = "scale",
+     .help = "multiply the group's frequencies by S (> 1: finer detail)",
+     .default_value = 1.0,
+     .slider = {.low = -2.0, .high = 2.0, .step = 0.05, .octaves = true, .prefix = "\u00d7"}},
+    {.name = "translate",
+     .help = "add FX,FY cycles per pixel to the group's frequencies",
+     .default_value = 0.0,
+     .components = 2,
+     .max_abs = kMaxTranslation,
+     .slider = {.low = -0.25, .high = 0.25, .step = 0.005, .suffix = " cycles/pixel"}},
+    {.name = "magnitude",
+     .help = "multiply the group's kernel magnitude K by this (the variance by its square)",
+     .default_value = 1.0,
+     .slider = {.low = 0.0, .high = 4.0, .step = 0.05, .prefix = "\u00d7"}},
+    {.name = "bandwidth",
+     .help = "multiply the group's bandwidth a by this power of two (< 1: sharper spectral "
+             "Gaussians, longer-range kernels); each Gaussian keeps its variance",
+     .default_value = 1.0,
+     .slider = {.low = -3.0, .high = 3.0, .step = 1.0, .octaves = true, .prefix = "\u00d7"}},
 }};
 
 const GaborModel& gabor_of(const Model& model) {
