@@ -47,7 +47,6 @@ GaussianDictionary::GaussianDictionary(int width, int height, int narrowest)
     band.step_y = step_y;
     if (step_x > 1 || step_y > 1) {
       band.coarse_fft = std::make_unique<Fft2d>(width / step_x, height / step_y);
-      band.coarse_plane.resize(band.coarse_fft->image_size());
       band.coarse_spectrum.resize(band.coarse_fft->spectrum_size());
       band.coarse_row.resize(band.coarse_fft->image_size());
     }
@@ -120,15 +119,62 @@ GaussianDictionary::GaussianDictionary(int width, int height, int narrowest)
 // A band on a sub-grid of steps (sx, sy) is an upsampled image of (W / sx) x (H / sy) values:
 // its DFT is the coarse DFT repeated sx x sy times, and decimating a full image to the sub-grid
 // folds its DFT onto the coarse one. So a sub-sampled band costs a coarse FFT, not a full one.
+std::size_t GaussianDictionary::grid_size(int index) const {
+  const Band& band = bands_[static_cast<std::size_t>(index)];
+  return static_cast<std::size_t>(width_ / band.step_x) *
+         static_cast<std::size_t>(height_ / band.step_y);
+}
+
+std::vector<std::vector<float>> GaussianDictionary::to_planes(
+    const std::vector<std::vector<float>>& grids) const {
+  std::vector<std::vector<float>> planes(bands_.size(), std::vector<float>(plane_size(), 0.0f));
+  for (std::size_t b = 0; b < bands_.size(); ++b) {
+    const Band& band = bands_[b];
+    const int coarse_width = width_ / band.step_x;
+    for (int j = 0; j < height_ / band.step_y; ++j)
+      for (int i = 0; i < coarse_width; ++i)
+        planes[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x] =
+            grids[b][static_cast<std::size_t>(j) * coarse_width + i];
+  }
+  return planes;
+}
+
+std::vector<std::vector<float>> GaussianDictionary::to_grids(
+    const std::vector<std::vector<float>>& planes) const {
+  std::vector<std::vector<float>> grids(bands_.size());
+  for (std::size_t b = 0; b < bands_.size(); ++b) {
+    const Band& band = bands_[b];
+    const int coarse_width = width_ / band.step_x;
+    grids[b].resize(grid_size(static_cast<int>(b)));
+    for (int j = 0; j < height_ / band.step_y; ++j)
+      for (int i = 0; i < coarse_width; ++i)
+        grids[b][static_cast<std::size_t>(j) * coarse_width + i] =
+            planes[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x];
+  }
+  return grids;
+}
+
 void GaussianDictionary::apply(const std::vector<std::vector<float>>& alpha,
                                std::vector<float>& spectrum) const {
+  apply_grid(to_grids(alpha), spectrum);
+}
+
+void GaussianDictionary::adjoint(std::span<const float> spectrum,
+                                 std::vector<std::vector<float>>& out) const {
+  std::vector<std::vector<float>> grids;
+  adjoint_grid(spectrum, grids);
+  out = to_planes(grids);
+}
+
+void GaussianDictionary::apply_grid(const std::vector<std::vector<float>>& coefficients,
+                                    std::vector<float>& spectrum) const {
   std::fill(sum_spectrum_.begin(), sum_spectrum_.end(), Complex(0.0f, 0.0f));
   const int half = width_ / 2 + 1;
   for (std::size_t b = 0; b < bands_.size(); ++b) {
     const Band& band = bands_[b];
     const std::vector<float>& kernel = band.kernel_spectrum;
     if (!band.coarse_fft) {
-      fft_->forward(alpha[b], work_spectrum_);
+      fft_->forward(coefficients[b], work_spectrum_);
       for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
         sum_spectrum_[i] += work_spectrum_[i] * kernel[i];
       continue;
@@ -136,11 +182,7 @@ void GaussianDictionary::apply(const std::vector<std::vector<float>>& alpha,
     const int coarse_width = width_ / band.step_x;
     const int coarse_height = height_ / band.step_y;
     const int coarse_half = coarse_width / 2 + 1;
-    for (int j = 0; j < coarse_height; ++j)
-      for (int i = 0; i < coarse_width; ++i)
-        band.coarse_plane[static_cast<std::size_t>(j) * coarse_width + i] =
-            alpha[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x];
-    band.coarse_fft->forward(band.coarse_plane, band.coarse_spectrum);
+    band.coarse_fft->forward(coefficients[b], band.coarse_spectrum);
     // The coarse DFT is Hermitian: its missing half comes from the conjugate at -k. Bin k of the
     // full spectrum reads coarse bin k mod (coarse size), tiled row by row without divisions.
     const std::size_t coarse_rows = static_cast<std::size_t>(coarse_height);
@@ -177,8 +219,8 @@ void GaussianDictionary::apply(const std::vector<std::vector<float>>& alpha,
     for (std::size_t i = 0; i < spectrum.size(); ++i) spectrum[i] *= weights_[i];
 }
 
-void GaussianDictionary::adjoint(std::span<const float> spectrum,
-                                 std::vector<std::vector<float>>& out, bool reuse) const {
+void GaussianDictionary::adjoint_grid(std::span<const float> spectrum,
+                                      std::vector<std::vector<float>>& out) const {
   // The kernels are even, so the adjoint of a convolution by them is the same convolution.
   if (weights_.empty()) {
     fft_->forward(spectrum, sum_spectrum_);
@@ -192,8 +234,7 @@ void GaussianDictionary::adjoint(std::span<const float> spectrum,
   for (std::size_t b = 0; b < bands_.size(); ++b) {
     const Band& band = bands_[b];
     const std::vector<float>& kernel = band.kernel_spectrum;
-    const bool zero_off_grid = reuse && out[b].size() == plane_size();
-    out[b].resize(plane_size());
+    out[b].resize(grid_size(static_cast<int>(b)));
     if (!band.coarse_fft) {
       for (std::size_t i = 0; i < work_spectrum_.size(); ++i)
         work_spectrum_[i] = sum_spectrum_[i] * kernel[i];
@@ -245,12 +286,7 @@ void GaussianDictionary::adjoint(std::span<const float> spectrum,
     // Decimation keeps 1 / (sx sy) of the samples; Fft2d::inverse divides by the coarse size.
     const auto fold = static_cast<float>(1.0 / (band.step_x * band.step_y));
     for (Complex& value : band.coarse_spectrum) value *= fold;
-    band.coarse_fft->inverse(band.coarse_spectrum, band.coarse_plane);
-    if (!zero_off_grid) std::fill(out[b].begin(), out[b].end(), 0.0f);
-    for (int j = 0; j < coarse_height; ++j)
-      for (int i = 0; i < coarse_width; ++i)
-        out[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x] =
-            band.coarse_plane[static_cast<std::size_t>(j) * coarse_width + i];
+    band.coarse_fft->inverse(band.coarse_spectrum, out[b]);
   }
 }
 

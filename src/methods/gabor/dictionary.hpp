@@ -48,14 +48,23 @@ class GaussianDictionary {
   }
   std::size_t plane_size() const { return static_cast<std::size_t>(width_) * height_; }
 
-  // spectrum = S_n(alpha); alpha holds band_count() planes.
+  // The coefficients of band `index` on its sub-grid alone: (width / step_x) x (height / step_y)
+  // values, row-major (bin (i step_x, j step_y) at j width / step_x + i). An iterative solver keeps
+  // these: off its grid a band's coefficients are zero.
+  std::size_t grid_size(int index) const;
+  // A full plane per band (zero off the band's grid) from the bands' grid coefficients, and back.
+  std::vector<std::vector<float>> to_planes(const std::vector<std::vector<float>>& grids) const;
+  std::vector<std::vector<float>> to_grids(const std::vector<std::vector<float>>& planes) const;
+
+  // spectrum = S_n(coefficients), the coefficients on the bands' grids (grid_size(b) values a
+  // band).
+  void apply_grid(const std::vector<std::vector<float>>& coefficients,
+                  std::vector<float>& spectrum) const;
+  // out = S_n^T(spectrum) on the bands' grids (out[b] takes grid_size(b) values).
+  void adjoint_grid(std::span<const float> spectrum, std::vector<std::vector<float>>& out) const;
+  // The same on full planes (alpha and out: band_count() planes, zero off each band's grid).
   void apply(const std::vector<std::vector<float>>& alpha, std::vector<float>& spectrum) const;
-  // out = S_n^T(spectrum), zero off each band's grid. With `reuse`, a plane of `out` that already
-  // has the plane's size is taken to hold an earlier adjoint of this dictionary (zero off its
-  // band's grid), and only its grid is written: an iterative solver keeps one buffer and saves
-  // clearing the whole plane of every band at every call.
-  void adjoint(std::span<const float> spectrum, std::vector<std::vector<float>>& out,
-               bool reuse = false) const;
+  void adjoint(std::span<const float> spectrum, std::vector<std::vector<float>>& out) const;
   // Data weights w (width x height, positive): the operator becomes diag(w) S_n, so that a fit
   // minimises ||w (S_n(alpha) - S_ex)||^2 (a weighted data term; see spectrum_weights). Empty:
   // unweighted, eq. (8) as printed.
@@ -76,7 +85,6 @@ class GaussianDictionary {
     int step_x = 1;
     int step_y = 1;
     std::unique_ptr<Fft2d> coarse_fft;  // null when the band covers every bin
-    mutable std::vector<float> coarse_plane;
     mutable std::vector<std::complex<float>> coarse_spectrum;
     mutable std::vector<std::complex<float>> coarse_row;  // the coarse DFT, both half-planes
     double mass = 0;

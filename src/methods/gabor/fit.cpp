@@ -28,27 +28,16 @@ double dot(std::span<const float> a, std::span<const float> b) {
   return sum;
 }
 
-// Runs over the bins of each band's sub-grid, the only ones that carry coefficients (the other
-// entries stay zero), band by band, row by row: band_visitor(band) gives the visit(index) of that
-// band's bins, so that it takes the band's planes once.
-template <typename BandVisitor>
-void for_each_coefficient(const GaussianDictionary& dictionary, BandVisitor&& band_visitor) {
-  for (int b = 0; b < dictionary.band_count(); ++b) {
-    auto visit = band_visitor(static_cast<std::size_t>(b));
-    for (int y = 0; y < dictionary.height(); y += dictionary.step_y(b))
-      for (int x = 0; x < dictionary.width(); x += dictionary.step_x(b))
-        visit(static_cast<std::size_t>(y) * dictionary.width() + x);
-  }
-}
-
 // The buffers of a duality-gap evaluation, kept by the fit across its checks: the correlation
-// alone is a plane per band.
+// alone is a grid per band.
 struct GapBuffers {
   std::vector<float> model;
   std::vector<float> residual;
   std::vector<std::vector<float>> correlation;
 };
 
+// The duality gap at the coefficients `alpha` on the bands' grids (GaussianDictionary::grid_size),
+// the layout the fit iterates in.
 DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const float> target,
                        const std::vector<std::vector<float>>& alpha, double nu,
                        GapBuffers& buffers) {
@@ -57,22 +46,21 @@ DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const flo
   // S_n^T z >= -nu. The dual point is the scaled residual z = -2 t r, r = s - S_n(alpha), with the
   // best t that stays feasible: t <= nu / max(2 S_n^T r) and t* = r^T s / ||r||^2 unconstrained.
   std::vector<float>& model = buffers.model;
-  dictionary.apply(alpha, model);
+  dictionary.apply_grid(alpha, model);
   std::vector<float>& residual = buffers.residual;
   residual.resize(model.size());
   for (std::size_t i = 0; i < model.size(); ++i) residual[i] = target[i] - model[i];
   std::vector<std::vector<float>>& correlation = buffers.correlation;
-  dictionary.adjoint(residual, correlation, true);
+  dictionary.adjoint_grid(residual, correlation);
   // Off its band's grid, alpha and the correlation are zero: only the grid is visited (skipping
   // zeros changes neither the largest value, which starts at 0, nor the sum).
   double largest = 0.0;
   double l1 = 0.0;
-  for_each_coefficient(dictionary, [&](std::size_t b) {
-    return [&largest, &l1, c = correlation[b].data(), a = alpha[b].data()](std::size_t i) {
-      largest = std::max(largest, 2.0 * c[i]);
-      l1 += a[i];
-    };
-  });
+  for (std::size_t b = 0; b < alpha.size(); ++b)
+    for (std::size_t i = 0; i < alpha[b].size(); ++i) {
+      largest = std::max(largest, 2.0 * correlation[b][i]);
+      l1 += alpha[b][i];
+    }
   const double residual_squared = dot(residual, residual);
   const double residual_target = dot(residual, target);
   DualityGap result;
@@ -90,7 +78,7 @@ DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const flo
 DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const float> target,
                        const std::vector<std::vector<float>>& alpha, double nu) {
   GapBuffers buffers;
-  return duality_gap(dictionary, target, alpha, nu, buffers);
+  return duality_gap(dictionary, target, dictionary.to_grids(alpha), nu, buffers);
 }
 
 SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const float> target,
@@ -100,7 +88,11 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
   if (target.size() != plane)
     throw std::invalid_argument("fit_spectrum: the target does not match the dictionary");
   SpectrumFit fit;
-  fit.alpha.assign(bands, std::vector<float>(plane, 0.0f));
+  // The iterates hold each band's grid alone (GaussianDictionary::grid_size), visited band by band
+  // in row-major order; fit.alpha gets the full planes at the end.
+  std::vector<std::vector<float>> alpha(bands);
+  for (std::size_t b = 0; b < bands; ++b)
+    alpha[b].assign(dictionary.grid_size(static_cast<int>(b)), 0.0f);
   // The unweighted residual ||S_n(alpha) - S_ex|| of (weighted) model and target.
   const std::span<const float> weights = dictionary.weights();
   const auto unweighted_norm = [&](std::span<const float> model) {
@@ -115,11 +107,12 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
   };
   fit.target_norm = unweighted_norm(std::vector<float>(plane, 0.0f));
   std::vector<std::vector<float>> correlation;
-  dictionary.adjoint(target, correlation);
+  dictionary.adjoint_grid(target, correlation);
   for (const auto& c : correlation)
     for (const float v : c) fit.nu_max = std::max(fit.nu_max, 2.0 * v);
   fit.residual_norm = fit.target_norm;
   if (!(fit.nu_max > 0.0)) {
+    fit.alpha = dictionary.to_planes(alpha);
     fit.converged = true;  // alpha = 0 is optimal for every nu
     return fit;
   }
@@ -130,23 +123,20 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
   // narrow bands and, with data weights, the weakly weighted bins move as fast as the rest.
   std::vector<std::vector<float>> steps(bands);
   {
-    for (std::size_t b = 0; b < bands; ++b) {
-      const std::span<const float> mask = dictionary.mask(static_cast<int>(b));
-      steps[b].assign(mask.begin(), mask.end());
-    }
+    for (std::size_t b = 0; b < bands; ++b) steps[b].assign(alpha[b].size(), 1.0f);
     std::vector<float> image;
-    dictionary.apply(steps, image);
+    dictionary.apply_grid(steps, image);
     std::vector<std::vector<float>> row_sums;
-    dictionary.adjoint(image, row_sums);
+    dictionary.adjoint_grid(image, row_sums);
     for (std::size_t b = 0; b < bands; ++b)
-      for (std::size_t i = 0; i < plane; ++i)
-        steps[b][i] = steps[b][i] > 0.0f && row_sums[b][i] > 0.0f
+      for (std::size_t i = 0; i < steps[b].size(); ++i)
+        steps[b][i] = row_sums[b][i] > 0.0f
                           ? static_cast<float>(1.0 / (2.0 * kLipschitzMargin * row_sums[b][i]))
                           : 0.0f;
   }
 
-  std::vector<std::vector<float>> extrapolated = fit.alpha;
-  std::vector<std::vector<float>> previous = fit.alpha;
+  std::vector<std::vector<float>> extrapolated = alpha;
+  std::vector<std::vector<float>> previous = alpha;
   std::vector<std::vector<float>> gradient;
   GapBuffers gap_buffers;
   std::vector<float> model;
@@ -161,29 +151,32 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
     fit.nu = nu;
     ++fit.steps;
     fit.converged = false;
-    extrapolated = fit.alpha;
+    extrapolated = alpha;
     double momentum = 1.0;
     for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
       ++fit.iterations;
-      dictionary.apply(extrapolated, model);
+      dictionary.apply_grid(extrapolated, model);
       for (std::size_t i = 0; i < plane; ++i) residual[i] = model[i] - target[i];
-      dictionary.adjoint(residual, gradient, true);
+      dictionary.adjoint_grid(residual, gradient);
       // Proximal step of nu ||a||_1 + indicator(a >= 0): a shifted, clipped gradient step.
       const auto penalty = static_cast<float>(nu);
       double restart_test = 0.0;
-      for_each_coefficient(dictionary, [&](std::size_t b) {
-        return [&restart_test, penalty, alpha = fit.alpha[b].data(), last = previous[b].data(),
-                from = extrapolated[b].data(), step_of = steps[b].data(),
-                slope = gradient[b].data()](std::size_t i) {
-          last[i] = alpha[i];
+      for (std::size_t b = 0; b < bands; ++b) {
+        float* const current = alpha[b].data();
+        float* const last = previous[b].data();
+        const float* const from = extrapolated[b].data();
+        const float* const step_of = steps[b].data();
+        const float* const slope = gradient[b].data();
+        for (std::size_t i = 0; i < alpha[b].size(); ++i) {
+          last[i] = current[i];
           const float step = step_of[i];
           const float value = std::max(0.0f, from[i] - step * (2.0f * slope[i] + penalty));
-          alpha[i] = value;
+          current[i] = value;
           // In the preconditioned variable: the inner product weighted by D = 1 / (2 step).
           if (step > 0.0f)
             restart_test += static_cast<double>(from[i] - value) * (value - last[i]) / step;
-        };
-      });
+        }
+      }
       // Adaptive restart (O'Donoghue & Candes 2015): when the step goes against the momentum,
       // the momentum is reset. FISTA keeps its O(1/k^2) rate and gains linear convergence once
       // the support of the sparse solution has settled.
@@ -191,14 +184,11 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
       const double next_momentum = 0.5 * (1.0 + std::sqrt(1.0 + 4.0 * momentum * momentum));
       const auto blend = static_cast<float>((momentum - 1.0) / next_momentum);
       momentum = next_momentum;
-      for_each_coefficient(dictionary, [&](std::size_t b) {
-        return [blend, alpha = fit.alpha[b].data(), last = previous[b].data(),
-                to = extrapolated[b].data()](std::size_t i) {
-          to[i] = alpha[i] + blend * (alpha[i] - last[i]);
-        };
-      });
+      for (std::size_t b = 0; b < bands; ++b)
+        for (std::size_t i = 0; i < alpha[b].size(); ++i)
+          extrapolated[b][i] = alpha[b][i] + blend * (alpha[b][i] - previous[b][i]);
       if (iteration % kGapCheckInterval == 0 || iteration == options.max_iterations) {
-        const DualityGap gap = duality_gap(dictionary, target, fit.alpha, nu, gap_buffers);
+        const DualityGap gap = duality_gap(dictionary, target, alpha, nu, gap_buffers);
         fit.primal = gap.primal;
         fit.gap = gap.gap;
         // Intermediate homotopy steps only seed the next one: a looser gap is enough there.
@@ -215,8 +205,9 @@ SpectrumFit fit_spectrum(const GaussianDictionary& dictionary, std::span<const f
                  static_cast<double>(kappas.size()));
     }
   }
-  dictionary.apply(fit.alpha, model);
+  dictionary.apply_grid(alpha, model);
   fit.residual_norm = unweighted_norm(model);
+  fit.alpha = dictionary.to_planes(alpha);
   return fit;
 }
 
