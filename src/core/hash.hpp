@@ -75,6 +75,9 @@ class CounterRng {
   constexpr float uniform() noexcept {
     return static_cast<float>(next() >> 8u) * (1.0f / 16777216.0f);
   }
+  // Passes over the next `draws` draws as if they had been made (the draws after them are the
+  // same): what a caller does when it finds it will not use them.
+  constexpr void skip(std::uint32_t draws) noexcept { counter_ += draws; }
 
  private:
   std::uint32_t key_;

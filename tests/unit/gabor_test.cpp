@@ -332,6 +332,24 @@ Moments sample_moments(const GaborModel& model, std::uint32_t seed, double spaci
   return {sum / count, square / count - (sum / count) * (sum / count)};
 }
 
+// Surface noise skips the kernel draws of an impulse it rejects (GridKernels::kDraws): the draws
+// after the skip must be those after a kernel drawn, or every later impulse would change.
+TEST(GaborEvaluate, ASkippedKernelPassesOverTheDrawsOfADrawnOne) {
+  const float frequency_x[2] = {0.1f, 0.2f};
+  const float frequency_y[2] = {-0.1f, 0.05f};
+  const float probability[2] = {0.5f, 1.0f};
+  const std::uint32_t alias[2] = {1, 1};
+  const GridKernels kernels{frequency_x, frequency_y, probability, alias, 2};
+  for (std::uint32_t key = 1; key <= 8; ++key) {
+    CounterRng drawn(key);
+    CounterRng skipped(key);
+    float wx, wy, phase;
+    kernels.draw(drawn, wx, wy, phase);
+    skipped.skip(GridKernels::kDraws);
+    EXPECT_EQ(drawn.next(), skipped.next()) << key;
+  }
+}
+
 TEST(GaborEvaluate, VarianceIsTheSumOfTheGaussiansVariances) {
   // Eq. (5) with p = sigma_g^2 / sigma_b^2: whatever the budget split, the noise variance is the
   // sum of the variances (samples 37 pixels apart are nearly independent: relative standard error

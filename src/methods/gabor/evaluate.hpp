@@ -38,6 +38,9 @@ struct GridKernels {
   const std::uint32_t* alias;
   std::uint32_t count;
 
+  // The draws of one impulse's kernel (draw_alias's two, the phase's one): a caller that rejects
+  // the impulse before its kernel skips them (CounterRng::skip).
+  static constexpr std::uint32_t kDraws = 3;
   // One impulse's kernel: a frequency by the alias method, then a uniform phase, in this order.
   void draw(CounterRng& rng, float& wx, float& wy, float& phase) const noexcept {
     const std::uint32_t k = draw_alias(probability, alias, count, rng);
@@ -90,6 +93,8 @@ struct KernelShape {
   // e^-pi). exp and cos are the float polynomials of core/float_math.hpp, which the vectorised and
   // GLSL twins share.
   bool at(float wx, float wy, float phase, float dx, float dy, float& value) const noexcept;
+  // Whether at() evaluates the kernel at offset (dx, dy): its envelope is not truncated there.
+  bool covers(float dx, float dy) const noexcept;
 };
 
 // The kernel's arithmetic that the scalar reference and the vectorised evaluator (simd.cpp)
@@ -104,6 +109,10 @@ struct ScalarOps {
   static float exp(float v) noexcept { return exp_float(v); }
   static float cos(float v) noexcept { return cos_turns(v); }
 };
+
+inline bool KernelShape::covers(float dx, float dy) const noexcept {
+  return !(kernel_envelope(ScalarOps{}, *this, dx, dy) >= kPiF);
+}
 
 inline bool KernelShape::at(float wx, float wy, float phase, float dx, float dy,
                             float& value) const noexcept {

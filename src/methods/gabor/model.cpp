@@ -533,12 +533,17 @@ void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double s
       for_each_surface_impulse(p, frame, filter.reach, depth,
                                std::ldexp(surface.cell_size, filter.level), surface.count,
                                level_seed, [&](CounterRng& rng, float t, float z1, float z2) {
+                                 // An impulse outside the tent or the kernel's support is
+                                 // rejected before its kernel, whose draws are skipped.
+                                 const float weight = 1.0f - std::abs(t) * inverse_depth;
+                                 if (!(weight > 0.0f) || !shape.covers(z1, z2)) {
+                                   rng.skip(GridKernels::kDraws);
+                                   return;
+                                 }
                                  float wx, wy, phase;
                                  kernels.draw(rng, wx, wy, phase);
-                                 const float weight = 1.0f - std::abs(t) * inverse_depth;
                                  float value;
-                                 if (weight > 0.0f && shape.at(wx, wy, phase, z1, z2, value))
-                                   sum += weight * value;
+                                 if (shape.at(wx, wy, phase, z1, z2, value)) sum += weight * value;
                                });
       pixel(index, grid.channel) +=
           static_cast<float>(std::ldexp(grid.amplitude * filter.gain, filter.level) *
