@@ -116,9 +116,6 @@ GaussianDictionary::GaussianDictionary(int width, int height, int narrowest)
   }
 }
 
-// A band on a sub-grid of steps (sx, sy) is an upsampled image of (W / sx) x (H / sy) values:
-// its DFT is the coarse DFT repeated sx x sy times, and decimating a full image to the sub-grid
-// folds its DFT onto the coarse one. So a sub-sampled band costs a coarse FFT, not a full one.
 std::size_t GaussianDictionary::grid_size(int index) const {
   const Band& band = bands_[static_cast<std::size_t>(index)];
   return static_cast<std::size_t>(width_ / band.step_x) *
@@ -166,6 +163,9 @@ void GaussianDictionary::adjoint(std::span<const float> spectrum,
   out = to_planes(grids);
 }
 
+// A band on a sub-grid of steps (sx, sy) is an upsampled image of (W / sx) x (H / sy) values:
+// its DFT is the coarse DFT repeated sx x sy times, and decimating a full image to the sub-grid
+// folds its DFT onto the coarse one. So a sub-sampled band costs a coarse FFT, not a full one.
 void GaussianDictionary::apply_grid(const std::vector<std::vector<float>>& coefficients,
                                     std::vector<float>& spectrum) const {
   std::fill(sum_spectrum_.begin(), sum_spectrum_.end(), Complex(0.0f, 0.0f));
