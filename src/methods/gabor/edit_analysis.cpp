@@ -417,9 +417,9 @@ namespace {
 
 constexpr std::array<std::string_view, 4> kGroupNames = {"all", "periodic", "anisotropic",
                                                          "stochastic"};
-// The studio's sliders span the useful part of each range: a quarter turn of frequencies either
-// way, a quarter of the Nyquist band of translation, up to 4 times the magnitude and 3 octaves of
-// scale and bandwidth.
+// The studio's sliders span the useful part of each range: half a turn either way, translations
+// up to half the Nyquist frequency, magnitudes up to 4, two octaves of scale and three of bandwidth
+// either way.
 constexpr std::array<EditField, 5> kEditFields = {{
     {.name = "rotate",
      .help = "rotate the group's frequencies by DEG degrees, counter-clockwise",
