@@ -25,6 +25,17 @@ int grid_step(int size, int band) {
   return step;
 }
 
+// Calls visit(plane index, grid index) for every bin (i step_x, j step_y) of a sub-grid of the
+// width x height plane, in the grid's row-major order.
+template <typename Visit>
+void for_each_grid_bin(int width, int height, int step_x, int step_y, Visit&& visit) {
+  const int grid_width = width / step_x;
+  for (int j = 0; j < height / step_y; ++j)
+    for (int i = 0; i < grid_width; ++i)
+      visit(static_cast<std::size_t>(j * step_y) * width + i * step_x,
+            static_cast<std::size_t>(j) * grid_width + i);
+}
+
 }  // namespace
 
 GaussianDictionary::GaussianDictionary(int width, int height, int narrowest)
@@ -50,17 +61,12 @@ GaussianDictionary::GaussianDictionary(int width, int height, int narrowest)
       band.coarse_spectrum.resize(band.coarse_fft->spectrum_size());
       band.coarse_row.resize(band.coarse_fft->image_size());
     }
-    band.mask.assign(plane, 0.0f);
     band.kernel.assign(plane, 0.0f);
     double squared = 0.0;
     for (int y = 0; y < height; ++y) {
       const int signed_y = y <= height / 2 ? y : y - height;
       for (int x = 0; x < width; ++x) {
         const int signed_x = x <= width / 2 ? x : x - width;
-        // The steps divide the sizes: the sub-grid is symmetric under m -> -m, so symmetric
-        // iterates stay symmetric.
-        if (x % step_x == 0 && y % step_y == 0)
-          band.mask[static_cast<std::size_t>(y) * width + x] = 1.0f;
         double value = 0.0;
         for (int ky = -2; ky <= 2; ++ky)
           for (int kx = -2; kx <= 2; ++kx) {
@@ -125,14 +131,11 @@ std::size_t GaussianDictionary::grid_size(int index) const {
 std::vector<std::vector<float>> GaussianDictionary::to_planes(
     const std::vector<std::vector<float>>& grids) const {
   std::vector<std::vector<float>> planes(bands_.size(), std::vector<float>(plane_size(), 0.0f));
-  for (std::size_t b = 0; b < bands_.size(); ++b) {
-    const Band& band = bands_[b];
-    const int coarse_width = width_ / band.step_x;
-    for (int j = 0; j < height_ / band.step_y; ++j)
-      for (int i = 0; i < coarse_width; ++i)
-        planes[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x] =
-            grids[b][static_cast<std::size_t>(j) * coarse_width + i];
-  }
+  for (std::size_t b = 0; b < bands_.size(); ++b)
+    for_each_grid_bin(width_, height_, bands_[b].step_x, bands_[b].step_y,
+                      [&](std::size_t in_plane, std::size_t in_grid) {
+                        planes[b][in_plane] = grids[b][in_grid];
+                      });
   return planes;
 }
 
@@ -140,13 +143,11 @@ std::vector<std::vector<float>> GaussianDictionary::to_grids(
     const std::vector<std::vector<float>>& planes) const {
   std::vector<std::vector<float>> grids(bands_.size());
   for (std::size_t b = 0; b < bands_.size(); ++b) {
-    const Band& band = bands_[b];
-    const int coarse_width = width_ / band.step_x;
     grids[b].resize(grid_size(static_cast<int>(b)));
-    for (int j = 0; j < height_ / band.step_y; ++j)
-      for (int i = 0; i < coarse_width; ++i)
-        grids[b][static_cast<std::size_t>(j) * coarse_width + i] =
-            planes[b][static_cast<std::size_t>(j * band.step_y) * width_ + i * band.step_x];
+    for_each_grid_bin(width_, height_, bands_[b].step_x, bands_[b].step_y,
+                      [&](std::size_t in_plane, std::size_t in_grid) {
+                        grids[b][in_grid] = planes[b][in_plane];
+                      });
   }
   return grids;
 }

@@ -33,13 +33,11 @@ class GaussianDictionary {
   int height() const { return height_; }
   int band_count() const { return static_cast<int>(bands_.size()); }
   int band(int index) const { return bands_[static_cast<std::size_t>(index)].band; }
-  // Steps of band `index`'s sub-grid: its Gaussians sit at bins (i step_x, j step_y).
+  // Steps of band `index`'s sub-grid: its Gaussians sit at bins (i step_x, j step_y). The steps
+  // divide the sizes, so the sub-grid is symmetric under m -> -m and symmetric iterates stay
+  // symmetric.
   int step_x(int index) const { return bands_[static_cast<std::size_t>(index)].step_x; }
   int step_y(int index) const { return bands_[static_cast<std::size_t>(index)].step_y; }
-  // 1 where band `index` has a Gaussian, 0 elsewhere (width x height).
-  std::span<const float> mask(int index) const {
-    return bands_[static_cast<std::size_t>(index)].mask;
-  }
   // Sum of the normalised Gaussian of band `index`: the variance per unit coefficient.
   double mass(int index) const { return bands_[static_cast<std::size_t>(index)].mass; }
   // The sampled, normalised Gaussian of band `index` centred at bin (0, 0).
@@ -81,7 +79,6 @@ class GaussianDictionary {
   };
   struct Band {
     int band = 0;
-    std::vector<float> mask;
     int step_x = 1;
     int step_y = 1;
     std::unique_ptr<Fft2d> coarse_fft;  // null when the band covers every bin
