@@ -93,8 +93,10 @@ struct KernelShape {
   // e^-pi). exp and cos are the float polynomials of core/float_math.hpp, which the vectorised and
   // GLSL twins share.
   bool at(float wx, float wy, float phase, float dx, float dy, float& value) const noexcept;
-  // Whether at() evaluates the kernel at offset (dx, dy): its envelope is not truncated there.
-  bool covers(float dx, float dy) const noexcept;
+  // at() in two halves, for a caller that decides on the envelope before it draws the kernel: the
+  // envelope's exponent at offset (dx, dy) (truncated from kPiF up), then the kernel there.
+  float envelope(float dx, float dy) const noexcept;
+  float value(float envelope, float wx, float wy, float phase, float dx, float dy) const noexcept;
 };
 
 // The kernel's arithmetic that the scalar reference and the vectorised evaluator (simd.cpp)
@@ -110,16 +112,20 @@ struct ScalarOps {
   static float cos(float v) noexcept { return cos_turns(v); }
 };
 
-inline bool KernelShape::covers(float dx, float dy) const noexcept {
-  return !(kernel_envelope(ScalarOps{}, *this, dx, dy) >= kPiF);
+inline float KernelShape::envelope(float dx, float dy) const noexcept {
+  return kernel_envelope(ScalarOps{}, *this, dx, dy);
+}
+
+inline float KernelShape::value(float envelope, float wx, float wy, float phase, float dx,
+                                float dy) const noexcept {
+  return kernel_value(ScalarOps{}, *this, filtered, envelope, wx, wy, phase, dx, dy);
 }
 
 inline bool KernelShape::at(float wx, float wy, float phase, float dx, float dy,
                             float& value) const noexcept {
-  const ScalarOps ops;
-  const float envelope = kernel_envelope(ops, *this, dx, dy);
-  if (envelope >= kPiF) return false;
-  value = kernel_value(ops, *this, filtered, envelope, wx, wy, phase, dx, dy);
+  const float e = envelope(dx, dy);
+  if (e >= kPiF) return false;
+  value = this->value(e, wx, wy, phase, dx, dy);
   return true;
 }
 

@@ -530,21 +530,21 @@ void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double s
       const std::uint32_t level_seed =
           cell_key(static_cast<std::int64_t>(grid_index), filter.level, seed, Stream::kernels);
       float sum = 0.0f;
-      for_each_surface_impulse(p, frame, filter.reach, depth,
-                               std::ldexp(surface.cell_size, filter.level), surface.count,
-                               level_seed, [&](CounterRng& rng, float t, float z1, float z2) {
-                                 // An impulse outside the tent or the kernel's support is
-                                 // rejected before its kernel, whose draws are skipped.
-                                 const float weight = 1.0f - std::abs(t) * inverse_depth;
-                                 if (!(weight > 0.0f) || !shape.covers(z1, z2)) {
-                                   rng.skip(GridKernels::kDraws);
-                                   return;
-                                 }
-                                 float wx, wy, phase;
-                                 kernels.draw(rng, wx, wy, phase);
-                                 float value;
-                                 if (shape.at(wx, wy, phase, z1, z2, value)) sum += weight * value;
-                               });
+      for_each_surface_impulse(
+          p, frame, filter.reach, depth, std::ldexp(surface.cell_size, filter.level), surface.count,
+          level_seed, [&](CounterRng& rng, float t, float z1, float z2) {
+            // An impulse outside the tent or the kernel's support is
+            // rejected before its kernel, whose draws are skipped.
+            const float weight = 1.0f - std::abs(t) * inverse_depth;
+            const float envelope = weight > 0.0f ? shape.envelope(z1, z2) : kPiF;
+            if (envelope >= kPiF) {
+              rng.skip(GridKernels::kDraws);
+              return;
+            }
+            float wx, wy, phase;
+            kernels.draw(rng, wx, wy, phase);
+            sum += weight * shape.value(envelope, wx, wy, phase, z1, z2);
+          });
       pixel(index, grid.channel) +=
           static_cast<float>(std::ldexp(grid.amplitude * filter.gain, filter.level) *
                              amplitude_gain) *
