@@ -5,9 +5,11 @@
 
 #include <fmt/core.h>
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 #include "arguments.hpp"
 #include "commands.hpp"
@@ -56,11 +58,21 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
 
 namespace {
 
+// Refuses, before decoding, an image `method` cannot analyse within the memory budget.
+ImageReadLimits analysis_limits(const std::string& method, const std::string& path) {
+  ImageReadLimits limits;
+  limits.check_declared = [method, path](int width, int height, int channels) {
+    check_analysis_request(method, width, height, channels, path);
+  };
+  return limits;
+}
+
 Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params) {
   std::vector<MapArgument> arguments;
   for (const auto& text : options.maps) arguments.push_back(parse_map_argument(text));
   std::vector<ImageF> images;
-  for (const auto& argument : arguments) images.push_back(read_image(argument.file));
+  for (const auto& argument : arguments)
+    images.push_back(read_image(argument.file, analysis_limits(options.method, argument.file)));
   std::vector<MaterialMap> maps;
   for (std::size_t i = 0; i < arguments.size(); ++i)
     maps.push_back({arguments[i].name, arguments[i].kind, images[i].view(), arguments[i].file});
@@ -92,7 +104,8 @@ Model run_analyze(const AnalyzeOptions& options) {
   if (options.input.empty())
     throw std::invalid_argument("give an exemplar INPUT, a material's --map NAME=FILE or, for " +
                                 methods_with(CapabilityKind::target) + ", a --target spectrum");
-  const ImageF exemplar = load_exemplar(options.input);
+  const ImageF exemplar =
+      load_exemplar(options.input, analysis_limits(options.method, options.input).check_declared);
   Progress progress("analyse");
   progress.message(fmt::format("analysing {} with {}...", options.input, options.method));
   return analyze(options.method, exemplar.view(), params, options.seed, options.input,
@@ -109,7 +122,10 @@ Command add_analyze_command(CLI::App& app) {
   add_analyze_options(command, options->analyze);
   command->add_option("-o,--output", options->output, "model file to write (.stx)")->required();
   return {command, [options] {
-            check_output_path(options->output, false, options->analyze.input);
+            std::vector<std::filesystem::path> inputs{options->analyze.input};
+            for (const auto& text : options->analyze.maps)
+              inputs.emplace_back(parse_map_argument(text).file);
+            check_output_path(options->output, false, inputs);
             save_model(run_analyze(options->analyze), options->output);
             fmt::print(stderr, "wrote {}\n", options->output);
             return 0;

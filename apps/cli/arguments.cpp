@@ -3,14 +3,40 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <exception>
 #include <regex>
 #include <stdexcept>
+#include <utility>
 
+#include "core/memory_budget.hpp"
 #include "io/image_io.hpp"
 #include "model/map_layout.hpp"
 
 namespace stochtex::cli {
+
+CLI::Validator finite_range(double min, double max) {
+  return CLI::Validator(
+      [min, max](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || end != text.c_str() + text.size() || !(value >= min && value <= max))
+          return fmt::format("Value {} not in range [{} - {}]", text, min, max);
+        return {};
+      },
+      fmt::format("FLOAT in [{} - {}]", min, max));
+}
+
+void check_no_empty_values(const CLI::App& command) {
+  for (const CLI::Option* option : command.get_options()) {
+    if (option->get_expected_min() == 0) continue;  // a flag
+    for (const std::string& value : option->results())
+      if (value.empty())
+        throw std::invalid_argument(
+            fmt::format("{} was given an empty value; give one or leave the option out",
+                        option->get_name(false, true)));
+  }
+}
 
 std::optional<Size> parse_size(const std::string& text) {
   static const std::regex pattern(R"((\d{1,7})x(\d{1,7}))");
@@ -93,10 +119,25 @@ MapArgument parse_map_argument(const std::string& text) {
   return map;
 }
 
-ImageF load_exemplar(const std::string& path) {
-  ImageF image = read_image(path);
+ImageF load_exemplar(const std::string& path,
+                     std::function<void(int width, int height, int channels)> check_declared) {
+  ImageReadLimits limits;
+  limits.check_declared = std::move(check_declared);
+  ImageF image = read_image(path, limits);
   validate_exemplar(image.view(), path);
   return image;
+}
+
+std::function<void(int width, int height, int channels)> HeldImages::check(
+    const std::string& path) {
+  return [this, path](int width, int height, int channels) {
+    bytes_ += std::uint64_t{4} * static_cast<std::uint64_t>(width) *
+              static_cast<std::uint64_t>(height) * static_cast<std::uint64_t>(channels);
+    check_memory_budget(kFixedPeakBytes + bytes_,
+                        "holding '" + path + "' (" + std::to_string(width) + "x" +
+                            std::to_string(height) + ") beside the other images",
+                        "crop or downscale the images");
+  };
 }
 
 }  // namespace stochtex::cli

@@ -4,6 +4,9 @@
 // own error sentence around them; the ones here throw std::invalid_argument (a usage error) or,
 // for files, stochtex::Error.
 
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -18,6 +21,14 @@ struct Size {
   int width = 0;
   int height = 0;
 };
+
+// CLI::Range for a floating-point option that also refuses NaN, which CLI::Range lets through
+// (every comparison with NaN is false).
+CLI::Validator finite_range(double min, double max);
+
+// Refuses an option given an empty value (`--seed ''`), which CLI11 would take as the default:
+// one sentence naming the option. Checked for every option of the command that was run.
+void check_no_empty_values(const CLI::App& command);
 
 // WIDTHxHEIGHT with 1 to 7 digits per side, or nothing.
 std::optional<Size> parse_size(const std::string& text);
@@ -50,7 +61,20 @@ struct MapArgument {
 };
 MapArgument parse_map_argument(const std::string& text);
 
-// The image at `path`, checked to be usable as an exemplar.
-ImageF load_exemplar(const std::string& path);
+// The image at `path`, checked to be usable as an exemplar. `check_declared` (see
+// ImageReadLimits) refuses, before the pixels are decoded, a size the command cannot afford.
+ImageF load_exemplar(const std::string& path,
+                     std::function<void(int width, int height, int channels)> check_declared = {});
+
+// The images a command holds at once (mix's exemplars and mask, report's exemplars), within the
+// memory budget: check(path) is a check_declared that adds the image's declared pixels (as
+// floats) to the others' and refuses the sum beyond the budget.
+class HeldImages {
+ public:
+  std::function<void(int width, int height, int channels)> check(const std::string& path);
+
+ private:
+  std::uint64_t bytes_ = 0;
+};
 
 }  // namespace stochtex::cli

@@ -16,6 +16,9 @@ inline constexpr int kExitUsage = 2;
 struct Command {
   CLI::App* subcommand = nullptr;  // `*subcommand` is true when it was given
   std::function<int()> run;        // owns the options the parse fills
+  // No output of the command may replace a file it read (core/input_file.hpp protect_inputs):
+  // true for every command but the studio, a server that rewrites the files of its store.
+  bool protects_inputs = true;
 };
 
 Command add_analyze_command(CLI::App& app);

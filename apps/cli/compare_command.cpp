@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "core/memory_budget.hpp"
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
 #include "report/compare.hpp"
@@ -68,10 +70,27 @@ Command add_compare_command(CLI::App& app) {
       ->required();
   command->add_flag("--json", options->json, "print one JSON document");
   return {command, [options] {
-            const ImageF exemplar = load_exemplar(options->exemplar);
+            // Each image's declared size against the budget of the measures, before decoding.
+            const auto budget = [](std::uint64_t exemplar_pixels, int width, int height,
+                                   int channels, const std::string& path) {
+              check_memory_budget(
+                  compare_peak_bytes(exemplar_pixels, static_cast<std::uint64_t>(width) * height,
+                                     channels),
+                  fmt::format("comparing the {}x{} image '{}'", width, height, path),
+                  "compare smaller images");
+            };
+            const ImageF exemplar =
+                load_exemplar(options->exemplar, [&](int width, int height, int channels) {
+                  budget(0, width, height, channels, options->exemplar);
+                });
             Comparison comparison(exemplar.view());
             for (const std::string& path : options->images) {
-              const ImageF image = read_image(path);
+              ImageReadLimits limits;
+              limits.check_declared = [&](int width, int height, int channels) {
+                budget(exemplar.pixel_count(), width, height,
+                       std::max(channels, exemplar.channels()), path);
+              };
+              const ImageF image = read_image(path, limits);
               add_checked(comparison, exemplar.view(), options->exemplar, image.view(), path);
             }
             const ComparisonReport report = comparison.report();

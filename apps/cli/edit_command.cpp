@@ -114,7 +114,7 @@ void run_edit(const EditOptions& options) {
   if (options.json && !options.list_groups)
     throw std::invalid_argument("--json goes with --list-groups");
   const EditValues values = edit_values(options);
-  if (!options.list_groups) check_output_path(options.output, false, options.model);
+  if (!options.list_groups) check_output_path(options.output, false, {options.model});
 
   const Model model = load_model(options.model);
   const EditCapability* edit = edit_capability(model.method());

@@ -54,26 +54,23 @@ void export_shader_files([[maybe_unused]] const std::string& model_path,
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(fmt::format("{}: {}", model_path, e.what()));
   }
-  // Every file's place is checked before the first is written, so that a folder that cannot take
-  // one of them gets none (each file is itself written atomically, docs/design.md section 6).
+  // Every file's place is checked before the first is written, and the files are committed
+  // together (docs/design.md section 6): all of them or none.
   const std::filesystem::path folder(output);
-  std::error_code error;
-  std::filesystem::create_directories(folder, error);
-  if (error)
-    throw Error(ErrorCode::io,
-                fmt::format("cannot create the folder '{}': {}", output, error.message()));
+  AtomicFileSet written;
+  written.create_folder(folder);
   std::vector<std::filesystem::path> targets = {folder / files.shader.name, folder / "README.md"};
   for (const TextFile& wrapper : files.wrappers) targets.push_back(folder / wrapper.name);
   for (const ShaderTexture& texture : files.textures)
     targets.push_back(folder / texture.file_name());
   for (const std::filesystem::path& target : targets) check_output_target(target);
-  write_file_atomically(folder / files.shader.name, files.shader.text);
-  for (const TextFile& wrapper : files.wrappers)
-    write_file_atomically(folder / wrapper.name, wrapper.text);
+  written.write(folder / files.shader.name, files.shader.text);
+  for (const TextFile& wrapper : files.wrappers) written.write(folder / wrapper.name, wrapper.text);
   for (const ShaderTexture& texture : files.textures)
-    write_image(folder / texture.file_name(), texture.image.view(),
+    write_image(written, folder / texture.file_name(), texture.image.view(),
                 texture.encoding == TextureEncoding::png16 ? 16 : 8);
-  write_file_atomically(folder / "README.md", files.readme);
+  written.write(folder / "README.md", files.readme);
+  written.commit();
   fmt::print(stderr, "wrote {} ({}, {} image(s), README.md)\n", output, files.shader.name,
              files.textures.size());
 #else

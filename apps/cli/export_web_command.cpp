@@ -128,15 +128,13 @@ void export_web_files([[maybe_unused]] const std::vector<std::string>& model_pat
         files.emplace_back(
             folder / "models" / exported.name / std::string(web::variant_name(v)) / web_file.name,
             web_file.bytes);
+  AtomicFileSet written;  // all the files or none
   for (const auto& [target, bytes] : files) {
-    std::error_code error;
-    fs::create_directories(target.parent_path(), error);
-    if (error)
-      throw Error(ErrorCode::io, fmt::format("cannot create the folder '{}': {}",
-                                             target.parent_path().string(), error.message()));
+    written.create_folder(target.parent_path());
     check_output_target(target);
   }
-  for (const auto& [target, bytes] : files) write_file_atomically(target, bytes);
+  for (const auto& [target, bytes] : files) written.write(target, bytes);
+  written.commit();
   fmt::print(stderr,
              "wrote {} ({} model(s), {} variant(s) each); serve it over HTTP to view it, e.g. "
              "python3 -m http.server -d {}\n",

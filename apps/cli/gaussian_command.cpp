@@ -35,8 +35,15 @@ Command add_gaussian_command(CLI::App& app) {
             check_memory_budget(gaussian_peak_bytes(size.width, size.height),
                                 fmt::format("the Gaussian version at --size {}", options->size),
                                 "use a smaller --size");
-            check_output_path(options->output, true, options->input);
-            const ImageF exemplar = load_exemplar(options->input);
+            check_output_path(options->output, true, {options->input});
+            const ImageF exemplar =
+                load_exemplar(options->input, [&](int width, int height, int channels) {
+                  check_memory_budget(
+                      gaussian_peak_bytes(size.width, size.height, width, height, channels),
+                      fmt::format("the Gaussian version at --size {} of the {}x{} exemplar '{}'",
+                                  options->size, width, height, options->input),
+                      "use a smaller --size or exemplar");
+                });
             check_output_channels(options->output, exemplar.channels());
             const ImageF result =
                 gaussian_version(exemplar.view(), size.width, size.height, options->seed);

@@ -21,13 +21,15 @@ void export_model_images(const Model& model, const std::filesystem::path& folder
     throw Error(ErrorCode::io, fmt::format("cannot export into '{}': the folder does not exist; "
                                            "create it first",
                                            folder.string()));
+  AtomicFileSet written;  // every picture or none
   for (auto& [name, image] : model_images(model)) {
-    write_image(folder / (name + ".exr"), image.view());
+    write_image(written, folder / (name + ".exr"), image.view());
     float peak = 0.0f;
     for (const float value : image.pixels()) peak = std::max(peak, std::abs(value));
     for (float& value : image.pixels()) value = 0.5f + 0.5f * value / std::max(peak, 1e-30f);
-    write_image(folder / (name + ".png"), image.view());
+    write_image(written, folder / (name + ".png"), image.view());
   }
+  written.commit();
 }
 
 void print_text(const Model& model, const std::string& path, const std::string& description) {

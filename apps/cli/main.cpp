@@ -9,8 +9,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include "arguments.hpp"
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
+#include "core/input_file.hpp"
 #include "stochtex/error.hpp"
 
 namespace {
@@ -44,7 +46,11 @@ int run(int argc, char** argv) {
 
   try {
     for (const cli::Command& command : commands)
-      if (*command.subcommand) return command.run();
+      if (*command.subcommand) {
+        cli::check_no_empty_values(*command.subcommand);
+        if (command.protects_inputs) protect_inputs();
+        return command.run();
+      }
   } catch (const std::invalid_argument& e) {
     fmt::print(stderr, "stochtex: error: {}\n", e.what());
     return cli::kExitUsage;

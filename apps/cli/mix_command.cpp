@@ -70,13 +70,16 @@ Command add_mix_command(CLI::App& app) {
             if (!options->steps.empty()) given["steps"] = options->steps;
             if (!options->mask_scale.empty()) given["mask_scale"] = options->mask_scale;
             const ParamValues params = resolve_params("texton_mix", given);
-            check_output_path(options->output, false, options->a);
-            const ImageF a = load_exemplar(options->a);
-            const ImageF b = load_exemplar(options->b);
+            check_output_path(options->output, false, {options->a, options->b, options->mask});
+            HeldImages held;
+            const ImageF a = load_exemplar(options->a, held.check(options->a));
+            const ImageF b = load_exemplar(options->b, held.check(options->b));
             MixInputs inputs{a.view(), b.view(), options->a, options->b, std::nullopt, "mask"};
             ImageF mask_image;
             if (!options->mask.empty()) {
-              mask_image = read_image(options->mask);
+              ImageReadLimits limits;
+              limits.check_declared = held.check(options->mask);
+              mask_image = read_image(options->mask, limits);
               inputs.mask = mask_image.view();
               inputs.mask_name = options->mask;
             }

@@ -85,10 +85,6 @@ int run(const Options& o) {
         "--camera must be AZIMUTH,ELEVATION[,DISTANCE] (degrees, degrees, framings) or "
         "EX,EY,EZ,TX,TY,TZ (eye and target in mesh units), not '" +
         o.camera + "'");
-  // CLI11's range checks let NaN through.
-  if (!std::isfinite(o.surface.surface_mni) || !std::isfinite(o.surface.triplanar_sharpness))
-    throw std::invalid_argument(fmt::format("--surface-mni {} and --sharpness {} must be numbers",
-                                            o.surface.surface_mni, o.surface.triplanar_sharpness));
   std::optional<SurfaceMapping> mapping;
   if (o.mapping != "uv") mapping = mapping_from_name(o.mapping);
   const renderer::Backend backend =
@@ -98,8 +94,7 @@ int run(const Options& o) {
   check_memory_budget(render_peak_bytes(size.width, size.height, 32, 1, threads),
                       fmt::format("rendering {} pixels on {} threads", o.size, threads),
                       "use fewer --threads or a smaller --size");
-  check_output_path(o.output, true, o.mesh);
-  check_output_is_not_input(o.output, o.model);
+  check_output_path(o.output, true, {o.mesh, o.model});
 
   const Model model = load_model(o.model);
   int channels = 0;
@@ -122,6 +117,11 @@ int run(const Options& o) {
         "--mapping uv, which every method has on the gl backend",
         o.model, o.mapping, model.method()));
   const Mesh mesh = read_mesh(o.mesh);
+  if (mesh.skipped_triangles > 0)
+    fmt::print(stderr,
+               "stochtex render-mesh: warning: '{}': skipped {} degenerate triangle(s) of zero "
+               "area, which cover no pixel\n",
+               o.mesh, mesh.skipped_triangles);
   if (!mapping && mesh.uvs.empty())
     throw std::invalid_argument(
         "'" + o.mesh +
@@ -181,18 +181,18 @@ Command add_render_mesh_command(CLI::App& app) {
       ->add_option("--texture-scale", options->texture_scale,
                    "exemplar pixels per mesh unit (per uv unit with --mapping uv); default: "
                    "1024 / the bounding box's largest side (1024 with uv)")
-      ->check(CLI::Range(1e-9, 1e9));
+      ->check(finite_range(1e-9, 1e9));
   command
       ->add_option("--surface-mni", options->surface.surface_mni,
                    "surface noise: mean number of impulses per texton-sized cube, lambda r^3 "
                    "(texton paper section 6)")
       ->capture_default_str()
-      ->check(CLI::Range(kMinSurfaceMni, kMaxSurfaceMni));
+      ->check(finite_range(kMinSurfaceMni, kMaxSurfaceMni));
   command
       ->add_option("--sharpness", options->surface.triplanar_sharpness,
                    "triplanar mappings: the weight of axis k is |n_k|^sharpness, normalised")
       ->capture_default_str()
-      ->check(CLI::Range(kMinTriplanarSharpness, kMaxTriplanarSharpness));
+      ->check(finite_range(kMinTriplanarSharpness, kMaxTriplanarSharpness));
   command->add_option("--threads", options->threads, "worker threads (0 = all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, kMaxThreads));

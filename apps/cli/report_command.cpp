@@ -82,15 +82,6 @@ std::string unique_name(const std::string& path, std::set<std::string>& taken) {
   return name;
 }
 
-void create_folder(const fs::path& folder) {
-  std::error_code error;
-  fs::create_directories(folder, error);
-  if (error || !fs::is_directory(folder))
-    throw Error(ErrorCode::io,
-                fmt::format("cannot create the report folder '{}': {}", folder.string(),
-                            error ? error.message() : "a file of that name exists"));
-}
-
 double process_cpu_seconds() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
@@ -102,16 +93,16 @@ double process_cpu_seconds() {
 
 // Writes a synthesis's picture files: DIR/NAME/KIND.png, KIND_spectrum.png,
 // KIND_spectrum_averaged.png, KIND_histogram.png and, when asked, DIR/thumbnails/NAME_KIND.png.
-void write_pictures(const fs::path& folder, const std::string& name, const Pictures& pictures,
-                    int thumbnail) {
+void write_pictures(AtomicFileSet& files, const fs::path& folder, const std::string& name,
+                    const Pictures& pictures, int thumbnail) {
   const fs::path own = folder / name;
   const std::string kind(pictures.kind);
-  write_image(own / (kind + ".png"), pictures.image);
-  write_image(own / (kind + "_spectrum.png"), pictures.spectrum.view());
-  write_image(own / (kind + "_spectrum_averaged.png"), pictures.averaged_spectrum.view());
-  write_image(own / (kind + "_histogram.png"), pictures.histogram.view());
+  write_image(files, own / (kind + ".png"), pictures.image);
+  write_image(files, own / (kind + "_spectrum.png"), pictures.spectrum.view());
+  write_image(files, own / (kind + "_spectrum_averaged.png"), pictures.averaged_spectrum.view());
+  write_image(files, own / (kind + "_histogram.png"), pictures.histogram.view());
   if (thumbnail > 0)
-    write_image(folder / "thumbnails" / (name + "_" + kind + ".png"),
+    write_image(files, folder / "thumbnails" / (name + "_" + kind + ".png"),
                 downscale(pictures.image, thumbnail).view());
 }
 
@@ -129,24 +120,26 @@ int run_report(const ReportOptions& options) {
 
   std::vector<ExemplarResults> exemplars;
   std::set<std::string> taken;
+  HeldImages held;
   for (const auto& path : options.exemplars) {
-    ImageF image = load_exemplar(path);
+    ImageF image = load_exemplar(path, held.check(path));
     ExemplarResults& exemplar = exemplars.emplace_back();
     exemplar.path = path;
     exemplar.name = unique_name(path, taken);
     exemplar.image = std::move(image);
   }
   const fs::path folder(options.output);
-  create_folder(folder);
-  for (const ExemplarResults& exemplar : exemplars) create_folder(folder / exemplar.name);
-  if (options.thumbnail > 0) create_folder(folder / "thumbnails");
+  AtomicFileSet files;  // the whole report or nothing
+  files.create_folder(folder);
+  for (const ExemplarResults& exemplar : exemplars) files.create_folder(folder / exemplar.name);
+  if (options.thumbnail > 0) files.create_folder(folder / "thumbnails");
 
   std::mutex print_mutex;
   std::size_t finished = 0;
   const std::size_t total = exemplars.size() * (1 + method_names.size());
   MeasureCallbacks callbacks;
   callbacks.pictures = [&](const ExemplarResults& exemplar, const Pictures& pictures) {
-    write_pictures(folder, exemplar.name, pictures, options.thumbnail);
+    write_pictures(files, folder, exemplar.name, pictures, options.thumbnail);
   };
   callbacks.finished = [&](const ExemplarResults& exemplar, const Outcome& outcome) {
     const std::lock_guard lock(print_mutex);
@@ -172,10 +165,11 @@ int run_report(const ReportOptions& options) {
       process_cpu_seconds() - cpu_start,
       failures};
   for (const ExemplarResults& exemplar : exemplars)
-    write_file_atomically(folder / (exemplar.name + ".html"), exemplar_page(exemplar, settings));
-  write_file_atomically(folder / "index.html", index_page(run));
+    files.write(folder / (exemplar.name + ".html"), exemplar_page(exemplar, settings));
+  files.write(folder / "index.html", index_page(run));
   const std::string json = summary_json(run);
-  write_file_atomically(folder / "report.json", json + "\n");
+  files.write(folder / "report.json", json + "\n");
+  files.commit();
   if (options.json) fmt::print("{}\n", json);
   fmt::print(stderr, "wrote {} ({} exemplar(s), {:.1f} s wall, {:.1f} s CPU)\n",
              (folder / "index.html").string(), exemplars.size(), run.wall_seconds, run.cpu_seconds);

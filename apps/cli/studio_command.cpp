@@ -59,10 +59,12 @@ Command add_studio_command(CLI::App& app) {
       ->capture_default_str();
   command->footer(
       "\nOpen the printed address in a browser. Ctrl-C (SIGINT) or SIGTERM stops the server.");
-  return {command, [options] {
+  return {command,
+          [options] {
             serve(options->host, options->port);
             return 0;
-          }};
+          },
+          false};
 }
 
 }  // namespace stochtex::cli

@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,6 +27,9 @@ namespace stochtex {
 
 struct ImageReadLimits {
   std::int64_t max_pixels = std::int64_t{1} << 26;  // 64 Mpixel: refuse before allocating
+  // Called with the size and channels the file declares, before its pixels are decoded: a caller
+  // refuses there (throws) what its own memory budget cannot hold.
+  std::function<void(int width, int height, int channels)> check_declared;
 };
 
 // The formats write_image and encode_image write.

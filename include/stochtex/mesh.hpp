@@ -22,6 +22,8 @@ struct Mesh {
   std::vector<Vec3d> normals;
   std::vector<Vec2d> uvs;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  // The degenerate triangles prepare_mesh removed (zero area: they cover no pixel).
+  std::size_t skipped_triangles = 0;
 };
 
 // The sizes a mesh may have: with 4 Mi triangles and 4 Mi vertices a mesh holds about 300 MB
@@ -36,11 +38,12 @@ inline constexpr double kMaxMeshCoordinate = 1e12;
 // Checks a mesh before use and throws Error(invalid_input), one sentence starting with `name`
 // (the file), when it has no triangle, more than the limits above, a vertex index out of range,
 // a position, normal or uv that is not finite (or a coordinate beyond kMaxMeshCoordinate), a normal
-// of zero length, a degenerate triangle (an area at most 1e-12 times the squared diagonal of the
-// bounding box: a repeated or collinear vertex) or a non-manifold edge (one shared by more than two
+// of zero length, only degenerate triangles or a non-manifold edge (one shared by more than two
 // triangles; vertices at the same position are the same point, so uv seams are edges like any
-// other). `normals` may be empty: the check then computes them, area-weighted over the triangles
-// around each position.
+// other). Degenerate triangles (an area at most 1e-12 times the squared diagonal of the bounding
+// box: a repeated or collinear vertex) are removed and counted in `skipped_triangles`, as
+// renderers skip them. `normals` may be empty: the check then computes them, area-weighted over
+// the triangles around each position.
 void prepare_mesh(Mesh& mesh, const std::string& name);
 
 // The OBJ file at `path` (v, vt, vn and f lines; polygons are split into fans; lines, points,

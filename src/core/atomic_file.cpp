@@ -11,10 +11,11 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
-#include <thread>
 #include <utility>
+#include <vector>
 
 #include "core/file_message.hpp"
+#include "core/input_file.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
@@ -25,48 +26,46 @@ namespace fs = std::filesystem;
 // The temporaries being written, in fixed buffers that a signal handler may read (it may not
 // allocate or lock). A slot is free (kFree), being filled by its owner (kFilling), or holds the
 // path of a temporary to remove on a signal (kHeld). std::atomic<int> is lock-free, so the
-// handler's loads are async-signal-safe.
+// handler's loads are async-signal-safe. The states lie apart from the paths, so that finding a
+// slot touches only them.
 constexpr int kFree = 0;
 constexpr int kFilling = 1;
 constexpr int kHeld = 2;
-constexpr int kSlots = 64;
+constexpr int kSlots = 4096;  // 16 MiB of paths, in pages touched only when used
 constexpr std::size_t kPathBytes = 4096;
 static_assert(std::atomic<int>::is_always_lock_free);
 
-struct Slot {
-  std::atomic<int> state{kFree};
-  char path[kPathBytes] = {};
-};
-Slot slots[kSlots];
+std::atomic<int> slot_states[kSlots];
+char slot_paths[kSlots][kPathBytes];
 
 // Numbers the temporaries of this process: with the process id, a name no other live writer uses.
 std::atomic<unsigned long> temporary_counter{0};
 
-// Holds `path` in a free slot, waiting while more than kSlots files are being written at once.
+// Holds `path` in a free slot.
 int hold_path(const fs::path& path) {
   const std::string& text = path.native();
   if (text.size() >= kPathBytes)
     throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": the path is too long");
-  for (;;) {
-    for (int i = 0; i < kSlots; ++i) {
-      int expected = kFree;
-      if (slots[i].state.compare_exchange_strong(expected, kFilling)) {
-        std::memcpy(slots[i].path, text.c_str(), text.size() + 1);
-        slots[i].state.store(kHeld);
-        return i;
-      }
+  for (int i = 0; i < kSlots; ++i) {
+    int expected = kFree;
+    if (slot_states[i].compare_exchange_strong(expected, kFilling)) {
+      std::memcpy(slot_paths[i], text.c_str(), text.size() + 1);
+      slot_states[i].store(kHeld);
+      return i;
     }
-    std::this_thread::yield();
   }
+  throw Error(ErrorCode::io, "cannot write " + quoted(path) + ": more than " +
+                                 std::to_string(kSlots) +
+                                 " files are being written at once; write fewer at a time");
 }
 
 void release_path(int slot) {
-  slots[slot].state.store(kFree);
+  slot_states[slot].store(kFree);
 }
 
 void remove_temporaries(int signal_number) {
-  for (Slot& slot : slots)
-    if (slot.state.load() == kHeld) ::unlink(slot.path);
+  for (int i = 0; i < kSlots; ++i)
+    if (slot_states[i].load() == kHeld) ::unlink(slot_paths[i]);
   std::signal(signal_number, SIG_DFL);
   std::raise(signal_number);  // delivered when the handler returns: the default action ends us
 }
@@ -108,6 +107,7 @@ void check_output_target(const fs::path& target) {
       kind = "a socket";
       break;
     default:  // missing, a regular file, or not examinable (then the open says why)
+      check_not_an_input(target);
       return;
   }
   throw Error(ErrorCode::io, "cannot write " + quoted(target) + ": it is " + kind +
@@ -165,22 +165,26 @@ void AtomicFile::fail(const std::string& reason) {
   throw Error(ErrorCode::io, "cannot write " + quoted(target_) + ": " + reason);
 }
 
-void AtomicFile::commit() {
+void AtomicFile::finish() {
+  if (stream_ == nullptr) return;
   std::FILE* stream = std::exchange(stream_, nullptr);
-  struct stat written {};
   // A write that failed earlier leaves the stream's error flag set: the commit fails with it.
   bool ok = std::fflush(stream) == 0 && !std::ferror(stream) && ::fsync(::fileno(stream)) == 0 &&
-            ::fstat(::fileno(stream), &written) == 0;
+            ::fstat(::fileno(stream), &written_) == 0;
   const int error = errno;
   if (std::fclose(stream) != 0 && ok) fail(errno_message(errno));
   if (!ok) fail(errno_message(error));
+}
+
+void AtomicFile::commit() {
+  finish();
   check_output_target(target_);
   if (std::rename(temporary_.c_str(), target_.c_str()) != 0) fail(errno_message(errno));
   release_path(std::exchange(slot_, -1));
   sync_folder(target_);
   struct stat present {};
-  ok = ::lstat(target_.c_str(), &present) == 0 && present.st_dev == written.st_dev &&
-       present.st_ino == written.st_ino;
+  const bool ok = ::lstat(target_.c_str(), &present) == 0 && present.st_dev == written_.st_dev &&
+                  present.st_ino == written_.st_ino;
   if (!ok)
     fail("another process replaced it as it was written; write each output from one process");
 }
@@ -189,6 +193,46 @@ void write_file_atomically(const fs::path& target, std::string_view bytes) {
   AtomicFile file(target);
   std::fwrite(bytes.data(), 1, bytes.size(), file.stream());
   file.commit();
+}
+
+AtomicFileSet::~AtomicFileSet() {
+  files_.clear();  // the temporaries first, then the folders they were in
+  for (auto folder = created_.rbegin(); folder != created_.rend(); ++folder)
+    ::rmdir(folder->c_str());
+}
+
+void AtomicFileSet::create_folder(const fs::path& folder) {
+  std::vector<fs::path> missing;
+  std::error_code error;
+  for (fs::path part = folder; !part.empty() && !fs::exists(part, error);
+       part = part.parent_path()) {
+    missing.push_back(part);
+    if (part == part.parent_path()) break;
+  }
+  fs::create_directories(folder, error);
+  created_.insert(created_.end(), missing.rbegin(), missing.rend());
+  if (error || !fs::is_directory(folder))
+    throw Error(ErrorCode::io, "cannot create the folder " + quoted(folder) + ": " +
+                                   (error ? error.message() : "a file of that name exists"));
+}
+
+AtomicFile& AtomicFileSet::open(const fs::path& target) {
+  const std::lock_guard lock(mutex_);
+  return *files_.emplace_back(std::make_unique<AtomicFile>(target));
+}
+
+void AtomicFileSet::write(const fs::path& target, std::string_view bytes) {
+  AtomicFile& file = open(target);
+  std::fwrite(bytes.data(), 1, bytes.size(), file.stream());
+  file.finish();
+}
+
+void AtomicFileSet::commit() {
+  const std::lock_guard lock(mutex_);
+  for (const auto& file : files_) file->finish();
+  for (const auto& file : files_) file->commit();
+  files_.clear();
+  created_.clear();
 }
 
 void remove_temporaries_on_signals() {

@@ -7,14 +7,20 @@
 // FIFO or a device is refused. POSIX only, no other library: stochtex::runtime's save_model uses
 // it.
 
+#include <sys/stat.h>
+
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <mutex>
 #include <string_view>
+#include <vector>
 
 namespace stochtex {
 
 // Throws Error(io), one sentence naming `target`, when its folder is missing or `target` exists
-// and is not a regular file. Writers call it first and again just before the rename; callers may
+// and is not a regular file, and std::invalid_argument when it is a protected input
+// (core/input_file.hpp). Writers call it first and again just before the rename; callers may
 // call it earlier to refuse an output before any long work.
 void check_output_target(const std::filesystem::path& target);
 
@@ -38,9 +44,13 @@ class AtomicFile {
   std::FILE* stream() const { return stream_; }
   const std::filesystem::path& temporary() const { return temporary_; }
 
-  // Flushes, fsyncs and closes the temporary, renames it over the target and fsyncs the folder.
-  // It fails, rather than report a success, when the file at the target afterwards is not the
-  // one written (another process replaced it in between).
+  // Flushes, fsyncs and closes the temporary: what can fail for want of space fails here. The
+  // temporary stays until commit() or the destructor.
+  void finish();
+
+  // finish(), then renames the temporary over the target and fsyncs the folder. It fails, rather
+  // than report a success, when the file at the target afterwards is not the one written (another
+  // process replaced it in between).
   void commit();
 
  private:
@@ -49,7 +59,34 @@ class AtomicFile {
   std::filesystem::path target_;
   std::filesystem::path temporary_;
   std::FILE* stream_ = nullptr;
-  int slot_ = -1;  // the signal-cleanup slot holding the temporary's path
+  struct stat written_ {};  // the temporary's identity, for the check after the rename
+  int slot_ = -1;           // the signal-cleanup slot holding the temporary's path
+};
+
+// The files of one output that is several files (a material's maps, a report, an export): all
+// of them or none. Each is written to its temporary; commit() finishes every one (a full disk
+// fails there, before any target is replaced) and then renames them all. Destroyed uncommitted,
+// it removes the temporaries and the folders create_folder made. open and write may be called
+// from several threads.
+class AtomicFileSet {
+ public:
+  AtomicFileSet() = default;
+  AtomicFileSet(const AtomicFileSet&) = delete;
+  AtomicFileSet& operator=(const AtomicFileSet&) = delete;
+  ~AtomicFileSet();
+
+  // Creates `folder` and its missing parents, removed again if the set is not committed.
+  void create_folder(const std::filesystem::path& folder);
+  // A new file of the set, to be written through its stream; the set commits it.
+  AtomicFile& open(const std::filesystem::path& target);
+  // A new file of the set holding `bytes`, finished at once (its stream closed).
+  void write(const std::filesystem::path& target, std::string_view bytes);
+  void commit();
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<AtomicFile>> files_;
+  std::vector<std::filesystem::path> created_;
 };
 
 // Writes `bytes` to `target` through an AtomicFile.

@@ -18,8 +18,20 @@ std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample
   return 24 * pixels + workers * tile_width * tile_height * samples_per_pixel * bytes_per_sample;
 }
 
-std::uint64_t gaussian_peak_bytes(int width, int height) {
-  return 48 * static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+std::uint64_t gaussian_peak_bytes(int width, int height, int exemplar_width, int exemplar_height,
+                                  int channels) {
+  // A 7-smooth size is at most a few percent above its minimum beyond a hundred.
+  const auto domain_side = [](int output, int exemplar) {
+    return static_cast<std::uint64_t>(output + exemplar) * 21 / 20 + 8;
+  };
+  const auto pixels = [](int w, int h) {
+    return static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
+  };
+  const std::uint64_t domain =
+      exemplar_width > 0 ? domain_side(width, exemplar_width) * domain_side(height, exemplar_height)
+                         : pixels(width, height);
+  return 24 * domain + 24 * pixels(width, height) +
+         (24 + 8 * static_cast<std::uint64_t>(channels)) * pixels(exemplar_width, exemplar_height);
 }
 
 std::uint64_t compare_peak_bytes(std::uint64_t exemplar_pixels, std::uint64_t image_pixels,

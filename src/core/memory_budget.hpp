@@ -24,10 +24,14 @@ inline constexpr int kMaxThreads = 256;
 // 4 channel values (32 bytes). Threads beyond the number of tiles never start.
 std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample, int threads);
 
-// The Gaussian version (ADSN) of an exemplar at width x height: its FFT domain, at least the
-// output, holds the noise, two spectra and a plane, 24 bytes a pixel, and the output image with
-// its encoded copy 24 more.
-std::uint64_t gaussian_peak_bytes(int width, int height);
+// The Gaussian version (ADSN, spectral/adsn.cpp) at width x height of an exemplar of
+// exemplar_width x exemplar_height with `channels` channels: its FFT domain, a 7-smooth size of
+// at least the output plus the exemplar on each side, holds the noise, two spectra and a plane,
+// 24 bytes a pixel; the output image with its encoded copy 24 more a pixel; the exemplar, its
+// periodic component and that component's spectra 24 + 8 x channels bytes a pixel. An exemplar of
+// 0 x 0 gives the output's share alone, for a check before the exemplar is read.
+std::uint64_t gaussian_peak_bytes(int width, int height, int exemplar_width = 0,
+                                  int exemplar_height = 0, int channels = 0);
 
 // The measures of `compare` (metrics/metrics.hpp compare_images): kFixedPeakBytes plus 56 + 12 x
 // channels bytes a pixel of the exemplar and of the image together (spectra, the ADSN sample,

@@ -23,8 +23,10 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <functional>
 #include <memory>
 #include <new>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -34,6 +36,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/file_message.hpp"
+#include "core/input_file.hpp"
 #include "io/image_streams.hpp"
 #include "io/png_sample.hpp"
 #include "stochtex/error.hpp"
@@ -68,6 +71,14 @@ void check_size(const std::string& name, std::int64_t width, std::int64_t height
     throw Error(ErrorCode::invalid_input,
                 name + " is " + size + " pixels, more than the limit of " +
                     std::to_string(limits.max_pixels) + " pixels; use a smaller image");
+}
+
+// The caller's refusal of a size its memory budget cannot hold, once the size and channels are
+// known (check_size passed) and before the pixels are allocated.
+void check_declared(std::int64_t width, std::int64_t height, int channels,
+                    const ImageReadLimits& limits) {
+  if (limits.check_declared)
+    limits.check_declared(static_cast<int>(width), static_cast<int>(height), channels);
 }
 
 // Deflate codes a 258-byte match in 2 bits at best, so zlib data never expands more than 1032
@@ -256,6 +267,7 @@ ImageF read_png(const Input& input, const ImageReadLimits& limits) {
                                        std::to_string(layout.channels) + " channels of " +
                                        std::to_string(layout.bit_depth) +
                                        " bits); convert it to 8- or 16-bit grey or RGB(A)");
+  check_declared(layout.width, layout.height, layout.channels, limits);
 
   std::vector<png_byte> bytes(layout.row_bytes * layout.height);
   std::vector<png_bytep> rows(layout.height);
@@ -511,6 +523,7 @@ ImageF read_exr(const Input& input, const ImageReadLimits& limits) {
     check_size(input.name, width, height, limits);
     const std::vector<const char*> names = exr_channel_names(input.name, file.header().channels());
     const int channels = static_cast<int>(names.size());
+    check_declared(width, height, channels, limits);
     ImageF image(static_cast<int>(width), static_cast<int>(height), channels);
     Imf::FrameBuffer frame_buffer;
     const std::size_t pixel_stride = sizeof(float) * channels;
@@ -523,6 +536,8 @@ ImageF read_exr(const Input& input, const ImageReadLimits& limits) {
   } catch (const Error&) {
     throw;
   } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::invalid_argument&) {  // a caller's check_declared
     throw;
   } catch (const std::exception& e) {
     throw_exr_read_error(input.name, e.what());
@@ -608,6 +623,7 @@ ImageF read_pfm(const Input& input, const ImageReadLimits& limits) {
                   input.bytes);
 
   const bool little_endian = scale < 0.0f;
+  check_declared(width, height, channels, limits);
   ImageF image(static_cast<int>(width), static_cast<int>(height), channels);
   std::vector<unsigned char> bytes(row_bytes);
   for (int y = image.height() - 1; y >= 0; --y) {
@@ -758,20 +774,8 @@ void check_channels(const Codec& codec, int channels, const std::string& cannot)
 }  // namespace
 
 ImageF read_image(const fs::path& path, const ImageReadLimits& limits) {
-  std::error_code status_error;
-  const fs::file_status status = fs::status(path, status_error);
-  if (status.type() == fs::file_type::not_found)
-    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": no such file");
-  if (status.type() == fs::file_type::directory)
-    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": it is a folder, not an image");
-  File file(std::fopen(path.c_str(), "rb"));
-  if (!file)
-    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + errno_message(errno));
-  std::error_code size_error;
-  const std::uintmax_t bytes = fs::file_size(path, size_error);
-  if (size_error)
-    throw Error(ErrorCode::io, "cannot read " + quoted(path) + ": " + size_error.message());
-  return decode({file.get(), bytes, quoted(path), path.string()}, limits);
+  const InputFile file(path, "an image");
+  return decode({file.stream(), file.size(), quoted(path), path.string()}, limits);
 }
 
 ImageF decode_image(std::span<const std::uint8_t> bytes, const std::string& name,
@@ -785,21 +789,38 @@ ImageF decode_image(std::span<const std::uint8_t> bytes, const std::string& name
   return decode({file.get(), bytes.size(), name, name}, limits);
 }
 
-void write_image(const fs::path& path, ImageView<const float> image, int png_bit_depth) {
+namespace {
+
+// Checks what write_image checks, then encodes `image` into the temporary `open` gives.
+void write_image_to(const fs::path& path, ImageView<const float> image, int png_bit_depth,
+                    const std::function<AtomicFile&()>& open) {
   const std::string cannot = "cannot write " + quoted(path);
   check_image_shape(image, cannot);
   const Codec& codec = output_codec(path);
   check_bit_depth(codec, png_bit_depth, cannot);
   check_channels(codec, image.channels, cannot);
 
-  AtomicFile file(path);
+  AtomicFile& file = open();
   try {
     FileOutputStream stream(file.stream(), file.temporary().c_str());
     codec.encode(stream, image, png_bit_depth);
   } catch (const std::exception& e) {
     throw Error(ErrorCode::io, cannot + ": " + e.what());
   }
-  file.commit();
+  file.finish();
+}
+
+}  // namespace
+
+void write_image(const fs::path& path, ImageView<const float> image, int png_bit_depth) {
+  std::optional<AtomicFile> file;
+  write_image_to(path, image, png_bit_depth, [&]() -> AtomicFile& { return file.emplace(path); });
+  file->commit();
+}
+
+void write_image(AtomicFileSet& files, const fs::path& path, ImageView<const float> image,
+                 int png_bit_depth) {
+  write_image_to(path, image, png_bit_depth, [&]() -> AtomicFile& { return files.open(path); });
 }
 
 std::vector<std::uint8_t> encode_image(ImageView<const float> image, ImageFormat format,
@@ -838,10 +859,11 @@ void check_output_channels(const fs::path& path, int channels) {
   check_channels(output_codec(path), channels, "cannot write " + quoted(path));
 }
 
-void check_output_path(const fs::path& path, bool image, const fs::path& input) {
+void check_output_path(const fs::path& path, bool image, const std::vector<fs::path>& inputs) {
   if (image) output_codec(path);
   check_output_target(path);
-  if (!input.empty()) check_output_is_not_input(path, input);
+  for (const fs::path& input : inputs)
+    if (!input.empty()) check_output_is_not_input(path, input);
 }
 
 }  // namespace stochtex

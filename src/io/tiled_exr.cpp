@@ -73,7 +73,7 @@ void write_tiled_exrs(std::span<const TiledExrFile> files, const Grid& grid,
   ImageF strip(grid.width, std::min(kExrTileSide, grid.height), channels);
   std::vector<Imath::half> halves(options.half ? strip.pixels().size() : 0);
 
-  std::vector<std::unique_ptr<AtomicFile>> atomic;
+  AtomicFileSet atomic;     // every file or none
   std::size_t current = 0;  // the file being opened or written, for the messages
   try {
     Imf::setGlobalThreadCount(options.threads);
@@ -91,9 +91,9 @@ void write_tiled_exrs(std::span<const TiledExrFile> files, const Grid& grid,
       const auto& names = exr_written_channel_names(file.channels);
       for (int c = 0; c < file.channels; ++c)
         header.channels().insert(names[c], Imf::Channel(type));
-      atomic.push_back(std::make_unique<AtomicFile>(file.path));
-      streams.push_back(std::make_unique<FileOutputStream>(atomic.back()->stream(),
-                                                           atomic.back()->temporary().c_str()));
+      AtomicFile& opened = atomic.open(file.path);
+      streams.push_back(
+          std::make_unique<FileOutputStream>(opened.stream(), opened.temporary().c_str()));
       outputs.push_back(
           std::make_unique<Imf::TiledOutputFile>(*streams.back(), header, options.threads));
     }
@@ -145,7 +145,7 @@ void write_tiled_exrs(std::span<const TiledExrFile> files, const Grid& grid,
                                    quoted(files[std::min(current, files.size() - 1)].path) + ": " +
                                    e.what());
   }
-  for (const auto& file : atomic) file->commit();
+  atomic.commit();
 }
 
 }  // namespace stochtex

@@ -1,10 +1,10 @@
 #include "stochtex/model.hpp"
 
 #include <algorithm>
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
+#include "core/input_file.hpp"
 #include "model/map_layout.hpp"
 #include "model/model_data.hpp"
 #include "model/model_file.hpp"
@@ -76,19 +76,14 @@ void save_model(const Model& model, const std::filesystem::path& path) {
 }
 
 Model load_model(const std::filesystem::path& path) {
-  const std::string source = path.string();
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error))
-    throw Error(ErrorCode::io, "cannot read '" + source + "': no such file; check the path");
-  const auto size = std::filesystem::file_size(path, error);
+  InputFile file(path, "a model file");
   const std::uint64_t max_size = 64 + kMaxModelHeaderBytes + 4 * kMaxModelArrayValues;
-  if (error || size > max_size)
-    throw Error(ErrorCode::format, "'" + source + "' is too large to be a stochtex model file");
-  std::ifstream file(path, std::ios::binary);
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
-  file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!file) throw Error(ErrorCode::io, "cannot read '" + source + "': the read failed");
-  return deserialize_model(bytes, source);
+  if (file.size() > max_size)
+    throw Error(ErrorCode::format,
+                "'" + path.string() + "' is too large to be a stochtex model file");
+  const std::string bytes = file.read_all(max_size, "check the path");
+  return deserialize_model({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()},
+                           path.string());
 }
 
 std::string describe_model(const Model& model) {

@@ -77,15 +77,23 @@ void prepare_mesh(Mesh& mesh, const std::string& name) {
   const double min_double_area = 1e-12 * dot(diagonal, diagonal);
   const std::vector<std::uint32_t> ids = position_ids(mesh.positions);
 
+  // Degenerate triangles (a UV sphere's poles, a scan's slivers) cover no pixel: skipped, as
+  // renderers do, and counted for the caller to report.
+  const std::size_t given = mesh.triangles.size();
+  std::erase_if(mesh.triangles, [&](const std::array<std::uint32_t, 3>& triangle) {
+    const auto& [a, b, c] = triangle;
+    const Vec3d area =
+        cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+    return !(length(area) > min_double_area);
+  });
+  mesh.skipped_triangles += given - mesh.triangles.size();
+  if (mesh.triangles.empty())
+    refuse(name, "every one of its " + std::to_string(given) +
+                     " triangles is degenerate (zero area: repeated or collinear vertices)");
+
   std::vector<std::array<std::uint32_t, 2>> edges;
   edges.reserve(mesh.triangles.size() * 3);
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto& [a, b, c] = mesh.triangles[t];
-    const Vec3d area =
-        cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
-    if (!(length(area) > min_double_area))
-      refuse(name, "triangle " + std::to_string(t) +
-                       " is degenerate (zero area: a repeated or collinear vertex)");
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t p = ids[mesh.triangles[t][static_cast<std::size_t>(k)]];
       const std::uint32_t q = ids[mesh.triangles[t][static_cast<std::size_t>((k + 1) % 3)]];

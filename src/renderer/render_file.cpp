@@ -75,7 +75,7 @@ void check_map_outputs(const Model& model, const RenderPlan& plan, const std::st
   std::uint64_t bytes_per_pixel = 4 * static_cast<std::uint64_t>(model.channels());
   for (const MapInfo& map : model.maps()) {
     const std::string path = map_output(output, map.name);
-    check_output_path(path, true, input);
+    check_output_path(path, true, {input});
     check_output_channels(path, written_channels(map));
     // The map cut from the render and its encoded copy, or the strip of every map's file.
     bytes_per_pixel += (plan.streamed ? 8 : 6) * static_cast<std::uint64_t>(written_channels(map));
@@ -160,8 +160,10 @@ void render_model(const Model& model, const RenderPlan& plan, const RenderReques
     TrackedBackend renderer(backend, material_pixels(model, grid), progress);
     const std::vector<NamedImage> maps = render_maps(
         model, grid, [&](const Grid& part, ImageView<float> out) { renderer(part, out); });
+    AtomicFileSet files;  // all the maps or none
     for (const auto& [name, map] : maps)
-      write_image(map_output(output, name), map.view(), request.bit_depth);
+      write_image(files, map_output(output, name), map.view(), request.bit_depth);
+    files.commit();
     return;
   }
   if (!plan.streamed) {
@@ -190,7 +192,7 @@ std::vector<std::string> render_to_file(const std::function<Model()>& make_model
                                         const std::string& input,
                                         const BackendFactory& make_backend,
                                         const std::function<void(double)>& progress) {
-  check_output_path(map_output(output, "map"), true, input);
+  check_output_path(map_output(output, "map"), true, {input});
   const RenderPlan plan = plan_render(request, output);
   set_cpu_target(request.cpu_target.value_or(available_cpu_targets().back()));
   const Model model = make_model();

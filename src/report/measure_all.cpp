@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <optional>
 
 #include "core/parallel.hpp"
 #include "registry.hpp"
@@ -56,17 +57,21 @@ int measure_all(std::vector<ExemplarResults>& exemplars, const std::vector<std::
     const std::string& method = methods[tasks[t].method];
     Outcome& outcome = exemplar.outcomes[1 + tasks[t].method];
     outcome.name = method;
+    std::optional<Synthesis> synthesis;
     try {
-      const Synthesis synthesis =
+      synthesis =
           measure_method(method, exemplar.image.view(), references[tasks[t].exemplar], settings);
-      callbacks.pictures(exemplar,
-                         {method, synthesis.image.view(), synthesis.spectrum_picture,
-                          synthesis.averaged_spectrum_picture, synthesis.histogram_picture});
-      outcome.quality = synthesis.quality;
+      outcome.quality = synthesis->quality;
     } catch (const std::exception& e) {
       outcome.error = e.what();
       ++failures;
     }
+    // Outside the try: a method that fails is a row of the report, a picture that cannot be
+    // written ends the report.
+    if (synthesis)
+      callbacks.pictures(exemplar,
+                         {method, synthesis->image.view(), synthesis->spectrum_picture,
+                          synthesis->averaged_spectrum_picture, synthesis->histogram_picture});
     if (--remaining[tasks[t].exemplar] == 0) references[tasks[t].exemplar].colours.reset();
     callbacks.finished(exemplar, outcome);
   });

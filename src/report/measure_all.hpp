@@ -42,8 +42,8 @@ struct Pictures {
 
 // Both are called from the worker threads, several at once.
 struct MeasureCallbacks {
-  // Each picture set as soon as it is drawn. For a method, an exception thrown here (a file that
-  // cannot be written) counts as the method's failure on the exemplar; otherwise it propagates.
+  // Each picture set as soon as it is drawn. An exception thrown here (a file that cannot be
+  // written) ends measure_all; a method that fails to analyse or render is an outcome instead.
   std::function<void(const ExemplarResults&, const Pictures&)> pictures;
   // Each outcome once it is final (measured or failed).
   std::function<void(const ExemplarResults&, const Outcome&)> finished;

@@ -185,7 +185,7 @@ nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
   try {
     exemplar->image =
         decode_image({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()},
-                     kUploadName, {.max_pixels = side * side});
+                     kUploadName, {.max_pixels = side * side, .check_declared = {}});
     validate_exemplar(exemplar->image.view(), kUploadName);
   } catch (const Error& e) {
     std::string message = e.what();

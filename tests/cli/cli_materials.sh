@@ -22,6 +22,23 @@ expect_ok "render a material's maps" "$stochtex" render "$models/material.stx" \
   -o "$models/mat_{map}.png" --size 40x24 --seed 3 &&
   expect_file "the albedo map" "$models/mat_albedo.png" &&
   expect_file "the roughness map" "$models/mat_roughness.png"
+# A material's maps are written all or none (issue 35). A file size limit (ulimit -f, in KiB;
+# SIGXFSZ ignored, so the write fails with EFBIG as on a full disk) lets the 16 KiB roughness map
+# through and stops the 48 KiB albedo map written after it; SIGHUP once the second map's temporary
+# exists. Neither leaves a map.
+expect_ok "analyze a material, roughness first" "$stochtex" analyze \
+  --map roughness="$rock/roughness.png" --map albedo="$rock/albedo.png" -m tiling \
+  -o "$models/rough_first.stx"
+expect_error "render a material onto a full disk" 1 "full_albedo.pfm" \
+  bash -c 'trap "" XFSZ; ulimit -f 32; exec "$@"' _ "$stochtex" render "$models/rough_first.stx" \
+  -o "$out/full_{map}.pfm" --size 64x64
+signal_during_write "SIGHUP after a material's first map" HUP "$out" 'hup_albedo.pfm.*.tmp' \
+  "$stochtex" render "$models/rough_first.stx" -o "$out/hup_{map}.pfm" --size 4096x2048
+find "$out" -mindepth 1 -delete
+# A report is one output too: a picture that cannot be written ends it with nothing written.
+expect_error "report onto a full disk" 1 "" \
+  bash -c 'trap "" XFSZ; ulimit -f 2; exec "$@"' _ "$stochtex" report "$rock/roughness.png" \
+  -o "$out/report" --methods tiling --size 64x64
 expect_ok "a normal map in a material" "$stochtex" analyze --map normal="$rock/normal.png" \
   --map height="$rock/height.png" -m tiling -o "$models/relief.stx" &&
   expect_ok "render a normal map" "$stochtex" render "$models/relief.stx" \

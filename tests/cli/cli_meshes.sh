@@ -75,6 +75,8 @@ expect_error "render-mesh --surface-mni 0" 2 "--surface-mni" "$stochtex" render-
   "$meshes/scan.obj" --model "$models/every_texton.stx" -o "$out/x.png" --surface-mni 0
 expect_error "render-mesh --sharpness nan" 2 "--sharpness" "$stochtex" render-mesh \
   "$meshes/scan.obj" --model "$tiling_model" -o "$out/x.png" --sharpness nan
+expect_error "render-mesh --texture-scale nan" 2 "--texture-scale" "$stochtex" render-mesh \
+  "$meshes/scan.obj" --model "$tiling_model" -o "$out/x.png" --texture-scale nan
 # A pure function of its arguments: threads change nothing, the seed and the camera do.
 for threads in 1 3; do
   expect_ok "render-mesh, $threads threads" "$stochtex" render-mesh "$meshes/torus.obj" \
@@ -84,6 +86,29 @@ done
 if cmp -s "$models/mesh_t1.pfm" "$models/mesh_t3.pfm"; then pass; else
   fail "render-mesh, 1 and 3 threads" "the renders differ"
 fi
+
+# A UV sphere's pole rows hold triangles of zero area (two corners at the pole): they are skipped
+# as renderers skip them, with a warning that counts them, and the rest renders.
+python3 - "$inputs/pole.obj" <<'EOF'
+import math, sys
+rows, columns = 6, 8
+lines = []
+for i in range(rows + 1):
+    for j in range(columns + 1):
+        theta, phi = math.pi * i / rows, 2 * math.pi * j / columns
+        lines.append("v %.6f %.6f %.6f" % (math.sin(theta) * math.cos(phi), math.cos(theta),
+                                           math.sin(theta) * math.sin(phi)))
+for i in range(rows):
+    for j in range(columns):
+        a, b = i * (columns + 1) + j + 1, (i + 1) * (columns + 1) + j + 1
+        lines += ["f %d %d %d" % (a, b, b + 1), "f %d %d %d" % (a, b + 1, a + 1)]
+open(sys.argv[1], "w").write("\n".join(lines) + "\n")
+EOF
+expect_ok "render-mesh of a UV sphere with degenerate pole triangles" "$stochtex" render-mesh \
+  "$inputs/pole.obj" --model "$tiling_model" -o "$models/pole.png" --size 48x48 &&
+  if grep -q "warning: .*pole.obj.*skipped 16 degenerate triangle" "$work/stderr"; then pass; else
+    fail "render-mesh counts the skipped triangles" "stderr: $(cat "$work/stderr")"
+  fi
 
 # Bad meshes: one sentence naming the file, exit 1, no image.
 printf '# no faces\nv 0 0 0\n' >"$inputs/empty.obj"

@@ -225,6 +225,31 @@ expect_file() {
   fi
 }
 
+# signal_during_write NAME SIGNAL FOLDER PATTERN COMMAND...: runs COMMAND, which writes into the
+# empty FOLDER, and sends it SIGNAL once a file named like PATTERN (a temporary) is there, that is
+# during a write. Passes when its exit status names the signal and FOLDER is left empty. Job
+# control (set -m) keeps SIGINT from being ignored by the background job.
+signal_during_write() {
+  local name=$1 signal=$2 folder=$3 pattern=$4 victim status expected left
+  shift 4
+  set -m
+  "$@" 2>/dev/null &
+  victim=$!
+  set +m
+  for _ in $(seq 1000); do
+    [[ -n $(find "$folder" -name "$pattern" -print -quit) ]] && break
+    sleep 0.01
+  done
+  kill -s "$signal" $victim
+  wait $victim
+  status=$?
+  expected=$((128 + $(kill -l "$signal")))
+  left=$(find "$folder" -mindepth 1 | tr '\n' ' ')
+  if [[ $status -eq $expected && -z $left ]]; then pass; else
+    fail "$name" "exit $status (expected $expected), left: $left"
+  fi
+}
+
 # The last line of every section: its counts, and exit status 1 if a check failed.
 summary() {
   local skips=""

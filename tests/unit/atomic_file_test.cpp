@@ -1,9 +1,12 @@
 // The one safe way of writing a file (core/atomic_file.hpp, docs/design.md §6): unique
-// temporaries, replacement of regular files only, no temporary left by a failure or a signal.
+// temporaries, replacement of regular files only, no temporary left by a failure or a signal,
+// several files all or none; and of reading one (core/input_file.hpp): regular files only, never
+// replaced by an output once inputs are protected.
 
 #include "core/atomic_file.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +18,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/input_file.hpp"
 #include "stochtex/error.hpp"
 #include "test_support.hpp"
 
@@ -121,6 +125,90 @@ TEST_F(AtomicFileTest, AnOutputThatIsTheInputIsAUsageError) {
   EXPECT_NO_THROW(check_output_is_not_input(file("other.txt"), file("in.txt")));
   write_file_atomically(file("other.txt"), "other");
   EXPECT_NO_THROW(check_output_is_not_input(file("other.txt"), file("in.txt")));
+}
+
+// A set commits all its files or none: a failed write (a file size limit, as a full disk) of
+// its second file leaves neither file nor temporary nor the folder the set made.
+TEST_F(AtomicFileTest, AFileSetWritesAllOrNone) {
+  write_file_atomically(file("first.txt"), "old");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{16, 16};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    try {
+      AtomicFileSet files;
+      files.create_folder(file("made") / "deeper");
+      files.write(file("first.txt"), "new");
+      files.write(file("made") / "deeper" / "second.txt", std::string(64, 'x'));
+      files.commit();
+    } catch (const Error&) {
+      ::_exit(3);
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 3) << status;
+  EXPECT_EQ(contents(file("first.txt")), "old");
+  EXPECT_EQ(folder_contents(), std::vector<fs::path>{file("first.txt")});
+
+  AtomicFileSet files;
+  files.create_folder(file("made"));
+  files.write(file("first.txt"), "new");
+  files.write(file("made") / "second.txt", "second");
+  EXPECT_EQ(contents(file("first.txt")), "old");
+  files.commit();
+  EXPECT_EQ(contents(file("first.txt")), "new");
+  EXPECT_EQ(contents(file("made") / "second.txt"), "second");
+}
+
+// An input is opened without blocking and only when it is a regular file: a FIFO without a writer
+// is refused at once. Once inputs are protected, no output replaces a file read as one.
+TEST_F(AtomicFileTest, InputsAreRegularFilesThatNoOutputReplaces) {
+  ASSERT_EQ(::mkfifo(file("fifo").c_str(), 0600), 0);
+  try {
+    InputFile fifo(file("fifo"), "an image");
+    ADD_FAILURE() << "a FIFO was opened as an input";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("it is a FIFO, not an image"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_THROW(InputFile(folder_, "an image"), Error);
+  EXPECT_THROW(InputFile(file("missing"), "an image"), Error);
+
+  // Protection is for the whole process: it is turned on in a child, which exits with 0 when
+  // every step did as expected, or with the number of the first step that did not.
+  write_file_atomically(file("in.txt"), "in");
+  write_file_atomically(file("read_before.txt"), "before");
+  fs::create_hard_link(file("in.txt"), file("link.txt"));
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    const auto refused = [](const auto& write) {
+      try {
+        write();
+      } catch (const std::invalid_argument&) {
+        return true;
+      }
+      return false;
+    };
+    const InputFile before(file("read_before.txt"), "a text");
+    protect_inputs();
+    InputFile input(file("in.txt"), "a text");
+    if (input.read_all(2, "-") != "in") ::_exit(1);
+    if (!refused([&] { write_file_atomically(file("link.txt"), "out"); })) ::_exit(2);
+    if (!refused([&] { check_output_target(folder_ / "." / "in.txt"); })) ::_exit(3);
+    if (refused([&] { write_file_atomically(file("read_before.txt"), "after"); })) ::_exit(4);
+    if (refused([&] { write_file_atomically(file("other.txt"), "other"); })) ::_exit(5);
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_EQ(contents(file("in.txt")), "in");
+  EXPECT_EQ(contents(file("read_before.txt")), "after");
 }
 
 // A child process is ended by the signal while its file is being written: the temporary goes,

@@ -70,16 +70,24 @@ TEST_F(MeshTest, ComputesAreaWeightedNormals) {
   EXPECT_NEAR(mesh.normals[1].z, std::sqrt(0.5), 1e-12);
 }
 
+// A UV sphere's pole: its top row of quads, split in two, gives triangles whose two corners are
+// the pole repeated. They are skipped and counted; the rest is the mesh.
+TEST_F(MeshTest, SkipsAndCountsDegenerateTriangles) {
+  std::ofstream(file("pole.obj")) << "v 0 0 1\nv 0 0 1\nv 1 0 0\nv 0 1 0\nv -1 0 0\n"
+                                     "f 1 3 4\nf 1 2 4\nf 2 4 5\nf 1 1 3\nf 3 4 4\n";
+  const Mesh mesh = read_mesh(file("pole.obj"));
+  EXPECT_EQ(mesh.skipped_triangles, 3u);
+  EXPECT_EQ(mesh.triangles.size(), 2u);
+}
+
 TEST_F(MeshTest, RefusesBadMeshes) {
   expect_refused(file("empty.obj"), "# nothing\n", "has no triangle");
   expect_refused(file("points.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\n", "has no triangle");
   expect_refused(file("nan.obj"), "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n",
                  "line 3 has 'nan', which is not a finite number");
   expect_refused(file("range.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "out of range");
-  expect_refused(file("degenerate.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n",
-                 "triangle 1 is degenerate");
-  expect_refused(file("repeated.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 2\n",
-                 "degenerate");
+  expect_refused(file("degenerate.obj"), "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n",
+                 "every one of its 2 triangles is degenerate");
   // Three triangles on the edge (1, 2): a fin.
   expect_refused(file("fin.obj"),
                  "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 1 2 5\n",
