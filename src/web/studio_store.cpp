@@ -152,8 +152,6 @@ struct StudioStore::StoredModel {
 };
 
 StudioStore::StudioStore(StudioLimits limits) : limits_(limits) {
-  std::random_device random;
-  id_state_ = (std::uint64_t{random()} << 32) ^ random();
   worker_ = std::thread([this] { work(); });
 }
 
@@ -168,11 +166,12 @@ StudioStore::~StudioStore() {
 }
 
 std::string StudioStore::new_id() {
-  // splitmix64 of a randomly seeded counter: unique, and not guessable from other ids.
-  std::uint64_t z = (id_state_ += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return fmt::format("{:016x}", z ^ (z >> 31));
+  // 64 bits of the system's random source: an id tells nothing of another, so that only whoever
+  // was given an id reaches what it names.
+  for (;;) {
+    std::string id = fmt::format("{:08x}{:08x}", random_(), random_());
+    if (!exemplars_.contains(id) && !analyses_.contains(id) && !models_.contains(id)) return id;
+  }
 }
 
 nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {

@@ -487,6 +487,28 @@ def test_memory_stays_bounded(studio):
     studio.assert_serving()
 
 
+# The tests below upload and analyse freely: they come after the ones that use the module's
+# exemplars and models, which the store may evict.
+
+
+def test_ids_tell_nothing_of_other_ids(studio):
+    # The ids were splitmix64 of a counter, which inverts: one id gave the others, and with them
+    # every exemplar and model of the studio.
+    gamma, mask = 0x9E3779B97F4A7C15, (1 << 64) - 1
+
+    def unmix(z):
+        for shift, factor in [(31, 0x94D049BB133111EB), (27, 0xBF58476D1CE4E5B9), (30, None)]:
+            y = z
+            for _ in range(64 // shift + 1):
+                y = z ^ (y >> shift)
+            z = y if factor is None else y * pow(factor, -1, 1 << 64) & mask
+        return z
+
+    first, second = (int(studio.upload(grey_png(16, 16))["id"], 16) for _ in range(2))
+    step = (unmix(second) - unmix(first)) & mask
+    assert all(step != k * gamma & mask for k in range(1, 1000)), hex(step)
+
+
 def test_a_second_server_cannot_take_the_port(studio):
     second = subprocess.run([STOCHTEX, "studio", "--port", str(studio.port)], capture_output=True,
                             text=True, timeout=30)
