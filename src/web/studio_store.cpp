@@ -481,6 +481,11 @@ std::string StudioStore::render_png(const std::string& id, const RenderRequest& 
     throw StudioError(400, fmt::format("a render is 1 to {} pixels wide and high, not {}x{}; ask "
                                        "for a smaller one",
                                        most, request.width, request.height));
+  if (!(request.scale >= renderer::kMinScale && request.scale <= renderer::kMaxScale))
+    throw StudioError(400,
+                      fmt::format("a render's scale is {:g} to {:g} exemplar pixels per pixel, "
+                                  "as `stochtex render --scale` takes, not {:g}",
+                                  renderer::kMinScale, renderer::kMaxScale, request.scale));
   const auto stored = find_model(id);
   const Grid grid{request.origin, request.scale, request.width, request.height};
   // As many cores as the memory budget allows, as `stochtex render --threads 0` takes; a view of

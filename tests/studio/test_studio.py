@@ -491,6 +491,27 @@ def test_memory_stays_bounded(studio):
 # exemplars and models, which the store may evict.
 
 
+def test_render_scales_are_the_clis(studio, tmp_path):
+    # render.png took scale 0, -1 and 1e-300, which `stochtex render --scale` refuses.
+    exemplar = studio.upload(exemplar_bytes("grass_lawn_128.png"))
+    analysis = studio.analyse(exemplar["id"], "texton", {"iterations": 2})
+    model = studio.wait(analysis["id"], {"done", "failed", "cancelled"}, 60)["model"]
+    (tmp_path / "model.stx").write_bytes(studio.request("GET", f"/api/models/{model}.stx")[2])
+
+    def cli(scale):
+        return subprocess.run([STOCHTEX, "render", str(tmp_path / "model.stx"), "-o",
+                               str(tmp_path / "render.png"), "--size", "8x8", f"--scale={scale}"],
+                              capture_output=True, text=True)
+
+    path = f"/api/models/{model}/render.png?width=8&height=8&scale="
+    for scale in ["0", "-1", "1e-300", "9e-7", "1.1e6"]:
+        assert "scale" in studio.error("GET", path + scale), scale
+        assert cli(scale).returncode == 2, scale
+    for scale in ["1e-6", "4"]:
+        assert studio.request("GET", path + scale)[0] == 200, scale
+        assert cli(scale).returncode == 0, scale
+
+
 def test_ids_tell_nothing_of_other_ids(studio):
     # The ids were splitmix64 of a counter, which inverts: one id gave the others, and with them
     # every exemplar and model of the studio.
