@@ -246,12 +246,19 @@ std::string StudioStore::start_analysis(const std::string& client, const std::st
           400, fmt::format("the parameter '{}' must be a number or a choice's name", name));
   }
   auto analysis = std::make_shared<Analysis>();
+  analysis->exemplar = find_exemplar(exemplar);
+  // The registry refuses what it cannot analyse before any work, as `stochtex analyze` does: a
+  // method without a row of its own (one not analysed from one exemplar, such as a mix), more
+  // channels than the method takes, or beyond the memory budget.
+  const ImageF& image = analysis->exemplar->image;
   try {
+    check_analysis_request(method, image.width(), image.height(), image.channels(), kUploadName);
     analysis->params = resolve_params(method, text);
   } catch (const std::invalid_argument& e) {
     throw StudioError(400, e.what());
+  } catch (const Error& e) {
+    throw StudioError(400, e.what());
   }
-  analysis->exemplar = find_exemplar(exemplar);
   analysis->client = client;
   analysis->method = method;
   analysis->seed = seed;

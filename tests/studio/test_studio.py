@@ -512,6 +512,16 @@ def test_render_scales_are_the_clis(studio, tmp_path):
         assert cli(scale).returncode == 0, scale
 
 
+def test_only_methods_of_one_exemplar_are_analysed(studio):
+    # texton_mix is made from two exemplars (`stochtex mix`): its analysis was queued, then failed.
+    exemplar = studio.upload(grey_png(16, 16))
+    error = studio.error("POST", "/api/analyses", {"exemplar": exemplar["id"],
+                                                   "method": "texton_mix"})
+    assert "texton_mix" in error, error
+    for method in studio.json("GET", "/api/methods"):
+        assert method["name"] in error, error
+
+
 def test_ids_tell_nothing_of_other_ids(studio):
     # The ids were splitmix64 of a counter, which inverts: one id gave the others, and with them
     # every exemplar and model of the studio.
