@@ -3,18 +3,26 @@
 #include <fmt/core.h>
 #include <httplib.h>
 #include <malloc.h>
+#include <netdb.h>
+#include <poll.h>
 #include <pthread.h>
 #include <signal.h>
 #include <sys/socket.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
+#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <random>
 #include <regex>
+#include <semaphore>
 #include <thread>
 
 #include "gl/languages.hpp"
@@ -31,6 +39,39 @@ constexpr std::string_view kClientCookie = "stochtex_client=";
 const std::regex kClientId("[0-9a-f]{16}");
 const std::string kId = "([0-9a-f]{16})";  // the ids the store makes
 constexpr std::size_t kMaxJsonBody = 64 * 1024;
+
+// What a connection may hold and for how long, so that slow or idle clients cannot take the
+// server from the others (docs/studio.md, "Safety"). Each connection is served by a thread of its
+// own, up to kConnectionThreads at once (more wait to be accepted).
+constexpr std::size_t kConnectionThreads = 64;
+// Uploads read and decoded at once (the others wait): at most this many bodies of up to
+// StudioLimits::max_upload_bytes are held, however many connections upload.
+constexpr std::ptrdiff_t kUploadSlots = 8;
+using UploadSlots = std::counting_semaphore<kUploadSlots>;
+
+// One of the upload slots, held while it lives.
+class UploadSlot {
+ public:
+  explicit UploadSlot(UploadSlots& slots) : slots_(slots) { slots_.acquire(); }
+  ~UploadSlot() { slots_.release(); }
+  UploadSlot(const UploadSlot&) = delete;
+  UploadSlot& operator=(const UploadSlot&) = delete;
+
+ private:
+  UploadSlots& slots_;
+};
+
+// The wait for a request's first byte, on a new connection and between the requests of one kept
+// alive.
+constexpr int kIdleSeconds = 2;
+// A request's head (request line and headers): at most kMaxHead bytes, all within kHeadTime of its
+// first byte however slowly they come.
+constexpr std::size_t kMaxHead = 64 * 1024;
+constexpr auto kHeadTime = std::chrono::seconds(3);
+// A request's body, and then its answer, each within kTransferTime.
+constexpr auto kTransferTime = std::chrono::seconds(30);
+// The longest wait for the client to send or take a byte.
+constexpr auto kStallTime = std::chrono::seconds(5);
 
 void send_json(httplib::Response& res, const nlohmann::ordered_json& doc, int status = 200) {
   res.status = status;
@@ -149,6 +190,11 @@ std::uint32_t query_seed(const httplib::Request& req) {
 
 std::string default_error(const httplib::Request& req, int status, std::size_t max_body) {
   switch (status) {
+    case 400:
+      return fmt::format(
+          "the request could not be read: its head (request line and headers) must be HTTP/1.1, "
+          "at most {} KiB and arrive within {} s",
+          kMaxHead / 1024, kHeadTime.count());
     case 404:
       return fmt::format("there is nothing at '{}'; the studio serves /, /web/ and /api/",
                          req.path);
@@ -171,6 +217,168 @@ bool allowed_host_header(const std::string& header) {
   return name == "localhost" || name == "[::1]" || name.starts_with("127.");
 }
 
+// The numeric address and port of a socket: its own (getsockname) or its peer's (getpeername).
+void socket_address(socket_t sock, bool peer, std::string& ip, int& port) {
+  sockaddr_storage address{};
+  socklen_t length = sizeof(address);
+  auto* generic = reinterpret_cast<sockaddr*>(&address);
+  if ((peer ? ::getpeername(sock, generic, &length) : ::getsockname(sock, generic, &length)) != 0)
+    return;
+  std::array<char, NI_MAXHOST> host{};
+  std::array<char, NI_MAXSERV> service{};
+  if (::getnameinfo(generic, length, host.data(), host.size(), service.data(), service.size(),
+                    NI_NUMERICHOST | NI_NUMERICSERV) != 0)
+    return;
+  ip = host.data();
+  std::from_chars(service.data(), service.data() + std::strlen(service.data()), port);
+}
+
+// A connection's socket as httplib reads and writes it, within the limits above (kMaxHead,
+// kHeadTime, kTransferTime, kStallTime). A request that breaks one is answered where it can be,
+// and its connection closed.
+class ConnectionStream final : public httplib::Stream {
+ public:
+  explicit ConnectionStream(socket_t sock) : sock_(sock) {}
+
+  // A request's first byte has come: its head is read from now on.
+  void start_request() {
+    set_phase(Phase::head, kHeadTime);
+    head_bytes_ = 0;
+  }
+  // The head has been read: the body, if any, from now on.
+  void head_read() { set_phase(Phase::body, kTransferTime); }
+  bool broke_limit() const { return broke_limit_; }
+  bool has_buffered() const { return begin_ < end_; }
+
+  bool is_readable() const override { return has_buffered() || wait_for(POLLIN); }
+  bool is_writable() const override { return wait_for(POLLOUT); }
+  ssize_t read(char* out, std::size_t size) override;
+  ssize_t write(const char* data, std::size_t size) override;
+  void get_remote_ip_and_port(std::string& ip, int& port) const override {
+    socket_address(sock_, true, ip, port);
+  }
+  void get_local_ip_and_port(std::string& ip, int& port) const override {
+    socket_address(sock_, false, ip, port);
+  }
+  socket_t socket() const override { return sock_; }
+
+ private:
+  enum class Phase { head, body, answer };
+  void set_phase(Phase phase, std::chrono::seconds time) {
+    phase_ = phase;
+    deadline_ = std::chrono::steady_clock::now() + time;
+  }
+  // Waits for the socket to be ready for `events`, within the phase's deadline and kStallTime.
+  bool wait_for(short events) const;
+
+  socket_t sock_;
+  Phase phase_ = Phase::head;
+  std::chrono::steady_clock::time_point deadline_;
+  std::size_t head_bytes_ = 0;
+  mutable bool broke_limit_ = false;
+  std::array<char, 4096> buffer_{};  // httplib reads a head a byte at a time
+  std::size_t begin_ = 0;
+  std::size_t end_ = 0;
+};
+
+bool ConnectionStream::wait_for(short events) const {
+  for (;;) {
+    const auto left = deadline_ - std::chrono::steady_clock::now();
+    if (left <= left.zero()) break;
+    const auto wait = std::chrono::ceil<std::chrono::milliseconds>(
+        std::min<std::chrono::steady_clock::duration>(left, kStallTime));
+    pollfd descriptor{sock_, events, 0};
+    const int ready = ::poll(&descriptor, 1, static_cast<int>(wait.count()));
+    if (ready > 0) return true;
+    if (ready == 0) break;
+    if (errno != EINTR) return false;
+  }
+  broke_limit_ = true;
+  return false;
+}
+
+ssize_t ConnectionStream::read(char* out, std::size_t size) {
+  std::size_t most = size;
+  if (phase_ == Phase::head) {
+    if (head_bytes_ >= kMaxHead) {
+      broke_limit_ = true;
+      return -1;
+    }
+    most = std::min(most, kMaxHead - head_bytes_);
+  }
+  if (!has_buffered()) {
+    ssize_t received = 0;
+    do {
+      if (!wait_for(POLLIN)) return -1;
+      received = ::recv(sock_, buffer_.data(), buffer_.size(), MSG_DONTWAIT);
+    } while (received < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR));
+    if (received <= 0) return received;
+    begin_ = 0;
+    end_ = static_cast<std::size_t>(received);
+  }
+  const std::size_t count = std::min(most, end_ - begin_);
+  std::memcpy(out, buffer_.data() + begin_, count);
+  begin_ += count;
+  if (phase_ == Phase::head) head_bytes_ += count;
+  return static_cast<ssize_t>(count);
+}
+
+ssize_t ConnectionStream::write(const char* data, std::size_t size) {
+  if (phase_ != Phase::answer) set_phase(Phase::answer, kTransferTime);
+  for (;;) {
+    if (!wait_for(POLLOUT)) return -1;
+    const ssize_t sent = ::send(sock_, data, size, MSG_DONTWAIT | MSG_NOSIGNAL);
+    if (sent >= 0 || (errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)) return sent;
+  }
+}
+
+// httplib's server with each connection read and written through a ConnectionStream: httplib's
+// own stream waits for each byte up to its read timeout, with no limit on a whole request, so a
+// head sent a byte a second held a thread for good.
+class StudioHttpServer final : public httplib::Server {
+ public:
+  // The listening socket, once bound.
+  socket_t listening_socket() const { return svr_sock_; }
+
+ private:
+  bool process_and_close_socket(socket_t sock) override;
+  // Whether a request's first byte comes within kIdleSeconds (and the server is still running).
+  bool request_comes(socket_t sock) const;
+};
+
+bool StudioHttpServer::request_comes(socket_t sock) const {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kIdleSeconds);
+  // In slices, so that a stopping server does not wait for its idle connections.
+  constexpr auto slice = std::chrono::milliseconds(100);
+  while (svr_sock_ != INVALID_SOCKET) {
+    const auto left = deadline - std::chrono::steady_clock::now();
+    if (left <= left.zero()) return false;
+    const auto wait = std::chrono::ceil<std::chrono::milliseconds>(
+        std::min<std::chrono::steady_clock::duration>(left, slice));
+    pollfd descriptor{sock, POLLIN, 0};
+    const int ready = ::poll(&descriptor, 1, static_cast<int>(wait.count()));
+    if (ready > 0) return true;
+    if (ready < 0 && errno != EINTR) return false;
+  }
+  return false;
+}
+
+bool StudioHttpServer::process_and_close_socket(socket_t sock) {
+  ConnectionStream stream(sock);
+  bool served = false;
+  for (std::size_t left = keep_alive_max_count_; left > 0; --left) {
+    if (!stream.has_buffered() && !request_comes(sock)) break;
+    stream.start_request();
+    bool closed = false;
+    served = process_request(stream, left == 1, closed,
+                             [&stream](httplib::Request&) { stream.head_read(); });
+    if (!served || closed || stream.broke_limit()) break;
+  }
+  ::shutdown(sock, SHUT_RDWR);
+  ::close(sock);
+  return served;
+}
+
 // The JSON body of an edit ({"group", then the fields of the model's edit capability, each
 // optional with `stochtex edit`'s default}; the store reads it against the capability's records).
 nlohmann::ordered_json edit_body(const std::string& text) {
@@ -182,7 +390,7 @@ nlohmann::ordered_json edit_body(const std::string& text) {
   return body;
 }
 
-void add_routes(httplib::Server& server, StudioStore& store) {
+void add_routes(httplib::Server& server, StudioStore& store, UploadSlots& uploads) {
   server.Get("/", guarded([](const httplib::Request& req, httplib::Response& res) {
                const EmbeddedFile* page = find_embedded(embedded_files(), "studio/index.html");
                if (page == nullptr) throw StudioError(500, "the studio page is missing");
@@ -204,13 +412,18 @@ void add_routes(httplib::Server& server, StudioStore& store) {
   server.Get("/api/languages", guarded([](const httplib::Request&, httplib::Response& res) {
                res.set_content(gl::languages_json(), kJson);
              }));
-  server.Post("/api/exemplars",
-              with_body(store.limits().max_upload_bytes,
-                        [&store](const httplib::Request& req, httplib::Response& res,
-                                 const std::string& body) {
-                          required_client(req);
-                          send_json(res, store.add_exemplar(body), 201);
-                        }));
+  server.Post(
+      "/api/exemplars",
+      [&uploads, upload = with_body(store.limits().max_upload_bytes,
+                                    [&store](const httplib::Request& req, httplib::Response& res,
+                                             const std::string& body) {
+                                      required_client(req);
+                                      send_json(res, store.add_exemplar(body), 201);
+                                    })](const httplib::Request& req, httplib::Response& res,
+                                        const httplib::ContentReader& reader) {
+        const UploadSlot slot(uploads);
+        upload(req, res, reader);
+      });
   server.Get("/api/exemplars/" + kId + "/(image|gaussian)\\.png",
              guarded([&store](const httplib::Request& req, httplib::Response& res) {
                res.set_content(store.exemplar_png(req.matches[1], req.matches[2] == "gaussian"),
@@ -347,8 +560,8 @@ void serve_studio(const StudioOptions& options,
   // them after the first free: the server's memory then follows what it holds.
   ::mallopt(M_MMAP_THRESHOLD, 256 * 1024);
   StudioStore store(options.limits);
-  httplib::Server server;
-  server.new_task_queue = [] { return new httplib::ThreadPool(8); };
+  StudioHttpServer server;
+  server.new_task_queue = [] { return new httplib::ThreadPool(kConnectionThreads); };
   server.set_payload_max_length(options.limits.max_upload_bytes);
   // SO_REUSEADDR (a restart may bind while old connections linger) but not httplib's default
   // SO_REUSEPORT, with which a second server could bind the same port and take its connections.
@@ -356,7 +569,7 @@ void serve_studio(const StudioOptions& options,
     const int yes = 1;
     ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
   });
-  server.set_keep_alive_timeout(2);
+  server.set_keep_alive_timeout(kIdleSeconds);
   server.set_default_headers(
       {{"X-Content-Type-Options", "nosniff"},
        {"Cache-Control", "no-store"},
@@ -379,7 +592,6 @@ void serve_studio(const StudioOptions& options,
         send_error(res, res.status, default_error(req, res.status, max_body));
         return httplib::Server::HandlerResponse::Handled;
       }));
-  add_routes(server, store);
 
   const int port = options.port == 0 ? server.bind_to_any_port(options.host)
                    : server.bind_to_port(options.host, options.port) ? options.port
@@ -389,6 +601,12 @@ void serve_studio(const StudioOptions& options,
                 fmt::format("cannot listen on {} port {}: the port is in use or the address is not "
                             "this machine's; choose another --port (0 picks a free one) or --host",
                             options.host, options.port));
+  // httplib listens with a backlog of 5: the connections of a burst beyond it (a page's requests,
+  // clients holding connections) were dropped, and their TCP tried again a second or more later.
+  ::listen(server.listening_socket(), SOMAXCONN);
+  UploadSlots uploads(kUploadSlots);
+  add_routes(server, store, uploads);
+
   const std::string host =
       options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host;
   listening(fmt::format("http://{}:{}/", host, port));

@@ -7,6 +7,7 @@ import http.client
 import io
 import json
 import os
+import select
 import socket
 import struct
 import subprocess
@@ -87,6 +88,21 @@ class Studio:
         assert list(doc) == ["error"] and len(doc["error"]) > 10, doc
         self.assert_serving()
         return doc["error"]
+
+    def raw(self, data):
+        """Sends `data`, a request as bytes, on a connection of its own and returns the status and
+        the body of the answer (send `Connection: close`)."""
+        answer = b""
+        with socket.create_connection(("127.0.0.1", self.port), timeout=30) as connection:
+            connection.sendall(data)
+            try:
+                while chunk := connection.recv(65536):
+                    answer += chunk
+            except ConnectionResetError:
+                pass  # the server stopped reading the request: the answer came first
+        head, _, body = answer.partition(b"\r\n\r\n")
+        assert head.startswith(b"HTTP/1.1 "), answer[:300]
+        return int(head.split()[1]), body
 
     def stderr(self):
         return self.log.read_text()
@@ -489,6 +505,67 @@ def test_memory_stays_bounded(studio):
 
 # The tests below upload and analyse freely: they come after the ones that use the module's
 # exemplars and models, which the store may evict.
+
+
+def test_slow_and_idle_clients_do_not_stop_it(studio):
+    # 16 idle connections, 16 clients sending their headers a byte at a time and 8 uploads that
+    # stall after their headers: they held all 8 request threads, and the API stopped answering.
+    # Now each connection has a thread of its own (up to 64), an idle one is closed after 2 s and a
+    # request's head must arrive within 3 s of its first byte, however slowly it trickles.
+    port = studio.port
+
+    def connect(data=b""):
+        connection = socket.create_connection(("127.0.0.1", port), timeout=10)
+        connection.sendall(data)
+        return connection
+
+    opened = time.monotonic()
+    idle = [connect() for _ in range(16)]
+    slow = [connect(b"GET /api/methods HTTP/1.1\r\nHost: 127.0.0.1:%d\r\nX-Slow: " % port)
+            for _ in range(16)]
+    uploads = [connect(b"POST /api/exemplars HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n"
+                       b"X-Stochtex-Client: a000000000000001\r\nContent-Length: 100000\r\n\r\n"
+                       b"\x89PNG" % port) for _ in range(8)]
+    time.sleep(0.3)
+    started = time.monotonic()
+    connection = http.client.HTTPConnection("127.0.0.1", port, timeout=1.5)
+    try:
+        connection.request("GET", "/api/methods")
+        status = connection.getresponse().status
+    except TimeoutError:
+        status = None
+    finally:
+        connection.close()
+    answered = time.monotonic() - started
+    assert status == 200 and answered < 1.0, (status, answered)
+
+    # The server closes the idle connections and the slow heads, which keep trickling.
+    closed = {}
+    while len(closed) < len(idle) + len(slow) and time.monotonic() < opened + 8:
+        open_ones = [c for c in idle + slow if c not in closed]
+        readable, _, _ = select.select(open_ones, [], [], 0.1)
+        for connection in readable:
+            closed[connection] = time.monotonic() - opened
+        for connection in open_ones:
+            if connection in slow and connection not in closed:
+                try:
+                    connection.send(b"a")
+                except OSError:
+                    closed[connection] = time.monotonic() - opened
+    for connection in idle + slow + uploads:
+        connection.close()
+    assert all(closed.get(c, 99) < 4 for c in idle), sorted(closed.get(c) for c in idle)
+    assert all(closed.get(c, 99) < 5 for c in slow), sorted(closed.get(c) for c in slow)
+    studio.assert_serving()
+
+
+def test_a_request_head_is_bounded(studio):
+    # 70 headers of 1 kB: httplib keeps any number of them; the studio reads up to 64 KiB.
+    filler = b"".join(b"X-Filler-%d: %s\r\n" % (i, b"a" * 1000) for i in range(70))
+    status, body = studio.raw(b"GET /api/methods HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n%s"
+                              b"Connection: close\r\n\r\n" % (studio.port, filler))
+    assert status == 400 and "64 KiB" in json.loads(body)["error"], (status, body[:300])
+    studio.assert_serving()
 
 
 def test_render_scales_are_the_clis(studio, tmp_path):
