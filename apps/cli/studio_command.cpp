@@ -22,13 +22,13 @@ void serve([[maybe_unused]] const std::string& host, [[maybe_unused]] int port) 
   web::StudioOptions studio;
   studio.host = host;
   studio.port = port;
-  if (!web::is_loopback_host(studio.host))
-    fmt::print(stderr,
-               "stochtex studio: warning: listening on {}, not loopback: anyone who can reach "
-               "this address can use the studio\n",
-               studio.host);
-  web::serve_studio(studio, [](const std::string& url) {
-    fmt::print("stochtex studio: serving {}\n", url);
+  web::serve_studio(studio, [&host](const web::StudioAddress& address) {
+    if (!address.loopback)
+      fmt::print(stderr,
+                 "stochtex studio: warning: listening on {}, not loopback: anyone who can reach "
+                 "this address can use the studio\n",
+                 host);
+    fmt::print("stochtex studio: serving {}\n", address.url);
     std::fflush(stdout);
   });
 #else

@@ -4,6 +4,7 @@
 #include <httplib.h>
 #include <malloc.h>
 #include <netdb.h>
+#include <netinet/in.h>
 #include <poll.h>
 #include <pthread.h>
 #include <signal.h>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <chrono>
@@ -24,6 +26,7 @@
 #include <regex>
 #include <semaphore>
 #include <thread>
+#include <vector>
 
 #include "gl/languages.hpp"
 #include "stochtex/error.hpp"
@@ -210,11 +213,10 @@ std::string default_error(const httplib::Request& req, int status, std::size_t m
   }
 }
 
-bool allowed_host_header(const std::string& header) {
-  if (header.empty()) return true;
-  const std::string name = header.front() == '[' ? header.substr(0, header.find(']') + 1)
-                                                 : header.substr(0, header.find(':'));
-  return name == "localhost" || name == "[::1]" || name.starts_with("127.");
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
 }
 
 // The numeric address and port of a socket: its own (getsockname) or its peer's (getpeername).
@@ -231,6 +233,23 @@ void socket_address(socket_t sock, bool peer, std::string& ip, int& port) {
     return;
   ip = host.data();
   std::from_chars(service.data(), service.data() + std::strlen(service.data()), port);
+}
+
+// Whether the socket is bound to a loopback address (127.0.0.0/8, ::1 or ::ffff:127.0.0.0/104).
+bool bound_to_loopback(socket_t sock) {
+  sockaddr_storage address{};
+  socklen_t length = sizeof(address);
+  if (::getsockname(sock, reinterpret_cast<sockaddr*>(&address), &length) != 0) return false;
+  if (address.ss_family == AF_INET) {
+    sockaddr_in v4{};
+    std::memcpy(&v4, &address, sizeof(v4));
+    return (ntohl(v4.sin_addr.s_addr) >> 24) == 127;
+  }
+  if (address.ss_family != AF_INET6) return false;
+  sockaddr_in6 v6{};
+  std::memcpy(&v6, &address, sizeof(v6));
+  return IN6_IS_ADDR_LOOPBACK(&v6.sin6_addr) ||
+         (IN6_IS_ADDR_V4MAPPED(&v6.sin6_addr) && v6.sin6_addr.s6_addr[12] == 127);
 }
 
 // A connection's socket as httplib reads and writes it, within the limits above (kMaxHead,
@@ -377,6 +396,43 @@ bool StudioHttpServer::process_and_close_socket(socket_t sock) {
   ::shutdown(sock, SHUT_RDWR);
   ::close(sock);
   return served;
+}
+
+// Who may use the studio, checked before any route reads a request (docs/studio.md, "Safety"). A
+// studio bound to loopback answers only requests addressed to its loopback names and port (no
+// other web site can point its name at it: DNS rebinding); one bound to another address can be
+// reached by any name.
+class Gate {
+ public:
+  Gate(bool loopback, const std::string& bound_ip, int port);
+
+  // Throws the refusal of `req`, a StudioError, if any.
+  void check(const httplib::Request& req) const;
+
+ private:
+  bool loopback_;
+  std::vector<std::string> hosts_;  // the Host values a loopback studio answers, lower case
+};
+
+Gate::Gate(bool loopback, const std::string& bound_ip, int port) : loopback_(loopback) {
+  std::vector<std::string> names = {"localhost", "127.0.0.1", "[::1]"};
+  const std::string bound =
+      bound_ip.find(':') != std::string::npos ? "[" + bound_ip + "]" : bound_ip;
+  if (std::find(names.begin(), names.end(), bound) == names.end()) names.push_back(bound);
+  for (const std::string& name : names) {
+    hosts_.push_back(fmt::format("{}:{}", name, port));
+    if (port == 80) hosts_.push_back(name);  // a browser leaves out the default port
+  }
+}
+
+void Gate::check(const httplib::Request& req) const {
+  if (req.get_header_value_count("Host") != 1)
+    throw StudioError(400, "the request must carry exactly one Host header");
+  const std::string host = lowercase(req.get_header_value("Host"));
+  if (loopback_ && std::find(hosts_.begin(), hosts_.end(), host) == hosts_.end())
+    throw StudioError(403, fmt::format("this studio answers only requests addressed to {}, {} or "
+                                       "{}, not '{}'",
+                                       hosts_[0], hosts_[1], hosts_[2], host));
 }
 
 // The JSON body of an edit ({"group", then the fields of the model's edit capability, each
@@ -544,12 +600,8 @@ void wait_for_signal(httplib::Server& server, const std::atomic<bool>& done) {
 
 }  // namespace
 
-bool is_loopback_host(const std::string& host) {
-  return host == "localhost" || host == "::1" || host.starts_with("127.");
-}
-
 void serve_studio(const StudioOptions& options,
-                  const std::function<void(const std::string& url)>& listening) {
+                  const std::function<void(const StudioAddress& address)>& listening) {
   sigset_t signals;
   sigemptyset(&signals);
   for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&signals, signal_number);
@@ -575,16 +627,6 @@ void serve_studio(const StudioOptions& options,
        {"Cache-Control", "no-store"},
        {"Referrer-Policy", "no-referrer"},
        {"Content-Security-Policy", "default-src 'self' blob: data:; frame-ancestors 'none'"}});
-  const bool loopback = is_loopback_host(options.host);
-  // A loopback server answers only requests addressed to a loopback name, so that a web page
-  // elsewhere cannot reach it by pointing its own domain name at 127.0.0.1 (DNS rebinding).
-  server.set_pre_routing_handler([loopback](const httplib::Request& req, httplib::Response& res) {
-    if (loopback && !allowed_host_header(req.get_header_value("Host"))) {
-      send_error(res, 403, "this studio answers only requests to localhost or 127.0.0.1");
-      return httplib::Server::HandlerResponse::Handled;
-    }
-    return httplib::Server::HandlerResponse::Unhandled;
-  });
   const std::size_t max_body = options.limits.max_upload_bytes;
   server.set_error_handler(httplib::Server::HandlerWithResponse(
       [max_body](const httplib::Request& req, httplib::Response& res) {
@@ -604,12 +646,27 @@ void serve_studio(const StudioOptions& options,
   // httplib listens with a backlog of 5: the connections of a burst beyond it (a page's requests,
   // clients holding connections) were dropped, and their TCP tried again a second or more later.
   ::listen(server.listening_socket(), SOMAXCONN);
+  // Loopback or not is the bound address's, not the name's: --host may name any address.
+  const bool loopback = bound_to_loopback(server.listening_socket());
+  std::string bound_ip;
+  int bound_port = port;
+  socket_address(server.listening_socket(), false, bound_ip, bound_port);
+  const Gate gate(loopback, bound_ip, bound_port);
+  server.set_pre_routing_handler([&gate](const httplib::Request& req, httplib::Response& res) {
+    try {
+      gate.check(req);
+    } catch (const StudioError& e) {
+      send_error(res, e.status(), e.what());
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
   UploadSlots uploads(kUploadSlots);
   add_routes(server, store, uploads);
 
   const std::string host =
       options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host;
-  listening(fmt::format("http://{}:{}/", host, port));
+  listening({fmt::format("http://{}:{}/", host, port), loopback});
   std::atomic<bool> done = false;
   std::thread signal_waiter([&] { wait_for_signal(server, done); });
   server.listen_after_bind();

@@ -122,9 +122,9 @@ class Studio:
         first; the server must stop reading it at its limit (the send then fails well before
         the end) and answer 413."""
         with socket.create_connection(("127.0.0.1", self.port), timeout=60) as connection:
-            connection.sendall(b"POST /api/exemplars HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+            connection.sendall(b"POST /api/exemplars HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n"
                                b"X-Stochtex-Client: a000000000000001\r\n"
-                               b"Transfer-Encoding: chunked\r\n\r\n")
+                               b"Transfer-Encoding: chunked\r\n\r\n" % self.port)
             chunk = b"%x\r\n" % (1 << 20) + bytes(1 << 20) + b"\r\n"
             sent = 0
             try:
@@ -505,6 +505,26 @@ def test_memory_stays_bounded(studio):
 
 # The tests below upload and analyse freely: they come after the ones that use the module's
 # exemplars and models, which the store may evict.
+
+
+def test_host_must_name_this_studio(studio):
+    # A loopback studio answers only requests to its loopback names with its port (DNS rebinding
+    # points other names at 127.0.0.1), in exactly one Host header. These all passed when any name
+    # starting with "127." did, or any port.
+    port = studio.port
+    for host in ["127.evil.example", f"127.0.0.1.nip.io:{port}", f"127.0.0.1@evil.example:{port}",
+                 f"localhost:{port}.evil.example", f"127.0.0.2:{port}", f"127.0.0.1:{port + 1}",
+                 "127.0.0.1", "evil.example"]:
+        error = studio.error("GET", "/api/methods", expect=403, headers={"Host": host})
+        assert f"localhost:{port}, 127.0.0.1:{port}" in error, (host, error)
+    for host in [f"localhost:{port}", f"127.0.0.1:{port}", f"[::1]:{port}", f"LocalHost:{port}"]:
+        assert studio.request("GET", "/api/methods", headers={"Host": host})[0] == 200, host
+    line = b"GET /api/methods HTTP/1.1\r\n"
+    for hosts in [b"", b"Host: 127.0.0.1:%d\r\nHost: evil.example\r\n" % port]:
+        status, body = studio.raw(line + hosts + b"Connection: close\r\n\r\n")
+        assert status == 400 and "exactly one Host header" in json.loads(body)["error"], \
+            (hosts, status, body[:300])
+    studio.assert_serving()
 
 
 def test_slow_and_idle_clients_do_not_stop_it(studio):
