@@ -401,7 +401,8 @@ bool StudioHttpServer::process_and_close_socket(socket_t sock) {
 // Who may use the studio, checked before any route reads a request (docs/studio.md, "Safety"). A
 // studio bound to loopback answers only requests addressed to its loopback names and port (no
 // other web site can point its name at it: DNS rebinding); one bound to another address can be
-// reached by any name.
+// reached by any name. Either way a request that changes something (any method but GET and HEAD)
+// is refused when a browser says that a page of another origin sent it (Origin, Sec-Fetch-Site).
 class Gate {
  public:
   Gate(bool loopback, const std::string& bound_ip, int port);
@@ -433,6 +434,16 @@ void Gate::check(const httplib::Request& req) const {
     throw StudioError(403, fmt::format("this studio answers only requests addressed to {}, {} or "
                                        "{}, not '{}'",
                                        hosts_[0], hosts_[1], hosts_[2], host));
+  if (req.method == "GET" || req.method == "HEAD") return;
+  if (req.has_header("Origin") && lowercase(req.get_header_value("Origin")) != "http://" + host)
+    throw StudioError(403, fmt::format("the studio takes changes only from its own page, not from "
+                                       "a page of '{}'",
+                                       req.get_header_value("Origin")));
+  const std::string site = req.get_header_value("Sec-Fetch-Site");
+  if (req.has_header("Sec-Fetch-Site") && site != "same-origin" && site != "none")
+    throw StudioError(403, fmt::format("the studio takes changes only from its own page, not from "
+                                       "a page of another origin (Sec-Fetch-Site: {})",
+                                       site));
 }
 
 // The JSON body of an edit ({"group", then the fields of the model's edit capability, each

@@ -112,8 +112,8 @@ class Studio:
         status, _, _ = self.request("GET", "/api/methods")
         assert status == 200
 
-    def upload(self, data, client="a000000000000001", expect=201):
-        headers = {"Content-Type": "application/octet-stream"}
+    def upload(self, data, client="a000000000000001", expect=201, headers=None):
+        headers = {"Content-Type": "application/octet-stream", **(headers or {})}
         return self.json("POST", "/api/exemplars", data, expect=expect, headers=headers,
                          client=client)
 
@@ -525,6 +525,36 @@ def test_host_must_name_this_studio(studio):
         assert status == 400 and "exactly one Host header" in json.loads(body)["error"], \
             (hosts, status, body[:300])
     studio.assert_serving()
+
+
+def test_changes_from_other_origins_are_refused(studio):
+    # A page elsewhere, another localhost port among them (same-site: its requests carry the
+    # cookie), cannot change anything: browsers send Origin with every POST and DELETE, and
+    # Sec-Fetch-Site with every request. These uploads were all taken.
+    port = studio.port
+    own = f"http://127.0.0.1:{port}"
+    png = grey_png(16, 16)
+    for headers in [{"Origin": "http://evil.example"}, {"Origin": f"http://localhost:{port + 1}"},
+                    {"Origin": f"http://localhost:{port}"}, {"Origin": f"https://127.0.0.1:{port}"},
+                    {"Origin": "null"}, {"Sec-Fetch-Site": "cross-site"},
+                    {"Sec-Fetch-Site": "same-site"}, {"Origin": own, "Sec-Fetch-Site": "same-site"}]:
+        error = studio.error("POST", "/api/exemplars", png, expect=403,
+                             headers={"Content-Type": "application/octet-stream", **headers})
+        assert "its own page" in error, (headers, error)
+    other = {"Origin": "http://evil.example"}
+    unknown = "0" * 16
+    studio.error("POST", "/api/analyses", {"exemplar": unknown, "method": "texton"}, expect=403,
+                 headers=other)
+    studio.error("DELETE", f"/api/analyses/{unknown}", expect=403, headers=other)
+    studio.error("POST", f"/api/models/{unknown}/edit", {}, expect=403, headers=other)
+    # The studio's own page, and scripts (neither header).
+    for headers in [{"Origin": own}, {"Origin": own, "Sec-Fetch-Site": "same-origin"},
+                    {"Sec-Fetch-Site": "none"}, {}]:
+        studio.upload(png, headers=headers)
+    # Reads change nothing and stay open: a page elsewhere knows no id to read.
+    status, _, _ = studio.request("GET", "/api/methods",
+                                  headers={**other, "Sec-Fetch-Site": "cross-site"})
+    assert status == 200
 
 
 def test_slow_and_idle_clients_do_not_stop_it(studio):
