@@ -26,7 +26,7 @@ void serve([[maybe_unused]] const std::string& host, [[maybe_unused]] int port) 
     if (!address.loopback)
       fmt::print(stderr,
                  "stochtex studio: warning: listening on {}, not loopback: anyone who can reach "
-                 "this address can use the studio\n",
+                 "this address and has the token of the address below can use the studio\n",
                  host);
     fmt::print("stochtex studio: serving {}\n", address.url);
     std::fflush(stdout);
@@ -54,8 +54,8 @@ Command add_studio_command(CLI::App& app) {
   command
       ->add_option("--host", options->host,
                    "address to listen on. The default, loopback, lets only this machine in; any "
-                   "other address (0.0.0.0: every interface) lets anyone who can reach it upload "
-                   "images and run analyses, with no password")
+                   "other address (0.0.0.0: every interface) lets in anyone who can reach it and "
+                   "has the token of the printed address (?token=...)")
       ->capture_default_str();
   command->footer(
       "\nOpen the printed address in a browser. Ctrl-C (SIGINT) or SIGTERM stops the server.");

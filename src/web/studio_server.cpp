@@ -38,7 +38,7 @@ namespace stochtex::web {
 namespace {
 
 constexpr const char* kJson = "application/json";
-constexpr std::string_view kClientCookie = "stochtex_client=";
+constexpr std::string_view kClientCookie = "stochtex_client";
 const std::regex kClientId("[0-9a-f]{16}");
 const std::string kId = "([0-9a-f]{16})";  // the ids the store makes
 constexpr std::size_t kMaxJsonBody = 64 * 1024;
@@ -135,19 +135,22 @@ httplib::Server::HandlerWithContentReader with_body(
   };
 }
 
+// The value of the request's cookie `name`, empty when it has none.
+std::string cookie(const httplib::Request& req, std::string_view name) {
+  const std::string cookies = req.get_header_value("Cookie");
+  const std::string key = std::string(name) + "=";
+  for (std::size_t at = cookies.find(key); at != std::string::npos; at = cookies.find(key, at + 1))
+    if (at == 0 || cookies[at - 1] == ' ' || cookies[at - 1] == ';') {
+      const std::size_t from = at + key.size();
+      return cookies.substr(from, cookies.find(';', from) - from);
+    }
+  return {};
+}
+
 // The browser client's id: the cookie set with the page, or an X-Stochtex-Client header.
 std::optional<std::string> client_of(const httplib::Request& req) {
   std::string id = req.get_header_value("X-Stochtex-Client");
-  if (id.empty()) {
-    const std::string cookies = req.get_header_value("Cookie");
-    for (std::size_t at = cookies.find(kClientCookie); at != std::string::npos;
-         at = cookies.find(kClientCookie, at + 1))
-      if (at == 0 || cookies[at - 1] == ' ' || cookies[at - 1] == ';') {
-        const std::size_t from = at + kClientCookie.size();
-        id = cookies.substr(from, cookies.find(';', from) - from);
-        break;
-      }
-  }
+  if (id.empty()) id = cookie(req, kClientCookie);
   if (!std::regex_match(id, kClientId)) return std::nullopt;
   return id;
 }
@@ -400,22 +403,34 @@ bool StudioHttpServer::process_and_close_socket(socket_t sock) {
 
 // Who may use the studio, checked before any route reads a request (docs/studio.md, "Safety"). A
 // studio bound to loopback answers only requests addressed to its loopback names and port (no
-// other web site can point its name at it: DNS rebinding); one bound to another address can be
-// reached by any name. Either way a request that changes something (any method but GET and HEAD)
-// is refused when a browser says that a page of another origin sent it (Origin, Sec-Fetch-Site).
+// other web site can point its name at it: DNS rebinding). One bound to another address can be
+// reached by any name, so each request needs the studio's token instead: a 128-bit random number
+// printed with its address, as Jupyter's, which the page's address sets as a cookie. Either way a
+// request that changes something (any method but GET and HEAD) is refused when a browser says that
+// a page of another origin sent it (Origin, Sec-Fetch-Site).
 class Gate {
  public:
   Gate(bool loopback, const std::string& bound_ip, int port);
 
+  const std::string& token() const { return token_; }  // empty on loopback
+  std::string token_cookie() const { return fmt::format("stochtex_token_{}", port_); }
   // Throws the refusal of `req`, a StudioError, if any.
   void check(const httplib::Request& req) const;
 
  private:
-  bool loopback_;
+  bool has_token(const httplib::Request& req) const;
+
+  int port_;
   std::vector<std::string> hosts_;  // the Host values a loopback studio answers, lower case
+  std::string token_;
 };
 
-Gate::Gate(bool loopback, const std::string& bound_ip, int port) : loopback_(loopback) {
+Gate::Gate(bool loopback, const std::string& bound_ip, int port) : port_(port) {
+  if (!loopback) {
+    std::random_device random;
+    token_ = fmt::format("{:08x}{:08x}{:08x}{:08x}", random(), random(), random(), random());
+    return;
+  }
   std::vector<std::string> names = {"localhost", "127.0.0.1", "[::1]"};
   const std::string bound =
       bound_ip.find(':') != std::string::npos ? "[" + bound_ip + "]" : bound_ip;
@@ -426,14 +441,33 @@ Gate::Gate(bool loopback, const std::string& bound_ip, int port) : loopback_(loo
   }
 }
 
+bool Gate::has_token(const httplib::Request& req) const {
+  // Compared in a time that tells nothing of how much of it matched.
+  const auto equal = [this](const std::string& given) {
+    if (given.size() != token_.size()) return false;
+    unsigned char difference = 0;
+    for (std::size_t i = 0; i < given.size(); ++i)
+      difference |= static_cast<unsigned char>(given[i] ^ token_[i]);
+    return difference == 0;
+  };
+  return equal(req.get_param_value("token")) || equal(cookie(req, token_cookie()));
+}
+
 void Gate::check(const httplib::Request& req) const {
   if (req.get_header_value_count("Host") != 1)
     throw StudioError(400, "the request must carry exactly one Host header");
   const std::string host = lowercase(req.get_header_value("Host"));
-  if (loopback_ && std::find(hosts_.begin(), hosts_.end(), host) == hosts_.end())
-    throw StudioError(403, fmt::format("this studio answers only requests addressed to {}, {} or "
-                                       "{}, not '{}'",
-                                       hosts_[0], hosts_[1], hosts_[2], host));
+  if (token_.empty()) {
+    if (std::find(hosts_.begin(), hosts_.end(), host) == hosts_.end())
+      throw StudioError(403, fmt::format("this studio answers only requests addressed to {}, {} or "
+                                         "{}, not '{}'",
+                                         hosts_[0], hosts_[1], hosts_[2], host));
+  } else if (!has_token(req)) {
+    throw StudioError(403,
+                      "this studio listens beyond loopback and answers only requests with its "
+                      "token: open the address it printed, which ends in ?token=, or add "
+                      "?token=TOKEN to the request");
+  }
   if (req.method == "GET" || req.method == "HEAD") return;
   if (req.has_header("Origin") && lowercase(req.get_header_value("Origin")) != "http://" + host)
     throw StudioError(403, fmt::format("the studio takes changes only from its own page, not from "
@@ -457,17 +491,25 @@ nlohmann::ordered_json edit_body(const std::string& text) {
   return body;
 }
 
-void add_routes(httplib::Server& server, StudioStore& store, UploadSlots& uploads) {
-  server.Get("/", guarded([](const httplib::Request& req, httplib::Response& res) {
-               const EmbeddedFile* page = find_embedded(embedded_files(), "studio/index.html");
-               if (page == nullptr) throw StudioError(500, "the studio page is missing");
-               res.set_content(std::string(page->text), std::string(content_type(page->name)));
-               if (!client_of(req)) {
-                 std::random_device random;
-                 res.set_header("Set-Cookie", fmt::format("{}{:08x}{:08x}; Path=/; SameSite=Strict",
-                                                          kClientCookie, random(), random()));
-               }
-             }));
+void add_routes(httplib::Server& server, StudioStore& store, const Gate& gate,
+                UploadSlots& uploads) {
+  server.Get(
+      "/", guarded([&gate](const httplib::Request& req, httplib::Response& res) {
+        const EmbeddedFile* page = find_embedded(embedded_files(), "studio/index.html");
+        if (page == nullptr) throw StudioError(500, "the studio page is missing");
+        res.set_content(std::string(page->text), std::string(content_type(page->name)));
+        if (!client_of(req)) {
+          std::random_device random;
+          res.set_header("Set-Cookie", fmt::format("{}={:08x}{:08x}; Path=/; SameSite=Strict",
+                                                   kClientCookie, random(), random()));
+        }
+        // The page's address with the token (the gate has checked it): the page's own
+        // requests then carry it. Cookies are per host, not per port: the name is this
+        // port's, so that studios on other ports keep theirs.
+        if (!gate.token().empty() && req.has_param("token"))
+          res.set_header("Set-Cookie", fmt::format("{}={}; Path=/; HttpOnly; SameSite=Strict",
+                                                   gate.token_cookie(), gate.token()));
+      }));
   server.Get("/web/(.+)", guarded([](const httplib::Request& req, httplib::Response& res) {
                const EmbeddedFile* file = find_embedded(embedded_files(), req.matches[1].str());
                if (file == nullptr) throw StudioError(404, default_error(req, 404, 0));
@@ -673,11 +715,13 @@ void serve_studio(const StudioOptions& options,
     return httplib::Server::HandlerResponse::Unhandled;
   });
   UploadSlots uploads(kUploadSlots);
-  add_routes(server, store, uploads);
+  add_routes(server, store, gate, uploads);
 
   const std::string host =
       options.host.find(':') != std::string::npos ? "[" + options.host + "]" : options.host;
-  listening({fmt::format("http://{}:{}/", host, port), loopback});
+  listening({fmt::format("http://{}:{}/{}", host, port,
+                         gate.token().empty() ? "" : "?token=" + gate.token()),
+             loopback});
   std::atomic<bool> done = false;
   std::thread signal_waiter([&] { wait_for_signal(server, done); });
   server.listen_after_bind();

@@ -17,7 +17,9 @@ struct StudioOptions {
 
 // Where the studio listens, once bound.
 struct StudioAddress {
-  std::string url;       // the page's address: "http://127.0.0.1:8080/"
+  // The page's address: "http://127.0.0.1:8080/", or beyond loopback with the token every request
+  // needs, "http://0.0.0.0:8080/?token=<32 hexadecimal digits>".
+  std::string url;
   bool loopback = true;  // bound to a loopback address (127.0.0.0/8, ::1)
 };
 

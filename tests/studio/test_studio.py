@@ -8,11 +8,13 @@ import io
 import json
 import os
 import select
+import signal
 import socket
 import struct
 import subprocess
 import threading
 import time
+import urllib.parse
 import zipfile
 import zlib
 
@@ -45,7 +47,7 @@ def grey_png(width, height, constant=False):
 
 
 class Studio:
-    def __init__(self, tmp, log):
+    def __init__(self, tmp, log, host=None):
         self.tmp = tmp
         self.log = log
         env = dict(os.environ, TMPDIR=str(tmp))
@@ -54,13 +56,17 @@ class Studio:
             # 256 MiB before reuse, which test_memory_stays_bounded would measure as growth; 8 MiB
             # still catches a use soon after free.
             env["ASAN_OPTIONS"] += ":quarantine_size_mb=8"
+        arguments = [STOCHTEX, "studio", "--port", "0"] + (["--host", host] if host else [])
         with open(log, "w") as stderr:
-            self.process = subprocess.Popen([STOCHTEX, "studio", "--port", "0"], env=env,
-                                            stdout=subprocess.PIPE, stderr=stderr, text=True)
+            self.process = subprocess.Popen(arguments, env=env, stdout=subprocess.PIPE,
+                                            stderr=stderr, text=True)
         line = self.process.stdout.readline()
-        prefix = "stochtex studio: serving http://127.0.0.1:"
+        prefix = f"stochtex studio: serving http://{host or '127.0.0.1'}:"
         assert line.startswith(prefix), (line, self.stderr())
-        self.port = int(line[len(prefix):].rstrip().rstrip("/"))
+        # http://HOST:PORT/, with ?token=TOKEN when the studio listens beyond loopback.
+        self.url = urllib.parse.urlsplit(line.split()[-1])
+        self.port = self.url.port
+        self.token = urllib.parse.parse_qs(self.url.query).get("token", [None])[0]
 
     def request(self, method, path, body=None, headers=None, client="a000000000000001"):
         headers = dict(headers or {})
@@ -70,7 +76,7 @@ class Studio:
         try:
             connection.request(method, path, body=body, headers=headers)
             response = connection.getresponse()
-            return response.status, dict(response.getheaders()), response.read()
+            return response.status, response.headers, response.read()
         finally:
             connection.close()
 
@@ -109,7 +115,8 @@ class Studio:
 
     def assert_serving(self):
         assert self.process.poll() is None, self.stderr()
-        status, _, _ = self.request("GET", "/api/methods")
+        query = f"?token={self.token}" if self.token else ""
+        status, _, _ = self.request("GET", "/api/methods" + query)
         assert status == 200
 
     def upload(self, data, client="a000000000000001", expect=201, headers=None):
@@ -616,6 +623,41 @@ def test_a_request_head_is_bounded(studio):
                               b"Connection: close\r\n\r\n" % (studio.port, filler))
     assert status == 400 and "64 KiB" in json.loads(body)["error"], (status, body[:300])
     studio.assert_serving()
+
+
+def test_a_network_studio_needs_its_token(studio, tmp_path):
+    # Beyond loopback (--host 0.0.0.0) any name may reach the studio, so the Host check cannot
+    # hold: every request needs the token printed with the address, as Jupyter's, which the page's
+    # address sets as a cookie of this port's. A loopback studio prints none.
+    assert studio.token is None and studio.url.path == "/", studio.url
+    network = Studio(tmp_path, tmp_path / "stderr.txt", host="0.0.0.0")
+    try:
+        token = network.token
+        assert token is not None and len(token) == 32, network.url
+        assert "not loopback" in network.stderr() and "token" in network.stderr()
+        png = grey_png(16, 16)
+        octet = {"Content-Type": "application/octet-stream"}
+        for path in ["/", "/web/studio/studio.js", "/api/methods", f"/api/methods?token={'0' * 32}"]:
+            assert "token" in network.error("GET", path, expect=403), path
+        assert "token" in network.error("POST", "/api/exemplars", png, expect=403, headers=octet)
+
+        status, headers, _ = network.request("GET", f"/?token={token}", client=None)
+        assert status == 200
+        cookie = f"stochtex_token_{network.port}={token}"
+        assert any(value.startswith(cookie + ";") and "HttpOnly" in value and
+                   "SameSite=Strict" in value for value in headers.get_all("Set-Cookie")), headers
+        with_cookie = {"Cookie": cookie}
+        assert network.request("GET", "/api/methods", headers=with_cookie)[0] == 200
+        assert network.request("GET", f"/api/methods?token={token}")[0] == 200
+        other_name = {**with_cookie, "Host": f"studio.example:{network.port}"}
+        assert network.request("GET", "/api/methods", headers=other_name)[0] == 200
+        assert "its own page" in network.error(
+            "POST", "/api/exemplars", png, expect=403,
+            headers={**octet, **with_cookie, "Origin": "http://evil.example"})
+        network.upload(png, headers=with_cookie)
+    finally:
+        network.process.send_signal(signal.SIGINT)
+        assert network.process.wait(10) == 0
 
 
 def test_render_scales_are_the_clis(studio, tmp_path):
