@@ -45,7 +45,7 @@ constexpr std::size_t kMaxJsonBody = 64 * 1024;
 
 // What a connection may hold and for how long, so that slow or idle clients cannot take the
 // server from the others (docs/studio.md, "Safety"). Each connection is served by a thread of its
-// own, up to kConnectionThreads at once (more wait to be accepted).
+// own, up to kConnectionThreads at once (more wait their turn).
 constexpr std::size_t kConnectionThreads = 64;
 // Uploads read and decoded at once (the others wait): at most this many bodies of up to
 // StudioLimits::max_upload_bytes are held, however many connections upload.
@@ -435,10 +435,9 @@ Gate::Gate(bool loopback, const std::string& bound_ip, int port) : port_(port) {
   const std::string bound =
       bound_ip.find(':') != std::string::npos ? "[" + bound_ip + "]" : bound_ip;
   if (std::find(names.begin(), names.end(), bound) == names.end()) names.push_back(bound);
-  for (const std::string& name : names) {
-    hosts_.push_back(fmt::format("{}:{}", name, port));
-    if (port == 80) hosts_.push_back(name);  // a browser leaves out the default port
-  }
+  for (const std::string& name : names) hosts_.push_back(fmt::format("{}:{}", name, port));
+  // On port 80, the default, a browser leaves the port out. (The first three stay the message's.)
+  if (port == 80) hosts_.insert(hosts_.end(), names.begin(), names.end());
 }
 
 bool Gate::has_token(const httplib::Request& req) const {
