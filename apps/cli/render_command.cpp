@@ -48,7 +48,7 @@ void add_render_options(CLI::App* command, RenderSettings& settings, std::string
       ->capture_default_str();
   command->add_option("--scale", settings.scale, "exemplar pixels per output pixel (zoom out > 1)")
       ->capture_default_str()
-      ->check(CLI::Range(1e-6, 1e6));  // NaN: refused by renderer::plan_render, naming it
+      ->check(CLI::Range(renderer::kMinScale, renderer::kMaxScale));  // NaN: plan_render refuses
   command->add_option("--seed", settings.seed, "32-bit seed of the random pattern")
       ->capture_default_str();
   command->add_option("--threads", settings.threads, "worker threads (0 = all cores)")

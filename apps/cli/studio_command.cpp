@@ -22,13 +22,13 @@ void serve([[maybe_unused]] const std::string& host, [[maybe_unused]] int port) 
   web::StudioOptions studio;
   studio.host = host;
   studio.port = port;
-  if (!web::is_loopback_host(studio.host))
-    fmt::print(stderr,
-               "stochtex studio: warning: listening on {}, not loopback: anyone who can reach "
-               "this address can use the studio\n",
-               studio.host);
-  web::serve_studio(studio, [](const std::string& url) {
-    fmt::print("stochtex studio: serving {}\n", url);
+  web::serve_studio(studio, [&host](const web::StudioAddress& address) {
+    if (!address.loopback)
+      fmt::print(stderr,
+                 "stochtex studio: warning: listening on {}, not loopback: anyone who can reach "
+                 "this address and has the token of the address below can use the studio\n",
+                 host);
+    fmt::print("stochtex studio: serving {}\n", address.url);
     std::fflush(stdout);
   });
 #else
@@ -54,8 +54,8 @@ Command add_studio_command(CLI::App& app) {
   command
       ->add_option("--host", options->host,
                    "address to listen on. The default, loopback, lets only this machine in; any "
-                   "other address (0.0.0.0: every interface) lets anyone who can reach it upload "
-                   "images and run analyses, with no password")
+                   "other address (0.0.0.0: every interface) lets in anyone who can reach it and "
+                   "has the token of the printed address (?token=...)")
       ->capture_default_str();
   command->footer(
       "\nOpen the printed address in a browser. Ctrl-C (SIGINT) or SIGTERM stops the server.");

@@ -26,6 +26,11 @@ inline constexpr std::int64_t kMaxInMemoryPixels = std::int64_t{1} << 26;
 inline constexpr int kMaxStreamedSide = 1 << 20;
 bool fits_in_memory(std::int64_t width, std::int64_t height);
 
+// The scales a render takes, in exemplar pixels per output pixel: `stochtex render --scale`
+// (CLI::Range(kMinScale, kMaxScale)) and the studio's render.png refuse any other.
+inline constexpr double kMinScale = 1e-6;
+inline constexpr double kMaxScale = 1e6;
+
 // What evaluates the grids: the CPU reference, or the GL backend (renderer/backends.hpp).
 enum class Backend { cpu, gl };
 
@@ -47,8 +52,8 @@ struct RequestText {
 };
 
 // The settings of a render. The ranges that stochtex render's options check (threads 0 to
-// kMaxThreads, supersample 1 to 64, tile 1 to 4096, bit depth 8 or 16, a positive scale) are the
-// caller's to keep; plan_render checks the rest.
+// kMaxThreads, supersample 1 to 64, tile 1 to 4096, bit depth 8 or 16, a scale of kMinScale to
+// kMaxScale) are the caller's to keep; plan_render checks the rest.
 struct RenderRequest {
   // The whole image, each side 1 to kMaxStreamedSide, and the pixels of it that are rendered
   // and written (none: all of them), equal to the same pixels of the whole render.

@@ -15,14 +15,19 @@ struct StudioOptions {
   StudioLimits limits;
 };
 
-// Whether `host` names the loopback interface (127.0.0.0/8, ::1 or localhost).
-bool is_loopback_host(const std::string& host);
+// Where the studio listens, once bound.
+struct StudioAddress {
+  // The page's address: "http://127.0.0.1:8080/", or beyond loopback with the token every request
+  // needs, "http://0.0.0.0:8080/?token=<32 hexadecimal digits>".
+  std::string url;
+  bool loopback = true;  // bound to a loopback address (127.0.0.0/8, ::1)
+};
 
-// Binds to options.host:options.port, calls `listening` with the URL served
-// ("http://127.0.0.1:8080/"), then serves until SIGINT, SIGTERM or SIGHUP arrives. Throws Error
-// when it cannot bind. Call it before other threads are started: it blocks those signals in this
-// thread and every thread started after, and waits for them in a thread of its own.
+// Binds to options.host:options.port, calls `listening` with the address served, then serves
+// until SIGINT, SIGTERM or SIGHUP arrives. Throws Error when it cannot bind. Call it before other
+// threads are started: it blocks those signals in this thread and every thread started after, and
+// waits for them in a thread of its own.
 void serve_studio(const StudioOptions& options,
-                  const std::function<void(const std::string& url)>& listening);
+                  const std::function<void(const StudioAddress& address)>& listening);
 
 }  // namespace stochtex::web

@@ -152,8 +152,6 @@ struct StudioStore::StoredModel {
 };
 
 StudioStore::StudioStore(StudioLimits limits) : limits_(limits) {
-  std::random_device random;
-  id_state_ = (std::uint64_t{random()} << 32) ^ random();
   worker_ = std::thread([this] { work(); });
 }
 
@@ -168,11 +166,12 @@ StudioStore::~StudioStore() {
 }
 
 std::string StudioStore::new_id() {
-  // splitmix64 of a randomly seeded counter: unique, and not guessable from other ids.
-  std::uint64_t z = (id_state_ += 0x9e3779b97f4a7c15ull);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return fmt::format("{:016x}", z ^ (z >> 31));
+  // 64 bits of the system's random source: an id tells nothing of another, so that only whoever
+  // was given an id reaches what it names.
+  for (;;) {
+    std::string id = fmt::format("{:08x}{:08x}", random_(), random_());
+    if (!exemplars_.contains(id) && !analyses_.contains(id) && !models_.contains(id)) return id;
+  }
 }
 
 nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
@@ -247,12 +246,19 @@ std::string StudioStore::start_analysis(const std::string& client, const std::st
           400, fmt::format("the parameter '{}' must be a number or a choice's name", name));
   }
   auto analysis = std::make_shared<Analysis>();
+  analysis->exemplar = find_exemplar(exemplar);
+  // The registry refuses what it cannot analyse before any work, as `stochtex analyze` does: a
+  // method without a row of its own (one not analysed from one exemplar, such as a mix), more
+  // channels than the method takes, or beyond the memory budget.
+  const ImageF& image = analysis->exemplar->image;
   try {
+    check_analysis_request(method, image.width(), image.height(), image.channels(), kUploadName);
     analysis->params = resolve_params(method, text);
   } catch (const std::invalid_argument& e) {
     throw StudioError(400, e.what());
+  } catch (const Error& e) {
+    throw StudioError(400, e.what());
   }
-  analysis->exemplar = find_exemplar(exemplar);
   analysis->client = client;
   analysis->method = method;
   analysis->seed = seed;
@@ -482,6 +488,11 @@ std::string StudioStore::render_png(const std::string& id, const RenderRequest& 
     throw StudioError(400, fmt::format("a render is 1 to {} pixels wide and high, not {}x{}; ask "
                                        "for a smaller one",
                                        most, request.width, request.height));
+  if (!(request.scale >= renderer::kMinScale && request.scale <= renderer::kMaxScale))
+    throw StudioError(400,
+                      fmt::format("a render's scale is {:g} to {:g} exemplar pixels per pixel, "
+                                  "as `stochtex render --scale` takes, not {:g}",
+                                  renderer::kMinScale, renderer::kMaxScale, request.scale));
   const auto stored = find_model(id);
   const Grid grid{request.origin, request.scale, request.width, request.height};
   // As many cores as the memory budget allows, as `stochtex render --threads 0` takes; a view of

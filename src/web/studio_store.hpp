@@ -14,6 +14,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -124,7 +125,7 @@ class StudioStore {
   std::mutex mutex_;  // guards everything below but the heavy-work mutex
   std::condition_variable wake_;
   bool stopping_ = false;
-  std::uint64_t id_state_ = 0;
+  std::random_device random_;  // the ids' bits
   std::map<std::string, std::shared_ptr<const Exemplar>> exemplars_;
   std::deque<std::string> exemplar_order_;
   std::map<std::string, std::shared_ptr<Analysis>> analyses_;

@@ -7,11 +7,14 @@ import http.client
 import io
 import json
 import os
+import select
+import signal
 import socket
 import struct
 import subprocess
 import threading
 import time
+import urllib.parse
 import zipfile
 import zlib
 
@@ -44,7 +47,7 @@ def grey_png(width, height, constant=False):
 
 
 class Studio:
-    def __init__(self, tmp, log):
+    def __init__(self, tmp, log, host=None):
         self.tmp = tmp
         self.log = log
         env = dict(os.environ, TMPDIR=str(tmp))
@@ -53,13 +56,17 @@ class Studio:
             # 256 MiB before reuse, which test_memory_stays_bounded would measure as growth; 8 MiB
             # still catches a use soon after free.
             env["ASAN_OPTIONS"] += ":quarantine_size_mb=8"
+        arguments = [STOCHTEX, "studio", "--port", "0"] + (["--host", host] if host else [])
         with open(log, "w") as stderr:
-            self.process = subprocess.Popen([STOCHTEX, "studio", "--port", "0"], env=env,
-                                            stdout=subprocess.PIPE, stderr=stderr, text=True)
+            self.process = subprocess.Popen(arguments, env=env, stdout=subprocess.PIPE,
+                                            stderr=stderr, text=True)
         line = self.process.stdout.readline()
-        prefix = "stochtex studio: serving http://127.0.0.1:"
+        prefix = f"stochtex studio: serving http://{host or '127.0.0.1'}:"
         assert line.startswith(prefix), (line, self.stderr())
-        self.port = int(line[len(prefix):].rstrip().rstrip("/"))
+        # http://HOST:PORT/, with ?token=TOKEN when the studio listens beyond loopback.
+        self.url = urllib.parse.urlsplit(line.split()[-1])
+        self.port = self.url.port
+        self.token = urllib.parse.parse_qs(self.url.query).get("token", [None])[0]
 
     def request(self, method, path, body=None, headers=None, client="a000000000000001"):
         headers = dict(headers or {})
@@ -69,7 +76,7 @@ class Studio:
         try:
             connection.request(method, path, body=body, headers=headers)
             response = connection.getresponse()
-            return response.status, dict(response.getheaders()), response.read()
+            return response.status, response.headers, response.read()
         finally:
             connection.close()
 
@@ -88,16 +95,32 @@ class Studio:
         self.assert_serving()
         return doc["error"]
 
+    def raw(self, data):
+        """Sends `data`, a request as bytes, on a connection of its own and returns the status and
+        the body of the answer (send `Connection: close`)."""
+        answer = b""
+        with socket.create_connection(("127.0.0.1", self.port), timeout=30) as connection:
+            connection.sendall(data)
+            try:
+                while chunk := connection.recv(65536):
+                    answer += chunk
+            except ConnectionResetError:
+                pass  # the server stopped reading the request: the answer came first
+        head, _, body = answer.partition(b"\r\n\r\n")
+        assert head.startswith(b"HTTP/1.1 "), answer[:300]
+        return int(head.split()[1]), body
+
     def stderr(self):
         return self.log.read_text()
 
     def assert_serving(self):
         assert self.process.poll() is None, self.stderr()
-        status, _, _ = self.request("GET", "/api/methods")
+        query = f"?token={self.token}" if self.token else ""
+        status, _, _ = self.request("GET", "/api/methods" + query)
         assert status == 200
 
-    def upload(self, data, client="a000000000000001", expect=201):
-        headers = {"Content-Type": "application/octet-stream"}
+    def upload(self, data, client="a000000000000001", expect=201, headers=None):
+        headers = {"Content-Type": "application/octet-stream", **(headers or {})}
         return self.json("POST", "/api/exemplars", data, expect=expect, headers=headers,
                          client=client)
 
@@ -106,9 +129,9 @@ class Studio:
         first; the server must stop reading it at its limit (the send then fails well before
         the end) and answer 413."""
         with socket.create_connection(("127.0.0.1", self.port), timeout=60) as connection:
-            connection.sendall(b"POST /api/exemplars HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+            connection.sendall(b"POST /api/exemplars HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n"
                                b"X-Stochtex-Client: a000000000000001\r\n"
-                               b"Transfer-Encoding: chunked\r\n\r\n")
+                               b"Transfer-Encoding: chunked\r\n\r\n" % self.port)
             chunk = b"%x\r\n" % (1 << 20) + bytes(1 << 20) + b"\r\n"
             sent = 0
             try:
@@ -485,6 +508,205 @@ def test_memory_stays_bounded(studio):
     print(f"studio RSS {before} KiB -> {after} KiB after 30 uploads")
     assert after - before < 16 * 1024, (before, after)
     studio.assert_serving()
+
+
+# The tests below upload and analyse freely: they come after the ones that use the module's
+# exemplars and models, which the store may evict.
+
+
+def test_host_must_name_this_studio(studio):
+    # A loopback studio answers only requests to its loopback names with its port (DNS rebinding
+    # points other names at 127.0.0.1), in exactly one Host header. These all passed when any name
+    # starting with "127." did, or any port.
+    port = studio.port
+    for host in ["127.evil.example", f"127.0.0.1.nip.io:{port}", f"127.0.0.1@evil.example:{port}",
+                 f"localhost:{port}.evil.example", f"127.0.0.2:{port}", f"127.0.0.1:{port + 1}",
+                 "127.0.0.1", "evil.example"]:
+        error = studio.error("GET", "/api/methods", expect=403, headers={"Host": host})
+        assert f"localhost:{port}, 127.0.0.1:{port}" in error, (host, error)
+    for host in [f"localhost:{port}", f"127.0.0.1:{port}", f"[::1]:{port}", f"LocalHost:{port}"]:
+        assert studio.request("GET", "/api/methods", headers={"Host": host})[0] == 200, host
+    line = b"GET /api/methods HTTP/1.1\r\n"
+    for hosts in [b"", b"Host: 127.0.0.1:%d\r\nHost: evil.example\r\n" % port]:
+        status, body = studio.raw(line + hosts + b"Connection: close\r\n\r\n")
+        assert status == 400 and "exactly one Host header" in json.loads(body)["error"], \
+            (hosts, status, body[:300])
+    studio.assert_serving()
+
+
+def test_changes_from_other_origins_are_refused(studio):
+    # A page elsewhere, another localhost port among them (same-site: its requests carry the
+    # cookie), cannot change anything: browsers send Origin with every POST and DELETE, and
+    # Sec-Fetch-Site with every request. These uploads were all taken.
+    port = studio.port
+    own = f"http://127.0.0.1:{port}"
+    png = grey_png(16, 16)
+    for headers in [{"Origin": "http://evil.example"}, {"Origin": f"http://localhost:{port + 1}"},
+                    {"Origin": f"http://localhost:{port}"}, {"Origin": f"https://127.0.0.1:{port}"},
+                    {"Origin": "null"}, {"Sec-Fetch-Site": "cross-site"},
+                    {"Sec-Fetch-Site": "same-site"}, {"Origin": own, "Sec-Fetch-Site": "same-site"}]:
+        error = studio.error("POST", "/api/exemplars", png, expect=403,
+                             headers={"Content-Type": "application/octet-stream", **headers})
+        assert "its own page" in error, (headers, error)
+    other = {"Origin": "http://evil.example"}
+    unknown = "0" * 16
+    studio.error("POST", "/api/analyses", {"exemplar": unknown, "method": "texton"}, expect=403,
+                 headers=other)
+    studio.error("DELETE", f"/api/analyses/{unknown}", expect=403, headers=other)
+    studio.error("POST", f"/api/models/{unknown}/edit", {}, expect=403, headers=other)
+    # The studio's own page, and scripts (neither header).
+    for headers in [{"Origin": own}, {"Origin": own, "Sec-Fetch-Site": "same-origin"},
+                    {"Sec-Fetch-Site": "none"}, {}]:
+        studio.upload(png, headers=headers)
+    # Reads change nothing and stay open: a page elsewhere knows no id to read.
+    status, _, _ = studio.request("GET", "/api/methods",
+                                  headers={**other, "Sec-Fetch-Site": "cross-site"})
+    assert status == 200
+
+
+def test_slow_and_idle_clients_do_not_stop_it(studio):
+    # 16 idle connections, 16 clients sending their headers a byte at a time and 8 uploads that
+    # stall after their headers: they held all 8 request threads, and the API stopped answering.
+    # Now each connection has a thread of its own (up to 64), an idle one is closed after 2 s and a
+    # request's head must arrive within 3 s of its first byte, however slowly it trickles.
+    port = studio.port
+
+    def connect(data=b""):
+        connection = socket.create_connection(("127.0.0.1", port), timeout=10)
+        connection.sendall(data)
+        return connection
+
+    opened = time.monotonic()
+    idle = [connect() for _ in range(16)]
+    slow = [connect(b"GET /api/methods HTTP/1.1\r\nHost: 127.0.0.1:%d\r\nX-Slow: " % port)
+            for _ in range(16)]
+    uploads = [connect(b"POST /api/exemplars HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n"
+                       b"X-Stochtex-Client: a000000000000001\r\nContent-Length: 100000\r\n\r\n"
+                       b"\x89PNG" % port) for _ in range(8)]
+    time.sleep(0.3)
+    started = time.monotonic()
+    connection = http.client.HTTPConnection("127.0.0.1", port, timeout=1.5)
+    try:
+        connection.request("GET", "/api/methods")
+        status = connection.getresponse().status
+    except TimeoutError:
+        status = None
+    finally:
+        connection.close()
+    answered = time.monotonic() - started
+    assert status == 200 and answered < 1.0, (status, answered)
+
+    # The server closes the idle connections and the slow heads, which keep trickling.
+    closed = {}
+    while len(closed) < len(idle) + len(slow) and time.monotonic() < opened + 8:
+        open_ones = [c for c in idle + slow if c not in closed]
+        readable, _, _ = select.select(open_ones, [], [], 0.1)
+        for connection in readable:
+            closed[connection] = time.monotonic() - opened
+        for connection in open_ones:
+            if connection in slow and connection not in closed:
+                try:
+                    connection.send(b"a")
+                except OSError:
+                    closed[connection] = time.monotonic() - opened
+    for connection in idle + slow + uploads:
+        connection.close()
+    assert all(closed.get(c, 99) < 4 for c in idle), sorted(closed.get(c) for c in idle)
+    assert all(closed.get(c, 99) < 5 for c in slow), sorted(closed.get(c) for c in slow)
+    studio.assert_serving()
+
+
+def test_a_request_head_is_bounded(studio):
+    # 70 headers of 1 kB: httplib keeps any number of them; the studio reads up to 64 KiB.
+    filler = b"".join(b"X-Filler-%d: %s\r\n" % (i, b"a" * 1000) for i in range(70))
+    status, body = studio.raw(b"GET /api/methods HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n%s"
+                              b"Connection: close\r\n\r\n" % (studio.port, filler))
+    assert status == 400 and "64 KiB" in json.loads(body)["error"], (status, body[:300])
+    studio.assert_serving()
+
+
+def test_a_network_studio_needs_its_token(studio, tmp_path):
+    # Beyond loopback (--host 0.0.0.0) any name may reach the studio, so the Host check cannot
+    # hold: every request needs the token printed with the address, as Jupyter's, which the page's
+    # address sets as a cookie of this port's. A loopback studio prints none.
+    assert studio.token is None and studio.url.path == "/", studio.url
+    network = Studio(tmp_path, tmp_path / "stderr.txt", host="0.0.0.0")
+    try:
+        token = network.token
+        assert token is not None and len(token) == 32, network.url
+        assert "not loopback" in network.stderr() and "token" in network.stderr()
+        png = grey_png(16, 16)
+        octet = {"Content-Type": "application/octet-stream"}
+        for path in ["/", "/web/studio/studio.js", "/api/methods", f"/api/methods?token={'0' * 32}"]:
+            assert "token" in network.error("GET", path, expect=403), path
+        assert "token" in network.error("POST", "/api/exemplars", png, expect=403, headers=octet)
+
+        status, headers, _ = network.request("GET", f"/?token={token}", client=None)
+        assert status == 200
+        cookie = f"stochtex_token_{network.port}={token}"
+        assert any(value.startswith(cookie + ";") and "HttpOnly" in value and
+                   "SameSite=Strict" in value for value in headers.get_all("Set-Cookie")), headers
+        with_cookie = {"Cookie": cookie}
+        assert network.request("GET", "/api/methods", headers=with_cookie)[0] == 200
+        assert network.request("GET", f"/api/methods?token={token}")[0] == 200
+        other_name = {**with_cookie, "Host": f"studio.example:{network.port}"}
+        assert network.request("GET", "/api/methods", headers=other_name)[0] == 200
+        assert "its own page" in network.error(
+            "POST", "/api/exemplars", png, expect=403,
+            headers={**octet, **with_cookie, "Origin": "http://evil.example"})
+        network.upload(png, headers=with_cookie)
+    finally:
+        network.process.send_signal(signal.SIGINT)
+        assert network.process.wait(10) == 0
+
+
+def test_render_scales_are_the_clis(studio, tmp_path):
+    # render.png took scale 0, -1 and 1e-300, which `stochtex render --scale` refuses.
+    exemplar = studio.upload(exemplar_bytes("grass_lawn_128.png"))
+    analysis = studio.analyse(exemplar["id"], "texton", {"iterations": 2})
+    model = studio.wait(analysis["id"], {"done", "failed", "cancelled"}, 60)["model"]
+    (tmp_path / "model.stx").write_bytes(studio.request("GET", f"/api/models/{model}.stx")[2])
+
+    def cli(scale):
+        return subprocess.run([STOCHTEX, "render", str(tmp_path / "model.stx"), "-o",
+                               str(tmp_path / "render.png"), "--size", "8x8", f"--scale={scale}"],
+                              capture_output=True, text=True)
+
+    path = f"/api/models/{model}/render.png?width=8&height=8&scale="
+    for scale in ["0", "-1", "1e-300", "9e-7", "1.1e6"]:
+        assert "scale" in studio.error("GET", path + scale), scale
+        assert cli(scale).returncode == 2, scale
+    for scale in ["1e-6", "4"]:
+        assert studio.request("GET", path + scale)[0] == 200, scale
+        assert cli(scale).returncode == 0, scale
+
+
+def test_only_methods_of_one_exemplar_are_analysed(studio):
+    # texton_mix is made from two exemplars (`stochtex mix`): its analysis was queued, then failed.
+    exemplar = studio.upload(grey_png(16, 16))
+    error = studio.error("POST", "/api/analyses", {"exemplar": exemplar["id"],
+                                                   "method": "texton_mix"})
+    assert "texton_mix" in error, error
+    for method in studio.json("GET", "/api/methods"):
+        assert method["name"] in error, error
+
+
+def test_ids_tell_nothing_of_other_ids(studio):
+    # The ids were splitmix64 of a counter, which inverts: one id gave the others, and with them
+    # every exemplar and model of the studio.
+    gamma, mask = 0x9E3779B97F4A7C15, (1 << 64) - 1
+
+    def unmix(z):
+        for shift, factor in [(31, 0x94D049BB133111EB), (27, 0xBF58476D1CE4E5B9), (30, None)]:
+            y = z
+            for _ in range(64 // shift + 1):
+                y = z ^ (y >> shift)
+            z = y if factor is None else y * pow(factor, -1, 1 << 64) & mask
+        return z
+
+    first, second = (int(studio.upload(grey_png(16, 16))["id"], 16) for _ in range(2))
+    step = (unmix(second) - unmix(first)) & mask
+    assert all(step != k * gamma & mask for k in range(1, 1000)), hex(step)
 
 
 def test_a_second_server_cannot_take_the_port(studio):
