@@ -243,6 +243,15 @@ Model model_from_bytes(const py::bytes& data) {
                            "the pickled model");
 }
 
+// pickle (every protocol), copy.copy and copy.deepcopy: copyreg.__newobj__(type(self)), then
+// __setstate__ with the model's file bytes, as protocol 2 and above reduce it by themselves (the
+// same pickles); object's own reduction at protocols 0 and 1 would call the pybind11 base class,
+// which aborts the interpreter.
+py::tuple reduce_model(const py::object& self) {
+  return py::make_tuple(py::module_::import("copyreg").attr("__newobj__"),
+                        py::make_tuple(py::type::of(self)), self.attr("__getstate__")());
+}
+
 }  // namespace
 }  // namespace stochtex::python
 
@@ -300,7 +309,8 @@ PYBIND11_MODULE(_stochtex, m) {
              return "<stochtex.Model " + std::string(model.method()) + ", " +
                     std::to_string(model.channels()) + " channels>";
            })
-      .def(py::pickle(&model_bytes, &model_from_bytes));
+      .def(py::pickle(&model_bytes, &model_from_bytes))
+      .def("__reduce__", &reduce_model);
 
   m.def("analyze", &analyze_array, py::arg("array"), py::arg("method"), py::arg("seed") = 0,
         py::arg("progress") = py::none(),

@@ -2,6 +2,9 @@
 is needed) and the CLI, when CTest names it (STOCHTEX_CLI)."""
 
 import os
+import subprocess
+import sys
+import textwrap
 
 import numpy
 import pytest
@@ -36,6 +39,15 @@ def cli():
     if not path:
         pytest.skip("STOCHTEX_CLI (the stochtex executable) is not set")
     return path
+
+
+def run_python(code):
+    """`code` run by a fresh interpreter with this one's environment and the helpers here, its
+    stdout and stderr captured: a crash there fails a test here instead of killing pytest."""
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [os.path.dirname(__file__)] + os.environ.get("PYTHONPATH", "").split(os.pathsep)))
+    return subprocess.run([sys.executable, "-c", textwrap.dedent(code)], capture_output=True,
+                          text=True, env=env, timeout=120)
 
 
 def write_pfm(path, image):
