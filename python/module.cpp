@@ -12,6 +12,8 @@
 #include <charconv>
 #include <functional>
 #include <map>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -243,6 +245,47 @@ Model model_from_bytes(const py::bytes& data) {
                            "the pickled model");
 }
 
+// The model a Model object holds; nullptr for one made by Model.__new__ alone (unpickling makes
+// one, then __setstate__ fills it), whose C++ model pybind11 never constructed.
+std::shared_ptr<const Model> held_model(const py::handle& self) {
+  try {
+    return self.cast<std::shared_ptr<Model>>();
+  } catch (const py::cast_error&) {
+    return nullptr;
+  }
+}
+
+// The model of a Model method's `self`, which pybind11 would otherwise read as a model whether
+// or not it holds one.
+const Model& model_of(const py::handle& self) {
+  if (!py::isinstance<Model>(self))
+    throw py::type_error("a stochtex.Model's method was called on an object of type " +
+                         py::str(py::type::of(self).attr("__name__")).cast<std::string>() +
+                         "; call it on a stochtex.Model");
+  const std::shared_ptr<const Model> model = held_model(self);
+  if (!model)
+    throw std::runtime_error(
+        "this stochtex.Model was not initialised (Model.__new__ alone makes an empty one); load "
+        "one with stochtex.load or make one with stochtex.analyze");
+  return *model;
+}
+
+// `function` as a method of Model whose `self` is checked by model_of before it is read (the
+// object keeps the model alive meanwhile).
+template <class Result, class... Args>
+auto method(Result (*function)(const Model&, Args...)) {
+  return [function](const py::object& self, Args... args) {
+    return function(model_of(self), std::forward<Args>(args)...);
+  };
+}
+
+std::string model_repr(const py::object& self) {
+  const std::shared_ptr<const Model> model = held_model(self);
+  if (!model) return "<stochtex.Model, not initialised>";
+  return "<stochtex.Model " + std::string(model->method()) + ", " +
+         std::to_string(model->channels()) + " channels>";
+}
+
 // pickle (every protocol), copy.copy and copy.deepcopy: copyreg.__newobj__(type(self)), then
 // __setstate__ with the model's file bytes, as protocol 2 and above reduce it by themselves (the
 // same pickles); object's own reduction at protocols 0 and 1 would call the pybind11 base class,
@@ -269,47 +312,45 @@ PYBIND11_MODULE(_stochtex, m) {
     }
   });
 
-  py::class_<Model>(m, "Model", "A texture model: analysed, loaded or unpickled.")
-      .def_property_readonly("method",
-                             [](const Model& model) { return std::string(model.method()); })
-      .def_property_readonly("channels", &Model::channels)
-      .def_property_readonly("maps", &map_list,
+  py::class_<Model, std::shared_ptr<Model>>(m, "Model",
+                                            "A texture model: analysed, loaded or unpickled.")
+      .def_property_readonly(
+          "method", method(+[](const Model& model) { return std::string(model.method()); }))
+      .def_property_readonly("channels",
+                             method(+[](const Model& model) { return model.channels(); }))
+      .def_property_readonly("maps", method(&map_list),
                              "A material's maps in channel order, each {name, kind, channels} "
                              "(and from, scale for a normal map derived from a height map); "
                              "empty for a model of one image.")
-      .def("render_maps", &render_material, py::arg("width"), py::arg("height"),
+      .def("render_maps", method(&render_material), py::arg("width"), py::arg("height"),
            py::arg("origin") = std::array<double, 2>{0.0, 0.0}, py::arg("scale") = 1.0,
            py::arg("seed") = 0, py::arg("threads") = 0,
            py::arg("offset") = std::array<std::int64_t, 2>{0, 0},
            "A material's maps of the render's grid, {name: HxWxC array} (a derived normal map "
            "from the height around each pixel); render's arguments.")
-      .def("split", &split_image, py::arg("image"),
+      .def("split", method(&split_image), py::arg("image"),
            "A render of a material cut into its maps: {name: HxWxC array}, a normal map as "
            "unit normals encoded 0.5 + 0.5 n (stochtex.split_maps).")
       .def_property_readonly(
-          "info", [](const Model& model) { return parse_json(describe_model(model)); },
+          "info", method(+[](const Model& model) { return parse_json(describe_model(model)); }),
           "The model's description (stochtex info --json): method, parameters, array sizes.")
-      .def("render", &render_model, py::arg("width"), py::arg("height"),
+      .def("render", method(&render_model), py::arg("width"), py::arg("height"),
            py::arg("origin") = std::array<double, 2>{0.0, 0.0}, py::arg("scale") = 1.0,
            py::arg("seed") = 0, py::arg("threads") = 0,
            py::arg("offset") = std::array<std::int64_t, 2>{0, 0}, py::arg("progress") = py::none(),
            "A height x width x channels float32 image: pixel (i, j) samples origin + scale * "
            "(offset + (i, j) + 1/2), so a chunk rendered with offset equals the same pixels of "
            "the whole render, bit for bit.")
-      .def("evaluate", &evaluate_model, py::arg("points"), py::arg("footprints") = py::none(),
-           py::arg("seed") = 0,
+      .def("evaluate", method(&evaluate_model), py::arg("points"),
+           py::arg("footprints") = py::none(), py::arg("seed") = 0,
            "The model at N positions (Nx2, exemplar pixels), with optional Nx2x2 footprints "
            "(dpdx, dpdy): an N x channels float32 array.")
-      .def(
-          "save",
-          [](const Model& model, const std::filesystem::path& path) { save_model(model, path); },
-          py::arg("path"))
-      .def("__repr__",
-           [](const Model& model) {
-             return "<stochtex.Model " + std::string(model.method()) + ", " +
-                    std::to_string(model.channels()) + " channels>";
-           })
-      .def(py::pickle(&model_bytes, &model_from_bytes))
+      .def("save", method(+[](const Model& model, const std::filesystem::path& path) {
+             save_model(model, path);
+           }),
+           py::arg("path"))
+      .def("__repr__", &model_repr)
+      .def(py::pickle(method(&model_bytes), &model_from_bytes))
       .def("__reduce__", &reduce_model);
 
   m.def("analyze", &analyze_array, py::arg("array"), py::arg("method"), py::arg("seed") = 0,

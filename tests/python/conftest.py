@@ -43,10 +43,11 @@ def cli():
 
 def run_python(code):
     """`code` run by a fresh interpreter with this one's environment and the helpers here, its
-    stdout and stderr captured: a crash there fails a test here instead of killing pytest."""
+    stdout and stderr captured: a crash there fails a test here (with the Python stack of the
+    crash, faulthandler's) instead of killing pytest."""
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [os.path.dirname(__file__)] + os.environ.get("PYTHONPATH", "").split(os.pathsep)))
-    return subprocess.run([sys.executable, "-c", textwrap.dedent(code)], capture_output=True,
+    return subprocess.run([sys.executable, "-X", "faulthandler", "-c", textwrap.dedent(code)], capture_output=True,
                           text=True, env=env, timeout=120)
 
 

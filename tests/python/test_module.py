@@ -166,6 +166,54 @@ def test_pickle_of_every_protocol_and_copies_are_the_same_model(texton_model, tm
     assert result.returncode == 0, result.stderr
 
 
+def test_uninitialised_objects_raise_instead_of_crashing(texton_model, tmp_path):
+    # Model.__new__(Model) is a Model without a model (unpickling makes one, then __setstate__
+    # fills it): its methods read memory that holds no model. Every public method and property of
+    # every class the module exports is called on one, in another interpreter; a new method needs
+    # its sample arguments here.
+    (tmp_path / "state").write_bytes(texton_model.__getstate__())
+    result = run_python(f"""
+        import inspect, numpy, stochtex, stochtex._stochtex as module
+        arguments = {{"render": (4, 4), "render_maps": (4, 4), "evaluate": (numpy.zeros((1, 2)),),
+                     "split": (numpy.zeros((4, 4, 3), numpy.float32),),
+                     "save": ({str(tmp_path / "never.stx")!r},), "__getstate__": (),
+                     "__reduce__": (), "__reduce_ex__": (2,)}}
+        classes = [c for c in vars(module).values() if inspect.isclass(c)]
+        assert classes == [stochtex.Model], classes
+        class Subclass(stochtex.Model):
+            pass
+        for cls in classes + [Subclass]:
+            empty = cls.__new__(cls)
+            assert "not initialised" in repr(empty), repr(empty)
+            names = [n for n in dir(cls) if not n.startswith("_")]
+            names += ["__getstate__", "__reduce__", "__reduce_ex__"]
+            for name in names:
+                member = inspect.getattr_static(cls, name)
+                try:
+                    if isinstance(member, property):
+                        getattr(empty, name)
+                    else:
+                        assert name in arguments, "give " + name + " sample arguments"
+                        getattr(empty, name)(*arguments[name])
+                except RuntimeError as e:
+                    assert "not initialised" in str(e), (name, e)
+                else:
+                    raise AssertionError(name + " of an empty " + cls.__name__ + " returned")
+        try:
+            stochtex.Model.render("not a model", 4, 4)
+        except TypeError as e:
+            assert "stochtex.Model" in str(e), e
+        else:
+            raise AssertionError("Model.render of a str returned")
+        # What unpickling does: __setstate__ makes the empty model whole.
+        empty = stochtex.Model.__new__(stochtex.Model)
+        with open({str(tmp_path / "state")!r}, "rb") as state:
+            empty.__setstate__(state.read())
+        assert empty.channels == 3
+        """)
+    assert result.returncode == 0, result.stderr
+
+
 def test_info_methods_compare_gaussian(exemplar, texton_model):
     info = texton_model.info
     assert info["method"] == "texton"
