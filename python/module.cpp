@@ -52,6 +52,12 @@ std::function<void(double)> progress_hook(const py::object& callback) {
   };
 }
 
+// A double as the shortest text that reads back as it.
+std::string number_text(double value) {
+  std::array<char, 32> buffer{};
+  return {buffer.data(), std::to_chars(buffer.data(), buffer.data() + buffer.size(), value).ptr};
+}
+
 // Keyword parameters as the CLI's -p values: numbers (written exactly, shortest round trip) or a
 // choice's name.
 std::map<std::string, std::string, std::less<>> text_params(const py::kwargs& params) {
@@ -61,10 +67,7 @@ std::map<std::string, std::string, std::less<>> text_params(const py::kwargs& pa
     if (py::isinstance<py::str>(value)) {
       text[name] = value.cast<std::string>();
     } else if (py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)) {
-      std::array<char, 32> buffer{};
-      const auto end =
-          std::to_chars(buffer.data(), buffer.data() + buffer.size(), value.cast<double>()).ptr;
-      text[name] = std::string(buffer.data(), end);
+      text[name] = number_text(value.cast<double>());
     } else {
       throw py::type_error("parameter " + name + " must be a number or a choice's name, not " +
                            py::str(py::type::of(value).attr("__name__")).cast<std::string>());
@@ -157,15 +160,30 @@ struct RenderJob {
   RenderOptions options;
 };
 
-// A render request checked as the CLI checks it: sizes, threads, positions and the memory budget,
-// within which threads=0 takes as many cores as fit (renderer::budgeted_threads, docs/design.md
-// §9; a larger image is rendered in pieces with offset, or as a dask array, whose chunks each
-// stay within it).
+// The width and height of an image held in memory: refused, as `stochtex render` and `stochtex
+// gaussian` refuse them, beyond renderer::fits_in_memory; `after` ends the sentence.
+void check_in_memory_size(int width, int height, const std::string& what,
+                          const std::string& after) {
+  if (width < 1 || height < 1 || !renderer::fits_in_memory(width, height))
+    throw py::value_error(what + "'s width and height must each be 1 to " +
+                          std::to_string(renderer::kMaxInMemorySide) + ", and at most " +
+                          std::to_string(renderer::kMaxInMemoryPixels) + " pixels together, not " +
+                          std::to_string(width) + "x" + std::to_string(height) + after);
+}
+
+// A render request checked as `stochtex render` checks it: sizes, scale, threads, positions and
+// the memory budget, within which threads=0 takes as many cores as fit
+// (renderer::budgeted_threads, docs/design.md §9; a larger image is rendered in pieces with
+// offset, or as a dask array, whose chunks each stay within it).
 RenderJob checked_render(int width, int height, std::array<double, 2> origin, double scale,
                          int threads, std::array<std::int64_t, 2> offset) {
-  if (width < 1 || height < 1 || width > (1 << 16) || height > (1 << 16))
-    throw py::value_error("render's width and height must be between 1 and 65536, not " +
-                          std::to_string(width) + "x" + std::to_string(height));
+  check_in_memory_size(
+      width, height, "render",
+      " (render a larger image in pieces with offset, or with stochtex.dask.render)");
+  if (!(scale >= renderer::kMinScale && scale <= renderer::kMaxScale))
+    throw py::value_error("scale must be " + number_text(renderer::kMinScale) + " to " +
+                          number_text(renderer::kMaxScale) +
+                          " exemplar pixels per output pixel, not " + number_text(scale));
   if (threads < 0 || threads > kMaxThreads)
     throw py::value_error("threads must be 0 (all) to " + std::to_string(kMaxThreads));
   RenderJob job;
@@ -402,8 +420,7 @@ PYBIND11_MODULE(_stochtex, m) {
   m.def(
       "gaussian",
       [](const py::array& exemplar, int width, int height, std::uint32_t seed) {
-        if (width < 1 || height < 1 || width > (1 << 14) || height > (1 << 14))
-          throw py::value_error("gaussian's width and height must be between 1 and 16384");
+        check_in_memory_size(width, height, "gaussian", "");
         const ImageF image = exemplar_from_array(exemplar, "the exemplar array");
         const ImageF result = [&] {
           py::gil_scoped_release release;

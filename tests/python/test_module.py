@@ -127,9 +127,36 @@ def test_render_arguments_are_checked(texton_model):
         texton_model.render(4, 4, scale=float("nan"))
     with pytest.raises(ValueError, match="threads"):
         texton_model.render(4, 4, threads=-1)
-    # 24 bytes a pixel: 40000x40000 needs about 38 GB, more than the 2 GiB budget.
+    # More pixels than `stochtex render` holds in memory: rendered in pieces instead.
     with pytest.raises(ValueError, match="stochtex.dask.render"):
         texton_model.render(40000, 40000)
+
+
+def test_render_refuses_what_stochtex_render_refuses(texton_model, cli, tmp_path):
+    # scale 0, -1 and 1e-300 were rendered, and sides beyond what the CLI holds in memory.
+    texton_model.save(tmp_path / "model.stx")
+
+    def cli_render(width, height, scale):
+        return subprocess.run([cli, "render", str(tmp_path / "model.stx"), "-o",
+                               str(tmp_path / "render.pfm"), "--size", f"{width}x{height}",
+                               f"--scale={scale}"], capture_output=True).returncode
+
+    for scale in [0, -1, 1e-300, 9e-7, 1.1e6, float("nan"), float("inf")]:
+        for render in (texton_model.render, texton_model.render_maps):
+            with pytest.raises(ValueError, match="scale"):
+                render(2, 2, scale=scale)
+        assert cli_render(2, 2, scale) != 0, scale
+    for scale in [1e-6, 1e6]:
+        assert texton_model.render(2, 2, scale=scale).shape == (2, 2, 3)
+        assert cli_render(2, 2, scale) == 0, scale
+    with pytest.raises(ValueError, match="32768"):
+        texton_model.render(32769, 1)
+    assert cli_render(32769, 1, 1) != 0
+    # The Gaussian version takes the sizes of `stochtex gaussian`: the same rule.
+    exemplar = smooth_noise(8, 8, 1, 3)
+    assert stochtex.gaussian(exemplar, 20000, 1).shape == (1, 20000, 1)
+    with pytest.raises(ValueError, match="32768"):
+        stochtex.gaussian(exemplar, 32769, 1)
 
 
 def test_save_load_and_pickle(texton_model, tmp_path):
