@@ -28,7 +28,7 @@ void copy_pixels(const py::array& array, ImageF& image, float range) {
 
 }  // namespace
 
-ImageF image_from_array(const py::array& array, const std::string& what, int max_channels) {
+ImageShape image_shape(const py::array& array, const std::string& what, int max_channels) {
   if (array.ndim() != 2 && array.ndim() != 3)
     throw py::value_error(what + " must be an HxW or HxWxC array, not one of " +
                           std::to_string(array.ndim()) + " dimensions");
@@ -45,17 +45,24 @@ ImageF image_from_array(const py::array& array, const std::string& what, int max
     throw py::value_error(what + " is " + std::to_string(array.shape(1)) + "x" +
                           std::to_string(array.shape(0)) + " pixels, more than the " +
                           std::to_string(max_pixels) + " an image may have; use a smaller one");
-  ImageF image(width, height, channels);
-  if (py::isinstance<py::array_t<std::uint8_t>>(array))
-    copy_pixels<std::uint8_t>(array, image, 255.0f);
-  else if (py::isinstance<py::array_t<std::uint16_t>>(array))
-    copy_pixels<std::uint16_t>(array, image, 65535.0f);
-  else if (py::isinstance<py::array_t<float>>(array))
-    copy_pixels<float>(array, image, 1.0f);
-  else
+  return {width, height, channels};
+}
+
+ImageF image_from_array(const py::array& array, const std::string& what, int max_channels) {
+  const ImageShape shape = image_shape(array, what, max_channels);
+  const bool bytes = py::isinstance<py::array_t<std::uint8_t>>(array);
+  const bool words = py::isinstance<py::array_t<std::uint16_t>>(array);
+  if (!bytes && !words && !py::isinstance<py::array_t<float>>(array))
     throw py::type_error(what + " must be a uint8, uint16 or float32 array, not " +
                          py::str(array.dtype()).cast<std::string>() +
                          " (convert it with .astype(numpy.float32))");
+  ImageF image(shape.width, shape.height, shape.channels);
+  if (bytes)
+    copy_pixels<std::uint8_t>(array, image, 255.0f);
+  else if (words)
+    copy_pixels<std::uint16_t>(array, image, 65535.0f);
+  else
+    copy_pixels<float>(array, image, 1.0f);
   return image;
 }
 

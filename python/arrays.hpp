@@ -11,9 +11,20 @@
 
 namespace stochtex::python {
 
-// An HxW or HxWxC array of uint8 (/255), uint16 (/65535) or float32, any strides, as an image;
-// `what` names it in the error sentences. Throws TypeError for another dtype, ValueError for
-// another number of dimensions, more than `max_channels` channels or an empty array.
+// The size of an HxW or HxWxC array as an image, before any copy (a broadcast view claims any
+// size without its memory): ValueError for another number of dimensions, more than
+// `max_channels` channels, an empty array or more pixels than an image read from a file may have
+// (ImageReadLimits); `what` names it in the error sentences.
+struct ImageShape {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+};
+ImageShape image_shape(const pybind11::array& array, const std::string& what,
+                       int max_channels = kMaxImageChannels);
+
+// An HxW or HxWxC array of uint8 (/255), uint16 (/65535) or float32, any strides, as an image:
+// image_shape's checks, then TypeError for another dtype.
 ImageF image_from_array(const pybind11::array& array, const std::string& what,
                         int max_channels = kMaxImageChannels);
 

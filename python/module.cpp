@@ -20,6 +20,7 @@
 #include "arrays.hpp"
 #include "core/memory_budget.hpp"
 #include "model/map_layout.hpp"
+#include "registry.hpp"
 #include "renderer/plan.hpp"
 #include "report/compare.hpp"
 #include "stochtex/material.hpp"
@@ -91,6 +92,8 @@ py::array_t<float> to_array(const ImageF& image) {
 Model analyze_array(const py::array& array, const std::string& method, std::uint32_t seed,
                     const py::object& progress, const py::kwargs& params) {
   const ParamValues values = resolve_params(method, text_params(params));
+  const ImageShape shape = image_shape(array, "the exemplar array");
+  check_analysis_request(method, shape.width, shape.height, shape.channels, "the exemplar array");
   const ImageF exemplar = image_from_array(array, "the exemplar array");
   const auto hook = progress_hook(progress);
   py::gil_scoped_release release;
@@ -226,25 +229,38 @@ py::array_t<float> render_model(const Model& model, int width, int height,
   return output.array;
 }
 
-py::array_t<float> evaluate_model(const Model& model, const py::array_t<double>& points,
-                                  const py::object& footprints, std::uint32_t seed) {
-  const auto rows = points.ndim() == 2 ? points.shape(0) : 0;
-  if (points.ndim() != 2 || points.shape(1) != 2)
+// evaluate of any array-like points (and footprints), their shapes and the memory budget checked
+// before anything proportional to them is copied or converted.
+py::array_t<float> evaluate_model(const Model& model, const py::object& points_given,
+                                  const py::object& footprints_given, std::uint32_t seed) {
+  const py::array points = py::array::ensure(points_given);
+  if (!points || points.ndim() != 2 || points.shape(1) != 2)
     throw py::value_error("points must be an Nx2 array of positions");
+  const py::ssize_t rows = points.shape(0);
+  const bool filtered = !footprints_given.is_none();
+  const py::array footprints = filtered ? py::array::ensure(footprints_given) : py::array();
+  if (filtered && (!footprints || footprints.ndim() != 3 || footprints.shape(0) != rows ||
+                   footprints.shape(1) != 2 || footprints.shape(2) != 2))
+    throw py::value_error("footprints must be an Nx2x2 array (dpdx, dpdy of each point)");
+  const int channels = model.channels();
   const auto count = static_cast<std::size_t>(rows);
+  check_memory_budget(evaluate_peak_bytes(count, channels),
+                      "evaluating " + std::to_string(count) + " points",
+                      "evaluate fewer at a time");
+  const auto as_doubles = [](const py::array& array, const char* what) {
+    auto doubles = py::array_t<double, py::array::forcecast>::ensure(array);
+    if (!doubles) throw py::type_error(std::string(what) + " must be an array of numbers");
+    return doubles;
+  };
   std::vector<Vec2d> positions(count);
-  const auto p = points.unchecked<2>();
+  const auto p = as_doubles(points, "points").unchecked<2>();
   for (std::size_t i = 0; i < count; ++i) positions[i] = {p(i, 0), p(i, 1)};
   std::vector<Footprint> areas;
-  if (!footprints.is_none()) {
-    const auto f = py::array_t<double, py::array::forcecast>::ensure(footprints);
-    if (!f || f.ndim() != 3 || f.shape(0) != rows || f.shape(1) != 2 || f.shape(2) != 2)
-      throw py::value_error("footprints must be an Nx2x2 array (dpdx, dpdy of each point)");
-    const auto v = f.unchecked<3>();
+  if (filtered) {
+    const auto v = as_doubles(footprints, "footprints").unchecked<3>();
     for (std::size_t i = 0; i < count; ++i)
       areas.push_back({{v(i, 0, 0), v(i, 0, 1)}, {v(i, 1, 0), v(i, 1, 1)}});
   }
-  const int channels = model.channels();
   py::array_t<float> values({rows, static_cast<py::ssize_t>(channels)});
   const ImageView<float> out{values.mutable_data(), 1, static_cast<int>(rows), channels, channels};
   py::gil_scoped_release release;
@@ -388,7 +404,6 @@ PYBIND11_MODULE(_stochtex, m) {
   m.def(
       "compare",
       [](const py::array& exemplar, const py::object& images) {
-        const ImageF reference = exemplar_from_array(exemplar, "the exemplar array");
         // One array, or a list of renders of one model with different seeds.
         std::vector<py::array> arrays;
         if (py::isinstance<py::array>(images))
@@ -400,18 +415,23 @@ PYBIND11_MODULE(_stochtex, m) {
           return arrays.size() == 1 ? std::string("the image array")
                                     : "image array " + std::to_string(i);
         };
-        std::vector<ImageF> syntheses;
-        for (std::size_t i = 0; i < arrays.size(); ++i)
-          syntheses.push_back(image_from_array(arrays[i], name(i)));
-        const std::string json = [&] {
+        // Every request checked before any copy; then one image in memory at a time, as
+        // `stochtex compare` reads them.
+        const ImageShape reference_shape = image_shape(exemplar, "the exemplar array");
+        for (std::size_t i = 0; i < arrays.size(); ++i) {
+          const ImageShape shape = image_shape(arrays[i], name(i));
+          check_compare_budget(reference_shape.width, reference_shape.height, shape.width,
+                               shape.height, shape.channels);
+        }
+        const ImageF reference = exemplar_from_array(exemplar, "the exemplar array");
+        Comparison comparison(reference.view());
+        for (std::size_t i = 0; i < arrays.size(); ++i) {
+          const ImageF synthesis = image_from_array(arrays[i], name(i));
           py::gil_scoped_release release;
-          Comparison comparison(reference.view());
-          for (std::size_t i = 0; i < syntheses.size(); ++i)
-            add_checked(comparison, reference.view(), "the exemplar array", syntheses[i].view(),
-                        name(i));
-          return comparison_json(comparison.report()).dump();
-        }();
-        return parse_json(json);
+          add_checked(comparison, reference.view(), "the exemplar array", synthesis.view(),
+                      name(i));
+        }
+        return parse_json(comparison_json(comparison.report()).dump());
       },
       py::arg("exemplar"), py::arg("image"),
       "The measures of `stochtex compare --json` for an image against its exemplar; a list of "
@@ -421,6 +441,13 @@ PYBIND11_MODULE(_stochtex, m) {
       "gaussian",
       [](const py::array& exemplar, int width, int height, std::uint32_t seed) {
         check_in_memory_size(width, height, "gaussian", "");
+        const ImageShape shape = image_shape(exemplar, "the exemplar array");
+        check_memory_budget(
+            gaussian_peak_bytes(width, height, shape.width, shape.height, shape.channels),
+            "the Gaussian version at " + std::to_string(width) + "x" + std::to_string(height) +
+                " of the " + std::to_string(shape.width) + "x" + std::to_string(shape.height) +
+                " exemplar array",
+            "ask for a smaller one or give a smaller exemplar");
         const ImageF image = exemplar_from_array(exemplar, "the exemplar array");
         const ImageF result = [&] {
           py::gil_scoped_release release;

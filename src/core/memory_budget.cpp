@@ -34,6 +34,11 @@ std::uint64_t gaussian_peak_bytes(int width, int height, int exemplar_width, int
          (24 + 8 * static_cast<std::uint64_t>(channels)) * pixels(exemplar_width, exemplar_height);
 }
 
+std::uint64_t evaluate_peak_bytes(std::uint64_t points, int channels) {
+  return kFixedPeakBytes +
+         points * (2 * 48 + 4 * static_cast<std::uint64_t>(std::max(channels, 0)));
+}
+
 std::uint64_t compare_peak_bytes(std::uint64_t exemplar_pixels, std::uint64_t image_pixels,
                                  int channels) {
   return kFixedPeakBytes +

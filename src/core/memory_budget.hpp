@@ -33,6 +33,11 @@ std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample
 std::uint64_t gaussian_peak_bytes(int width, int height, int exemplar_width = 0,
                                   int exemplar_height = 0, int channels = 0);
 
+// evaluate() of `points` positions into `channels` channels: kFixedPeakBytes, and a point's
+// position (16 bytes) and footprint (32 bytes) as the caller holds them and as evaluate takes them
+// (a Python array converted), and its values, 4 bytes a channel.
+std::uint64_t evaluate_peak_bytes(std::uint64_t points, int channels);
+
 // The measures of `compare` (metrics/metrics.hpp compare_images): kFixedPeakBytes plus 56 + 12 x
 // channels bytes a pixel of the exemplar and of the image together (spectra, the ADSN sample,
 // sorted projections). Measured peaks of `stochtex compare`: 56 (grey), 73 (RGB) and 82 (RGBA)

@@ -373,6 +373,18 @@ double histogram_error_floor(ImageView<const float> exemplar) {
       exemplar.sub(0, top_height, exemplar.width, exemplar.height - top_height));
 }
 
+void check_compare_budget(int exemplar_width, int exemplar_height, int width, int height,
+                          int channels) {
+  const auto pixels = [](int w, int h) {
+    return static_cast<std::uint64_t>(w) * static_cast<std::uint64_t>(h);
+  };
+  check_memory_budget(
+      compare_peak_bytes(pixels(exemplar_width, exemplar_height), pixels(width, height), channels),
+      "comparing a " + std::to_string(width) + "x" + std::to_string(height) + " image with a " +
+          std::to_string(exemplar_width) + "x" + std::to_string(exemplar_height) + " exemplar",
+      "compare crops of them");
+}
+
 Comparison::Comparison(ImageView<const float> exemplar, std::uint32_t seed)
     : exemplar_(exemplar), seed_(seed) {
   require_pixels(exemplar, "Comparison");
@@ -386,15 +398,8 @@ void Comparison::add(ImageView<const float> image) {
                                 "x" + std::to_string(image.height) + ", the first was " +
                                 std::to_string(width_) + "x" + std::to_string(height_) +
                                 "; compare renders of one size");
-  const auto pixels = [](ImageView<const float> v) {
-    return static_cast<std::uint64_t>(v.width) * static_cast<std::uint64_t>(v.height);
-  };
-  check_memory_budget(compare_peak_bytes(pixels(exemplar_), pixels(image), image.channels),
-                      "comparing a " + std::to_string(image.width) + "x" +
-                          std::to_string(image.height) + " image with a " +
-                          std::to_string(exemplar_.width) + "x" + std::to_string(exemplar_.height) +
-                          " exemplar",
-                      "compare crops of them");
+  check_compare_budget(exemplar_.width, exemplar_.height, image.width, image.height,
+                       image.channels);
   if (images_ == 0) {
     width_ = image.width;
     height_ = image.height;

@@ -154,6 +154,13 @@ class Comparison {
   std::vector<double> adsn_spectrum_sum_;
 };
 
+// Throws std::invalid_argument, one sentence, when comparing a width x height image of `channels`
+// channels with an exemplar_width x exemplar_height exemplar exceeds the memory budget
+// (compare_peak_bytes): Comparison::add checks each image with it, and a caller may before it
+// holds either (the Python module, before copying arrays).
+void check_compare_budget(int exemplar_width, int exemplar_height, int width, int height,
+                          int channels);
+
 // One image: Comparison(exemplar, seed) with the image added.
 ComparisonReport compare_images(ImageView<const float> exemplar, ImageView<const float> image,
                                 std::uint32_t seed = 1);

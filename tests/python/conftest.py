@@ -41,13 +41,19 @@ def cli():
     return path
 
 
-def run_python(code):
+def run_python(code, memory_limit=None):
     """`code` run by a fresh interpreter with this one's environment and the helpers here, its
     stdout and stderr captured: a crash there fails a test here (with the Python stack of the
-    crash, faulthandler's) instead of killing pytest."""
+    crash, faulthandler's) instead of killing pytest. memory_limit caps its address space, in
+    bytes, so that what allocates beyond it fails there (MemoryError) rather than swap here."""
+    code = textwrap.dedent(code)
+    if memory_limit:
+        code = ("import resource\n"
+                f"resource.setrlimit(resource.RLIMIT_AS, ({memory_limit}, {memory_limit}))\n"
+                + code)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [os.path.dirname(__file__)] + os.environ.get("PYTHONPATH", "").split(os.pathsep)))
-    return subprocess.run([sys.executable, "-X", "faulthandler", "-c", textwrap.dedent(code)], capture_output=True,
+    return subprocess.run([sys.executable, "-X", "faulthandler", "-c", code], capture_output=True,
                           text=True, env=env, timeout=120)
 
 

@@ -159,6 +159,46 @@ def test_render_refuses_what_stochtex_render_refuses(texton_model, cli, tmp_path
         stochtex.gaussian(exemplar, 32769, 1)
 
 
+def test_requests_beyond_the_memory_budget_are_refused_before_allocating(texton_model, tmp_path):
+    # Broadcast views: a few bytes of array that claim gigabytes (evaluate of 10^9 points
+    # allocated 16 GB). Each request is refused in another interpreter that may allocate 1 GiB.
+    texton_model.save(tmp_path / "model.stx")
+    result = run_python(f"""
+        import numpy, stochtex
+        from conftest import smooth_noise
+        model = stochtex.load({str(tmp_path / "model.stx")!r})
+        exemplar = smooth_noise(32, 40, 3, 7)
+        huge_row = numpy.broadcast_to(numpy.linspace(0, 1, 8192, dtype=numpy.float32), (8192, 8192))
+        requests = {{
+            "evaluate": lambda: model.evaluate(numpy.broadcast_to(numpy.zeros(2), (10**9, 2))),
+            "evaluate float32": lambda: model.evaluate(
+                numpy.broadcast_to(numpy.zeros(2, numpy.float32), (10**9, 2))),
+            "evaluate footprints": lambda: model.evaluate(
+                numpy.broadcast_to(numpy.zeros(2), (10**8, 2)),
+                numpy.broadcast_to(numpy.eye(2), (10**8, 2, 2))),
+            "gaussian of a large exemplar": lambda: stochtex.gaussian(huge_row, 64, 64),
+            "gaussian": lambda: stochtex.gaussian(exemplar, 8192, 8192),
+            "compare": lambda: stochtex.compare(exemplar, [numpy.broadcast_to(
+                exemplar[:1, :1], (8192, 8192, 3))] * 2),
+            "analyze": lambda: stochtex.analyze(numpy.broadcast_to(
+                numpy.float32(0.5), (8192, 8192, 4)), "gabor"),
+        }}
+        failures = []
+        for name, request in requests.items():
+            try:
+                request()
+            except ValueError as e:
+                if "more than the budget of 2 GiB" not in str(e):
+                    failures.append(name + ": " + str(e))
+            except Exception as e:
+                failures.append(name + ": " + type(e).__name__ + " " + str(e)[:300])
+            else:
+                failures.append(name + ": accepted")
+        assert not failures, "\\n".join(failures)
+        """, memory_limit=1 << 30)
+    assert result.returncode == 0, result.stderr
+
+
 def test_save_load_and_pickle(texton_model, tmp_path):
     path = tmp_path / "model.stx"
     texton_model.save(path)
