@@ -1,7 +1,10 @@
 #include "arrays.hpp"
 
 #include <cstdint>
+#include <memory>
+#include <utility>
 
+#include "core/memory_budget.hpp"
 #include "stochtex/io.hpp"
 
 namespace py = pybind11;
@@ -48,6 +51,14 @@ ImageShape image_shape(const py::array& array, const std::string& what, int max_
   return {width, height, channels};
 }
 
+void check_copies_budget(std::span<const ImageShape> shapes, const std::string& request) {
+  std::uint64_t bytes = kFixedPeakBytes;
+  for (const ImageShape& shape : shapes)
+    bytes += 4 * static_cast<std::uint64_t>(shape.width) *
+             static_cast<std::uint64_t>(shape.height) * static_cast<std::uint64_t>(shape.channels);
+  check_memory_budget(bytes, "copying " + request, "give smaller arrays");
+}
+
 ImageF image_from_array(const py::array& array, const std::string& what, int max_channels) {
   const ImageShape shape = image_shape(array, what, max_channels);
   const bool bytes = py::isinstance<py::array_t<std::uint8_t>>(array);
@@ -64,6 +75,15 @@ ImageF image_from_array(const py::array& array, const std::string& what, int max
   else
     copy_pixels<float>(array, image, 1.0f);
   return image;
+}
+
+py::array_t<float> to_array(ImageF&& image) {
+  auto owned = std::make_unique<ImageF>(std::move(image));
+  const ImageF& pixels = *owned;
+  const py::capsule base(owned.get(), [](void* pointer) { delete static_cast<ImageF*>(pointer); });
+  owned.release();
+  return py::array_t<float>({pixels.height(), pixels.width(), pixels.channels()},
+                            pixels.pixels().data(), base);
 }
 
 OutputArray output_array(int width, int height, int channels) {

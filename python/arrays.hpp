@@ -4,6 +4,7 @@
 
 #include <pybind11/numpy.h>
 
+#include <span>
 #include <string>
 
 #include "stochtex/image.hpp"
@@ -23,10 +24,18 @@ struct ImageShape {
 ImageShape image_shape(const pybind11::array& array, const std::string& what,
                        int max_channels = kMaxImageChannels);
 
+// Refuses (check_memory_budget) copying arrays of these shapes into images held at once, 4 bytes
+// a value with kFixedPeakBytes, beyond the memory budget: the inputs of a call that copies several
+// (`request` names them) before its own estimate can be made.
+void check_copies_budget(std::span<const ImageShape> shapes, const std::string& request);
+
 // An HxW or HxWxC array of uint8 (/255), uint16 (/65535) or float32, any strides, as an image:
 // image_shape's checks, then TypeError for another dtype.
 ImageF image_from_array(const pybind11::array& array, const std::string& what,
                         int max_channels = kMaxImageChannels);
+
+// The image as a float32 HxWxC array that owns its pixels (no copy).
+pybind11::array_t<float> to_array(ImageF&& image);
 
 // A new float32 HxWxC array and the image view that writes into it.
 struct OutputArray {

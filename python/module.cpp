@@ -22,6 +22,7 @@
 #include "model/map_layout.hpp"
 #include "registry.hpp"
 #include "renderer/plan.hpp"
+#include "renderer/render_file.hpp"
 #include "report/compare.hpp"
 #include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
@@ -83,12 +84,6 @@ ImageF exemplar_from_array(const py::array& array, const std::string& what) {
   return image;
 }
 
-py::array_t<float> to_array(const ImageF& image) {
-  OutputArray output = output_array(image.width(), image.height(), image.channels());
-  std::copy(image.pixels().begin(), image.pixels().end(), output.view.data);
-  return output.array;
-}
-
 Model analyze_array(const py::array& array, const std::string& method, std::uint32_t seed,
                     const py::object& progress, const py::kwargs& params) {
   const ParamValues values = resolve_params(method, text_params(params));
@@ -109,11 +104,17 @@ Model analyze_maps(const py::dict& arrays, const std::string& method, std::uint3
   if (normal_y != "up" && normal_y != "down")
     throw py::value_error("normal_y must be 'up' or 'down', not '" + normal_y + "'");
   std::vector<std::string> names;
-  std::vector<ImageF> images;
+  std::vector<py::array> given;
+  std::vector<ImageShape> shapes;
   for (const auto& [key, value] : arrays) {
     names.push_back(key.cast<std::string>());
-    images.push_back(image_from_array(value.cast<py::array>(), "the map '" + names.back() + "'"));
+    given.push_back(value.cast<py::array>());
+    shapes.push_back(image_shape(given.back(), "the map '" + names.back() + "'"));
   }
+  check_copies_budget(shapes, "the maps' arrays");
+  std::vector<ImageF> images;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    images.push_back(image_from_array(given[i], "the map '" + names[i] + "'"));
   std::vector<MaterialMap> maps;
   for (std::size_t i = 0; i < names.size(); ++i) {
     std::optional<MapKind> kind;
@@ -147,13 +148,18 @@ py::list map_list(const Model& model) {
 }
 
 py::dict split_image(const Model& model, const py::array& image) {
-  const ImageF rendered = image_from_array(image, "the image array", kMaxChannels);
-  if (rendered.channels() != model.channels())
-    throw py::value_error("the image has " + std::to_string(rendered.channels()) +
+  const ImageShape shape = image_shape(image, "the image array", kMaxChannels);
+  if (shape.channels != model.channels())
+    throw py::value_error("the image has " + std::to_string(shape.channels) +
                           " channels and the model " + std::to_string(model.channels()));
+  check_memory_budget(renderer::maps_peak_bytes(model, shape.width, shape.height, false),
+                      "splitting a " + std::to_string(shape.width) + "x" +
+                          std::to_string(shape.height) + " image into the model's maps",
+                      "split it in pieces");
+  const ImageF rendered = image_from_array(image, "the image array", kMaxChannels);
   py::dict maps;
-  for (const auto& [name, map] : split_maps(model, rendered.view()))
-    maps[py::str(name)] = to_array(map);
+  for (auto& [name, map] : split_maps(model, rendered.view()))
+    maps[py::str(name)] = to_array(std::move(map));
   return maps;
 }
 
@@ -205,6 +211,10 @@ py::dict render_material(const Model& model, int width, int height, std::array<d
                          double scale, std::uint32_t seed, int threads,
                          std::array<std::int64_t, 2> offset) {
   const RenderJob job = checked_render(width, height, origin, scale, threads, offset);
+  check_memory_budget(
+      renderer::maps_peak_bytes(model, width, height, false),
+      "rendering the maps of " + std::to_string(width) + "x" + std::to_string(height) + " pixels",
+      "render it in pieces with offset, or with stochtex.dask.render_maps");
   std::vector<NamedImage> maps;
   {
     py::gil_scoped_release release;
@@ -213,7 +223,7 @@ py::dict render_material(const Model& model, int width, int height, std::array<d
     });
   }
   py::dict result;
-  for (const auto& [name, map] : maps) result[py::str(name)] = to_array(map);
+  for (auto& [name, map] : maps) result[py::str(name)] = to_array(std::move(map));
   return result;
 }
 
@@ -449,11 +459,11 @@ PYBIND11_MODULE(_stochtex, m) {
                 " exemplar array",
             "ask for a smaller one or give a smaller exemplar");
         const ImageF image = exemplar_from_array(exemplar, "the exemplar array");
-        const ImageF result = [&] {
+        ImageF result = [&] {
           py::gil_scoped_release release;
           return gaussian_version(image.view(), width, height, seed);
         }();
-        return to_array(result);
+        return to_array(std::move(result));
       },
       py::arg("exemplar"), py::arg("width"), py::arg("height"), py::arg("seed") = 0,
       "The exemplar's Gaussian version (ADSN) at width x height, float32 HxWxC.");
@@ -480,6 +490,9 @@ PYBIND11_MODULE(_stochtex, m) {
       [](const py::array& a, const py::array& b, const py::object& mask, std::uint32_t seed,
          const py::kwargs& params) {
         const ParamValues values = resolve_params("texton_mix", text_params(params));
+        std::vector<ImageShape> shapes = {image_shape(a, "array a"), image_shape(b, "array b")};
+        if (!mask.is_none()) shapes.push_back(image_shape(mask, "the mask array"));
+        check_copies_budget(shapes, "the arrays to mix");
         const ImageF first = image_from_array(a, "array a");
         const ImageF second = image_from_array(b, "array b");
         const ImageF grey = mask.is_none() ? ImageF() : image_from_array(mask, "the mask array");

@@ -72,20 +72,17 @@ void check_map_outputs(const Model& model, const RenderPlan& plan, const std::st
     throw std::invalid_argument("'" + input + "' is a material of maps " + names +
                                 ": name the output with {map}, one file per map, e.g. -o "
                                 "out_{map}.png");
-  std::uint64_t bytes_per_pixel = 4 * static_cast<std::uint64_t>(model.channels());
   for (const MapInfo& map : model.maps()) {
     const std::string path = map_output(output, map.name);
     check_output_path(path, true, {input});
     check_output_channels(path, written_channels(map));
-    // The map cut from the render and its encoded copy, or the strip of every map's file.
-    bytes_per_pixel += (plan.streamed ? 8 : 6) * static_cast<std::uint64_t>(written_channels(map));
   }
   // In memory: the whole grid; streamed: one strip and its margin (stream_maps).
-  const std::uint64_t rows = plan.streamed ? kExrTileSide + 2 : plan.grid.height;
+  const int rows = plan.streamed ? kExrTileSide + 2 : plan.grid.height;
   check_memory_budget(
-      bytes_per_pixel * static_cast<std::uint64_t>(plan.grid.width + 2) * rows,
+      maps_peak_bytes(model, plan.grid.width, rows, plan.streamed),
       fmt::format("rendering the {} maps of a {}x{} material{}", model.maps().size(),
-                  plan.grid.width, plan.streamed ? static_cast<int>(rows) : plan.grid.height,
+                  plan.grid.width, plan.streamed ? rows : plan.grid.height,
                   plan.streamed ? " strip" : ""),
       "render a smaller --size, or --region pieces");
 }
@@ -178,6 +175,17 @@ void render_model(const Model& model, const RenderPlan& plan, const RenderReques
 }
 
 }  // namespace
+
+std::uint64_t maps_peak_bytes(const Model& model, int width, int rows, bool streamed) {
+  std::uint64_t bytes_per_pixel = 4 * static_cast<std::uint64_t>(model.channels());
+  const auto add = [&](int written) {
+    bytes_per_pixel += (streamed ? 8 : 6) * static_cast<std::uint64_t>(written);
+  };
+  if (model.maps().empty()) add(model.channels());
+  for (const MapInfo& map : model.maps()) add(written_channels(map));
+  return bytes_per_pixel * static_cast<std::uint64_t>(std::max(width, 0) + 2) *
+         static_cast<std::uint64_t>(std::max(rows, 0));
+}
 
 ImageF render_image(const Model& model, const Grid& grid, GridBackend& backend,
                     const std::function<void(double)>& progress) {

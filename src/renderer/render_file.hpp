@@ -3,6 +3,7 @@
 // large-renders.md, docs/materials.md): one image, held in memory or streamed strip by strip into
 // a tiled OpenEXR file, or a material's maps to one file each.
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -17,6 +18,13 @@ namespace stochtex::renderer {
 
 // The file of a material's map: `output` with each {map} replaced by the map's name.
 std::string map_output(std::string output, std::string_view name);
+
+// A material's maps of width x rows pixels rendered at once (split_maps; a model of one image as
+// its one map): the render, 4 bytes a channel, and each map cut from it with its encoded copy, 6
+// bytes a channel as written (a normal map's 3), or for a strip streamed into every map's file 8,
+// with a pixel of margin either side. `stochtex render` checks a material's maps with it, the
+// Python module Model.render_maps and Model.split.
+std::uint64_t maps_peak_bytes(const Model& model, int width, int rows, bool streamed);
 
 // The model's render of `grid` on `backend`, in memory; `progress` gets the fraction done.
 ImageF render_image(const Model& model, const Grid& grid, GridBackend& backend,

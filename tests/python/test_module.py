@@ -169,6 +169,11 @@ def test_requests_beyond_the_memory_budget_are_refused_before_allocating(texton_
         model = stochtex.load({str(tmp_path / "model.stx")!r})
         exemplar = smooth_noise(32, 40, 3, 7)
         huge_row = numpy.broadcast_to(numpy.linspace(0, 1, 8192, dtype=numpy.float32), (8192, 8192))
+        huge_rgba = numpy.broadcast_to(smooth_noise(1, 8192, 4, 1), (8192, 8192, 4))
+        material = stochtex.analyze_material(
+            {{"albedo": exemplar, "paint": exemplar, "roughness": exemplar[:, :, 0]}}, "lrp",
+            cosines=4)
+        assert material.channels == 7
         requests = {{
             "evaluate": lambda: model.evaluate(numpy.broadcast_to(numpy.zeros(2), (10**9, 2))),
             "evaluate float32": lambda: model.evaluate(
@@ -182,6 +187,12 @@ def test_requests_beyond_the_memory_budget_are_refused_before_allocating(texton_
                 exemplar[:1, :1], (8192, 8192, 3))] * 2),
             "analyze": lambda: stochtex.analyze(numpy.broadcast_to(
                 numpy.float32(0.5), (8192, 8192, 4)), "gabor"),
+            "analyze_material": lambda: stochtex.analyze_material(
+                {{f"map{{i}}": huge_row for i in range(12)}}, "lrp"),
+            "mix": lambda: stochtex.mix(huge_rgba, huge_rgba),
+            "split": lambda: material.split(
+                numpy.broadcast_to(numpy.float32(0.5), (8192, 8192, 7))),
+            "render_maps": lambda: material.render_maps(8192, 8192, threads=1),
         }}
         failures = []
         for name, request in requests.items():
