@@ -132,31 +132,39 @@ def test_render_arguments_are_checked(texton_model):
         texton_model.render(40000, 40000)
 
 
-def test_render_refuses_what_stochtex_render_refuses(texton_model, cli, tmp_path):
-    # scale 0, -1 and 1e-300 were rendered, and sides beyond what the CLI holds in memory.
-    texton_model.save(tmp_path / "model.stx")
+# Scales that `stochtex render --scale` refuses (0, -1 and 1e-300 were rendered in Python) and
+# takes; a side beyond what it holds in memory.
+BAD_SCALES = [0, -1, 1e-300, 9e-7, 1.1e6, float("nan"), float("inf")]
+GOOD_SCALES = [1e-6, 1e6]
 
-    def cli_render(width, height, scale):
-        return subprocess.run([cli, "render", str(tmp_path / "model.stx"), "-o",
-                               str(tmp_path / "render.pfm"), "--size", f"{width}x{height}",
-                               f"--scale={scale}"], capture_output=True).returncode
 
-    for scale in [0, -1, 1e-300, 9e-7, 1.1e6, float("nan"), float("inf")]:
+def test_render_refuses_what_stochtex_render_refuses(texton_model):
+    for scale in BAD_SCALES:
         for render in (texton_model.render, texton_model.render_maps):
             with pytest.raises(ValueError, match="scale"):
                 render(2, 2, scale=scale)
-        assert cli_render(2, 2, scale) != 0, scale
-    for scale in [1e-6, 1e6]:
+    for scale in GOOD_SCALES:
         assert texton_model.render(2, 2, scale=scale).shape == (2, 2, 3)
-        assert cli_render(2, 2, scale) == 0, scale
     with pytest.raises(ValueError, match="32768"):
         texton_model.render(32769, 1)
-    assert cli_render(32769, 1, 1) != 0
     # The Gaussian version takes the sizes of `stochtex gaussian`: the same rule.
     exemplar = smooth_noise(8, 8, 1, 3)
     assert stochtex.gaussian(exemplar, 20000, 1).shape == (1, 20000, 1)
     with pytest.raises(ValueError, match="32768"):
         stochtex.gaussian(exemplar, 32769, 1)
+
+
+def test_stochtex_render_refuses_the_same(texton_model, cli, tmp_path):
+    texton_model.save(tmp_path / "model.stx")
+
+    def cli_render(size, scale):
+        return subprocess.run([cli, "render", str(tmp_path / "model.stx"), "-o",
+                               str(tmp_path / "render.pfm"), "--size", size, f"--scale={scale}"],
+                              capture_output=True).returncode
+
+    assert [cli_render("2x2", scale) for scale in BAD_SCALES + GOOD_SCALES] == \
+        [2] * len(BAD_SCALES) + [0] * len(GOOD_SCALES)
+    assert cli_render("32769x1", 1) == 2
 
 
 def test_requests_beyond_the_memory_budget_are_refused_before_allocating(texton_model, tmp_path):
@@ -168,7 +176,8 @@ def test_requests_beyond_the_memory_budget_are_refused_before_allocating(texton_
         from conftest import smooth_noise
         model = stochtex.load({str(tmp_path / "model.stx")!r})
         exemplar = smooth_noise(32, 40, 3, 7)
-        huge_row = numpy.broadcast_to(numpy.linspace(0, 1, 8192, dtype=numpy.float32), (8192, 8192))
+        huge_row = numpy.broadcast_to(numpy.linspace(0, 1, 8192, dtype=numpy.float32),
+                                      (8192, 8192))
         huge_rgba = numpy.broadcast_to(smooth_noise(1, 8192, 4, 1), (8192, 8192, 4))
         material = stochtex.analyze_material(
             {{"albedo": exemplar, "paint": exemplar, "roughness": exemplar[:, :, 0]}}, "lrp",
@@ -231,9 +240,11 @@ def test_pickle_of_every_protocol_and_copies_are_the_same_model(texton_model, tm
     result = run_python(f"""
         import copy, pickle, numpy, stochtex
         model = stochtex.load({str(tmp_path / "model.stx")!r})
-        reduced = model.__reduce__()
-        copies = [pickle.loads(pickle.dumps(model, protocol))
-                  for protocol in range(pickle.HIGHEST_PROTOCOL + 1)]
+        function, arguments, state = model.__reduce__()
+        copies = [function(*arguments)]
+        copies[0].__setstate__(state)
+        copies += [pickle.loads(pickle.dumps(model, protocol))
+                   for protocol in range(pickle.HIGHEST_PROTOCOL + 1)]
         copies += [copy.copy(model), copy.deepcopy(model), copy.copy(copies[0])]
         image = model.render(9, 7, origin=(2, 3), seed=5)
         for twin in copies:
