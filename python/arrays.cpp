@@ -4,7 +4,6 @@
 #include <memory>
 #include <utility>
 
-#include "core/memory_budget.hpp"
 #include "stochtex/io.hpp"
 
 namespace py = pybind11;
@@ -49,14 +48,6 @@ ImageShape image_shape(const py::array& array, const std::string& what, int max_
                           std::to_string(array.shape(0)) + " pixels, more than the " +
                           std::to_string(max_pixels) + " an image may have; use a smaller one");
   return {width, height, channels};
-}
-
-void check_copies_budget(std::span<const ImageShape> shapes, const std::string& request) {
-  std::uint64_t bytes = kFixedPeakBytes;
-  for (const ImageShape& shape : shapes)
-    bytes += 4 * static_cast<std::uint64_t>(shape.width) *
-             static_cast<std::uint64_t>(shape.height) * static_cast<std::uint64_t>(shape.channels);
-  check_memory_budget(bytes, "copying " + request, "give smaller arrays");
 }
 
 ImageF image_from_array(const py::array& array, const std::string& what, int max_channels) {

@@ -4,7 +4,6 @@
 
 #include <pybind11/numpy.h>
 
-#include <span>
 #include <string>
 
 #include "stochtex/image.hpp"
@@ -23,11 +22,6 @@ struct ImageShape {
 };
 ImageShape image_shape(const pybind11::array& array, const std::string& what,
                        int max_channels = kMaxImageChannels);
-
-// Refuses (check_memory_budget) copying arrays of these shapes into images held at once, 4 bytes
-// a value with kFixedPeakBytes, beyond the memory budget: the inputs of a call that copies several
-// (`request` names them) before its own estimate can be made.
-void check_copies_budget(std::span<const ImageShape> shapes, const std::string& request);
 
 // An HxW or HxWxC array of uint8 (/255), uint16 (/65535) or float32, any strides, as an image:
 // image_shape's checks, then TypeError for another dtype.

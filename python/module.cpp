@@ -103,15 +103,16 @@ Model analyze_maps(const py::dict& arrays, const std::string& method, std::uint3
   const ParamValues values = resolve_params(method, text_params(params));
   if (normal_y != "up" && normal_y != "down")
     throw py::value_error("normal_y must be 'up' or 'down', not '" + normal_y + "'");
+  // The copies of the arrays held at once, as `stochtex analyze --map` reads the files.
   std::vector<std::string> names;
   std::vector<py::array> given;
-  std::vector<ImageShape> shapes;
+  HeldImages held;
   for (const auto& [key, value] : arrays) {
     names.push_back(key.cast<std::string>());
     given.push_back(value.cast<py::array>());
-    shapes.push_back(image_shape(given.back(), "the map '" + names.back() + "'"));
+    const ImageShape shape = image_shape(given.back(), "the map '" + names.back() + "'");
+    held.add(shape.width, shape.height, shape.channels, names.back() + " array");
   }
-  check_copies_budget(shapes, "the maps' arrays");
   std::vector<ImageF> images;
   for (std::size_t i = 0; i < names.size(); ++i)
     images.push_back(image_from_array(given[i], "the map '" + names[i] + "'"));
@@ -490,9 +491,15 @@ PYBIND11_MODULE(_stochtex, m) {
       [](const py::array& a, const py::array& b, const py::object& mask, std::uint32_t seed,
          const py::kwargs& params) {
         const ParamValues values = resolve_params("texton_mix", text_params(params));
-        std::vector<ImageShape> shapes = {image_shape(a, "array a"), image_shape(b, "array b")};
-        if (!mask.is_none()) shapes.push_back(image_shape(mask, "the mask array"));
-        check_copies_budget(shapes, "the arrays to mix");
+        // The copies of the arrays held at once, as `stochtex mix` holds its images.
+        HeldImages held;
+        const auto hold = [&](const py::array& array, const std::string& name) {
+          const ImageShape shape = image_shape(array, name);
+          held.add(shape.width, shape.height, shape.channels, name);
+        };
+        hold(a, "array a");
+        hold(b, "array b");
+        if (!mask.is_none()) hold(mask, "the mask array");
         const ImageF first = image_from_array(a, "array a");
         const ImageF second = image_from_array(b, "array b");
         const ImageF grey = mask.is_none() ? ImageF() : image_from_array(mask, "the mask array");

@@ -9,7 +9,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include "core/memory_budget.hpp"
 #include "io/image_io.hpp"
 #include "model/map_layout.hpp"
 
@@ -126,18 +125,6 @@ ImageF load_exemplar(const std::string& path,
   ImageF image = read_image(path, limits);
   validate_exemplar(image.view(), path);
   return image;
-}
-
-std::function<void(int width, int height, int channels)> HeldImages::check(
-    const std::string& path) {
-  return [this, path](int width, int height, int channels) {
-    bytes_ += std::uint64_t{4} * static_cast<std::uint64_t>(width) *
-              static_cast<std::uint64_t>(height) * static_cast<std::uint64_t>(channels);
-    check_memory_budget(kFixedPeakBytes + bytes_,
-                        "holding '" + path + "' (" + std::to_string(width) + "x" +
-                            std::to_string(height) + ") beside the other images",
-                        "crop or downscale the images");
-  };
 }
 
 }  // namespace stochtex::cli

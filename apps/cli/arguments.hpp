@@ -5,7 +5,6 @@
 // for files, stochtex::Error.
 
 #include <CLI/CLI.hpp>
-#include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
@@ -65,16 +64,5 @@ MapArgument parse_map_argument(const std::string& text);
 // ImageReadLimits) refuses, before the pixels are decoded, a size the command cannot afford.
 ImageF load_exemplar(const std::string& path,
                      std::function<void(int width, int height, int channels)> check_declared = {});
-
-// The images a command holds at once (mix's exemplars and mask, report's exemplars), within the
-// memory budget: check(path) is a check_declared that adds the image's declared pixels (as
-// floats) to the others' and refuses the sum beyond the budget.
-class HeldImages {
- public:
-  std::function<void(int width, int height, int channels)> check(const std::string& path);
-
- private:
-  std::uint64_t bytes_ = 0;
-};
 
 }  // namespace stochtex::cli

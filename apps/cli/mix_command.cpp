@@ -10,6 +10,7 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "core/memory_budget.hpp"
 #include "io/image_io.hpp"
 #include "progress.hpp"
 

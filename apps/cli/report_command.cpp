@@ -20,6 +20,7 @@
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
+#include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 #include "io/image_io.hpp"
 #include "report/measure_all.hpp"

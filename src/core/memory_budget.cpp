@@ -62,4 +62,18 @@ void check_memory_budget(std::uint64_t bytes, const std::string& request,
                               std::to_string(kMemoryBudgetBytes >> 30) + " GiB; " + remedy);
 }
 
+void HeldImages::add(int width, int height, int channels, const std::string& name) {
+  bytes_ += std::uint64_t{4} * static_cast<std::uint64_t>(width) *
+            static_cast<std::uint64_t>(height) * static_cast<std::uint64_t>(channels);
+  check_memory_budget(kFixedPeakBytes + bytes_,
+                      "holding '" + name + "' (" + std::to_string(width) + "x" +
+                          std::to_string(height) + ") beside the other images",
+                      "crop or downscale the images");
+}
+
+std::function<void(int width, int height, int channels)> HeldImages::check(
+    const std::string& name) {
+  return [this, name](int width, int height, int channels) { add(width, height, channels, name); };
+}
+
 }  // namespace stochtex

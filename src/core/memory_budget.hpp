@@ -5,6 +5,7 @@
 // the same budget: a model file holds at most kMaxModelArrayValues (model/model_file.hpp).
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 namespace stochtex {
@@ -58,5 +59,18 @@ std::uint64_t mix_peak_bytes(int width, int height, int channels, int steps, int
 // 2 GiB; <remedy>" when `bytes` exceed kMemoryBudgetBytes.
 void check_memory_budget(std::uint64_t bytes, const std::string& request,
                          const std::string& remedy);
+
+// The images a request holds at once, 4 bytes a value (mix's exemplars and mask, report's
+// exemplars, the arrays a Python call copies): add() counts one and refuses, with
+// check_memory_budget naming it, their sum with kFixedPeakBytes beyond the budget; check(name) is
+// add() as an ImageReadLimits::check_declared, called before a file's pixels are decoded.
+class HeldImages {
+ public:
+  void add(int width, int height, int channels, const std::string& name);
+  std::function<void(int width, int height, int channels)> check(const std::string& name);
+
+ private:
+  std::uint64_t bytes_ = 0;
+};
 
 }  // namespace stochtex
