@@ -24,6 +24,7 @@
 #include "renderer/plan.hpp"
 #include "renderer/render_file.hpp"
 #include "report/compare.hpp"
+#include "stochtex/io.hpp"
 #include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
 
@@ -185,8 +186,8 @@ void check_in_memory_size(int width, int height, const std::string& what,
 // the memory budget, within which threads=0 takes as many cores as fit
 // (renderer::budgeted_threads, docs/design.md §9; a larger image is rendered in pieces with
 // offset, or as a dask array, whose chunks each stay within it).
-RenderJob checked_render(int width, int height, std::array<double, 2> origin, double scale,
-                         int threads, std::array<std::int64_t, 2> offset) {
+RenderJob checked_render(int width, int height, int channels, std::array<double, 2> origin,
+                         double scale, int threads, std::array<std::int64_t, 2> offset) {
   check_in_memory_size(
       width, height, "render",
       " (render a larger image in pieces with offset, or with stochtex.dask.render)");
@@ -204,14 +205,15 @@ RenderJob checked_render(int width, int height, std::array<double, 2> origin, do
       [&](int) {
         return "rendering " + std::to_string(width) + "x" + std::to_string(height) + " pixels";
       },
-      "render it in pieces with offset, or with stochtex.dask.render");
+      "render it in pieces with offset, or with stochtex.dask.render", channels);
   return job;
 }
 
 py::dict render_material(const Model& model, int width, int height, std::array<double, 2> origin,
                          double scale, std::uint32_t seed, int threads,
                          std::array<std::int64_t, 2> offset) {
-  const RenderJob job = checked_render(width, height, origin, scale, threads, offset);
+  const RenderJob job =
+      checked_render(width, height, model.channels(), origin, scale, threads, offset);
   check_memory_budget(
       renderer::maps_peak_bytes(model, width, height, false),
       "rendering the maps of " + std::to_string(width) + "x" + std::to_string(height) + " pixels",
@@ -232,7 +234,7 @@ py::array_t<float> render_model(const Model& model, int width, int height,
                                 std::array<double, 2> origin, double scale, std::uint32_t seed,
                                 int threads, std::array<std::int64_t, 2> offset,
                                 const py::object& progress) {
-  RenderJob job = checked_render(width, height, origin, scale, threads, offset);
+  RenderJob job = checked_render(width, height, model.channels(), origin, scale, threads, offset);
   OutputArray output = output_array(width, height, model.channels());
   job.options.progress = progress_hook(progress);
   py::gil_scoped_release release;
@@ -409,6 +411,28 @@ PYBIND11_MODULE(_stochtex, m) {
         "'scalar'} where the name does not imply it; normal_y 'down' for DirectX normal maps.");
   m.def(
       "load", [](const std::filesystem::path& path) { return load_model(path); }, py::arg("path"));
+  m.def(
+      "read_image",
+      [](const std::filesystem::path& path) {
+        ImageF image = [&] {
+          py::gil_scoped_release release;
+          return read_image(path);
+        }();
+        return to_array(std::move(image));
+      },
+      py::arg("path"),
+      "The image file at path (PNG, OpenEXR or PFM) as `stochtex analyze` reads it: a float32 "
+      "HxWxC array, a PNG's values divided by 255 or 65535 as stored.");
+  m.def(
+      "write_image",
+      [](const std::filesystem::path& path, const py::array& image, int bit_depth) {
+        const ImageF copy = image_from_array(image, "the image array");
+        py::gil_scoped_release release;
+        write_image(path, copy.view(), bit_depth);
+      },
+      py::arg("path"), py::arg("image"), py::arg("bit_depth") = 8,
+      "Writes an HxW or HxWxC array as `stochtex render` writes an image: PNG (8 or 16 bits, "
+      "values clamped to 0..1), OpenEXR or PFM by the extension; never a partial file.");
   m.def(
       "methods", [] { return parse_json(methods_json()); },
       "Every method with its parameters: names, defaults, ranges, help, choices.");

@@ -6,7 +6,7 @@
 """
 
 from ._stochtex import (Model, analyze, analyze_material, compare, cpu_target, cpu_targets,
-                        gaussian, load, methods, mix, set_cpu_target)
+                        gaussian, load, methods, mix, read_image, set_cpu_target, write_image)
 
 __all__ = ["Model", "analyze", "analyze_material", "compare", "cpu_target", "cpu_targets",
-           "gaussian", "load", "methods", "mix", "set_cpu_target"]
+           "gaussian", "load", "methods", "mix", "read_image", "set_cpu_target", "write_image"]

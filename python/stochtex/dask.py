@@ -43,6 +43,13 @@ def _checked(model, shape, chunks, channels=None):
                                    dtype=numpy.float32)
 
 
+def _check_arguments(function, origin, scale, seed, threads):
+    """Refuses, as the graph is built, what every chunk would refuse when computed: `function`
+    (Model.render or Model.render_maps) of one pixel checks the origin, scale, seed and threads
+    by the rules of a whole render."""
+    function(1, 1, origin=origin, scale=scale, seed=seed, threads=threads)
+
+
 def _chunk_layer(name, function, model, token, chunks, origin, scale, seed, threads):
     """The graph layer `name` of one `function` call per chunk of the first two axes, keyed
     (name, i, j, 0), with the model as one node of its own."""
@@ -69,6 +76,7 @@ def render(model, shape, chunks, origin=(0, 0), scale=1.0, seed=0, threads=1):
     split. threads: render threads per chunk (1 suits a cluster of single-threaded workers).
     The model is one node of the graph, sent pickled once to each worker that needs it."""
     shape, chunks = _checked(model, shape, chunks)
+    _check_arguments(model.render, origin, scale, seed, threads)
     token = tokenize(model.__getstate__(), shape, chunks, origin, scale, seed)
     name = "stochtex-render-" + token
     layer = _chunk_layer(name, _render_chunk, model, token, chunks, origin, scale, seed, threads)
@@ -87,6 +95,7 @@ def render_maps(model, shape, chunks, origin=(0, 0), scale=1.0, seed=0, threads=
     shape, chunks = _checked(model, shape, chunks, channels=1)
     if not model.maps:
         raise ValueError("the model is of one image, not a material: use stochtex.dask.render")
+    _check_arguments(model.render_maps, origin, scale, seed, threads)
     token = tokenize(model.__getstate__(), shape, chunks, origin, scale, seed)
     name = "stochtex-render-maps-" + token
     layer = _chunk_layer(name, _render_maps_chunk, model, token, chunks, origin, scale, seed,

@@ -6,7 +6,8 @@
 
 namespace stochtex {
 
-std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample, int threads) {
+std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample, int threads,
+                                int channels) {
   const auto pixels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
   const auto tile_width = static_cast<std::uint64_t>(std::min(tile, width));
   const auto tile_height = static_cast<std::uint64_t>(std::min(tile, height));
@@ -15,7 +16,9 @@ std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample
   const std::uint64_t workers = std::min<std::uint64_t>(static_cast<std::uint64_t>(threads), tiles);
   const auto samples_per_pixel = static_cast<std::uint64_t>(supersample) * supersample;
   const std::uint64_t bytes_per_sample = supersample == 1 ? 48 : 32;
-  return 24 * pixels + workers * tile_width * tile_height * samples_per_pixel * bytes_per_sample;
+  const auto image_bytes = 6 * static_cast<std::uint64_t>(std::max(channels, 4));
+  return image_bytes * pixels +
+         workers * tile_width * tile_height * samples_per_pixel * bytes_per_sample;
 }
 
 std::uint64_t gaussian_peak_bytes(int width, int height, int exemplar_width, int exemplar_height,

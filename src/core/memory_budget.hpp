@@ -19,11 +19,13 @@ inline constexpr std::uint64_t kFixedPeakBytes = std::uint64_t{32} << 20;
 // --threads beyond this is refused: more threads than any machine has cores only costs memory.
 inline constexpr int kMaxThreads = 256;
 
-// A CPU render of a width x height image of at most 4 channels: the image and its encoded copy
-// (a 16-bit PNG's), 24 bytes a pixel, and on each of `threads` threads one tile's samples: a
-// position (16 bytes) and a footprint (32 bytes) each, or with supersampling a position and
-// 4 channel values (32 bytes). Threads beyond the number of tiles never start.
-std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample, int threads);
+// A CPU render of a width x height image of `channels` channels (a material's may have up to 16):
+// the image and its encoded copy (a 16-bit PNG's), 6 bytes a channel and at least 24 a pixel, and
+// on each of `threads` threads one tile's samples: a position (16 bytes) and a footprint
+// (32 bytes) each, or with supersampling a position and 4 channel values (32 bytes). Threads
+// beyond the number of tiles never start.
+std::uint64_t render_peak_bytes(int width, int height, int tile, int supersample, int threads,
+                                int channels = 4);
 
 // The Gaussian version (ADSN, spectral/adsn.cpp) at width x height of an exemplar of
 // exemplar_width x exemplar_height with `channels` channels: its FFT domain, a 7-smooth size of

@@ -108,9 +108,9 @@ RenderPlan plan_render(const RenderRequest& request, const std::string& output) 
 
 int budgeted_threads(int width, int rows, int tile, int supersample, int requested,
                      const std::function<std::string(int threads)>& request,
-                     const std::string& remedy) {
+                     const std::string& remedy, int channels) {
   const auto peak = [&](int threads) {
-    return render_peak_bytes(width, rows, tile, supersample, threads);
+    return render_peak_bytes(width, rows, tile, supersample, threads, channels);
   };
   int threads = resolve_thread_count(requested);
   if (requested == 0)

@@ -96,13 +96,13 @@ struct RenderPlan {
 // CPU render beyond the memory budget (budgeted_threads).
 RenderPlan plan_render(const RenderRequest& request, const std::string& output);
 
-// The threads of a CPU render that holds width x rows pixels at once (the image, or the strip a
-// streamed render holds) with `tile` and `supersample` (docs/design.md §9): `requested`, or for 0
-// as many of the machine's cores as fit in the memory budget, at least one. Refuses a render
-// whose peak with them is beyond the budget (check_memory_budget): `request(threads)` names the
-// render in the sentence and `remedy` says what to change.
+// The threads of a CPU render that holds width x rows pixels of `channels` channels at once (the
+// image, or the strip a streamed render holds) with `tile` and `supersample` (docs/design.md §9):
+// `requested`, or for 0 as many of the machine's cores as fit in the memory budget, at least one.
+// Refuses a render whose peak with them is beyond the budget (check_memory_budget):
+// `request(threads)` names the render in the sentence and `remedy` says what to change.
 int budgeted_threads(int width, int rows, int tile, int supersample, int requested,
                      const std::function<std::string(int threads)>& request,
-                     const std::string& remedy);
+                     const std::string& remedy, int channels = 4);
 
 }  // namespace stochtex::renderer

@@ -506,7 +506,7 @@ std::string StudioStore::render_png(const std::string& id, const RenderRequest& 
           return fmt::format("rendering {}x{} pixels on {} threads", request.width, request.height,
                              threads);
         },
-        "ask for a smaller one");
+        "ask for a smaller one", stored->model.channels());
   } catch (const std::invalid_argument& e) {
     throw StudioError(400, e.what());
   }

@@ -24,6 +24,10 @@ def test_chunks_equal_the_single_render(texton_model):
         stochtex.dask.render(texton_model, (70, 100, 4), chunks=25)
     with pytest.raises(TypeError, match="stochtex.Model"):
         stochtex.dask.render("model", (70, 100), chunks=25)
+    # What every chunk would refuse is refused as the graph is built, before any compute.
+    for scale in (0.0, -1.0, float("nan")):
+        with pytest.raises(ValueError, match="scale"):
+            stochtex.dask.render(texton_model, (70, 100), chunks=25, scale=scale)
 
 
 def test_zarr_round_trip(texton_model, tmp_path):

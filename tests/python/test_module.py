@@ -202,6 +202,7 @@ def test_requests_beyond_the_memory_budget_are_refused_before_allocating(texton_
             "split": lambda: material.split(
                 numpy.broadcast_to(numpy.float32(0.5), (8192, 8192, 7))),
             "render_maps": lambda: material.render_maps(8192, 8192, threads=1),
+            "render of 7 channels": lambda: material.render(8192, 8192, threads=1),
         }}
         failures = []
         for name, request in requests.items():
@@ -232,6 +233,21 @@ def test_save_load_and_pickle(texton_model, tmp_path):
     (tmp_path / "bad.stx").write_bytes(b"not a model")
     with pytest.raises(ValueError, match="bad.stx"):
         stochtex.load(tmp_path / "bad.stx")
+
+
+def test_images_are_read_and_written_as_the_cli_does(exemplar, tmp_path):
+    # 16-bit PNG and PFM hold these values exactly; 8-bit PNG to the nearest 1/255.
+    levels = numpy.round(exemplar * 65535.0).astype(numpy.float32) / 65535.0
+    stochtex.write_image(tmp_path / "image.png", levels, bit_depth=16)
+    assert numpy.array_equal(stochtex.read_image(tmp_path / "image.png"), levels)
+    stochtex.write_image(tmp_path / "image.pfm", exemplar)
+    assert numpy.array_equal(stochtex.read_image(tmp_path / "image.pfm"), exemplar)
+    stochtex.write_image(tmp_path / "image8.png", exemplar)
+    assert numpy.abs(stochtex.read_image(tmp_path / "image8.png") - exemplar).max() <= 0.5 / 255
+    with pytest.raises(OSError, match="missing.png"):
+        stochtex.read_image(tmp_path / "missing.png")
+    with pytest.raises(ValueError, match="extension"):
+        stochtex.write_image(tmp_path / "image.bmp", exemplar)
 
 
 def test_pickle_of_every_protocol_and_copies_are_the_same_model(texton_model, tmp_path):
