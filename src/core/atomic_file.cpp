@@ -88,27 +88,12 @@ void check_output_target(const fs::path& target) {
   if (!folder.empty() && !fs::is_directory(folder, error))
     throw Error(ErrorCode::io, "cannot write " + quoted(target) + ": the folder " + quoted(folder) +
                                    " does not exist; create it or choose another path");
-  const char* kind = nullptr;
-  switch (fs::symlink_status(target, error).type()) {
-    case fs::file_type::directory:
-      kind = "a folder";
-      break;
-    case fs::file_type::symlink:
-      kind = "a symbolic link";
-      break;
-    case fs::file_type::fifo:
-      kind = "a FIFO";
-      break;
-    case fs::file_type::block:
-    case fs::file_type::character:
-      kind = "a device";
-      break;
-    case fs::file_type::socket:
-      kind = "a socket";
-      break;
-    default:  // missing, a regular file, or not examinable (then the open says why)
-      check_not_an_input(target);
-      return;
+  struct stat status {};
+  // Missing or not examinable (then the open says why), or a regular file: an output may go there.
+  const char* kind = ::lstat(target.c_str(), &status) == 0 ? kind_of_file(status.st_mode) : nullptr;
+  if (kind == nullptr) {
+    check_not_an_input(target);
+    return;
   }
   throw Error(ErrorCode::io, "cannot write " + quoted(target) + ": it is " + kind +
                                  ", and an output only ever replaces a regular file; "
@@ -117,9 +102,7 @@ void check_output_target(const fs::path& target) {
 
 void check_output_is_not_input(const fs::path& output, const fs::path& input) {
   std::error_code error;
-  if (fs::equivalent(output, input, error))
-    throw std::invalid_argument("the output " + quoted(output) + " is the input file " +
-                                quoted(input) + "; write the output to another path");
+  if (fs::equivalent(output, input, error)) throw output_is_input(output, input);
 }
 
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {

@@ -32,13 +32,6 @@ std::atomic<bool> protecting{false};
 std::mutex read_files_mutex;
 std::vector<ReadFile> read_files;
 
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a folder";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "a device";
-}
-
 }  // namespace
 
 InputFile::InputFile(const fs::path& path, const char* what) : path_(path), what_(what) {
@@ -58,10 +51,10 @@ InputFile::InputFile(const fs::path& path, const char* what) : path_(path), what
     ::close(descriptor);
     throw Error(ErrorCode::io, cannot + errno_message(error));
   }
-  if (!S_ISREG(status.st_mode)) {
+  if (const char* kind = kind_of_file(status.st_mode)) {
     ::close(descriptor);
-    throw Error(ErrorCode::io, cannot + "it is " + kind_of(status.st_mode) + ", not " + what +
-                                   "; give a regular file");
+    throw Error(ErrorCode::io,
+                cannot + "it is " + kind + ", not " + what + "; give a regular file");
   }
   const int flags = ::fcntl(descriptor, F_GETFL);
   stream_ = flags < 0 || ::fcntl(descriptor, F_SETFL, flags & ~O_NONBLOCK) != 0
@@ -108,8 +101,7 @@ void check_not_an_input(const fs::path& target) {
   const std::lock_guard lock(read_files_mutex);
   for (const ReadFile& file : read_files)
     if (file.device == status.st_dev && file.inode == status.st_ino)
-      throw std::invalid_argument("the output " + quoted(target) + " is the input file " +
-                                  quoted(file.path) + "; write the output to another path");
+      throw output_is_input(target, file.path);
 }
 
 }  // namespace stochtex
