@@ -7,7 +7,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config ninja-build clang-format
-  libfftw3-dev libpng-dev libopenexr-dev libeigen3-dev
+  libfftw3-dev libpng-dev liblcms2-dev libopenexr-dev libeigen3-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev libhwy-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
