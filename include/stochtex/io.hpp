@@ -7,6 +7,13 @@
 // rounded), .exr (float32), .pfm (1 or 3 channels). Files are written to a temporary of a unique
 // name in the same folder, synced, then renamed, so a failure or a concurrent writer never leaves
 // a partial output; only a missing path or a regular file is replaced. 1, 2, 3 or 4 channels.
+// Colour on output (docs/design.md §14): `space` says what the image's values are. data (the
+// default) is written as it is, with no colour chunk. linear: a PNG's colour channels are encoded
+// with the sRGB transfer function before they are clamped and rounded, and the PNG gets an sRGB
+// chunk (with the gAMA and cHRM chunks the PNG specification recommends beside it for decoders
+// that do not know sRGB); OpenEXR and PFM get the values as they are. srgb: a PNG gets the values
+// as they are and the sRGB chunk; OpenEXR and PFM get the colour channels decoded to linear light.
+// Alpha is written as it is.
 // A file and a buffer go through the same decoder and encoder: decode_image of a file's bytes
 // gives read_image's image or error, and encode_image gives the bytes write_image writes.
 // Every failure throws stochtex::Error with one sentence naming the file (or the buffer, by the
@@ -20,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "stochtex/colour.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/image.hpp"
 
@@ -36,8 +44,9 @@ struct ImageReadLimits {
 enum class ImageFormat { png, exr, pfm };
 
 ImageF read_image(const std::filesystem::path& path, const ImageReadLimits& limits = {});
+// `space`: what the values of `image` are (above); data writes them as they are.
 void write_image(const std::filesystem::path& path, ImageView<const float> image,
-                 int png_bit_depth = 8);
+                 int png_bit_depth = 8, ColourSpace space = ColourSpace::data);
 
 // read_image of an image file's bytes held in memory. The messages call them `name`, written as
 // given (read_image's are the path in quotes): "the uploaded image is truncated...".
@@ -45,6 +54,7 @@ ImageF decode_image(std::span<const std::uint8_t> bytes, const std::string& name
                     const ImageReadLimits& limits = {});
 // The bytes write_image would write for a file of `format`.
 std::vector<std::uint8_t> encode_image(ImageView<const float> image, ImageFormat format,
-                                       int png_bit_depth = 8);
+                                       int png_bit_depth = 8,
+                                       ColourSpace space = ColourSpace::data);
 
 }  // namespace stochtex

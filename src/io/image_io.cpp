@@ -37,8 +37,10 @@
 #include "core/atomic_file.hpp"
 #include "core/file_message.hpp"
 #include "core/input_file.hpp"
+#include "core/srgb.hpp"
 #include "io/image_streams.hpp"
 #include "io/png_sample.hpp"
+#include "stochtex/colour.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
@@ -305,19 +307,27 @@ struct PngWriter {
   PngWriter& operator=(const PngWriter&) = delete;
 };
 
+// `srgb_chunk`: the file says its values are sRGB-encoded. png_set_sRGB_gAMA_and_cHRM writes the
+// sRGB chunk and, as the PNG specification recommends beside it, the gAMA (0.45455) and cHRM
+// (sRGB's primaries) chunks for decoders that do not know sRGB (73 bytes in all); stochtex's
+// reader takes sRGB first. Perceptual: the rendering intent of photographs.
 bool write_png_rows(PngWriter& writer, PngOutput& output, png_uint_32 width, png_uint_32 height,
-                    int color_type, int bit_depth, png_bytepp rows) {
+                    int color_type, int bit_depth, bool srgb_chunk, png_bytepp rows) {
   if (setjmp(png_jmpbuf(writer.png))) return false;
   png_set_write_fn(writer.png, &output, write_png_bytes, flush_png);
   png_set_IHDR(writer.png, writer.info, width, height, bit_depth, color_type, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  if (srgb_chunk) png_set_sRGB_gAMA_and_cHRM(writer.png, writer.info, PNG_sRGB_INTENT_PERCEPTUAL);
   png_write_info(writer.png, writer.info);
   png_write_image(writer.png, rows);
   png_write_end(writer.png, nullptr);
   return true;
 }
 
-void write_png(Imf::OStream& stream, ImageView<const float> image, int bit_depth) {
+// `space`: linear values are encoded with the sRGB transfer function (colour channels) before
+// they are rounded; linear and srgb images get the sRGB chunk; data is written as it is.
+void write_png(Imf::OStream& stream, ImageView<const float> image, int bit_depth,
+               ColourSpace space) {
   constexpr std::array<int, 4> color_types = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
                                               PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGBA};
   const std::size_t bytes_per_sample = bit_depth == 16 ? 2 : 1;
@@ -330,12 +340,17 @@ void write_png(Imf::OStream& stream, ImageView<const float> image, int bit_depth
     rows[y] = row;
     const float* values = image.row(y);
     for (std::size_t i = 0; i < static_cast<std::size_t>(image.width) * image.channels; ++i) {
+      const float value =
+          space == ColourSpace::linear &&
+                  is_colour_channel(static_cast<int>(i % image.channels), image.channels)
+              ? srgb_encode(values[i])
+              : values[i];
       if (bit_depth == 16) {
-        const unsigned sample = png_sample(values[i], 65535);
+        const unsigned sample = png_sample(value, 65535);
         row[2 * i] = static_cast<png_byte>(sample >> 8);
         row[2 * i + 1] = static_cast<png_byte>(sample & 0xff);
       } else {
-        row[i] = static_cast<png_byte>(png_sample(values[i], 255));
+        row[i] = static_cast<png_byte>(png_sample(value, 255));
       }
     }
   }
@@ -343,7 +358,7 @@ void write_png(Imf::OStream& stream, ImageView<const float> image, int bit_depth
   PngOutput output{stream, nullptr};
   if (!write_png_rows(writer, output, static_cast<png_uint_32>(image.width),
                       static_cast<png_uint_32>(image.height), color_types[image.channels - 1],
-                      bit_depth, rows.data())) {
+                      bit_depth, space != ColourSpace::data, rows.data())) {
     if (output.failure) std::rethrow_exception(output.failure);
     throw std::runtime_error(writer.error.text);
   }
@@ -544,6 +559,17 @@ ImageF read_exr(const Input& input, const ImageReadLimits& limits) {
   }
 }
 
+// An sRGB-encoded image's colour channels decoded to linear light, which the float formats hold.
+ImageF srgb_decoded(ImageView<const float> image) {
+  ImageF linear(image.width, image.height, image.channels);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < image.channels; ++c)
+        linear.at(x, y, c) = is_colour_channel(c, image.channels) ? srgb_decode(image.at(x, y, c))
+                                                                  : image.at(x, y, c);
+  return linear;
+}
+
 void write_exr(Imf::OStream& stream, ImageView<const float> image) {
   const auto& names = exr_written_channel_names(image.channels);
   Imf::Header header(image.width, image.height);
@@ -669,13 +695,26 @@ void write_pfm(Imf::OStream& stream, ImageView<const float> image) {
 // How many of an image's first bytes the rows' signatures look at.
 constexpr std::size_t kSignatureBytes = 8;
 
+// The float formats hold linear light: an srgb image is decoded before it is written.
+template <void (*write)(Imf::OStream&, ImageView<const float>)>
+void write_linear(Imf::OStream& stream, ImageView<const float> image, int, ColourSpace space) {
+  if (space == ColourSpace::srgb) {
+    const ImageF linear = srgb_decoded(image);
+    write(stream, linear.view());
+  } else {
+    write(stream, image);
+  }
+}
+
 struct Codec {
   ImageFormat format;
   const char* name;       // in messages: "PNG"
   const char* extension;  // what write_image writes the format for, in lower case: ".png"
   bool (*recognises)(std::span<const unsigned char> first_bytes);
   ImageF (*decode)(const Input& input, const ImageReadLimits& limits);
-  void (*encode)(Imf::OStream& stream, ImageView<const float> image, int png_bit_depth);
+  // `space`: see write_image.
+  void (*encode)(Imf::OStream& stream, ImageView<const float> image, int png_bit_depth,
+                 ColourSpace space);
 };
 
 const std::array<Codec, 3> kCodecs = {{
@@ -689,14 +728,12 @@ const std::array<Codec, 3> kCodecs = {{
        return first.size() >= 4 && first[0] == 0x76 && first[1] == 0x2f && first[2] == 0x31 &&
               first[3] == 0x01;
      },
-     read_exr,
-     [](Imf::OStream& stream, ImageView<const float> image, int) { write_exr(stream, image); }},
+     read_exr, write_linear<write_exr>},
     {ImageFormat::pfm, "PFM", ".pfm",
      [](std::span<const unsigned char> first) {
        return first.size() >= 2 && first[0] == 'P' && (first[1] == 'F' || first[1] == 'f');
      },
-     read_pfm,
-     [](Imf::OStream& stream, ImageView<const float> image, int) { write_pfm(stream, image); }},
+     read_pfm, write_linear<write_pfm>},
 }};
 
 // The rows' `field` that `keep` keeps, as "a, b or c".
@@ -793,7 +830,7 @@ namespace {
 
 // Checks what write_image checks, then encodes `image` into the temporary `open` gives.
 void write_image_to(const fs::path& path, ImageView<const float> image, int png_bit_depth,
-                    const std::function<AtomicFile&()>& open) {
+                    ColourSpace space, const std::function<AtomicFile&()>& open) {
   const std::string cannot = "cannot write " + quoted(path);
   check_image_shape(image, cannot);
   const Codec& codec = output_codec(path);
@@ -803,7 +840,7 @@ void write_image_to(const fs::path& path, ImageView<const float> image, int png_
   AtomicFile& file = open();
   try {
     FileOutputStream stream(file.stream(), file.temporary().c_str());
-    codec.encode(stream, image, png_bit_depth);
+    codec.encode(stream, image, png_bit_depth, space);
   } catch (const std::exception& e) {
     throw Error(ErrorCode::io, cannot + ": " + e.what());
   }
@@ -812,19 +849,22 @@ void write_image_to(const fs::path& path, ImageView<const float> image, int png_
 
 }  // namespace
 
-void write_image(const fs::path& path, ImageView<const float> image, int png_bit_depth) {
+void write_image(const fs::path& path, ImageView<const float> image, int png_bit_depth,
+                 ColourSpace space) {
   std::optional<AtomicFile> file;
-  write_image_to(path, image, png_bit_depth, [&]() -> AtomicFile& { return file.emplace(path); });
+  write_image_to(path, image, png_bit_depth, space,
+                 [&]() -> AtomicFile& { return file.emplace(path); });
   file->commit();
 }
 
 void write_image(AtomicFileSet& files, const fs::path& path, ImageView<const float> image,
-                 int png_bit_depth) {
-  write_image_to(path, image, png_bit_depth, [&]() -> AtomicFile& { return files.open(path); });
+                 int png_bit_depth, ColourSpace space) {
+  write_image_to(path, image, png_bit_depth, space,
+                 [&]() -> AtomicFile& { return files.open(path); });
 }
 
 std::vector<std::uint8_t> encode_image(ImageView<const float> image, ImageFormat format,
-                                       int png_bit_depth) {
+                                       int png_bit_depth, ColourSpace space) {
   const auto codec = std::find_if(kCodecs.begin(), kCodecs.end(), [&](const Codec& row) {
     return row.format == format && is_written(row);
   });
@@ -838,7 +878,7 @@ std::vector<std::uint8_t> encode_image(ImageView<const float> image, ImageFormat
 
   BufferOutputStream stream("the encoded image");
   try {
-    codec->encode(stream, image, png_bit_depth);
+    codec->encode(stream, image, png_bit_depth, space);
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {

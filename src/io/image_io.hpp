@@ -11,7 +11,8 @@ namespace stochtex {
 
 // write_image as one file of a multi-file output, committed with the rest of `files`.
 void write_image(AtomicFileSet& files, const std::filesystem::path& path,
-                 ImageView<const float> image, int png_bit_depth = 8);
+                 ImageView<const float> image, int png_bit_depth = 8,
+                 ColourSpace space = ColourSpace::data);
 
 // Checks, before any long work, that `path` can be an output: its folder exists, it is missing or
 // a regular file (core/atomic_file.hpp), it is none of the files `inputs` and, for an image

@@ -1,5 +1,5 @@
-// Image files: exact round trips, format detection by content, and one clear error for every bad
-// file (docs/design.md §6 and §9).
+// Image files: exact round trips, format detection by content, one clear error for every bad file
+// (docs/design.md §6 and §9), and the colour written (§14).
 
 #include "io/image_io.hpp"
 
@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "core/srgb.hpp"
+#include "stochtex/colour.hpp"
 #include "stochtex/error.hpp"
 #include "test_support.hpp"
 
@@ -628,6 +630,115 @@ TEST_F(ImageIoTest, BadWriteArgumentsAreInvalidArguments) {
   EXPECT_THROW(write_image(file("out.png"), image.view(), 12), std::invalid_argument);
   EXPECT_THROW(write_image(file("out.png"), ImageF().view()), std::invalid_argument);
   EXPECT_TRUE(folder_contents().empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Colour (include/stochtex/io.hpp, docs/design.md §14): the colour written for each ColourSpace.
+
+// The chunk types of a PNG, in order.
+std::vector<std::string> png_chunk_types(const Bytes& png) {
+  std::vector<std::string> types;
+  for (std::size_t at = 8; at + 12 <= png.size();) {
+    const std::uint32_t length = std::uint32_t{png[at]} << 24 | std::uint32_t{png[at + 1]} << 16 |
+                                 std::uint32_t{png[at + 2]} << 8 | png[at + 3];
+    types.emplace_back(png.begin() + static_cast<std::ptrdiff_t>(at + 4),
+                       png.begin() + static_cast<std::ptrdiff_t>(at + 8));
+    at += 12 + std::size_t{length};
+  }
+  return types;
+}
+
+bool has_chunk(const Bytes& png, const std::string& type) {
+  const std::vector<std::string> types = png_chunk_types(png);
+  return std::find(types.begin(), types.end(), type) != types.end();
+}
+
+// A small image whose samples are exact 8- or 16-bit values, covering dark and light ones.
+ImageF stored_values(int width, int height, int channels, unsigned maximum) {
+  ImageF image(width, height, channels);
+  unsigned k = 0;
+  for (float& value : image.pixels()) {
+    value =
+        static_cast<float>((k * 2654435761u >> 7) % (maximum + 1)) / static_cast<float>(maximum);
+    ++k;
+  }
+  return image;
+}
+
+TEST_F(ImageIoTest, DataIsWrittenAsItIsWithNoColourChunk) {
+  for (const int bit_depth : {8, 16}) {
+    for (int channels = 1; channels <= 4; ++channels) {
+      const ImageF image = stored_values(19, 7, channels, bit_depth == 8 ? 255 : 65535);
+      const fs::path path = file("data.png");
+      write_image(path, image.view(), bit_depth, ColourSpace::data);
+      const Bytes written = read_bytes(path);
+      write_image(path, image.view(), bit_depth);
+      EXPECT_EQ(read_bytes(path), written) << "data is the default";
+      for (const char* type : {"sRGB", "gAMA", "cHRM", "iCCP", "cICP"})
+        EXPECT_FALSE(has_chunk(written, type)) << type;
+      expect_identical(image, read_image(path));
+    }
+  }
+}
+
+// What each colour space writes, read back as stored (no ImageColour): the reader plays no part.
+TEST_F(ImageIoTest, EachColourSpaceIsWrittenAsItSays) {
+  ImageF image(11, 2, 4);
+  for (int x = 0; x < 11; ++x)
+    for (int y = 0; y < 2; ++y)
+      for (int c = 0; c < 4; ++c) image.at(x, y, c) = static_cast<float>(x + 11 * y + c) / 24.0f;
+  for (const int bit_depth : {8, 16}) {
+    const float step = bit_depth == 8 ? 1.0f / 255.0f : 1.0f / 65535.0f;
+    // srgb: the values as data writes them, and the sRGB chunk with gAMA and cHRM beside it.
+    const fs::path data = file("data.png");
+    const fs::path srgb = file("srgb.png");
+    write_image(data, image.view(), bit_depth);
+    write_image(srgb, image.view(), bit_depth, ColourSpace::srgb);
+    expect_identical(read_image(data), read_image(srgb));
+    const std::vector<std::string> chunks = png_chunk_types(read_bytes(srgb));
+    for (const char* type : {"sRGB", "gAMA", "cHRM"})
+      EXPECT_NE(std::find(chunks.begin(), chunks.end(), type), chunks.end()) << type;
+    // linear: colour channels encoded before they are rounded, alpha as it is.
+    const fs::path linear = file("linear.png");
+    write_image(linear, image.view(), bit_depth, ColourSpace::linear);
+    EXPECT_TRUE(has_chunk(read_bytes(linear), "sRGB"));
+    const ImageF read = read_image(linear);
+    for (int x = 0; x < 11; ++x)
+      for (int y = 0; y < 2; ++y)
+        for (int c = 0; c < 4; ++c) {
+          const float value = image.at(x, y, c);
+          ASSERT_NEAR(read.at(x, y, c), std::min(c < 3 ? srgb_encode(value) : value, 1.0f),
+                      0.5f * step + 1e-6f)
+              << bit_depth << "-bit (" << x << ", " << y << ") channel " << c;
+        }
+  }
+  // The float formats hold linear light: srgb values are decoded, alpha as it is; linear and data
+  // values are written as they are. The buffer holds the file's bytes.
+  for (const auto& [name, format] :
+       {std::pair{"out.exr", ImageFormat::exr}, std::pair{"out.pfm", ImageFormat::pfm}}) {
+    const ImageF rgb = make_image(
+        5, 3, 3, [](int x, int y, int c) { return static_cast<float>(x + 5 * y + 7 * c) / 30.0f; });
+    const ImageView<const float> written = format == ImageFormat::exr ? image.view() : rgb.view();
+    write_image(file(name), written, 8, ColourSpace::srgb);
+    const std::vector<std::uint8_t> encoded = encode_image(written, format, 8, ColourSpace::srgb);
+    EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), read_bytes(file(name))) << name;
+    const ImageF read = read_image(file(name));
+    for (int y = 0; y < written.height; ++y)
+      for (int x = 0; x < written.width; ++x)
+        for (int c = 0; c < written.channels; ++c)
+          ASSERT_EQ(read.at(x, y, c), is_colour_channel(c, written.channels)
+                                          ? srgb_decode(written.at(x, y, c))
+                                          : written.at(x, y, c))
+              << name << " (" << x << ", " << y << ") channel " << c;
+    for (const ColourSpace space : {ColourSpace::linear, ColourSpace::data}) {
+      write_image(file(name), written, 8, space);
+      const ImageF as_is = read_image(file(name));
+      for (int y = 0; y < written.height; ++y)
+        for (int x = 0; x < written.width; ++x)
+          for (int c = 0; c < written.channels; ++c)
+            ASSERT_EQ(as_is.at(x, y, c), written.at(x, y, c)) << name;
+    }
+  }
 }
 
 }  // namespace
