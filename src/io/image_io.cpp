@@ -6,6 +6,7 @@
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <lcms2_plugin.h>
 #include <openexr.h>
 #include <png.h>
 
@@ -21,6 +22,7 @@
 #include <csetjmp>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <functional>
@@ -30,7 +32,9 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <system_error>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -106,8 +110,21 @@ void check_fits_file(const std::string& name, std::int64_t width, std::int64_t h
 // calls setjmp below holds only trivially destructible locals, and the objects that own memory
 // live in its caller's frame, which the longjmp never leaves.
 
+// The colour chunks a PNG reader honours, in the order of precedence of the PNG specification
+// (3rd edition, §4.3): each of kPngColourChunks' names, at the index of its PngColourChunk.
+enum PngColourChunk { kCicp, kIccp, kSrgb, kGama, kPngColourChunkCount };
+constexpr std::array<const char*, kPngColourChunkCount> kPngColourChunks = {"cICP", "iCCP", "sRGB",
+                                                                            "gAMA"};
+// Each name with its article, as a message writes it.
+constexpr std::array<const char*, kPngColourChunkCount> kPngColourChunkPhrases = {
+    "a cICP chunk", "an iCCP chunk", "an sRGB chunk", "a gAMA chunk"};
+
 struct PngErrorMessage {
   char text[256] = {};
+  // libpng's last warning about each colour chunk ("iCCP: profile 'x': ..."), which says why it
+  // dropped one, and whether one was a bad checksum, after which libpng keeps an ancillary chunk.
+  char colour_warning[kPngColourChunkCount][200] = {};
+  bool colour_crc_error[kPngColourChunkCount] = {};
 };
 
 [[noreturn]] void on_png_error(png_structp png, png_const_charp message) {
@@ -116,8 +133,17 @@ struct PngErrorMessage {
   png_longjmp(png, 1);
 }
 
-// Warnings (unknown colour profiles, ancillary chunks with bad checksums) do not affect the pixels.
-void on_png_warning(png_structp, png_const_charp) {}
+// Warnings (unknown colour profiles, ancillary chunks with bad checksums) do not affect the pixels;
+// those about a colour chunk are kept for the message that refuses it.
+void on_png_warning(png_structp png, png_const_charp message) {
+  auto* error = static_cast<PngErrorMessage*>(png_get_error_ptr(png));
+  for (int chunk = 0; chunk < kPngColourChunkCount; ++chunk)
+    if (std::strncmp(message, kPngColourChunks[chunk], 4) == 0 && message[4] == ':') {
+      const char* text = message + 5 + (message[5] == ' ');
+      std::snprintf(error->colour_warning[chunk], sizeof error->colour_warning[chunk], "%s", text);
+      if (std::strcmp(text, "CRC error") == 0) error->colour_crc_error[chunk] = true;
+    }
+}
 
 void read_png_bytes(png_structp png, png_bytep data, png_size_t length) {
   auto* file = static_cast<std::FILE*>(png_get_io_ptr(png));
@@ -189,10 +215,20 @@ void set_png_limits(png_structp png, const ImageReadLimits& limits) {
 }
 
 // Reads the chunks before the pixels and asks libpng for 8 or 16 bits per sample with palettes
-// and transparency keys expanded, so 1 to 4 channels remain.
-bool read_png_layout(PngReader& reader, std::FILE* file, PngLayout& layout) {
+// and transparency keys expanded, so 1 to 4 channels remain. With `colour`, libpng keeps the
+// cICP (which libpng 1.6.39 does not know), sRGB and gAMA chunks as they are, for png_colour to
+// read (libpng's own checks of them would drop an iCCP after an sRGB chunk), reads the iCCP chunk
+// (decompressed within the chunk limit, its header checked) and discards cHRM, which stochtex
+// ignores.
+bool read_png_layout(PngReader& reader, std::FILE* file, PngLayout& layout, bool colour) {
   if (setjmp(png_jmpbuf(reader.png))) return false;
   png_set_read_fn(reader.png, file, read_png_bytes);
+  if (colour) {
+    static constexpr png_byte kKept[] = "cICP\0sRGB\0gAMA";
+    static constexpr png_byte kDiscarded[] = "cHRM";
+    png_set_keep_unknown_chunks(reader.png, PNG_HANDLE_CHUNK_ALWAYS, kKept, 3);
+    png_set_keep_unknown_chunks(reader.png, PNG_HANDLE_CHUNK_NEVER, kDiscarded, 1);
+  }
   png_read_info(reader.png, reader.info);
   layout.stored_bits_per_pixel =
       png_get_bit_depth(reader.png, reader.info) * png_get_channels(reader.png, reader.info);
@@ -226,36 +262,367 @@ bool read_png_pixels(PngReader& reader, png_bytepp rows) {
 }
 
 // libpng allocates an ancillary chunk's declared length before reading it: every chunk must fit
-// in the file, whatever the limits above allow (docs/design.md §9).
-void check_png_chunks(const Input& input) {
+// in the file, whatever the limits above allow (docs/design.md §9). Returns which colour chunks
+// come before the pixels (the first IDAT chunk), for png_colour to tell a chunk libpng dropped
+// from a chunk that is not there.
+std::array<bool, kPngColourChunkCount> check_png_chunks(const Input& input) {
   constexpr std::uintmax_t kSignatureBytes = 8;
   constexpr std::uintmax_t kChunkFrameBytes = 12;  // length, type and checksum
+  std::array<bool, kPngColourChunkCount> colour_chunks{};
+  bool before_pixels = true;
   std::uintmax_t position = kSignatureBytes;
-  std::array<unsigned char, 4> length{};
+  std::array<char, 8> length_and_type{};
   while (position + 8 <= input.bytes) {  // a chunk's length and type are there
     if (fseeko(input.file, static_cast<off_t>(position), SEEK_SET) != 0 ||
-        std::fread(length.data(), 1, length.size(), input.file) != length.size())
+        std::fread(length_and_type.data(), 1, length_and_type.size(), input.file) !=
+            length_and_type.size())
       throw Error(ErrorCode::io, "cannot read " + input.name + ": " + errno_message(errno));
-    const std::uintmax_t data_bytes = std::uintmax_t{length[0]} << 24 |
-                                      std::uintmax_t{length[1]} << 16 |
-                                      std::uintmax_t{length[2]} << 8 | length[3];
+    const auto byte = [&](int i) { return static_cast<unsigned char>(length_and_type[i]); };
+    const std::uintmax_t data_bytes = std::uintmax_t{byte(0)} << 24 |
+                                      std::uintmax_t{byte(1)} << 16 | std::uintmax_t{byte(2)} << 8 |
+                                      byte(3);
     if (kChunkFrameBytes + data_bytes > input.bytes - position)
       throw Error(ErrorCode::format, input.name + " declares a chunk of " +
                                          std::to_string(data_bytes) +
                                          " bytes past the end of the file; it is truncated or "
                                          "corrupt");
+    const char* type = length_and_type.data() + 4;
+    if (std::memcmp(type, "IDAT", 4) == 0) before_pixels = false;
+    for (int chunk = 0; chunk < kPngColourChunkCount; ++chunk)
+      if (before_pixels && std::memcmp(type, kPngColourChunks[chunk], 4) == 0)
+        colour_chunks[chunk] = true;
     position += kChunkFrameBytes + data_bytes;
   }
   if (std::fseek(input.file, 0, SEEK_SET) != 0)
     throw Error(ErrorCode::io, "cannot read " + input.name + ": " + errno_message(errno));
+  return colour_chunks;
 }
 
-ImageF read_png(const Input& input, const ImageReadLimits& limits) {
-  check_png_chunks(input);
+// ---------------------------------------------------------------------------------------------
+// PNG colour (docs/design.md §14): what the colour chunks say the values are, and how they become
+// sRGB-encoded or linear ones (include/stochtex/io.hpp).
+
+// Text from a file (a profile's description, libpng's warning quoting a profile's name), for a
+// message: printable ASCII, other bytes as '?', at most `limit` characters.
+std::string printable(std::string_view text, std::size_t limit) {
+  std::string result;
+  for (char c : text.substr(0, limit)) result.push_back(c >= ' ' && c <= '~' ? c : '?');
+  while (!result.empty() && result.back() == ' ') result.pop_back();
+  if (text.size() > limit) result += "...";
+  return result;
+}
+
+// Little CMS allocates from what a profile declares (a lookup table's grid) before it reads the
+// data: within the contexts below, no allocation may exceed 32 MiB, well above what a profile
+// that fits in a PNG chunk (kMaxPngChunkBytes) needs, so that a hostile profile is refused
+// rather than allocated (docs/design.md §9). Little CMS handles a failed allocation as an error.
+constexpr cmsUInt32Number kMaxIccAllocation = cmsUInt32Number{32} << 20;
+
+void* icc_malloc(cmsContext, cmsUInt32Number size) {
+  return size == 0 || size > kMaxIccAllocation ? nullptr : std::malloc(size);
+}
+void icc_free(cmsContext, void* pointer) {
+  std::free(pointer);
+}
+void* icc_realloc(cmsContext, void* pointer, cmsUInt32Number size) {
+  return size == 0 || size > kMaxIccAllocation ? nullptr : std::realloc(pointer, size);
+}
+
+// The allocator of Little CMS's contexts below (its memory handler plug-in, whose interface dates
+// from Little CMS 2.0); cmsCreateContext takes it as a mutable pointer but only reads it.
+cmsPluginMemHandler icc_memory_plugin = {
+    {cmsPluginMagicNumber, 2000, cmsPluginMemHandlerSig, nullptr},
+    icc_malloc,
+    icc_free,
+    icc_realloc,
+    nullptr,
+    nullptr,
+    nullptr};
+
+// The first error Little CMS reports in a context, for the message that refuses the profile.
+struct IccErrors {
+  char first[200] = {};
+};
+
+void on_icc_error(cmsContext context, cmsUInt32Number, const char* text) {
+  auto* errors = static_cast<IccErrors*>(cmsGetContextUserData(context));
+  if (errors && !errors->first[0] && text)
+    std::snprintf(errors->first, sizeof errors->first, "%s", text);
+}
+
+// An ICC profile's conversion of an image's colour channels to sRGB (the built-in sRGB profile;
+// for grey, a grey profile with the sRGB tone curve), relative colorimetric, on floats, in place:
+// Little CMS reads a pixel whole before it writes it, and leaves the alpha channel (an extra
+// channel, without cmsFLAGS_COPY_ALPHA) as it is.
+class IccConversion {
+ public:
+  // Refuses (throws) a profile Little CMS cannot open or turn into a transform, or whose colour
+  // space is not the image's.
+  IccConversion(std::span<const png_byte> profile, int channels, const std::string& name)
+      : channels_(channels) {
+    context_.reset(cmsCreateContext(&icc_memory_plugin, &errors_));
+    if (!context_) throw std::bad_alloc();
+    cmsSetLogErrorHandlerTHR(context_.get(), on_icc_error);
+    const auto refuse = [&](const std::string& problem) {
+      return Error(ErrorCode::format, name + " carries an ICC profile stochtex cannot use (" +
+                                          problem + "); convert the image to sRGB");
+    };
+    // What failed, with Little CMS's first error ("Unknown tag type 'junk' found.") but its
+    // period, which would end the sentence inside the message.
+    const auto icc_problem = [&](const char* what) {
+      std::string problem = what;
+      if (errors_.first[0]) problem += ": " + printable(errors_.first, 160);
+      while (problem.back() == '.') problem.pop_back();
+      return problem;
+    };
+    profile_.reset(cmsOpenProfileFromMemTHR(context_.get(), profile.data(),
+                                            static_cast<cmsUInt32Number>(profile.size())));
+    if (!profile_) throw refuse(icc_problem("Little CMS cannot open it"));
+    const bool grey = channels == 1 || channels == 2;
+    const cmsColorSpaceSignature space = cmsGetColorSpace(profile_.get());
+    if (space != (grey ? cmsSigGrayData : cmsSigRgbData)) {
+      const auto code = static_cast<std::uint32_t>(space);
+      const char signature[4] = {static_cast<char>(code >> 24), static_cast<char>(code >> 16),
+                                 static_cast<char>(code >> 8), static_cast<char>(code)};
+      throw refuse("its colour space is '" + printable({signature, 4}, 4) + "' and the image is " +
+                   (grey ? "grey" : "RGB"));
+    }
+    const cmsProfileClassSignature device_class = cmsGetDeviceClass(profile_.get());
+    if (device_class == cmsSigLinkClass || device_class == cmsSigAbstractClass ||
+        device_class == cmsSigNamedColorClass)
+      throw refuse("it is a device link, abstract or named colour profile, not an image's");
+    char text[256] = {};
+    cmsGetProfileInfoASCII(profile_.get(), cmsInfoDescription, "en", "US", text, sizeof text);
+    text[sizeof text - 1] = '\0';
+    description_ = printable(text, 64);
+
+    if (grey) {
+      // The sRGB tone curve (IEC 61966-2-1) as Little CMS's parametric curve of type 4, on sRGB's
+      // white point (D65); relative colorimetric maps white to white whatever the white points.
+      const cmsFloat64Number srgb_curve[5] = {2.4, 1.0 / 1.055, 0.055 / 1.055, 1.0 / 12.92,
+                                              0.04045};
+      const cmsCIExyY d65 = {0.3127, 0.3290, 1.0};
+      cmsToneCurve* curve = cmsBuildParametricToneCurve(context_.get(), 4, srgb_curve);
+      if (curve) srgb_.reset(cmsCreateGrayProfileTHR(context_.get(), &d65, curve));
+      if (curve) cmsFreeToneCurve(curve);
+    } else {
+      srgb_.reset(cmsCreate_sRGBProfileTHR(context_.get()));
+    }
+    if (!srgb_) throw std::bad_alloc();
+    constexpr std::array<cmsUInt32Number, 4> kFormats = {TYPE_GRAY_FLT, TYPE_GRAYA_FLT,
+                                                         TYPE_RGB_FLT, TYPE_RGBA_FLT};
+    const cmsUInt32Number format = kFormats[channels - 1];
+    transform_.reset(cmsCreateTransformTHR(context_.get(), profile_.get(), format, srgb_.get(),
+                                           format, INTENT_RELATIVE_COLORIMETRIC, 0));
+    if (!transform_) throw refuse(icc_problem("Little CMS cannot convert it to sRGB"));
+  }
+  IccConversion(const IccConversion&) = delete;
+  IccConversion& operator=(const IccConversion&) = delete;
+
+  // The profile's description, printable, or "" when it has none.
+  const std::string& description() const { return description_; }
+
+  // Whether the profile is sRGB: it maps test colours (each channel 0, 0.02, 0.1, 0.25, 0.5,
+  // 0.75, 0.9 and 1) onto themselves within 1/4096 of linear light — decided by what it does, not
+  // by its name. Linear light, because the encoded values near 0 magnify every difference by
+  // 12.92: Little CMS's own sRGB profile, saved (its colorants rounded to 1/65536), moves a dark
+  // channel of a saturated test colour by 4.8e-4 encoded, 3.8e-5 of linear light; a gamma 2.2
+  // profile moves a mid grey by 5.5e-3 of linear light.
+  bool is_srgb() const {
+    constexpr std::array<float, 8> kLevels = {0.0f, 0.02f, 0.1f, 0.25f, 0.5f, 0.75f, 0.9f, 1.0f};
+    const int colour_channels = channels_ <= 2 ? 1 : 3;
+    const std::size_t colours = colour_channels == 1 ? kLevels.size() : kLevels.size() * 64;
+    std::vector<float> test(colours * channels_, 0.5f);
+    for (std::size_t i = 0; i < colours; ++i)
+      for (int c = 0, rest = static_cast<int>(i); c < colour_channels; ++c, rest /= 8)
+        test[i * channels_ + c] = kLevels[rest % 8];
+    std::vector<float> mapped(test.size(), 0.5f);
+    cmsDoTransform(transform_.get(), test.data(), mapped.data(),
+                   static_cast<cmsUInt32Number>(colours));
+    for (std::size_t i = 0; i < test.size(); ++i)
+      if (!(std::abs(srgb_decode(mapped[i]) - srgb_decode(test[i])) <= 1.0f / 4096.0f))
+        return false;
+    return true;
+  }
+
+  // Converts `image`'s colour channels, row by row; a value the profile makes infinite or NaN
+  // (a degenerate curve) becomes 0, so that every value read stays finite.
+  void convert(ImageF& image) const {
+    ImageView<float> view = image.view();
+    for (int y = 0; y < view.height; ++y) {
+      float* row = view.row(y);
+      cmsDoTransform(transform_.get(), row, row, static_cast<cmsUInt32Number>(view.width));
+      for (std::ptrdiff_t i = 0; i < view.row_stride; ++i)
+        if (!std::isfinite(row[i])) row[i] = 0.0f;
+    }
+  }
+
+ private:
+  struct DeleteContext {
+    void operator()(cmsContext context) const { cmsDeleteContext(context); }
+  };
+  struct CloseProfile {
+    void operator()(cmsHPROFILE profile) const { cmsCloseProfile(profile); }
+  };
+  struct DeleteTransform {
+    void operator()(cmsHTRANSFORM transform) const { cmsDeleteTransform(transform); }
+  };
+
+  int channels_;
+  std::string description_;
+  // Destroyed in the reverse order: the transform and profiles before their context, the context
+  // before the errors it writes to; a constructor that throws destroys them too.
+  IccErrors errors_;
+  std::unique_ptr<std::remove_pointer_t<cmsContext>, DeleteContext> context_;
+  std::unique_ptr<void, CloseProfile> profile_;
+  std::unique_ptr<void, CloseProfile> srgb_;
+  std::unique_ptr<void, DeleteTransform> transform_;
+};
+
+// What a PNG's colour chunks make of its values: the space they are read in, the phrase saying
+// why, and the conversion to apply, if any.
+struct PngColour {
+  ColourSpace space = ColourSpace::srgb;
+  std::string origin;
+  double gamma_exponent = 0.0;  // > 0: each colour value v becomes srgb_encode(v^gamma_exponent)
+  std::unique_ptr<IccConversion> icc;
+};
+
+// A colour chunk libpng kept as it is (read_png_layout), or none.
+const png_unknown_chunk* kept_png_chunk(const PngReader& reader, const char* type) {
+  png_unknown_chunkp chunks = nullptr;
+  const int count = png_get_unknown_chunks(reader.png, reader.info, &chunks);
+  for (int i = 0; i < count; ++i)
+    if (std::memcmp(chunks[i].name, type, 4) == 0 && (chunks[i].location & PNG_AFTER_IDAT) == 0)
+      return &chunks[i];
+  return nullptr;
+}
+
+// "0.45455" for a gAMA chunk's 45455: its value / 100000, without trailing zeros, at least one
+// decimal.
+std::string png_gamma_text(std::uint32_t gamma) {
+  std::string text =
+      std::to_string(gamma / 100000) + "." + std::to_string(100000 + gamma % 100000).substr(1);
+  while (text.back() == '0' && text[text.size() - 2] != '.') text.pop_back();
+  return text;
+}
+
+// What a cICP chunk stochtex does not read declares, for the message refusing it: the transfer
+// function first when it is HDR (as it says the most), then the primaries, the matrix, the range.
+std::string cicp_refusal(std::span<const png_byte, 4> cicp) {
+  const auto field = [&](const char* what, int index) {
+    return std::string(" (cICP ") + what + " " + std::to_string(cicp[index]) + ")";
+  };
+  if (cicp[1] == 16) return "HDR PQ colour" + field("transfer", 1);
+  if (cicp[1] == 18) return "HDR HLG colour" + field("transfer", 1);
+  if (cicp[0] != 1)
+    return (cicp[0] == 9    ? std::string("BT.2020 primaries")
+            : cicp[0] == 12 ? std::string("Display P3 primaries")
+                            : std::string("primaries other than sRGB's")) +
+           field("primaries", 0);
+  if (cicp[2] != 0) return "colour coded as luma and chroma" + field("matrix coefficients", 2);
+  if (cicp[3] != 1) return "narrow-range (video) values" + field("full range flag", 3);
+  return "a transfer function other than sRGB's or linear" + field("transfer", 1);
+}
+
+// Resolves a PNG's colour from its colour chunks before its pixels (`present`: which are in the
+// file, check_png_chunks), in the PNG specification's order: cICP, iCCP, sRGB, gAMA, none.
+// Refuses a chunk libpng dropped (a bad checksum, a profile its checks refuse), a malformed one
+// and a colour stochtex does not read.
+PngColour png_colour(const Input& input, const PngReader& reader, const PngLayout& layout,
+                     const std::array<bool, kPngColourChunkCount>& present) {
+  const auto corrupt = [&](const std::string& problem) {
+    return Error(ErrorCode::format,
+                 input.name + " has " + problem + "; the file is corrupt, export it again");
+  };
+  const auto unreadable = [&](int chunk) {
+    const char* warning =
+        reader.error.colour_crc_error[chunk] ? "CRC error" : reader.error.colour_warning[chunk];
+    return corrupt(std::string(kPngColourChunkPhrases[chunk]) + " that cannot be read (" +
+                   (warning[0] ? printable(warning, 160) : "libpng dropped it") + ")");
+  };
+  const auto kept = [&](int chunk, std::size_t bytes) {
+    const png_unknown_chunk* found = kept_png_chunk(reader, kPngColourChunks[chunk]);
+    if (!found || reader.error.colour_crc_error[chunk]) throw unreadable(chunk);
+    if (found->size != bytes)
+      throw corrupt(std::string(kPngColourChunkPhrases[chunk]) + " of " +
+                    std::to_string(found->size) + " bytes (" + std::to_string(bytes) +
+                    " expected)");
+    return std::span<const png_byte>(found->data, found->size);
+  };
+
+  PngColour colour;
+  if (present[kCicp]) {
+    const std::span<const png_byte> cicp = kept(kCicp, 4);
+    if (cicp[0] == 1 && cicp[2] == 0 && cicp[3] == 1 && (cicp[1] == 13 || cicp[1] == 8)) {
+      colour.space = cicp[1] == 8 ? ColourSpace::linear : ColourSpace::srgb;
+      colour.origin = cicp[1] == 8 ? "cICP: linear" : "cICP: sRGB";
+      return colour;
+    }
+    throw Error(ErrorCode::format,
+                input.name + " declares " + cicp_refusal(cicp.first<4>()) +
+                    ", which stochtex does not read; convert it to sRGB or save it as OpenEXR");
+  }
+  if (present[kIccp]) {
+    png_charp profile_name = nullptr;
+    int compression = 0;
+    png_bytep profile = nullptr;
+    png_uint_32 profile_bytes = 0;
+    if (!png_get_iCCP(reader.png, reader.info, &profile_name, &compression, &profile,
+                      &profile_bytes) ||
+        !profile) {
+      const char* warning = reader.error.colour_warning[kIccp];
+      throw Error(ErrorCode::format,
+                  input.name + " carries an ICC profile stochtex cannot use (" +
+                      (warning[0] ? printable(warning, 160) : "libpng dropped it") +
+                      "); convert the image to sRGB");
+    }
+    if (reader.error.colour_crc_error[kIccp]) throw unreadable(kIccp);
+    colour.icc = std::make_unique<IccConversion>(std::span<const png_byte>(profile, profile_bytes),
+                                                 layout.channels, input.name);
+    const std::string named = colour.icc->description().empty()
+                                  ? "ICC profile without a description"
+                                  : "ICC profile '" + colour.icc->description() + "'";
+    if (colour.icc->is_srgb()) {
+      colour.icc.reset();
+      colour.origin = named + ": sRGB";
+    } else {
+      colour.origin = named + ", converted to sRGB";
+    }
+    return colour;
+  }
+  if (present[kSrgb]) {
+    kept(kSrgb, 1);
+    colour.origin = "sRGB chunk";
+    return colour;
+  }
+  if (present[kGama]) {
+    const std::span<const png_byte> bytes = kept(kGama, 4);
+    const std::uint32_t gamma = std::uint32_t{bytes[0]} << 24 | std::uint32_t{bytes[1]} << 16 |
+                                std::uint32_t{bytes[2]} << 8 | bytes[3];
+    if (gamma == 0 || gamma > PNG_UINT_31_MAX)
+      throw corrupt("a gAMA chunk declaring a gamma of " + std::to_string(gamma) +
+                    " / 100000, which is not a gamma");
+    if (gamma == 100000) {
+      colour.space = ColourSpace::linear;
+      colour.origin = "gAMA 1.0: linear";
+    } else {
+      colour.gamma_exponent = 100000.0 / gamma;
+      colour.origin = "gAMA " + png_gamma_text(gamma) + ", converted to sRGB";
+    }
+    return colour;
+  }
+  colour.origin = "no colour chunk: sRGB by default";
+  return colour;
+}
+
+ImageF read_png(const Input& input, const ImageReadLimits& limits, ImageColour* colour) {
+  const std::array<bool, kPngColourChunkCount> colour_chunks = check_png_chunks(input);
   PngReader reader;
   set_png_limits(reader.png, limits);
   PngLayout layout;
-  if (!read_png_layout(reader, input.file, layout)) throw_png_read_error(input.name, reader);
+  if (!read_png_layout(reader, input.file, layout, colour != nullptr))
+    throw_png_read_error(input.name, reader);
   check_size(input.name, layout.width, layout.height, limits);
   // The pixels are one zlib stream (PNG specification §10).
   check_fits_file(input.name, layout.width, layout.height,
@@ -270,6 +637,9 @@ ImageF read_png(const Input& input, const ImageReadLimits& limits) {
                                        std::to_string(layout.bit_depth) +
                                        " bits); convert it to 8- or 16-bit grey or RGB(A)");
   check_declared(layout.width, layout.height, layout.channels, limits);
+  // The colour is resolved before the pixels are decoded, so that a colour refused costs no time.
+  std::optional<PngColour> png_colour_found;
+  if (colour) png_colour_found.emplace(png_colour(input, reader, layout, colour_chunks));
 
   std::vector<png_byte> bytes(layout.row_bytes * layout.height);
   std::vector<png_bytep> rows(layout.height);
@@ -286,6 +656,23 @@ ImageF read_png(const Input& input, const ImageReadLimits& limits) {
     for (std::size_t i = 0; i < pixels.size(); ++i)
       pixels[i] = static_cast<float>(bytes[i]) / 255.0f;
   }
+  if (!png_colour_found) return image;
+
+  PngColour& found = *png_colour_found;
+  if (found.gamma_exponent > 0.0) {
+    // A stored sample has one of 256 or 65536 values: each colour value is converted once.
+    const unsigned maximum = sixteen_bit ? 65535 : 255;
+    std::vector<float> converted(maximum + 1);
+    for (unsigned sample = 0; sample <= maximum; ++sample)
+      converted[sample] = static_cast<float>(
+          srgb_encode(std::pow(static_cast<double>(sample) / maximum, found.gamma_exponent)));
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+      if (is_colour_channel(static_cast<int>(i % layout.channels), layout.channels))
+        pixels[i] = converted[sixteen_bit ? ((bytes[2 * i] << 8) | bytes[2 * i + 1]) : bytes[i]];
+  }
+  if (found.icc) found.icc->convert(image);
+  colour->space = found.space;
+  colour->origin = std::move(found.origin);
   return image;
 }
 
@@ -527,7 +914,7 @@ std::vector<const char*> exr_channel_names(const std::string& name, const Imf::C
   return names;
 }
 
-ImageF read_exr(const Input& input, const ImageReadLimits& limits) {
+ImageF read_exr(const Input& input, const ImageReadLimits& limits, ImageColour* colour) {
   check_exr_header(input, limits);
   try {
     FileInputStream stream(input.file, input.bytes, input.stream_name.c_str());
@@ -547,6 +934,7 @@ ImageF read_exr(const Input& input, const ImageReadLimits& limits) {
                                                      pixel_stride, pixel_stride * width));
     file.setFrameBuffer(frame_buffer);
     file.readPixels(window.min.y, window.max.y);
+    if (colour) *colour = {ColourSpace::linear, "OpenEXR: linear"};
     return image;
   } catch (const Error&) {
     throw;
@@ -617,7 +1005,7 @@ bool parse_number(const std::string& text, T& value) {
   return error == std::errc{} && stop == end;
 }
 
-ImageF read_pfm(const Input& input, const ImageReadLimits& limits) {
+ImageF read_pfm(const Input& input, const ImageReadLimits& limits, ImageColour* colour) {
   std::FILE* file = input.file;
   const auto corrupt = [&](const std::string& problem) {
     return Error(ErrorCode::format, input.name + " is not a readable PFM image (" + problem +
@@ -666,6 +1054,7 @@ ImageF read_pfm(const Input& input, const ImageReadLimits& limits) {
       row[i] = std::bit_cast<float>(word);
     }
   }
+  if (colour) *colour = {ColourSpace::linear, "PFM: linear"};
   return image;
 }
 
@@ -711,7 +1100,8 @@ struct Codec {
   const char* name;       // in messages: "PNG"
   const char* extension;  // what write_image writes the format for, in lower case: ".png"
   bool (*recognises)(std::span<const unsigned char> first_bytes);
-  ImageF (*decode)(const Input& input, const ImageReadLimits& limits);
+  // `colour`: see read_image.
+  ImageF (*decode)(const Input& input, const ImageReadLimits& limits, ImageColour* colour);
   // `space`: see write_image.
   void (*encode)(Imf::OStream& stream, ImageView<const float> image, int png_bit_depth,
                  ColourSpace space);
@@ -768,7 +1158,7 @@ const Codec& output_codec(const fs::path& path) {
   throw Error(ErrorCode::format, name + " is empty (0 bytes), not an image");
 }
 
-ImageF decode(const Input& input, const ImageReadLimits& limits) {
+ImageF decode(const Input& input, const ImageReadLimits& limits, ImageColour* colour) {
   std::array<unsigned char, kSignatureBytes> first{};
   const std::size_t first_bytes = std::fread(first.data(), 1, first.size(), input.file);
   if (std::ferror(input.file))
@@ -777,7 +1167,7 @@ ImageF decode(const Input& input, const ImageReadLimits& limits) {
   if (std::fseek(input.file, 0, SEEK_SET) != 0)
     throw Error(ErrorCode::io, "cannot read " + input.name + ": " + errno_message(errno));
   for (const Codec& codec : kCodecs)
-    if (codec.recognises({first.data(), first_bytes})) return codec.decode(input, limits);
+    if (codec.recognises({first.data(), first_bytes})) return codec.decode(input, limits, colour);
   const std::string formats = one_of(&Codec::name, [](const Codec&) { return true; });
   throw Error(ErrorCode::format, input.name + " is not a " + formats +
                                      " image (its first bytes match none of them); convert it to "
@@ -810,20 +1200,20 @@ void check_channels(const Codec& codec, int channels, const std::string& cannot)
 
 }  // namespace
 
-ImageF read_image(const fs::path& path, const ImageReadLimits& limits) {
+ImageF read_image(const fs::path& path, const ImageReadLimits& limits, ImageColour* colour) {
   const InputFile file(path, "an image");
-  return decode({file.stream(), file.size(), quoted(path), path.string()}, limits);
+  return decode({file.stream(), file.size(), quoted(path), path.string()}, limits, colour);
 }
 
 ImageF decode_image(std::span<const std::uint8_t> bytes, const std::string& name,
-                    const ImageReadLimits& limits) {
+                    const ImageReadLimits& limits, ImageColour* colour) {
   if (name.empty())
     throw std::invalid_argument("decode_image: the bytes need a name for the messages");
   if (bytes.empty()) throw_empty(name);
   // fmemopen takes a void *; a stream opened for reading never writes through it.
   File file(fmemopen(const_cast<std::uint8_t*>(bytes.data()), bytes.size(), "rb"));
   if (!file) throw std::bad_alloc();
-  return decode({file.get(), bytes.size(), name, name}, limits);
+  return decode({file.get(), bytes.size(), name, name}, limits, colour);
 }
 
 namespace {

@@ -1,9 +1,11 @@
 // Image files: exact round trips, format detection by content, one clear error for every bad file
-// (docs/design.md §6 and §9), and the colour written (§14).
+// (docs/design.md §6 and §9), and colour: the chunks honoured on reading, the colour written
+// (§14).
 
 #include "io/image_io.hpp"
 
 #include <gtest/gtest.h>
+#include <lcms2.h>
 #include <sys/resource.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -633,7 +635,8 @@ TEST_F(ImageIoTest, BadWriteArgumentsAreInvalidArguments) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Colour (include/stochtex/io.hpp, docs/design.md §14): the colour written for each ColourSpace.
+// Colour (include/stochtex/io.hpp, docs/design.md §14): the colour chunks honoured on reading with
+// an ImageColour, ignored without one, and the colour written for each ColourSpace.
 
 // The chunk types of a PNG, in order.
 std::vector<std::string> png_chunk_types(const Bytes& png) {
@@ -739,6 +742,468 @@ TEST_F(ImageIoTest, EachColourSpaceIsWrittenAsItSays) {
             ASSERT_EQ(as_is.at(x, y, c), written.at(x, y, c)) << name;
     }
   }
+}
+
+// Reading: PNGs with colour chunks, made by hand.
+
+struct Chunk {
+  std::string type;
+  Bytes data;
+};
+
+// `png` with `chunks` inserted after its header chunk (IHDR: 25 bytes after the 8-byte signature),
+// where colour chunks belong.
+Bytes with_chunks(const Bytes& png, const std::vector<Chunk>& chunks) {
+  Bytes inserted;
+  for (const Chunk& chunk : chunks) append_chunk(inserted, chunk.type, chunk.data);
+  Bytes result(png.size() + inserted.size());
+  const auto after_header = std::copy(png.begin(), png.begin() + 33, result.begin());
+  std::copy(png.begin() + 33, png.end(), std::copy(inserted.begin(), inserted.end(), after_header));
+  return result;
+}
+
+Chunk gama_chunk(std::uint32_t gamma) {
+  Bytes data;
+  append_u32_big_endian(data, gamma);
+  return {"gAMA", data};
+}
+
+Chunk cicp_chunk(int primaries, int transfer, int matrix, int full_range) {
+  return {"cICP",
+          {static_cast<unsigned char>(primaries), static_cast<unsigned char>(transfer),
+           static_cast<unsigned char>(matrix), static_cast<unsigned char>(full_range)}};
+}
+
+const Chunk kSrgbChunk = {"sRGB", {0}};
+
+// An iCCP chunk holding `profile`: a name, its terminator, compression method 0 and the profile
+// compressed with zlib.
+Chunk iccp_chunk(const Bytes& profile) {
+  uLongf compressed_bytes = compressBound(static_cast<uLong>(profile.size()));
+  Bytes compressed(compressed_bytes);
+  EXPECT_EQ(compress2(compressed.data(), &compressed_bytes, profile.data(),
+                      static_cast<uLong>(profile.size()), 9),
+            Z_OK);
+  compressed.resize(compressed_bytes);
+  Bytes data = {'i', 'c', 'c', 0, 0};
+  data.insert(data.end(), compressed.begin(), compressed.end());
+  return {"iCCP", data};
+}
+
+// The bytes of a Little CMS profile, closed after.
+Bytes saved_profile(cmsHPROFILE profile) {
+  cmsUInt32Number size = 0;
+  EXPECT_TRUE(cmsSaveProfileToMem(profile, nullptr, &size));
+  Bytes bytes(size);
+  EXPECT_TRUE(cmsSaveProfileToMem(profile, bytes.data(), &size));
+  cmsCloseProfile(profile);
+  return bytes;
+}
+
+void set_description(cmsHPROFILE profile, const char* description) {
+  cmsMLU* text = cmsMLUalloc(nullptr, 1);
+  cmsMLUsetASCII(text, "en", "US", description);
+  cmsWriteTag(profile, cmsSigProfileDescriptionTag, text);
+  cmsMLUfree(text);
+}
+
+const cmsCIExyY kD65 = {0.3127, 0.3290, 1.0};
+
+// An RGB profile that is not sRGB: Adobe RGB (1998)'s primaries and a pure 2.2 gamma.
+cmsHPROFILE wide_rgb_profile() {
+  const cmsCIExyYTRIPLE primaries = {{0.64, 0.33, 1.0}, {0.21, 0.71, 1.0}, {0.15, 0.06, 1.0}};
+  cmsToneCurve* gamma = cmsBuildGamma(nullptr, 2.2);
+  cmsToneCurve* curves[3] = {gamma, gamma, gamma};
+  cmsHPROFILE profile = cmsCreateRGBProfile(&kD65, &primaries, curves);
+  cmsFreeToneCurve(gamma);
+  set_description(profile, "stochtex test wide RGB");
+  return profile;
+}
+
+cmsHPROFILE grey_gamma_profile() {
+  cmsToneCurve* gamma = cmsBuildGamma(nullptr, 2.2);
+  cmsHPROFILE profile = cmsCreateGrayProfile(&kD65, gamma);
+  cmsFreeToneCurve(gamma);
+  set_description(profile, "stochtex test grey 2.2");
+  return profile;
+}
+
+cmsHPROFILE srgb_profile() {
+  cmsHPROFILE profile = cmsCreate_sRGBProfile();
+  set_description(profile, "stochtex test sRGB");
+  return profile;
+}
+
+// What read_image makes of `png` with an ImageColour, after checking that decode_image of the
+// same bytes gives the same image and colour.
+ImageF read_colour(const fs::path& path, const Bytes& png, ImageColour& colour) {
+  write_bytes(path, png);
+  ImageF image = read_image(path, {}, &colour);
+  ImageColour from_memory;
+  const ImageF decoded = decode_image(png, "the upload", {}, &from_memory);
+  EXPECT_TRUE(test_support::same_bytes(decoded, image));
+  EXPECT_EQ(from_memory.space, colour.space);
+  EXPECT_EQ(from_memory.origin, colour.origin);
+  return image;
+}
+
+// The message read_image with an ImageColour refuses `png` with (its code checked: format).
+std::string colour_refusal(const fs::path& path, const Bytes& png) {
+  write_bytes(path, png);
+  ImageColour colour;
+  try {
+    read_image(path, {}, &colour);
+  } catch (const Error& error) {
+    EXPECT_EQ(error.code(), ErrorCode::format) << error.what();
+    const std::string message = error.what();
+    EXPECT_EQ(message.rfind("'" + path.string() + "' ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_NE(message.back(), '.') << "one sentence, as every refusal: " << message;
+    return message;
+  }
+  ADD_FAILURE() << "reading " << path << " with its colour did not throw";
+  return {};
+}
+
+TEST_F(ImageIoTest, SrgbPngRoundTripsAreExactAndSayTheyAreSrgb) {
+  for (const int bit_depth : {8, 16}) {
+    for (int channels = 1; channels <= 4; ++channels) {
+      const std::string context =
+          std::to_string(bit_depth) + "-bit, " + std::to_string(channels) + " channels";
+      const ImageF image = stored_values(23, 9, channels, bit_depth == 8 ? 255 : 65535);
+      const std::vector<std::uint8_t> plain =
+          encode_image(image.view(), ImageFormat::png, bit_depth);
+      ImageColour colour;
+      const ImageF read = read_colour(file("plain.png"), Bytes(plain.begin(), plain.end()), colour);
+      EXPECT_EQ(colour.space, ColourSpace::srgb) << context;
+      EXPECT_EQ(colour.origin, "no colour chunk: sRGB by default") << context;
+      expect_identical(image, read);
+
+      const fs::path path = file("srgb.png");
+      write_image(path, read.view(), bit_depth, ColourSpace::srgb);
+      const Bytes written = read_bytes(path);
+      const std::vector<std::uint8_t> encoded =
+          encode_image(read.view(), ImageFormat::png, bit_depth, ColourSpace::srgb);
+      EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), written) << context;
+      EXPECT_TRUE(has_chunk(written, "sRGB")) << context;
+      ImageColour again;
+      expect_identical(image, read_colour(path, written, again));
+      EXPECT_EQ(again.space, ColourSpace::srgb) << context;
+      EXPECT_EQ(again.origin, "sRGB chunk") << context;
+      expect_identical(image, read_image(path));
+    }
+  }
+}
+
+TEST_F(ImageIoTest, LinearPngIsEncodedWithTheSrgbTransferFunction) {
+  for (const int bit_depth : {8, 16}) {
+    const float maximum = bit_depth == 8 ? 255.0f : 65535.0f;
+    for (const int channels : {2, 3, 4}) {
+      ImageF linear(37, 3, channels);
+      for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 37; ++x)
+          for (int c = 0; c < channels; ++c)
+            linear.at(x, y, c) = static_cast<float>(x + 3 * c + y) / 40.0f - 0.05f;
+      const fs::path path = file("linear.png");
+      write_image(path, linear.view(), bit_depth, ColourSpace::linear);
+      ImageColour colour;
+      const ImageF read = read_colour(path, read_bytes(path), colour);
+      EXPECT_EQ(colour.space, ColourSpace::srgb);
+      EXPECT_EQ(colour.origin, "sRGB chunk");
+      for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 37; ++x)
+          for (int c = 0; c < channels; ++c) {
+            const float value = linear.at(x, y, c);
+            const float expected =
+                std::clamp(is_colour_channel(c, channels) ? srgb_encode(value) : value, 0.0f, 1.0f);
+            ASSERT_NEAR(read.at(x, y, c), expected, 0.5f / maximum + 1e-6f)
+                << bit_depth << "-bit, channel " << c << " of " << channels << ", linear " << value;
+          }
+    }
+  }
+}
+
+TEST_F(ImageIoTest, WithoutAnImageColourTheColourChunksAreIgnored) {
+  const Bytes rows = {0, 10, 128, 250};
+  const Bytes plain = handmade_png(3, 1, 8, 0, rows);
+  const Bytes cmyk = [] {
+    Bytes profile = saved_profile(srgb_profile());
+    std::copy_n("CMYK", 4, profile.begin() + 16);
+    return profile;
+  }();
+  for (const std::vector<Chunk>& chunks :
+       {std::vector<Chunk>{gama_chunk(45455)}, std::vector<Chunk>{cicp_chunk(9, 16, 0, 1)},
+        std::vector<Chunk>{iccp_chunk(cmyk)},
+        std::vector<Chunk>{iccp_chunk(saved_profile(grey_gamma_profile()))}}) {
+    const fs::path path = file("chunks.png");
+    write_bytes(path, with_chunks(plain, chunks));
+    const ImageF image = read_image(path);
+    ASSERT_EQ(image.pixels().size(), 3u) << chunks[0].type;
+    EXPECT_EQ(image.at(0, 0, 0), 10.0f / 255.0f) << chunks[0].type;
+    EXPECT_EQ(image.at(1, 0, 0), 128.0f / 255.0f) << chunks[0].type;
+    EXPECT_EQ(image.at(2, 0, 0), 250.0f / 255.0f) << chunks[0].type;
+  }
+}
+
+TEST_F(ImageIoTest, SrgbAndGamaChunks) {
+  // Grey + alpha, 8-bit: 0, 128 and 255 in grey, alpha 128.
+  const Bytes png = handmade_png(3, 1, 8, 4, {0, 0, 128, 128, 128, 255, 128});
+  ImageColour colour;
+  ImageF image = read_colour(file("srgb.png"), with_chunks(png, {kSrgbChunk}), colour);
+  EXPECT_EQ(colour.space, ColourSpace::srgb);
+  EXPECT_EQ(colour.origin, "sRGB chunk");
+  EXPECT_EQ(image.at(1, 0, 0), 128.0f / 255.0f);
+
+  image = read_colour(file("linear.png"), with_chunks(png, {gama_chunk(100000)}), colour);
+  EXPECT_EQ(colour.space, ColourSpace::linear);
+  EXPECT_EQ(colour.origin, "gAMA 1.0: linear");
+  EXPECT_EQ(image.at(1, 0, 0), 128.0f / 255.0f);
+
+  // gAMA 0.45455: decoded light is v^(1/0.45455), encoded again with sRGB's curve; alpha is data.
+  image = read_colour(file("gamma.png"), with_chunks(png, {gama_chunk(45455)}), colour);
+  EXPECT_EQ(colour.space, ColourSpace::srgb);
+  EXPECT_EQ(colour.origin, "gAMA 0.45455, converted to sRGB");
+  EXPECT_EQ(image.at(0, 0, 0), 0.0f);
+  EXPECT_NEAR(image.at(1, 0, 0), srgb_encode(std::pow(128.0 / 255.0, 1.0 / 0.45455)), 1e-6);
+  // Brighter than 128/255 = 0.50196: gamma 2.2 gives 0.2195 of light, sRGB's curve 0.2158.
+  EXPECT_NEAR(image.at(1, 0, 0), 0.5059f, 1e-3f);
+  EXPECT_NEAR(image.at(2, 0, 0), 1.0f, 1e-6f);
+  for (int x = 0; x < 3; ++x) EXPECT_EQ(image.at(x, 0, 1), 128.0f / 255.0f);
+
+  // 16-bit RGB: every sample is converted, through the same curve.
+  Bytes rows16 = {0};
+  for (const unsigned value : {0u, 1000u, 32768u}) {
+    rows16.push_back(static_cast<unsigned char>(value >> 8));
+    rows16.push_back(static_cast<unsigned char>(value & 0xff));
+  }
+  image = read_colour(file("gamma16.png"),
+                      with_chunks(handmade_png(1, 1, 16, 2, rows16), {gama_chunk(50000)}), colour);
+  EXPECT_EQ(colour.origin, "gAMA 0.5, converted to sRGB");
+  EXPECT_EQ(image.at(0, 0, 0), 0.0f);
+  EXPECT_NEAR(image.at(0, 0, 1), srgb_encode(std::pow(1000.0 / 65535.0, 2.0)), 1e-7);
+  EXPECT_NEAR(image.at(0, 0, 2), srgb_encode(std::pow(32768.0 / 65535.0, 2.0)), 1e-6);
+
+  // sRGB comes before gAMA whatever their order in the file.
+  read_colour(file("both.png"), with_chunks(png, {gama_chunk(100000), kSrgbChunk}), colour);
+  EXPECT_EQ(colour.origin, "sRGB chunk");
+
+  // A gamma of 0 and a chunk of the wrong length are corrupt.
+  const std::string zero = colour_refusal(file("zero.png"), with_chunks(png, {gama_chunk(0)}));
+  EXPECT_NE(zero.find("gAMA"), std::string::npos) << zero;
+  EXPECT_NE(zero.find("corrupt"), std::string::npos) << zero;
+  const std::string long_srgb =
+      colour_refusal(file("long.png"), with_chunks(png, {{"sRGB", {0, 0}}}));
+  EXPECT_NE(long_srgb.find("an sRGB chunk of 2 bytes (1 expected)"), std::string::npos)
+      << long_srgb;
+}
+
+TEST_F(ImageIoTest, CicpChunks) {
+  const Bytes png = handmade_png(2, 1, 8, 2, {0, 10, 128, 250, 255, 0, 64});
+  ImageColour colour;
+  ImageF image = read_colour(file("srgb.png"), with_chunks(png, {cicp_chunk(1, 13, 0, 1)}), colour);
+  EXPECT_EQ(colour.space, ColourSpace::srgb);
+  EXPECT_EQ(colour.origin, "cICP: sRGB");
+  EXPECT_EQ(image.at(0, 0, 1), 128.0f / 255.0f);
+
+  // cICP comes before iCCP, sRGB and gAMA.
+  image = read_colour(file("linear.png"),
+                      with_chunks(png, {kSrgbChunk, iccp_chunk(saved_profile(wide_rgb_profile())),
+                                        cicp_chunk(1, 8, 0, 1), gama_chunk(45455)}),
+                      colour);
+  EXPECT_EQ(colour.space, ColourSpace::linear);
+  EXPECT_EQ(colour.origin, "cICP: linear");
+  EXPECT_EQ(image.at(0, 0, 1), 128.0f / 255.0f);
+
+  const fs::path pq = file("pq.png");
+  EXPECT_EQ(colour_refusal(pq, with_chunks(png, {cicp_chunk(9, 16, 0, 1)})),
+            "'" + pq.string() +
+                "' declares HDR PQ colour (cICP transfer 16), which stochtex does not read; "
+                "convert it to sRGB or save it as OpenEXR");
+  const std::string p3 =
+      colour_refusal(file("p3.png"), with_chunks(png, {cicp_chunk(12, 13, 0, 1)}));
+  EXPECT_NE(p3.find("Display P3 primaries (cICP primaries 12)"), std::string::npos) << p3;
+  const std::string video =
+      colour_refusal(file("video.png"), with_chunks(png, {cicp_chunk(1, 13, 0, 0)}));
+  EXPECT_NE(video.find("(cICP full range flag 0)"), std::string::npos) << video;
+  const std::string bt709 =
+      colour_refusal(file("bt709.png"), with_chunks(png, {cicp_chunk(1, 1, 0, 1)}));
+  EXPECT_NE(bt709.find("(cICP transfer 1)"), std::string::npos) << bt709;
+  const std::string short_chunk =
+      colour_refusal(file("short.png"), with_chunks(png, {{"cICP", {1, 13, 0}}}));
+  EXPECT_NE(short_chunk.find("a cICP chunk of 3 bytes (4 expected)"), std::string::npos)
+      << short_chunk;
+
+  // A damaged checksum: libpng drops the chunk, which refuses the file rather than reading the
+  // values in a colour it does not have.
+  Bytes damaged = with_chunks(png, {cicp_chunk(1, 8, 0, 1)});
+  damaged[33 + 12 + 3] ^= 0xff;  // the chunk's last checksum byte (length, type, 4 data bytes)
+  const std::string crc = colour_refusal(file("crc.png"), damaged);
+  EXPECT_NE(crc.find("a cICP chunk that cannot be read (CRC error)"), std::string::npos) << crc;
+  EXPECT_NE(crc.find("export it again"), std::string::npos) << crc;
+  EXPECT_NO_THROW(read_image(file("crc.png")));
+}
+
+TEST_F(ImageIoTest, IccpWithAnSrgbProfileLeavesTheValues) {
+  const Bytes png = handmade_png(2, 1, 8, 6, {0, 10, 128, 250, 77, 255, 0, 64, 1});
+  ImageColour colour;
+  const ImageF image = read_colour(
+      file("srgb.png"), with_chunks(png, {iccp_chunk(saved_profile(srgb_profile()))}), colour);
+  EXPECT_EQ(colour.space, ColourSpace::srgb);
+  EXPECT_EQ(colour.origin, "ICC profile 'stochtex test sRGB': sRGB");
+  expect_identical(read_image(file("srgb.png")), image);
+
+  // A grey profile with sRGB's tone curve, on a grey image.
+  const cmsFloat64Number srgb_curve[5] = {2.4, 1.0 / 1.055, 0.055 / 1.055, 1.0 / 12.92, 0.04045};
+  cmsToneCurve* curve = cmsBuildParametricToneCurve(nullptr, 4, srgb_curve);
+  cmsHPROFILE grey = cmsCreateGrayProfile(&kD65, curve);
+  cmsFreeToneCurve(curve);
+  set_description(grey, "grey sRGB curve");
+  const Bytes grey_png =
+      with_chunks(handmade_png(3, 1, 8, 0, {0, 10, 128, 250}), {iccp_chunk(saved_profile(grey))});
+  const ImageF grey_image = read_colour(file("grey.png"), grey_png, colour);
+  EXPECT_EQ(colour.origin, "ICC profile 'grey sRGB curve': sRGB");
+  expect_identical(read_image(file("grey.png")), grey_image);
+}
+
+TEST_F(ImageIoTest, IccpWithAnotherProfileIsConvertedToSrgb) {
+  // RGBA, 8-bit: saturated primaries, white, a mid grey and a dark colour; alpha 0, 77, 128...
+  const Bytes rows = {0,   255, 0,   0,   0,   0,   255, 0,   77, 0,  0,  255, 128,
+                      255, 255, 255, 200, 128, 128, 128, 255, 20, 60, 90, 3};
+  const Bytes png = with_chunks(handmade_png(6, 1, 8, 6, rows),
+                                {iccp_chunk(saved_profile(wide_rgb_profile())), kSrgbChunk});
+  ImageColour colour;
+  const ImageF image = read_colour(file("wide.png"), png, colour);
+  EXPECT_EQ(colour.space, ColourSpace::srgb);
+  EXPECT_EQ(colour.origin, "ICC profile 'stochtex test wide RGB', converted to sRGB");
+  const ImageF stored = read_image(file("wide.png"));
+
+  // Against Little CMS's own transform of the same values, from the profile the file holds (its
+  // colorants rounded to 1/65536 when it was saved).
+  const Bytes wide_bytes = saved_profile(wide_rgb_profile());
+  cmsHPROFILE wide =
+      cmsOpenProfileFromMem(wide_bytes.data(), static_cast<cmsUInt32Number>(wide_bytes.size()));
+  cmsHPROFILE srgb = cmsCreate_sRGBProfile();
+  cmsHTRANSFORM transform =
+      cmsCreateTransform(wide, TYPE_RGBA_FLT, srgb, TYPE_RGBA_FLT, INTENT_RELATIVE_COLORIMETRIC, 0);
+  ImageF expected = stored;
+  cmsDoTransform(transform, expected.pixels().data(), expected.pixels().data(), 6);
+  cmsDeleteTransform(transform);
+  cmsCloseProfile(srgb);
+  cmsCloseProfile(wide);
+  for (int x = 0; x < 6; ++x) {
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(image.at(x, 0, c), expected.at(x, 0, c), 1e-6f) << x << " " << c;
+    EXPECT_EQ(image.at(x, 0, 3), stored.at(x, 0, 3)) << "alpha is data, left as it is";
+  }
+  // Known values. Adobe RGB's red has sRGB's chromaticity and more light (Y 0.297 against
+  // 0.213): red only, above 1. Its green is beyond sRGB's gamut: in sRGB's linear light it is
+  // (-0.398, 1, -0.043), whose negative light the extended sRGB curve encodes (core/srgb.hpp):
+  // nothing is clamped. White stays white; a grey of the same white point stays grey, its light
+  // 0.5^2.2 encoded with sRGB's curve.
+  EXPECT_GT(image.at(0, 0, 0), 1.1f);
+  EXPECT_NEAR(image.at(0, 0, 1), 0.0f, 1e-3f);
+  EXPECT_NEAR(image.at(0, 0, 2), 0.0f, 1e-3f);
+  EXPECT_NEAR(image.at(1, 0, 0), srgb_encode(-0.398f), 0.01f);
+  EXPECT_NEAR(image.at(1, 0, 1), 1.0f, 1e-3f);
+  EXPECT_NEAR(image.at(1, 0, 2), srgb_encode(-0.043f), 0.01f);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(image.at(3, 0, c), 1.0f, 1e-3f);
+    EXPECT_NEAR(image.at(4, 0, c), srgb_encode(std::pow(128.0 / 255.0, 2.2)), 2e-3);
+  }
+  // The dark blue-grey (20, 60, 90) loses its red to the wider primaries.
+  EXPECT_LT(image.at(5, 0, 0), -0.1f);
+
+  // iCCP comes before sRGB whatever their order in the file.
+  read_colour(file("srgb_first.png"),
+              with_chunks(handmade_png(6, 1, 8, 6, rows),
+                          {kSrgbChunk, iccp_chunk(saved_profile(wide_rgb_profile()))}),
+              colour);
+  EXPECT_EQ(colour.origin, "ICC profile 'stochtex test wide RGB', converted to sRGB");
+
+  // A grey image with a grey gamma 2.2 profile: to grey with sRGB's tone curve.
+  const Bytes grey_png = with_chunks(handmade_png(3, 1, 16, 0, {0, 0, 0, 128, 0, 255, 255}),
+                                     {iccp_chunk(saved_profile(grey_gamma_profile()))});
+  const ImageF grey = read_colour(file("grey.png"), grey_png, colour);
+  EXPECT_EQ(colour.origin, "ICC profile 'stochtex test grey 2.2', converted to sRGB");
+  EXPECT_NEAR(grey.at(0, 0, 0), 0.0f, 1e-4f);
+  EXPECT_NEAR(grey.at(1, 0, 0), srgb_encode(std::pow(32768.0 / 65535.0, 2.2)), 1e-3);
+  EXPECT_NEAR(grey.at(2, 0, 0), 1.0f, 1e-4f);
+}
+
+TEST_F(ImageIoTest, IccProfilesThatCannotBeUsedAreRefused) {
+  const Bytes rgb = handmade_png(1, 1, 8, 2, {0, 10, 128, 250});
+  const auto expect_refused = [&](const std::string& name, const Bytes& png,
+                                  const std::string& reason) {
+    const std::string message = colour_refusal(file(name), png);
+    EXPECT_NE(message.find(" carries an ICC profile stochtex cannot use ("), std::string::npos)
+        << message;
+    EXPECT_NE(message.find(reason), std::string::npos) << message;
+    EXPECT_TRUE(message.ends_with("); convert the image to sRGB")) << message;
+    EXPECT_NO_THROW(read_image(file(name))) << "without an ImageColour, the values as stored";
+  };
+  Bytes cmyk = saved_profile(wide_rgb_profile());
+  std::copy_n("CMYK", 4, cmyk.begin() + 16);
+  expect_refused("cmyk.png", with_chunks(rgb, {iccp_chunk(cmyk)}), "'CMYK'");
+  expect_refused("rgb_on_grey.png",
+                 with_chunks(handmade_png(1, 1, 8, 0, {0, 10}),
+                             {iccp_chunk(saved_profile(wide_rgb_profile()))}),
+                 "RGB color space not permitted on grayscale PNG");
+  // Tag data Little CMS cannot read: each tag's type signature replaced.
+  Bytes damaged = saved_profile(wide_rgb_profile());
+  const std::uint32_t tags = std::uint32_t{damaged[128]} << 24 | std::uint32_t{damaged[129]} << 16 |
+                             std::uint32_t{damaged[130]} << 8 | damaged[131];
+  for (std::uint32_t tag = 0; tag < tags; ++tag) {
+    const std::size_t entry = 132 + 12 * tag;
+    const std::size_t offset = std::size_t{damaged[entry + 4]} << 24 |
+                               std::size_t{damaged[entry + 5]} << 16 |
+                               std::size_t{damaged[entry + 6]} << 8 | damaged[entry + 7];
+    std::copy_n("junk", 4, damaged.begin() + static_cast<std::ptrdiff_t>(offset));
+  }
+  expect_refused("damaged.png", with_chunks(rgb, {iccp_chunk(damaged)}), "Little CMS");
+  // A profile whose compressed data is cut short.
+  Chunk cut = iccp_chunk(saved_profile(wide_rgb_profile()));
+  cut.data.resize(cut.data.size() / 2);
+  expect_refused("cut.png", with_chunks(rgb, {cut}), "zlib");
+}
+
+TEST_F(ImageIoTest, FloatFormatsAreLinearAndGetSrgbImagesDecoded) {
+  ImageF srgb(5, 2, 4);
+  for (int x = 0; x < 5; ++x)
+    for (int y = 0; y < 2; ++y)
+      for (int c = 0; c < 4; ++c) srgb.at(x, y, c) = static_cast<float>(x + 5 * y + c) / 12.0f;
+  const fs::path exr = file("srgb.exr");
+  write_image(exr, srgb.view(), 8, ColourSpace::srgb);
+  const Bytes written = read_bytes(exr);
+  const std::vector<std::uint8_t> encoded =
+      encode_image(srgb.view(), ImageFormat::exr, 8, ColourSpace::srgb);
+  EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), written);
+  ImageColour colour;
+  const ImageF linear = read_colour(exr, written, colour);
+  EXPECT_EQ(colour.space, ColourSpace::linear);
+  EXPECT_EQ(colour.origin, "OpenEXR: linear");
+  for (int x = 0; x < 5; ++x)
+    for (int y = 0; y < 2; ++y) {
+      for (int c = 0; c < 3; ++c)
+        EXPECT_EQ(linear.at(x, y, c), srgb_decode(srgb.at(x, y, c))) << x << "," << y;
+      EXPECT_EQ(linear.at(x, y, 3), srgb.at(x, y, 3)) << "alpha is data";
+    }
+  // Linear and data images are written as they are.
+  for (const ColourSpace space : {ColourSpace::linear, ColourSpace::data}) {
+    write_image(exr, srgb.view(), 8, space);
+    expect_identical(srgb, read_image(exr, {}, &colour));
+    EXPECT_EQ(colour.space, ColourSpace::linear);
+  }
+
+  const ImageF rgb = stored_values(4, 3, 3, 255);
+  const fs::path pfm = file("srgb.pfm");
+  write_image(pfm, rgb.view(), 8, ColourSpace::srgb);
+  const ImageF pfm_linear = read_colour(pfm, read_bytes(pfm), colour);
+  EXPECT_EQ(colour.space, ColourSpace::linear);
+  EXPECT_EQ(colour.origin, "PFM: linear");
+  for (std::size_t i = 0; i < rgb.pixels().size(); ++i)
+    EXPECT_EQ(pfm_linear.pixels()[i], srgb_decode(rgb.pixels()[i]));
+  write_image(pfm, rgb.view(), 8, ColourSpace::linear);
+  expect_identical(rgb, read_image(pfm));
 }
 
 }  // namespace
