@@ -1,14 +1,18 @@
 // Deterministic mutation fuzzing of read_image and decode_image (docs/design.md §9): small valid
-// PNG, OpenEXR and PFM files are damaged in seeded, reproducible ways, and every damaged file must
-// either read as a consistent image or throw stochtex::Error, and its bytes must decode from
-// memory to the same image or the same error. Any other exception, or a crash, fails the test.
+// PNG, OpenEXR and PFM files, and PNGs with colour chunks (sRGB, gAMA, cICP, an ICC profile), are
+// damaged in seeded, reproducible ways, and every damaged file must either read as a consistent
+// image or throw stochtex::Error, as stored and with its colour (an ImageColour), and its bytes
+// must decode from memory to the same image and colour or the same error. Any other exception, or
+// a crash, fails the test.
 
 #include <gtest/gtest.h>
+#include <lcms2.h>
 #include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -20,6 +24,7 @@
 #include <vector>
 
 #include "io/image_io.hpp"
+#include "stochtex/colour.hpp"
 #include "stochtex/error.hpp"
 #include "test_support.hpp"
 
@@ -48,6 +53,50 @@ struct Seed {
   Bytes bytes;
   bool png = false;
 };
+
+// The PNG chunk checksum is zlib's CRC-32.
+std::uint32_t crc32(const unsigned char* data, std::size_t size) {
+  return static_cast<std::uint32_t>(::crc32(0L, data, static_cast<uInt>(size)));
+}
+
+// `png` with a chunk of `type` holding `data` after its header chunk (IHDR, 25 bytes after the
+// 8-byte signature), where colour chunks belong.
+Bytes with_chunk(const Bytes& png, const char* type, const Bytes& data) {
+  Bytes chunk;
+  for (int shift = 24; shift >= 0; shift -= 8)
+    chunk.push_back(static_cast<unsigned char>(data.size() >> shift));
+  chunk.insert(chunk.end(), type, type + 4);
+  chunk.insert(chunk.end(), data.begin(), data.end());
+  const std::uint32_t crc = crc32(chunk.data() + 4, chunk.size() - 4);
+  for (int shift = 24; shift >= 0; shift -= 8)
+    chunk.push_back(static_cast<unsigned char>(crc >> shift));
+  Bytes result(png.size() + chunk.size());
+  const auto after_header = std::copy(png.begin(), png.begin() + 33, result.begin());
+  std::copy(png.begin() + 33, png.end(), std::copy(chunk.begin(), chunk.end(), after_header));
+  return result;
+}
+
+// An iCCP chunk's data: a name, its terminator, compression method 0, then an RGB profile that is
+// not sRGB (Adobe RGB (1998)'s primaries, gamma 2.2), compressed, so that reading converts.
+Bytes wide_rgb_iccp() {
+  const cmsCIExyY d65 = {0.3127, 0.3290, 1.0};
+  const cmsCIExyYTRIPLE primaries = {{0.64, 0.33, 1.0}, {0.21, 0.71, 1.0}, {0.15, 0.06, 1.0}};
+  cmsToneCurve* gamma = cmsBuildGamma(nullptr, 2.2);
+  cmsToneCurve* curves[3] = {gamma, gamma, gamma};
+  cmsHPROFILE profile = cmsCreateRGBProfile(&d65, &primaries, curves);
+  cmsFreeToneCurve(gamma);
+  cmsUInt32Number size = 0;
+  cmsSaveProfileToMem(profile, nullptr, &size);
+  Bytes icc(size);
+  cmsSaveProfileToMem(profile, icc.data(), &size);
+  cmsCloseProfile(profile);
+  uLongf compressed_size = compressBound(static_cast<uLong>(icc.size()));
+  Bytes data = {'i', 'c', 'c', 0, 0};
+  data.resize(data.size() + compressed_size);
+  compress2(data.data() + 5, &compressed_size, icc.data(), static_cast<uLong>(icc.size()), 9);
+  data.resize(5 + compressed_size);
+  return data;
+}
 
 std::vector<Seed> make_seeds(const fs::path& folder) {
   const auto image = [](int width, int height, int channels) {
@@ -78,12 +127,15 @@ std::vector<Seed> make_seeds(const fs::path& folder) {
     write_image(path, recipe.image.view(), recipe.bit_depth);
     seeds.push_back({recipe.name, read_bytes(path), path.extension() == ".png"});
   }
+  // Colour: the sRGB, gAMA and cHRM chunks write_image writes for sRGB values, a gAMA to convert,
+  // a cICP and an ICC profile.
+  write_image(folder / "srgb8.png", image(5, 6, 3).view(), 8, ColourSpace::srgb);
+  seeds.push_back({"srgb8.png", read_bytes(folder / "srgb8.png"), true});
+  seeds.push_back(
+      {"gama_grey_alpha8.png", with_chunk(seeds[1].bytes, "gAMA", {0, 0, 0xb1, 0x8f}), true});
+  seeds.push_back({"cicp_rgba16.png", with_chunk(seeds[2].bytes, "cICP", {1, 8, 0, 1}), true});
+  seeds.push_back({"iccp_rgb8.png", with_chunk(seeds[0].bytes, "iCCP", wide_rgb_iccp()), true});
   return seeds;
-}
-
-// The PNG chunk checksum is zlib's CRC-32.
-std::uint32_t crc32(const unsigned char* data, std::size_t size) {
-  return static_cast<std::uint32_t>(::crc32(0L, data, static_cast<uInt>(size)));
 }
 
 // Rewrites every PNG chunk checksum, so that mutations reach the chunk parsers and the inflater
@@ -174,6 +226,7 @@ void mutate(Bytes& bytes, std::mt19937& random) {
 // name decode_image is given here), replaced by "<name>".
 struct Outcome {
   ImageF image;
+  ImageColour colour;
   bool refused = false;
   ErrorCode code = ErrorCode::numerical;
   std::string message;
@@ -183,7 +236,7 @@ template <typename Read>
 Outcome outcome_of(const Read& read, const std::string& name) {
   Outcome outcome;
   try {
-    outcome.image = read();
+    outcome.image = read(outcome.colour);
   } catch (const Error& error) {
     outcome.refused = true;
     outcome.code = error.code();
@@ -206,8 +259,9 @@ TEST(ImageFuzz, MutatedFilesReadOrThrowError) {
   ImageReadLimits limits;
   limits.max_pixels = 1 << 12;
   std::mt19937 random(kSeed);
-  int images_read = 0;
-  int errors_thrown = 0;
+  // As stored, then with the colour (index 1).
+  std::array<int, 2> images_read{};
+  std::array<int, 2> errors_thrown{};
   const fs::path mutated_path = folder / "mutated";
   for (int iteration = 0; iteration < kMutatedFiles; ++iteration) {
     const Seed& seed = seeds[iteration % seeds.size()];
@@ -215,47 +269,70 @@ TEST(ImageFuzz, MutatedFilesReadOrThrowError) {
     mutate(bytes, random);
     if (seed.png && random() % 2 == 0) fix_png_checksums(bytes);
     write_bytes(mutated_path, bytes);
-    const std::string context = "iteration " + std::to_string(iteration) + " from " + seed.name;
-    try {
-      const Outcome file =
-          outcome_of([&] { return read_image(mutated_path, limits); }, mutated_path.string());
-      const Outcome memory =
-          outcome_of([&] { return decode_image(bytes, mutated_path.string(), limits); },
-                     mutated_path.string());
-      ASSERT_EQ(memory.refused, file.refused) << context << ": " << file.message << memory.message;
-      if (file.refused) {
-        ASSERT_EQ(memory.code, file.code) << context;
-        ASSERT_EQ(memory.message, file.message) << context;
-        ++errors_thrown;
-        continue;
+    for (const bool with_colour : {false, true}) {
+      const std::string context = "iteration " + std::to_string(iteration) + " from " + seed.name +
+                                  (with_colour ? ", with its colour" : "");
+      try {
+        const Outcome file = outcome_of(
+            [&](ImageColour& colour) {
+              return read_image(mutated_path, limits, with_colour ? &colour : nullptr);
+            },
+            mutated_path.string());
+        const Outcome memory = outcome_of(
+            [&](ImageColour& colour) {
+              return decode_image(bytes, mutated_path.string(), limits,
+                                  with_colour ? &colour : nullptr);
+            },
+            mutated_path.string());
+        ASSERT_EQ(memory.refused, file.refused)
+            << context << ": " << file.message << memory.message;
+        if (file.refused) {
+          ASSERT_EQ(memory.code, file.code) << context;
+          ASSERT_EQ(memory.message, file.message) << context;
+          ++errors_thrown[with_colour];
+          continue;
+        }
+        const ImageF& image = file.image;
+        ASSERT_GT(image.width(), 0) << context;
+        ASSERT_GT(image.height(), 0) << context;
+        ASSERT_GE(image.channels(), 1) << context;
+        ASSERT_LE(image.channels(), 4) << context;
+        ASSERT_LE(static_cast<std::int64_t>(image.pixel_count()), limits.max_pixels) << context;
+        ASSERT_EQ(image.pixels().size(), image.pixel_count() * image.channels()) << context;
+        ASSERT_EQ(memory.image.width(), image.width()) << context;
+        ASSERT_EQ(memory.image.height(), image.height()) << context;
+        ASSERT_EQ(memory.image.channels(), image.channels()) << context;
+        // OpenEXR 3.1 gives some damaged chunks the pixels of a buffer it never wrote (valgrind:
+        // allocated by Imf::newCompressor), which differ from one read to the next: only the
+        // pixels of the other formats are compared.
+        if (!seed.name.ends_with(".exr")) {
+          ASSERT_TRUE(test_support::same_bytes(memory.image, image)) << context;
+        }
+        if (with_colour) {
+          ASSERT_NE(file.colour.space, ColourSpace::data) << context;
+          ASSERT_FALSE(file.colour.origin.empty()) << context;
+          ASSERT_EQ(memory.colour.space, file.colour.space) << context;
+          ASSERT_EQ(memory.colour.origin, file.colour.origin) << context;
+          if (seed.png) {
+            for (const float value : image.pixels()) ASSERT_TRUE(std::isfinite(value)) << context;
+          }
+        }
+        ++images_read[with_colour];
+      } catch (const std::exception& e) {
+        FAIL() << context << " threw something other than stochtex::Error: " << e.what();
       }
-      const ImageF& image = file.image;
-      ASSERT_GT(image.width(), 0) << context;
-      ASSERT_GT(image.height(), 0) << context;
-      ASSERT_GE(image.channels(), 1) << context;
-      ASSERT_LE(image.channels(), 4) << context;
-      ASSERT_LE(static_cast<std::int64_t>(image.pixel_count()), limits.max_pixels) << context;
-      ASSERT_EQ(image.pixels().size(), image.pixel_count() * image.channels()) << context;
-      ASSERT_EQ(memory.image.width(), image.width()) << context;
-      ASSERT_EQ(memory.image.height(), image.height()) << context;
-      ASSERT_EQ(memory.image.channels(), image.channels()) << context;
-      // OpenEXR 3.1 gives some damaged chunks the pixels of a buffer it never wrote (valgrind:
-      // allocated by Imf::newCompressor), which differ from one read to the next: only the
-      // pixels of the other formats are compared.
-      if (!seed.name.ends_with(".exr")) {
-        ASSERT_TRUE(test_support::same_bytes(memory.image, image)) << context;
-      }
-      ++images_read;
-    } catch (const std::exception& e) {
-      FAIL() << context << " threw something other than stochtex::Error: " << e.what();
     }
   }
   fs::remove_all(folder);
-  // Both outcomes occur, so the mutations neither always break the files nor never reach them.
-  EXPECT_GT(images_read, 0);
-  EXPECT_GT(errors_thrown, 0);
-  std::printf("%d mutated files: %d read, %d refused with stochtex::Error\n", kMutatedFiles,
-              images_read, errors_thrown);
+  // Both outcomes occur, each way of reading, so the mutations neither always break the files
+  // nor never reach them.
+  for (const int colour : {0, 1}) {
+    EXPECT_GT(images_read[colour], 0);
+    EXPECT_GT(errors_thrown[colour], 0);
+    std::printf("%d mutated files, %s: %d read, %d refused with stochtex::Error\n", kMutatedFiles,
+                colour ? "with their colour" : "as stored", images_read[colour],
+                errors_thrown[colour]);
+  }
 }
 
 }  // namespace
