@@ -19,6 +19,7 @@
 
 #include "arrays.hpp"
 #include "core/memory_budget.hpp"
+#include "core/srgb.hpp"
 #include "model/map_layout.hpp"
 #include "registry.hpp"
 #include "renderer/plan.hpp"
@@ -85,15 +86,26 @@ ImageF exemplar_from_array(const py::array& array, const std::string& what) {
   return image;
 }
 
+// The colour space named `name` for a Python keyword, or a ValueError naming `what`.
+ColourSpace colour_space_argument(const std::string& name, const char* what) {
+  const auto space = colour_space_from_name(name);
+  if (!space)
+    throw py::value_error(std::string(what) + " must be 'data', 'linear' or 'srgb', not '" + name +
+                          "'");
+  return *space;
+}
+
 Model analyze_array(const py::array& array, const std::string& method, std::uint32_t seed,
-                    const py::object& progress, const py::kwargs& params) {
+                    const py::object& progress, const std::string& colour,
+                    const py::kwargs& params) {
+  const ColourSpace space = colour_space_argument(colour, "colour");
   const ParamValues values = resolve_params(method, text_params(params));
   const ImageShape shape = image_shape(array, "the exemplar array");
   check_analysis_request(method, shape.width, shape.height, shape.channels, "the exemplar array");
   const ImageF exemplar = image_from_array(array, "the exemplar array");
   const auto hook = progress_hook(progress);
   py::gil_scoped_release release;
-  return analyze(method, exemplar.view(), values, seed, "the exemplar array", hook);
+  return analyze(method, exemplar.view(), values, seed, "the exemplar array", hook, space);
 }
 
 // analyze_material of a dict {name: array} (insertion order = channel order); `kinds` gives a
@@ -233,12 +245,19 @@ py::dict render_material(const Model& model, int width, int height, std::array<d
 py::array_t<float> render_model(const Model& model, int width, int height,
                                 std::array<double, 2> origin, double scale, std::uint32_t seed,
                                 int threads, std::array<std::int64_t, 2> offset,
-                                const py::object& progress) {
+                                const py::object& progress, bool encoded) {
   RenderJob job = checked_render(width, height, model.channels(), origin, scale, threads, offset);
   OutputArray output = output_array(width, height, model.channels());
   job.options.progress = progress_hook(progress);
   py::gil_scoped_release release;
   render(model, job.grid, seed, output.view, job.options);
+  // Linear light back to sRGB-encoded values, as a PNG output holds them.
+  if (encoded && model.maps().empty() && model.colour_space() != ColourSpace::data)
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x)
+        for (int c = 0; c < model.channels(); ++c)
+          if (is_colour_channel(c, model.channels()))
+            output.view.at(x, y, c) = srgb_encode(output.view.at(x, y, c));
   return output.array;
 }
 
@@ -365,6 +384,12 @@ PYBIND11_MODULE(_stochtex, m) {
           "method", method(+[](const Model& model) { return std::string(model.method()); }))
       .def_property_readonly("channels",
                              method(+[](const Model& model) { return model.channels(); }))
+      .def_property_readonly(
+          "colour_space", method(+[](const Model& model) {
+            return std::string(colour_space_name(model.colour_space()));
+          }),
+          "What the exemplar's values were (docs/design.md §14): 'data' (rendered as they are), "
+          "'linear' or 'srgb' (rendered as linear light); a material's maps each have theirs.")
       .def_property_readonly("maps", method(&map_list),
                              "A material's maps in channel order, each {name, kind, channels} "
                              "(and from, scale for a normal map derived from a height map); "
@@ -385,9 +410,12 @@ PYBIND11_MODULE(_stochtex, m) {
            py::arg("origin") = std::array<double, 2>{0.0, 0.0}, py::arg("scale") = 1.0,
            py::arg("seed") = 0, py::arg("threads") = 0,
            py::arg("offset") = std::array<std::int64_t, 2>{0, 0}, py::arg("progress") = py::none(),
+           py::arg("encoded") = false,
            "A height x width x channels float32 image: pixel (i, j) samples origin + scale * "
            "(offset + (i, j) + 1/2), so a chunk rendered with offset equals the same pixels of "
-           "the whole render, bit for bit.")
+           "the whole render, bit for bit. A srgb or linear model renders linear light (each "
+           "pixel the mean of the colour over its footprint); encoded=True gives its colour "
+           "channels sRGB-encoded, as a PNG holds them.")
       .def("evaluate", method(&evaluate_model), py::arg("points"),
            py::arg("footprints") = py::none(), py::arg("seed") = 0,
            "The model at N positions (Nx2, exemplar pixels), with optional Nx2x2 footprints "
@@ -401,9 +429,11 @@ PYBIND11_MODULE(_stochtex, m) {
       .def("__reduce__", &reduce_model);
 
   m.def("analyze", &analyze_array, py::arg("array"), py::arg("method"), py::arg("seed") = 0,
-        py::arg("progress") = py::none(),
+        py::arg("progress") = py::none(), py::arg("colour") = "data",
         "Analyses an HxW or HxWxC exemplar (uint8, uint16 or float32) with a method; keyword "
-        "arguments are its parameters (numbers or a choice's name).");
+        "arguments are its parameters (numbers or a choice's name). colour says what its values "
+        "are: 'data' (as they are, the default), 'srgb' (an ordinary photo: the model renders "
+        "linear light) or 'linear'.");
   m.def("analyze_material", &analyze_maps, py::arg("maps"), py::arg("method"), py::arg("seed") = 0,
         py::arg("kinds") = py::dict(), py::arg("normal_y") = "up", py::arg("progress") = py::none(),
         "Analyses a material: maps is a dict {name: HxW or HxWxC array} of aligned maps, in "
@@ -425,14 +455,19 @@ PYBIND11_MODULE(_stochtex, m) {
       "HxWxC array, a PNG's values divided by 255 or 65535 as stored.");
   m.def(
       "write_image",
-      [](const std::filesystem::path& path, const py::array& image, int bit_depth) {
+      [](const std::filesystem::path& path, const py::array& image, int bit_depth,
+         const std::string& colour) {
+        const ColourSpace space = colour_space_argument(colour, "colour");
         const ImageF copy = image_from_array(image, "the image array");
         py::gil_scoped_release release;
-        write_image(path, copy.view(), bit_depth);
+        write_image(path, copy.view(), bit_depth, space);
       },
-      py::arg("path"), py::arg("image"), py::arg("bit_depth") = 8,
+      py::arg("path"), py::arg("image"), py::arg("bit_depth") = 8, py::arg("colour") = "data",
       "Writes an HxW or HxWxC array as `stochtex render` writes an image: PNG (8 or 16 bits, "
-      "values clamped to 0..1), OpenEXR or PFM by the extension; never a partial file.");
+      "values clamped to 0..1), OpenEXR or PFM by the extension; never a partial file. colour "
+      "says what its values are: 'data' (written as they are), 'linear' (a render of a srgb "
+      "model: a PNG encodes it, with an sRGB chunk) or 'srgb' (encoded: OpenEXR and PFM decode "
+      "it).");
   m.def(
       "methods", [] { return parse_json(methods_json()); },
       "Every method with its parameters: names, defaults, ranges, help, choices.");

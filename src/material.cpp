@@ -178,7 +178,13 @@ std::vector<MapInfo> material_layout(std::span<const MaterialMap> maps) {
                       std::to_string(first.image.width) + "x" + std::to_string(first.image.height) +
                       "; the maps of a material must be the same size, aligned pixel for pixel");
     const MapKind kind = map.kind.value_or(default_map_kind(map.name));
-    layout.push_back({map.name, kind, channels_taken(map, kind), {}, 0.0});
+    if (kind != MapKind::colour && map.colour_space != ColourSpace::data)
+      throw Error(ErrorCode::invalid_input, described(map) + " is a " +
+                                                std::string(map_kind_name(kind)) +
+                                                " map, which is data, not " +
+                                                std::string(colour_space_name(map.colour_space)) +
+                                                " colour; give it as data or as a colour map");
+    layout.push_back({map.name, kind, channels_taken(map, kind), {}, 0.0, map.colour_space});
     if (kind == MapKind::normal) check_normal_map(map);
   }
   if (const auto problem = map_layout_problem(layout))

@@ -390,7 +390,7 @@ void check_analysis_request(std::string_view method, int width, int height, int 
 Model analyze_exemplar(std::string_view method, ImageView<const float> exemplar,
                        const ParamValues& params, std::uint32_t seed,
                        const std::string& source_name, const std::function<void(double)>& progress,
-                       std::vector<MapInfo> maps) {
+                       std::vector<MapInfo> maps, ColourSpace colour_space) {
   const MethodEntry& entry = find_entry(method);
   ParamValues resolved = resolve_params(method, params);
   check_analysis_request(method, exemplar.width, exemplar.height, exemplar.channels, source_name);
@@ -404,14 +404,16 @@ Model analyze_exemplar(std::string_view method, ImageView<const float> exemplar,
     }
   }();
   if (progress) progress(1.0);
-  return Model(std::make_shared<const ModelData>(
-      ModelData{std::move(resolved), std::move(model), std::move(maps)}));
+  std::vector<ColourSpace> spaces = maps.empty()
+                                        ? image_channel_spaces(colour_space, exemplar.channels)
+                                        : map_channel_spaces(maps);
+  return assemble_model(std::move(resolved), std::move(model), std::move(maps), std::move(spaces));
 }
 
 Model analyze(std::string_view method, ImageView<const float> exemplar, const ParamValues& params,
               std::uint32_t seed, const std::string& source_name,
-              const std::function<void(double)>& progress) {
-  return analyze_exemplar(method, exemplar, params, seed, source_name, progress, {});
+              const std::function<void(double)>& progress, ColourSpace colour_space) {
+  return analyze_exemplar(method, exemplar, params, seed, source_name, progress, {}, colour_space);
 }
 
 ImageF gaussian_version(ImageView<const float> exemplar, int width, int height,

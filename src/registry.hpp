@@ -18,10 +18,12 @@ namespace stochtex {
 void check_analysis_request(std::string_view method, int width, int height, int channels,
                             const std::string& source_name);
 
+// The model of an exemplar of one image in `colour_space`, or of a material's maps (each map's
+// MapInfo::colour_space; `colour_space` is not used).
 Model analyze_exemplar(std::string_view method, ImageView<const float> exemplar,
                        const ParamValues& params, std::uint32_t seed,
                        const std::string& source_name, const std::function<void(double)>& progress,
-                       std::vector<MapInfo> maps);
+                       std::vector<MapInfo> maps, ColourSpace colour_space = ColourSpace::data);
 
 // The optional capabilities of a method's row (methods/capabilities.hpp), nullptr where it has
 // none; the front ends drive a method's extra features through these, never through its name.

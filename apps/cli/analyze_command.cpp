@@ -8,7 +8,9 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "arguments.hpp"
@@ -54,6 +56,17 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
   command
       ->add_option("--analysis-seed", options.seed, "seed of the analysis' random initialisation")
       ->capture_default_str();
+  command
+      ->add_option("--colour-space", options.colour_space,
+                   "what the exemplar's values are: auto (what the file says: a PNG is sRGB "
+                   "unless its sRGB, gAMA, cICP or ICC profile chunks say otherwise, OpenEXR and "
+                   "PFM are linear), srgb (an ordinary photo: the model renders linear light, "
+                   "each filtered value the mean of the decoded colour), linear (linear light) or "
+                   "data (numbers that are not colour, filtered as they are; for now the only "
+                   "one the GL backend and the shader exports render); for --map, the colour maps' "
+                   "(a map's own :COLOUR_SPACE overrides it; every other kind is data)")
+      ->check(CLI::IsMember({"auto", "srgb", "linear", "data"}))
+      ->capture_default_str();
 }
 
 namespace {
@@ -67,15 +80,41 @@ ImageReadLimits analysis_limits(const std::string& method, const std::string& pa
   return limits;
 }
 
+// The image at `path` as `space` says (none: auto, what the file says), and its colour space.
+std::pair<ImageF, ColourSpace> read_exemplar(const std::string& path,
+                                             std::optional<ColourSpace> space,
+                                             const ImageReadLimits& limits) {
+  if (space) return {read_image(path, limits), *space};
+  ImageColour colour;
+  ImageF image = read_image(path, limits, &colour);
+  fmt::print(stderr, "{}: {} ({})\n", path, colour_space_name(colour.space), colour.origin);
+  return {std::move(image), colour.space};
+}
+
+// The option's colour space, none for auto.
+std::optional<ColourSpace> option_space(const std::string& text) {
+  return text == "auto" ? std::nullopt : colour_space_from_name(text);
+}
+
 Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params) {
   std::vector<MapArgument> arguments;
   for (const auto& text : options.maps) arguments.push_back(parse_map_argument(text));
   std::vector<ImageF> images;
-  for (const auto& argument : arguments)
-    images.push_back(read_image(argument.file, analysis_limits(options.method, argument.file)));
   std::vector<MaterialMap> maps;
-  for (std::size_t i = 0; i < arguments.size(); ++i)
-    maps.push_back({arguments[i].name, arguments[i].kind, images[i].view(), arguments[i].file});
+  for (const auto& argument : arguments) {
+    const MapKind kind = argument.kind.value_or(default_map_kind(argument.name));
+    // A colour map in the option's space or its own; every other kind is data unless it says
+    // otherwise (which analyze_material refuses).
+    const std::optional<ColourSpace> space = argument.colour_space ? argument.colour_space
+                                             : kind == MapKind::colour
+                                                 ? option_space(options.colour_space)
+                                                 : ColourSpace::data;
+    auto [image, read_space] =
+        read_exemplar(argument.file, space, analysis_limits(options.method, argument.file));
+    images.push_back(std::move(image));
+    maps.push_back({argument.name, kind, {}, argument.file, read_space});
+  }
+  for (std::size_t i = 0; i < maps.size(); ++i) maps[i].image = images[i].view();
   Progress progress("analyse");
   progress.message(
       fmt::format("analysing a material of {} maps with {}...", maps.size(), options.method));
@@ -104,12 +143,14 @@ Model run_analyze(const AnalyzeOptions& options) {
   if (options.input.empty())
     throw std::invalid_argument("give an exemplar INPUT, a material's --map NAME=FILE or, for " +
                                 methods_with(CapabilityKind::target) + ", a --target spectrum");
-  const ImageF exemplar =
-      load_exemplar(options.input, analysis_limits(options.method, options.input).check_declared);
+  const auto [exemplar, space] = read_exemplar(options.input, option_space(options.colour_space),
+                                               analysis_limits(options.method, options.input));
+  validate_exemplar(exemplar.view(), options.input);
   Progress progress("analyse");
   progress.message(fmt::format("analysing {} with {}...", options.input, options.method));
-  return analyze(options.method, exemplar.view(), params, options.seed, options.input,
-                 [&](double fraction) { progress(fraction); });
+  return analyze(
+      options.method, exemplar.view(), params, options.seed, options.input,
+      [&](double fraction) { progress(fraction); }, space);
 }
 
 Command add_analyze_command(CLI::App& app) {

@@ -19,9 +19,11 @@ struct AnalyzeOptions {
   std::string method;
   std::vector<std::string> params;
   std::uint32_t seed = 0;
+  std::string colour_space = "data";
 };
 
-// INPUT, --target, --map, --normal-y, --synthesise-normals, --method, -p and --analysis-seed.
+// INPUT, --target, --map, --normal-y, --synthesise-normals, --method, -p, --analysis-seed and
+// --colour-space.
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options);
 
 // The model of the options' exemplar or target. The method and parameters are checked before

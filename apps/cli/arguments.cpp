@@ -101,19 +101,27 @@ std::map<std::string, std::string, std::less<>> parse_params(
 }
 
 MapArgument parse_map_argument(const std::string& text) {
-  static const std::regex pattern(R"(([a-z0-9_]{1,32})(:([a-z]+))?=(.+))");
+  static const std::regex pattern(R"(([a-z0-9_]{1,32})(:([a-z]+))?(:([a-z]+))?=(.+))");
   std::smatch match;
   if (!std::regex_match(text, match, pattern))
     throw std::invalid_argument(
-        "--map expects NAME=FILE or NAME:KIND=FILE with a name of 1 to 32 of a-z, 0-9 and _, "
-        "e.g. --map albedo=rock_albedo.png, not '" +
+        "--map expects NAME=FILE, NAME:KIND=FILE or NAME:KIND:COLOUR_SPACE=FILE with a name of 1 "
+        "to 32 of a-z, 0-9 and _, e.g. --map albedo=rock_albedo.png, not '" +
         text + "'");
-  MapArgument map{match[1], std::nullopt, match[4]};
-  if (match[3].matched) {
-    map.kind = map_kind_from_name(match[3].str());
-    if (!map.kind)
-      throw std::invalid_argument("--map " + text + ": the kind '" + match[3].str() +
-                                  "' is not one of colour, normal, height, scalar");
+  MapArgument map{match[1], std::nullopt, std::nullopt, match[6]};
+  // Each qualifier is a kind or a colour space, whose names differ.
+  for (const int group : {3, 5}) {
+    if (!match[group].matched) continue;
+    const std::string word = match[group].str();
+    if (const auto kind = map_kind_from_name(word); kind && !map.kind) {
+      map.kind = kind;
+    } else if (const auto space = colour_space_from_name(word); space && !map.colour_space) {
+      map.colour_space = space;
+    } else {
+      throw std::invalid_argument("--map " + text + ": '" + word +
+                                  "' is not a kind (colour, normal, height, scalar) or a colour "
+                                  "space (srgb, linear, data), or it repeats one");
+    }
   }
   return map;
 }

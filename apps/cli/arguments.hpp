@@ -51,11 +51,13 @@ std::optional<Vec2d> parse_number_pair(const std::string& text);
 // The -p key=value items of analyze and mix, as text values for resolve_params.
 std::map<std::string, std::string, std::less<>> parse_params(const std::vector<std::string>& items);
 
-// One --map NAME[:KIND]=FILE of analyze: a material map's name, its kind when given (colour,
-// normal, height, scalar) and its file.
+// One --map NAME[:KIND][:COLOUR_SPACE]=FILE of analyze: a material map's name, its kind when
+// given (colour, normal, height, scalar), its colour space when given (srgb, linear, data) and
+// its file.
 struct MapArgument {
   std::string name;
   std::optional<MapKind> kind;
+  std::optional<ColourSpace> colour_space;
   std::string file;
 };
 MapArgument parse_map_argument(const std::string& text);

@@ -35,12 +35,13 @@ void export_model_images(const Model& model, const std::filesystem::path& folder
 void print_text(const Model& model, const std::string& path, const std::string& description) {
   const auto doc = nlohmann::json::parse(description);
   fmt::print("model     {}\nmethod    {}\nchannels  {}\n", path, model.method(), model.channels());
+  if (model.maps().empty()) fmt::print("colour    {}\n", colour_space_name(model.colour_space()));
   for (const auto& [name, value] : doc["params"].items())
     fmt::print("  {} = {}\n", name, format_param(model.method(), name, value.get<double>()));
   for (const MapInfo& map : model.maps())
     if (map.derived_from.empty())
-      fmt::print("map       {} ({}, {} channel{})\n", map.name, map_kind_name(map.kind),
-                 map.channels, map.channels == 1 ? "" : "s");
+      fmt::print("map       {} ({}, {} channel{}, {})\n", map.name, map_kind_name(map.kind),
+                 map.channels, map.channels == 1 ? "" : "s", colour_space_name(map.colour_space));
     else
       fmt::print("map       {} ({}, derived: {:.4g} times the gradient of {})\n", map.name,
                  map_kind_name(map.kind), map.slope_scale, map.derived_from);

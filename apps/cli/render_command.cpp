@@ -140,14 +140,31 @@ Command add_render_command(CLI::App& app) {
     std::string model;
     RenderSettings settings;
     std::string output;
+    std::string colour_space;
   };
   auto options = std::make_shared<Options>();
   auto* command = app.add_subcommand("render", "model file -> image");
   command->add_option("MODEL", options->model, "model file (.stx)")->required();
   add_render_options(command, options->settings, options->output);
+  command
+      ->add_option("--colour-space", options->colour_space,
+                   "render the model as if analysed with this colour space (srgb, linear or "
+                   "data) instead of its own, without analysing again: srgb for a photo's "
+                   "model written before colour spaces, data for today's averages of encoded "
+                   "values (a model of one image)")
+      ->check(CLI::IsMember({"srgb", "linear", "data"}));
   return {command, [options] {
-            render_to_file([&] { return load_model(options->model); }, options->settings,
-                           options->output, options->model);
+            render_to_file(
+                [&] {
+                  const Model model = load_model(options->model);
+                  if (options->colour_space.empty()) return model;
+                  if (!model.maps().empty())
+                    throw std::invalid_argument(
+                        "--colour-space is for a model of one image; a material's maps each "
+                        "have theirs (stochtex analyze --map NAME:KIND:COLOUR_SPACE=FILE)");
+                  return with_colour_space(model, *colour_space_from_name(options->colour_space));
+                },
+                options->settings, options->output, options->model);
             return 0;
           }};
 }

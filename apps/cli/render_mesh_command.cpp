@@ -141,7 +141,7 @@ int run(const Options& o) {
     options.progress = [&](double fraction) { progress(fraction); };
     renderer::render_mesh_on(backend, model, mesh, view, options, o.seed, image.view());
   }
-  write_image(o.output, image.view());
+  write_image(o.output, image.view(), 8, mesh_output_space(model));
   fmt::print(stderr, "wrote {}\n", o.output);
   return 0;
 }

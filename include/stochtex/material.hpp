@@ -27,6 +27,9 @@ struct MaterialMap {
   std::optional<MapKind> kind;   // none: default_map_kind(name)
   ImageView<const float> image;  // 1 to 4 channels, the same size for every map
   std::string source;            // the file, named in messages
+  // What its values are (stochtex/colour.hpp): srgb or linear for a colour map (albedo, base
+  // colour, emission) read with its colour; every other kind is data.
+  ColourSpace colour_space = ColourSpace::data;
 };
 
 struct MaterialOptions {

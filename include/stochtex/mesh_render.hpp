@@ -56,6 +56,10 @@ struct MeshRenderOptions {
 // sentence, for a material without a colour map.
 int mesh_output_channels(const Model& model);
 
+// What render_mesh's pixels are (stochtex/colour.hpp): linear light when that colour is srgb or
+// linear (each pixel the mean of the decoded colour over its footprint, lit), else data.
+ColourSpace mesh_output_space(const Model& model);
+
 // Renders the mesh (prepared by prepare_mesh) seen by the camera into `out`, which has
 // mesh_output_channels(model) channels. Throws std::invalid_argument, before any work, when the
 // model is empty or does not support the mapping, the uv mapping meets a mesh without uvs, the

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "stochtex/colour.hpp"
 #include "stochtex/image.hpp"
 
 namespace stochtex {
@@ -84,6 +85,9 @@ struct MapInfo {
   // slope_scale times the rendered height's gradient (stochtex/material.hpp, render_maps).
   std::string derived_from;
   double slope_scale = 0.0;
+  // What its values are (stochtex/colour.hpp): by default srgb for a colour map analysed from a
+  // PNG, data for every other kind.
+  ColourSpace colour_space = ColourSpace::data;
 };
 std::string_view map_kind_name(MapKind kind);
 
@@ -100,6 +104,10 @@ class Model {
   const ParamValues& params() const;
   // The maps of a material model in channel order; empty for a model of one image.
   std::span<const MapInfo> maps() const;
+  // What the colour channels of a model of one image are (its alpha is data), and what a
+  // render's values are: linear light for srgb and linear, as they are for data (a model
+  // written before colour spaces). A material's maps each have theirs (MapInfo::colour_space).
+  ColourSpace colour_space() const;
   const ModelData& data() const { return *data_; }
 
  private:
@@ -112,6 +120,13 @@ void save_model(const Model& model, const std::filesystem::path& path);
 Model load_model(const std::filesystem::path& path);
 std::vector<std::uint8_t> serialize_model(const Model& model);
 Model deserialize_model(std::span<const std::uint8_t> bytes, const std::string& source_name);
+
+// The same model with its exemplar's values in `space` (stochtex/colour.hpp; the alpha of a
+// grey + alpha or RGBA model stays data). Analysis does not depend on the colour space, so a
+// model analysed as data, as every model written before colour spaces was, becomes a srgb one
+// without analysing again. Throws std::invalid_argument for an empty model or a material (its
+// maps each have theirs).
+Model with_colour_space(const Model& model, ColourSpace space);
 
 // A JSON description of a model: method, parameters, maps, array sizes (`stochtex info`).
 std::string describe_model(const Model& model);

@@ -69,10 +69,14 @@ std::uint64_t analysis_peak_bytes(std::string_view method, int width, int height
 // done (non-decreasing, 1 at the end): during the iterations of texton's and gabor's analyses,
 // at the end for the others. An exception it throws stops the analysis at the next iteration
 // and propagates out of analyze() (how a caller cancels it).
+// `colour_space` says what the exemplar's values are (stochtex/colour.hpp): srgb for an ordinary
+// photo read with its colour (read_image's ImageColour), whose model renders linear light; data
+// (the default) keeps the values as they are, as every model before colour spaces did.
 Model analyze(std::string_view method, ImageView<const float> exemplar,
               const ParamValues& params = {}, std::uint32_t seed = 0,
               const std::string& source_name = "exemplar",
-              const std::function<void(double)>& progress = {});
+              const std::function<void(double)>& progress = {},
+              ColourSpace colour_space = ColourSpace::data);
 
 // Texton noise mixing (Galerne, Leclaire, Moisan, "Texton Noise", CGF 2017, section 7): a model
 // whose texture goes from exemplar a's texton noise (rho = 0) to b's (rho = 1) along a ramp, or as

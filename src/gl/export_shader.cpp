@@ -459,6 +459,7 @@ std::string ShaderTexture::file_name() const {
 
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options) {
   if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
+  gl::check_gl_colour(model, "export-shader");
   if (model.maps().empty() && model.channels() > kMaxImageChannels)
     throw Error(ErrorCode::invalid_input,
                 "export-shader writes a vec4 function for a model of one image, and this model "

@@ -56,6 +56,7 @@ namespace {
 
 const Model& checked_model(const Model& model) {
   if (model.empty()) throw std::invalid_argument("GlRenderer: the model is empty");
+  gl::check_gl_colour(model, "the GL backend");
   return model;
 }
 

@@ -76,7 +76,9 @@ bool gl_supports_mapping(const Model& model, SurfaceMapping mapping) {
   return gl::model_surface_shader(model, options).has_value();
 }
 
-GlSurfaceEvaluator::GlSurfaceEvaluator(const Model& model) : impl_(new Impl(model)) {}
+GlSurfaceEvaluator::GlSurfaceEvaluator(const Model& model) : impl_(new Impl(model)) {
+  if (!model.empty()) gl::check_gl_colour(model, "the GL backend");
+}
 
 GlSurfaceEvaluator::~GlSurfaceEvaluator() = default;
 

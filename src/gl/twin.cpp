@@ -11,6 +11,8 @@
 
 #include "gl/shaders.hpp"
 #include "io/png_sample.hpp"
+#include "model/model_data.hpp"
+#include "stochtex/error.hpp"
 
 namespace stochtex::gl {
 namespace {
@@ -141,6 +143,14 @@ SurfaceShader triplanar_linear_shader(std::string_view method, std::string libra
                        std::move(data),
                        "stochtex_triplanar_linear(position, normal, dpdx, dpdy, parameter, seed)",
                        {}};
+}
+
+void check_gl_colour(const Model& model, std::string_view what) {
+  if (model.data().colour.decodes())
+    throw Error(ErrorCode::invalid_input,
+                std::string(what) +
+                    " does not render srgb models yet, only the CPU does: render it with "
+                    "--backend cpu, or analyse the exemplar with --colour-space data");
 }
 
 }  // namespace stochtex::gl

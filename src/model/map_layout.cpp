@@ -66,6 +66,8 @@ nlohmann::ordered_json maps_json(std::span<const MapInfo> maps) {
       entry["from"] = map.derived_from;
       entry["scale"] = map.slope_scale;
     }
+    if (map.colour_space != ColourSpace::data)
+      entry["colour_space"] = colour_space_name(map.colour_space);
     list.push_back(entry);
   }
   return list;

@@ -24,7 +24,7 @@ std::optional<MapKind> map_kind_from_name(std::string_view name);
 std::optional<std::string> map_layout_problem(std::span<const MapInfo> maps);
 
 // The maps as the model file's header and `stochtex info --json` write them: {"name", "kind",
-// "channels"}, and "from", "scale" for a derived normal map.
+// "channels"}, "from", "scale" for a derived normal map, and "colour_space" when not data.
 nlohmann::ordered_json maps_json(std::span<const MapInfo> maps);
 
 // The channels of all maps.

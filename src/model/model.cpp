@@ -1,13 +1,18 @@
 #include "stochtex/model.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
+#include "core/parallel.hpp"
 #include "model/map_layout.hpp"
 #include "model/model_data.hpp"
 #include "model/model_file.hpp"
+#include "model/value_range.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
@@ -26,14 +31,140 @@ MethodModel model_from_record(const ModelRecord& record, const std::string& sour
   }
 }
 
+// The model file's generic array of ModelColour::removed_deviation.
+constexpr std::string_view kRemovedDeviationArray = "colour_removed_deviation";
+
 ModelRecord record_of(const Model& model) {
   ModelRecord record =
       std::visit([&](const auto& m) { return m.to_record(model.params()); }, model.data().model);
   record.maps = model.data().maps;
+  const ModelColour& colour = model.data().colour;
+  if (record.maps.empty()) record.colour_space = image_colour_space(colour);
+  if (!colour.removed_deviation.empty())
+    record.arrays.push_back({std::string(kRemovedDeviationArray),
+                             {kRemovedSteps, model.channels()},
+                             colour.removed_deviation});
   return record;
 }
 
+// Whether the method's evaluator returns channel `channel` as linear light already.
+bool decodes_in_tables(const MethodModel& model, int channel) {
+  return std::visit(
+      [&](const auto& m) {
+        if constexpr (requires { m.decodes_in_tables(channel); })
+          return m.decodes_in_tables(channel);
+        else
+          return false;
+      },
+      model);
+}
+
 }  // namespace
+
+std::vector<float> measure_removed_deviation(const MethodModel& model) {
+  const int channels = std::visit([](const auto& m) { return m.channels(); }, model);
+  const auto n = static_cast<std::size_t>(kMeasuredSamples);
+  const std::vector<Vec2d> positions = spread_positions(n, 0x243f6a8885a308d3ull);
+  std::vector<float> values(n * static_cast<std::size_t>(channels));
+  const ImageView<float> view{values.data(), kMeasuredSamples, 1, channels,
+                              static_cast<std::ptrdiff_t>(values.size())};
+  // Each channel's variance of the evaluator's values with footprints of width `width` (0: point
+  // samples).
+  const auto variances = [&](double width) {
+    std::vector<Footprint> footprints;
+    if (width > 0.0) footprints.assign(n, Footprint{{width, 0.0}, {0.0, width}});
+    // In chunks on every core: evaluate() is a pure function of each position.
+    constexpr std::size_t kChunk = 1024;
+    parallel_for(n / kChunk, 0, [&](std::size_t chunk) {
+      const std::size_t first = chunk * kChunk;
+      std::visit(
+          [&](const auto& m) {
+            m.evaluate(std::span(positions).subspan(first, kChunk),
+                       footprints.empty()
+                           ? std::span<const Footprint>()
+                           : std::span<const Footprint>(footprints).subspan(first, kChunk),
+                       0, view.sub(static_cast<int>(first), 0, static_cast<int>(kChunk), 1));
+          },
+          model);
+    });
+    std::vector<double> result(static_cast<std::size_t>(channels));
+    for (int c = 0; c < channels; ++c) {
+      double sum = 0.0;
+      double squares = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double v = values[i * static_cast<std::size_t>(channels) + c];
+        sum += v;
+        squares += v * v;
+      }
+      const double mean = sum / static_cast<double>(n);
+      result[static_cast<std::size_t>(c)] =
+          std::max(0.0, squares / static_cast<double>(n) - mean * mean);
+    }
+    return result;
+  };
+  const std::vector<double> point = variances(0.0);
+  // removed[k][c] = r^2 at step k, measured at even steps until every channel's V(w) is below a
+  // thousandth of V(1), then V(1).
+  std::vector<std::vector<double>> removed(kRemovedSteps, point);
+  int measured = 0;
+  for (int k = 0; k < kRemovedSteps; k += 2) {
+    const std::vector<double> filtered =
+        k == 0 ? point : variances(std::exp2(static_cast<double>(k) / kRemovedStepsPerOctave));
+    bool faded = true;
+    for (int c = 0; c < channels; ++c) {
+      const auto cc = static_cast<std::size_t>(c);
+      removed[static_cast<std::size_t>(k)][cc] = std::max(0.0, point[cc] - filtered[cc]);
+      faded = faded && filtered[cc] <= 1e-3 * point[cc];
+    }
+    measured = k;
+    if (faded) break;
+  }
+  for (int k = 1; k < measured; k += 2)
+    for (int c = 0; c < channels; ++c) {
+      const auto cc = static_cast<std::size_t>(c);
+      removed[static_cast<std::size_t>(k)][cc] =
+          0.5 * (removed[static_cast<std::size_t>(k - 1)][cc] +
+                 removed[static_cast<std::size_t>(k + 1)][cc]);
+    }
+  std::vector<float> table(static_cast<std::size_t>(kRemovedSteps) * channels);
+  for (int k = 0; k < kRemovedSteps; ++k)
+    for (int c = 0; c < channels; ++c)
+      table[static_cast<std::size_t>(k) * channels + c] = static_cast<float>(
+          std::sqrt(removed[static_cast<std::size_t>(k)][static_cast<std::size_t>(c)]));
+  return table;
+}
+
+Model assemble_model(ParamValues params, MethodModel model, std::vector<MapInfo> maps,
+                     std::vector<ColourSpace> spaces,
+                     std::optional<std::vector<float>> removed_deviation) {
+  const int channels = std::visit([](const auto& m) { return m.channels(); }, model);
+  if (std::all_of(spaces.begin(), spaces.end(),
+                  [](ColourSpace space) { return space == ColourSpace::data; }))
+    spaces.clear();
+  if (!spaces.empty() && spaces.size() != static_cast<std::size_t>(channels))
+    throw std::invalid_argument("the colour spaces do not match the model's channels");
+  if (auto* tiling = std::get_if<tiling::TilingModel>(&model);
+      tiling && tiling->data().colour != spaces)
+    model = tiling->with_colour(spaces);
+  ModelColour colour;
+  colour.spaces = std::move(spaces);
+  for (std::size_t c = 0; c < colour.spaces.size(); ++c)
+    colour.in_tables.push_back(decodes_in_tables(model, static_cast<int>(c)));
+  if (colour.expects_any()) {
+    if (!removed_deviation) removed_deviation = measure_removed_deviation(model);
+    if (removed_deviation->size() != static_cast<std::size_t>(kRemovedSteps) * channels)
+      throw std::invalid_argument("the removed deviations of the srgb channels are missing");
+    colour.removed_deviation = std::move(*removed_deviation);
+  }
+  return Model(std::make_shared<const ModelData>(
+      ModelData{std::move(params), std::move(model), std::move(maps), std::move(colour)}));
+}
+
+Model with_method_model(const Model& model, MethodModel edited) {
+  const ModelData& data = model.data();
+  return assemble_model(data.params, std::move(edited), data.maps, data.colour.spaces,
+                        std::nullopt);
+}
 
 std::string_view Model::method() const {
   return std::visit([](const auto& m) { return std::decay_t<decltype(m)>::kMethodName; },
@@ -44,6 +175,10 @@ int Model::channels() const {
   return std::visit([](const auto& m) { return m.channels(); }, data_->model);
 }
 
+ColourSpace Model::colour_space() const {
+  return image_colour_space(data_->colour);
+}
+
 const ParamValues& Model::params() const {
   return data_->params;
 }
@@ -52,21 +187,49 @@ std::span<const MapInfo> Model::maps() const {
   return data_->maps;
 }
 
+Model with_colour_space(const Model& model, ColourSpace space) {
+  if (model.empty()) throw std::invalid_argument("with_colour_space: the model is empty");
+  if (!model.maps().empty())
+    throw std::invalid_argument(
+        "with_colour_space: a material's maps each have their colour space (MapInfo)");
+  const ModelData& data = model.data();
+  return assemble_model(data.params, data.model, data.maps,
+                        image_channel_spaces(space, model.channels()));
+}
+
 std::vector<std::uint8_t> serialize_model(const Model& model) {
   return write_model_record(record_of(model));
 }
 
 Model deserialize_model(std::span<const std::uint8_t> bytes, const std::string& source_name) {
   ModelRecord record = read_model_record(bytes, source_name);
+  std::vector<float> removed;
+  const auto table = std::find_if(record.arrays.begin(), record.arrays.end(),
+                                  [](const auto& a) { return a.name == kRemovedDeviationArray; });
+  std::vector<std::int64_t> table_shape;
+  if (table != record.arrays.end()) {
+    removed = std::move(table->values);
+    table_shape = table->shape;
+    record.arrays.erase(table);
+  }
   MethodModel method_model = model_from_record(record, source_name);
   const int channels = std::visit([](const auto& m) { return m.channels(); }, method_model);
+  const auto corrupt = [&](const std::string& problem) {
+    return Error(ErrorCode::format, "'" + source_name + "' " + problem + "; the file is corrupt");
+  };
   if (!record.maps.empty() && map_channels(record.maps) != channels)
-    throw Error(ErrorCode::format, "'" + source_name + "' declares maps of " +
-                                       std::to_string(map_channels(record.maps)) +
-                                       " channels for a model of " + std::to_string(channels) +
-                                       "; the file is corrupt");
-  return Model(std::make_shared<const ModelData>(
-      ModelData{std::move(record.params), std::move(method_model), std::move(record.maps)}));
+    throw corrupt("declares maps of " + std::to_string(map_channels(record.maps)) +
+                  " channels for a model of " + std::to_string(channels));
+  if (!removed.empty() && (table_shape != std::vector<std::int64_t>{kRemovedSteps, channels} ||
+                           !std::all_of(removed.begin(), removed.end(),
+                                        [](float v) { return v >= 0.0f && v <= kMaxModelValue; })))
+    throw corrupt("has a table of removed deviations of the wrong shape or values");
+  try {
+    return assemble_model(std::move(record.params), std::move(method_model), std::move(record.maps),
+                          record.channel_spaces(channels), std::move(removed));
+  } catch (const std::invalid_argument& e) {
+    throw corrupt(std::string("has a colour that does not fit its model (") + e.what() + ")");
+  }
 }
 
 void save_model(const Model& model, const std::filesystem::path& path) {
@@ -93,6 +256,7 @@ std::string describe_model(const Model& model) {
   json["channels"] = model.channels();
   json["params"] = record.params;
   if (!record.maps.empty()) json["maps"] = maps_json(record.maps);
+  if (record.maps.empty()) json["colour_space"] = colour_space_name(record.colour_space);
   json["scalars"] = record.scalars;
   auto arrays = nlohmann::ordered_json::array();
   std::size_t bytes = 0;

@@ -112,11 +112,19 @@ class Reader {
     record.params = numbers(json, "params");
     record.scalars = numbers(json, "scalars");
     const auto maps = json.find("maps");
-    if ((maps != json.end()) != (version == kModelFormatVersion))
-      fail(version == kModelFormatVersion
-               ? "is a version-2 model file without its list of maps; the file is corrupt"
-               : "has a list of maps in a version-1 model file; the file is corrupt");
-    if (maps != json.end()) record.maps = read_maps(*maps);
+    if (version == kMaterialModelFormatVersion && maps == json.end())
+      fail("is a version-2 model file without its list of maps; the file is corrupt");
+    if (version == kSingleImageModelFormatVersion && maps != json.end())
+      fail("has a list of maps in a version-1 model file; the file is corrupt");
+    if (maps != json.end()) record.maps = read_maps(*maps, version);
+    const auto space = json.find("colour_space");
+    if (space != json.end()) {
+      if (version < kModelFormatVersion || maps != json.end())
+        fail("has a colour space where its format version holds none; the file is corrupt");
+      record.colour_space = read_colour_space(*space);
+    }
+    if (version == kModelFormatVersion && !has_colour(record))
+      fail("is a version-3 model file without a colour space; the file is corrupt");
 
     const auto arrays = json.find("arrays");
     if (arrays == json.end() || !arrays->is_array() || arrays->size() > kMaxArrays)
@@ -190,7 +198,17 @@ class Reader {
     return values;
   }
 
-  std::vector<MapInfo> read_maps(const nlohmann::json& list) const {
+  ColourSpace read_colour_space(const nlohmann::json& value) const {
+    const auto space =
+        value.is_string() ? colour_space_from_name(value.get<std::string>()) : std::nullopt;
+    if (!space.has_value())
+      fail(
+          "has an unknown colour space in its header; the file is corrupt or newer than this "
+          "stochtex");
+    return *space;
+  }
+
+  std::vector<MapInfo> read_maps(const nlohmann::json& list, std::uint32_t version) const {
     if (!list.is_array() || list.size() > static_cast<std::size_t>(kMaxChannels))
       fail("has a malformed list of maps in its header; the file is corrupt");
     std::vector<MapInfo> maps;
@@ -219,6 +237,12 @@ class Reader {
         map.derived_from = from->get<std::string>();
         map.slope_scale = scale->get<double>();
       }
+      const auto space = entry.find("colour_space");
+      if (space != entry.end()) {
+        if (version < kModelFormatVersion)
+          fail("has a colour space where its format version holds none; the file is corrupt");
+        map.colour_space = read_colour_space(*space);
+      }
       maps.push_back(std::move(map));
     }
     if (const auto problem = map_layout_problem(maps)) fail(*problem + "; the file is corrupt");
@@ -230,6 +254,12 @@ class Reader {
 };
 
 }  // namespace
+
+bool has_colour(const ModelRecord& record) {
+  return record.colour_space != ColourSpace::data ||
+         std::any_of(record.maps.begin(), record.maps.end(),
+                     [](const MapInfo& map) { return map.colour_space != ColourSpace::data; });
+}
 
 std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
   std::uint64_t values = 0;
@@ -249,10 +279,14 @@ std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
   for (const auto& array : record.arrays)
     header["arrays"].push_back({{"name", array.name}, {"shape", array.shape}});
   if (!record.maps.empty()) header["maps"] = maps_json(record.maps);
+  if (record.maps.empty() && record.colour_space != ColourSpace::data)
+    header["colour_space"] = colour_space_name(record.colour_space);
   const std::string text = header.dump();
 
   std::vector<std::uint8_t> out(std::begin(kMagic), std::end(kMagic));
-  put_u32(out, record.maps.empty() ? kSingleImageModelFormatVersion : kModelFormatVersion);
+  put_u32(out, has_colour(record)    ? kModelFormatVersion
+               : record.maps.empty() ? kSingleImageModelFormatVersion
+                                     : kMaterialModelFormatVersion);
   put_u32(out, static_cast<std::uint32_t>(text.size()));
   out.insert(out.end(), text.begin(), text.end());
   for (const auto& array : record.arrays)

@@ -7,9 +7,13 @@
 //   "arrays": [{"name": str, "shape": [int, ...]}, ...]}, and for a material (format version 2
 //   only) "maps": [{"name": str, "kind": str, "channels": int[, "from": str, "scale": number]},
 //   ...]
-//   ("from": a normal map derived from that height map, channels 0). A model of one image is
-//   written as version 1, byte for byte what stochtex wrote before materials; version 2 holds a
-//   material, so that a stochtex without materials refuses it ("upgrade") rather than render it.
+//   ("from": a normal map derived from that height map, channels 0), and (version 3 only) the
+//   colour space of a model of one image, "colour_space": "linear" | "srgb", or of each map, the
+//   same key in its entry. A model of one image of data is written as version 1, byte for byte
+//   what stochtex wrote before materials; version 2 holds a material of data; version 3 a model
+//   with a colour space, so that an older stochtex refuses it ("upgrade") rather than render it
+//   as data. A srgb model of the Gaussian methods holds the array "colour_removed_deviation"
+//   (model/model_colour.hpp).
 // Reading validates magic, version, sizes (against the byte count actually present and against
 // hard limits) and the checksum before allocating any array; every failure throws
 // stochtex::Error(ErrorCode::format) with one sentence naming `source_name` and the problem.
@@ -24,7 +28,8 @@
 
 namespace stochtex {
 
-inline constexpr std::uint32_t kModelFormatVersion = 2;             // the newest, materials
+inline constexpr std::uint32_t kModelFormatVersion = 3;             // the newest, colour spaces
+inline constexpr std::uint32_t kMaterialModelFormatVersion = 2;     // a material
 inline constexpr std::uint32_t kSingleImageModelFormatVersion = 1;  // a model of one image
 inline constexpr std::uint32_t kMaxModelHeaderBytes = 1u << 20;
 // Loading a model peaks at about five times its file size (measured: the file's bytes, the
@@ -33,6 +38,8 @@ inline constexpr std::uint32_t kMaxModelHeaderBytes = 1u << 20;
 // analysis never writes a model that loading would refuse.
 inline constexpr std::uint64_t kMaxModelArrayValues = kMemoryBudgetBytes / 20;
 
+// Whether the record has a colour space other than data (format version 3).
+bool has_colour(const ModelRecord& record);
 // Throws stochtex::Error(ErrorCode::invalid_input) for a record of more than kMaxModelArrayValues.
 std::vector<std::uint8_t> write_model_record(const ModelRecord& record);
 // The FNV-1a 64 checksum stored in the last 8 bytes of a model file, over all bytes before it.

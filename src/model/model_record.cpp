@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "model/model_colour.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex {
@@ -59,6 +60,10 @@ double ModelRecord::param_scalar(std::string_view name, std::span<const ParamInf
   if (param == method_params.end())
     throw std::logic_error("param_scalar: '" + std::string(name) + "' is not a parameter");
   return scalar_in(std::string(name), param->min_value, param->max_value, param->integer, source);
+}
+
+std::vector<ColourSpace> ModelRecord::channel_spaces(int channels) const {
+  return maps.empty() ? image_channel_spaces(colour_space, channels) : map_channel_spaces(maps);
 }
 
 }  // namespace stochtex

@@ -25,6 +25,8 @@ struct ModelRecord {
   ParamValues scalars;  // derived scalar values the evaluator needs (e.g. channel count)
   std::vector<NamedArray> arrays;
   std::vector<MapInfo> maps;  // a material's maps (file format version 2); empty for one image
+  // A model of one image: its colour channels' colour space (file format version 3 when not data).
+  ColourSpace colour_space = ColourSpace::data;
 
   // Throws Error(format) naming `source` when the array is missing or its shape differs.
   const NamedArray& array(const std::string& name, const std::vector<std::int64_t>& shape,
@@ -38,6 +40,8 @@ struct ModelRecord {
   // A scalar named like one of the method's parameters, checked against that parameter's range.
   double param_scalar(std::string_view name, std::span<const ParamInfo> method_params,
                       const std::string& source) const;
+  // Each channel's colour space, for a model of `channels` channels: the maps' or the image's.
+  std::vector<ColourSpace> channel_spaces(int channels) const;
 };
 
 }  // namespace stochtex

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "model/model_colour.hpp"
 #include "render/mesh_material.hpp"
 #include "render/mesh_shading.hpp"
 #include "stochtex/error.hpp"
@@ -363,6 +364,16 @@ int mesh_output_channels(const Model& model) {
   if (model.empty()) throw std::invalid_argument("render_mesh: the model is empty");
   const MeshMaterial material = mesh_material(model);
   return material.colours > 0 ? material.colours : model.channels();
+}
+
+ColourSpace mesh_output_space(const Model& model) {
+  if (model.empty()) throw std::invalid_argument("render_mesh: the model is empty");
+  const MeshMaterial material = mesh_material(model);
+  const ColourSpace space =
+      material.colours > 0
+          ? map_channel_spaces(model.maps())[static_cast<std::size_t>(material.colour)]
+          : model.colour_space();
+  return space == ColourSpace::data ? ColourSpace::data : ColourSpace::linear;
 }
 
 double default_texture_scale(const Mesh& mesh) {

@@ -24,13 +24,14 @@ std::string range_text() {
          " exemplar pixels, the precise range of positions (docs/design.md §4)";
 }
 
-// One dispatch per batch; the method's loop over samples is concrete and inlined. The arguments
-// have been checked.
+// One dispatch per batch; the method's loop over samples is concrete and inlined, then the values
+// of srgb channels become linear light (model/model_colour.hpp). The arguments have been checked.
 void evaluate_checked(const Model& model, std::span<const Vec2d> positions,
                       std::span<const Footprint> footprints, std::uint32_t seed,
                       ImageView<float> out) {
   std::visit([&](const auto& m) { m.evaluate(positions, footprints, seed, out); },
              model.data().model);
+  decode_expectation(model.data().colour, positions.size(), footprints, out);
 }
 
 }  // namespace

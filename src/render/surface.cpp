@@ -60,8 +60,9 @@ bool valid_point(const SurfacePoint& p) {
 // Linear triplanar mapping for any method: each plane its own seed stream (seed + k), point
 // batches of kBatch through the method's evaluate(), no allocation.
 template <typename MethodModel>
-void evaluate_triplanar_linear(const MethodModel& m, std::span<const SurfacePoint> points,
-                               double sharpness, std::uint32_t seed, ImageView<float> out) {
+void evaluate_triplanar_linear(const MethodModel& m, const ModelColour& colour,
+                               std::span<const SurfacePoint> points, double sharpness,
+                               std::uint32_t seed, ImageView<float> out) {
   constexpr int kBatch = 64;
   const int channels = out.channels;
   for (std::size_t first = 0; first < points.size(); first += kBatch) {
@@ -90,6 +91,10 @@ void evaluate_triplanar_linear(const MethodModel& m, std::span<const SurfacePoin
                  std::span(footprints.data(), static_cast<std::size_t>(count)),
                  seed + static_cast<std::uint32_t>(k),
                  ImageView<float>{values.data(), count, 1, channels, count * channels});
+      // Each plane's values as linear light, then blended.
+      decode_expectation(colour, static_cast<std::size_t>(count),
+                         std::span(footprints.data(), static_cast<std::size_t>(count)),
+                         ImageView<float>{values.data(), count, 1, channels, count * channels});
       for (int i = 0; i < count; ++i) {
         const double w = weights[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)];
         for (int c = 0; c < channels; ++c)
@@ -103,6 +108,21 @@ void evaluate_triplanar_linear(const MethodModel& m, std::span<const SurfacePoin
         out.at(index % out.width, index / out.width, c) =
             sum[static_cast<std::size_t>(i * channels + c)];
     }
+  }
+}
+
+// decode_expectation of surface points: each point's footprint width is the square root of the
+// area its 3-D footprint covers, |dpdx x dpdy|^(1/2).
+void decode_surface(const ModelColour& colour, std::span<const SurfacePoint> points,
+                    ImageView<float> out) {
+  if (!colour.expects_any()) return;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3d& a = points[i].dpdx;
+    const Vec3d& b = points[i].dpdy;
+    const double width =
+        std::sqrt(std::hypot(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x));
+    const auto index = static_cast<int>(i);
+    decode_expectation(colour, width, out.sub(index % out.width, index / out.width, 1, 1));
   }
 }
 
@@ -178,14 +198,19 @@ void evaluate_surface(const Model& model, std::span<const SurfacePoint> points,
   std::visit(
       [&](const auto& m) {
         using M = std::decay_t<decltype(m)>;
+        const ModelColour& colour = model.data().colour;
         if (options.mapping == SurfaceMapping::triplanar_linear)
-          evaluate_triplanar_linear(m, points, options.triplanar_sharpness, seed, out);
+          evaluate_triplanar_linear(m, colour, points, options.triplanar_sharpness, seed, out);
         if constexpr (HasSurfaceNoise<M>)
-          if (options.mapping == SurfaceMapping::surface)
+          if (options.mapping == SurfaceMapping::surface) {
             m.evaluate_surface(points, options.surface_mni, seed, out);
+            decode_surface(colour, points, out);
+          }
         if constexpr (HasTriplanar<M>)
-          if (options.mapping == SurfaceMapping::triplanar)
+          if (options.mapping == SurfaceMapping::triplanar) {
             m.evaluate_triplanar(points, options.triplanar_sharpness, seed, out);
+            decode_surface(colour, points, out);
+          }
       },
       model.data().model);
 }

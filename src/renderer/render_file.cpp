@@ -54,6 +54,12 @@ int written_channels(const MapInfo& map) {
   return map.kind == MapKind::normal ? 3 : map.channels;
 }
 
+// What a render's values are (docs/design.md §14): linear light for a model of srgb or linear
+// values, which a PNG output encodes; data as it is.
+ColourSpace rendered_space(ColourSpace model_space) {
+  return model_space == ColourSpace::data ? ColourSpace::data : ColourSpace::linear;
+}
+
 // Checks a material's outputs before the render: {map} in the name exactly when the model has
 // maps, every map's file writable, in memory and within the memory budget (the render, the maps
 // cut from it and one map's encoded copy).
@@ -158,13 +164,15 @@ void render_model(const Model& model, const RenderPlan& plan, const RenderReques
     const std::vector<NamedImage> maps = render_maps(
         model, grid, [&](const Grid& part, ImageView<float> out) { renderer(part, out); });
     AtomicFileSet files;  // all the maps or none
-    for (const auto& [name, map] : maps)
-      write_image(files, map_output(output, name), map.view(), request.bit_depth);
+    for (std::size_t m = 0; m < maps.size(); ++m)
+      write_image(files, map_output(output, maps[m].name), maps[m].image.view(), request.bit_depth,
+                  rendered_space(model.maps()[m].colour_space));
     files.commit();
     return;
   }
   if (!plan.streamed) {
-    write_image(output, render_image(model, grid, backend, progress).view(), request.bit_depth);
+    write_image(output, render_image(model, grid, backend, progress).view(), request.bit_depth,
+                rendered_space(model.colour_space()));
     return;
   }
   TrackedBackend renderer(backend, tiled_exr_pixels(grid, plan.exr.mipmap), progress);

@@ -11,8 +11,8 @@ expect_ok "analyze a material" "$stochtex" analyze --map albedo="$rock/albedo.pn
   --map roughness="$rock/roughness.png" -m tiling -o "$models/material.stx" &&
   expect_file "the material model" "$models/material.stx"
 expect_ok "info lists a material's maps" "$stochtex" info "$models/material.stx" &&
-  if grep -q '^map       albedo (colour, 3 channels)' "$work/stdout" &&
-    grep -q '^map       roughness (scalar, 1 channel)' "$work/stdout"; then pass; else
+  if grep -q '^map       albedo (colour, 3 channels, data)' "$work/stdout" &&
+    grep -q '^map       roughness (scalar, 1 channel, data)' "$work/stdout"; then pass; else
     fail "info lists a material's maps" "no map lines in: $(cat "$work/stdout")"
   fi
 expect_json "info --json of a material" "$stochtex" info "$models/material.stx" --json &&

@@ -343,7 +343,7 @@ TEST(GlGabor, AModelWithoutGaussiansRendersItsMean) {
   // An edit can drop every Gaussian: no grids, GLSL arrays of one unused element.
   const gabor::GaborModel empty(1, 256, 0, {}, {1.0f}, {0.25f}, gabor::FitReport{});
   ASSERT_TRUE(empty.grids().empty());
-  const Model model(std::make_shared<ModelData>(ModelData{{}, empty, {}}));
+  const Model model = assemble_model({}, empty, {}, {});
   const Grid grid{{1.0, 2.0}, 2.0, 9, 7};
   const ImageF gpu = render_gpu(model, grid, 3);
   for (const float value : gpu.pixels()) ASSERT_EQ(value, 0.25f);

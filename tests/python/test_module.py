@@ -59,8 +59,8 @@ def test_nan_exemplar_is_refused(exemplar):
 def test_parameters_are_keywords(exemplar):
     with pytest.raises(ValueError, match="unknown method 'nope'"):
         stochtex.analyze(exemplar, "nope")
-    with pytest.raises(ValueError, match="unknown parameter 'colour'"):
-        stochtex.analyze(exemplar, "texton", colour=1)
+    with pytest.raises(ValueError, match="unknown parameter 'brightness'"):
+        stochtex.analyze(exemplar, "texton", brightness=1)
     with pytest.raises(ValueError, match="iterations"):
         stochtex.analyze(exemplar, "texton", iterations=-4)
     with pytest.raises(TypeError, match="number or a choice"):
@@ -452,3 +452,30 @@ def test_material_normal_maps_come_back_unit_length(exemplar):
 def test_bad_materials_are_clear_errors(maps, kinds, words):
     with pytest.raises(ValueError, match=words):
         stochtex.analyze_material(maps, "tiling", kinds=kinds)
+
+
+def test_srgb_models_render_linear_light(exemplar, tmp_path):
+    """docs/design.md §14: a srgb model renders linear light, encoded=True gives the encoded
+    values, pickles keep the colour space, and write_image encodes linear light into a PNG."""
+    data = stochtex.analyze(exemplar, "texton", seed=2, support=12, iterations=5)
+    srgb = stochtex.analyze(exemplar, "texton", seed=2, support=12, iterations=5, colour="srgb")
+    assert (data.colour_space, srgb.colour_space) == ("data", "srgb")
+    assert pickle.loads(pickle.dumps(srgb)).colour_space == "srgb"
+    linear = srgb.render(32, 24, seed=3)
+    encoded = srgb.render(32, 24, seed=3, encoded=True)
+    as_data = data.render(32, 24, seed=3)
+    # At scale 1 the point samples are decoded exactly: encoded again, the data model's values.
+    assert numpy.abs(encoded - as_data).max() < 1e-5
+    decoded = numpy.where(as_data <= 0.04045, as_data / 12.92, ((as_data + 0.055) / 1.055) ** 2.4)
+    assert numpy.abs(linear - decoded).max() < 1e-5
+    # Zoomed out, the linear-light mean: brighter than the encoded values' mean decoded.
+    far = srgb.render(16, 16, scale=64, seed=3).mean(axis=(0, 1))
+    naive = data.render(16, 16, scale=64, seed=3).mean(axis=(0, 1))
+    naive = numpy.where(naive <= 0.04045, naive / 12.92, ((naive + 0.055) / 1.055) ** 2.4)
+    assert (far > naive).all()
+    with pytest.raises(ValueError, match="colour must be"):
+        stochtex.analyze(exemplar, "texton", colour="oklab")
+    path = str(tmp_path / "linear.png")
+    stochtex.write_image(path, linear, colour="linear")
+    clipped = numpy.clip(encoded, 0, 1)  # a PNG holds 0 to 1
+    assert numpy.abs(stochtex.read_image(path) - clipped).max() <= 0.5 / 255 + 1e-6

@@ -197,7 +197,7 @@ TEST(Material, ModelFilesKeepTheMapsAndOneImageStaysVersionOne) {
       "tiling", std::vector<MaterialMap>{{"albedo", {}, albedo.view(), "a.png"},
                                          {"roughness", {}, roughness.view(), "r.png"}});
   const std::vector<std::uint8_t> bytes = serialize_model(material);
-  EXPECT_EQ(bytes[8], kModelFormatVersion);
+  EXPECT_EQ(bytes[8], kMaterialModelFormatVersion);
   const Model loaded = deserialize_model(bytes, "m.stx");
   ASSERT_EQ(loaded.maps().size(), 2u);
   EXPECT_EQ(loaded.maps()[0].name, "albedo");

@@ -505,9 +505,7 @@ EditResult edit(const Model& model, const void* groups, const EditValues& values
                         " Gaussians edited";
   if (dropped > 0)
     summary += ", " + std::to_string(dropped) + " moved beyond Nyquist or to zero and dropped";
-  return {Model(std::make_shared<const ModelData>(
-              ModelData{model.params(), std::move(edited), model.data().maps})),
-          std::move(summary)};
+  return {with_method_model(model, std::move(edited)), std::move(summary)};
 }
 
 }  // namespace

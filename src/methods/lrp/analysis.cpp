@@ -594,8 +594,7 @@ LrpModel analyze_spectrum(const SpectrumTarget& target, const Params& params, st
 Model spectrum_model(const SpectrumTarget& target, const ParamValues& params, std::uint32_t seed) {
   ParamValues resolved = resolve_params(LrpModel::kMethodName, params);
   LrpModel model = analyze_spectrum(target, params_from_values(kFields, resolved), seed);
-  return Model(std::make_shared<const ModelData>(
-      ModelData{std::move(resolved), MethodModel(std::move(model)), {}}));
+  return assemble_model(std::move(resolved), MethodModel(std::move(model)), {}, {});
 }
 
 }  // namespace stochtex::lrp

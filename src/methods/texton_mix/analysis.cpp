@@ -149,8 +149,7 @@ Model mix(const MixInputs& inputs, const ParamValues& params, std::uint32_t seed
                   "cannot mix '" + inputs.a_name + "' and '" + inputs.b_name + "': " + e.what());
     }
   }();
-  return Model(
-      std::make_shared<const ModelData>(ModelData{std::move(resolved), std::move(model), {}}));
+  return assemble_model(std::move(resolved), std::move(model), {}, {});
 }
 
 }  // namespace stochtex

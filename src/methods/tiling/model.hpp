@@ -16,6 +16,7 @@
 
 #include "methods/tiling/evaluate.hpp"
 #include "model/model_record.hpp"
+#include "stochtex/colour.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
 #include "stochtex/surface.hpp"
@@ -72,6 +73,11 @@ struct TilingData {
   // T^-1 by groups of channels, a material's maps (issue 18); empty: an image's colour and alpha
   // (tiling_layout).
   std::vector<GroupSpec> groups;
+  // Each channel's colour space (model/model_colour.hpp), or empty: every channel data. Not in
+  // the tiling record: the model file's header holds it. The 3-D table's and the direct 1-D
+  // tables' srgb channels are decoded before they are prefiltered, so that each level's T^-1
+  // returns the expectation of the decoded colour (decodes_in_tables).
+  std::vector<ColourSpace> colour;
 };
 
 // One group of channels of T^-1 and where its tables are.
@@ -162,6 +168,12 @@ class TilingModel {
   // height-aware ones (height_blend_weights) of the patches' heights.
   LevelOfDetail blended_gaussian(Vec2d position, double footprint_width, std::uint32_t seed,
                                  float* g) const noexcept;
+  // Whether the T^-1 tables return channel `channel` as linear light (the 3-D table's and the
+  // direct tables' srgb channels); the others (decorrelated groups, the variance and linear
+  // blends) are decoded after evaluation (model/model_colour.hpp).
+  bool decodes_in_tables(int channel) const noexcept;
+  // The same model with each channel's colour space (TilingData::colour).
+  TilingModel with_colour(std::vector<ColourSpace> colour) const;
   // The rotation or the scale jitter is on.
   bool transformed() const noexcept { return data_.rotation > 0.0 || data_.scale_jitter > 0.0; }
   // Step 3: T^-1 by the look-up tables prefiltered for `lod` (eq. 22, section 4.3); the identity
@@ -189,6 +201,9 @@ class TilingModel {
 
  private:
   void inverse_at_level(const float* g, int level, float* out) const noexcept;
+  // The level tables of the channels decoded in them, corrected so that each level's renders
+  // average what point samples average (docs/design.md §14).
+  void calibrate_colour();
   // evaluate's vectorised path (simd.hpp), when simd_ready_.
   SimdTiling simd_tiling() const noexcept;
   void evaluate_simd(std::span<const Vec2d> positions, std::span<const Footprint> footprints,

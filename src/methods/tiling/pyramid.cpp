@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "core/colour_statistics.hpp"
+#include "core/srgb.hpp"
 #include "methods/tiling/evaluate.hpp"
 #include "methods/tiling/simd.hpp"
 #include "stochtex/image.hpp"
@@ -172,6 +173,35 @@ void prefilter_levels(const TilingData& d, const TilingLayout& layout,
                       const std::vector<int>& heights, std::vector<float>& level_luts,
                       std::vector<float>& level_tables) {
   const auto n = static_cast<std::size_t>(d.lut_size);
+  // The tables of linear light for srgb channels (docs/design.md §14): prefiltered like the
+  // others, each level's then returns the expectation of the decoded colour over the footprint
+  // (TilingModel::calibrate_colour corrects what the Gaussian residual gets wrong).
+  std::vector<float> base_lut = d.lut;
+  std::vector<float> base_tables = d.tables;
+  const auto srgb = [&](int channel) {
+    return !d.colour.empty() && d.colour[static_cast<std::size_t>(channel)] == ColourSpace::srgb;
+  };
+  for (const TableGroup& group : layout.groups) {
+    if (group.transform == GroupTransform::lut) {
+      for (std::size_t i = 0; i < base_lut.size(); ++i)
+        if (srgb(group.first + static_cast<int>(i % 3))) base_lut[i] = srgb_decode(base_lut[i]);
+    } else if (group.transform == GroupTransform::direct && srgb(group.first)) {
+      const auto first = static_cast<std::size_t>(group.first_table) * d.table_size;
+      for (std::size_t i = first; i < first + static_cast<std::size_t>(d.table_size); ++i)
+        base_tables[i] = srgb_decode(base_tables[i]);
+    } else if (group.transform == GroupTransform::decorrelated && group.channels == 1 &&
+               srgb(group.first)) {
+      // One channel: out = mean + b t, so the table t' = (decode(mean + b t) - mean) / b makes
+      // it decode(out) (a grey image). Groups of more channels mix their tables: decoded after
+      // evaluation (model/model_colour.hpp).
+      const double mean = d.colour_mean[static_cast<std::size_t>(group.first_mean)];
+      const double b = d.colour_basis[static_cast<std::size_t>(group.first_basis)];
+      if (b == 0.0) continue;
+      const auto first = static_cast<std::size_t>(group.first_table) * d.table_size;
+      for (std::size_t i = first; i < first + static_cast<std::size_t>(d.table_size); ++i)
+        base_tables[i] = static_cast<float>((srgb_decode(mean + b * base_tables[i]) - mean) / b);
+    }
+  }
   const std::vector<double> base_variance =
       level_variances(texels.front(), d.width, d.height, d.channels);
   for (std::size_t l = 0; l < texels.size(); ++l) {
@@ -180,8 +210,8 @@ void prefilter_levels(const TilingData& d, const TilingLayout& layout,
     const auto residual = [&](int channel) {
       return l == 0 ? 0.0 : std::sqrt(std::max(0.0, base_variance[channel] - variance[channel]));
     };
-    std::vector<float> lut = d.lut;
-    std::vector<float> tables = d.tables;
+    std::vector<float> lut = base_lut;
+    std::vector<float> tables = base_tables;
     for (const TableGroup& group : layout.groups) {
       if (l == 0) break;
       if (group.transform == GroupTransform::lut) {
@@ -222,7 +252,7 @@ void prefilter_levels(const TilingData& d, const TilingLayout& layout,
       for (int k = 0; k < count; ++k) {
         const std::size_t offset = static_cast<std::size_t>(group.first_table + k) * d.table_size;
         apply_kernel(prefilter_kernel(d.table_size, residual(group.first + k)),
-                     d.tables.data() + offset, tables.data() + offset, 1, 1);
+                     base_tables.data() + offset, tables.data() + offset, 1, 1);
       }
     }
     level_luts.insert(level_luts.end(), lut.begin(), lut.end());

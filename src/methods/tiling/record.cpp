@@ -87,6 +87,10 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
     data.colour_basis = take("colour_basis", {layout.basis_size});
     data.colour_mean = take("colour_mean", {layout.mean_size});
   }
+  data.colour = record.channel_spaces(data.channels);
+  if (std::all_of(data.colour.begin(), data.colour.end(),
+                  [](ColourSpace space) { return space == ColourSpace::data; }))
+    data.colour.clear();
   try {
     return TilingModel(std::move(data));
   } catch (const std::invalid_argument& e) {
