@@ -80,23 +80,8 @@ ImageReadLimits analysis_limits(const std::string& method, const std::string& pa
   return limits;
 }
 
-// The image at `path` as `space` says (none: auto, what the file says), and its colour space.
-std::pair<ImageF, ColourSpace> read_exemplar(const std::string& path,
-                                             std::optional<ColourSpace> space,
-                                             const ImageReadLimits& limits) {
-  if (space) return {read_image(path, limits), *space};
-  ImageColour colour;
-  ImageF image = read_image(path, limits, &colour);
-  fmt::print(stderr, "{}: {} ({})\n", path, colour_space_name(colour.space), colour.origin);
-  return {std::move(image), colour.space};
-}
-
-// The option's colour space, none for auto.
-std::optional<ColourSpace> option_space(const std::string& text) {
-  return text == "auto" ? std::nullopt : colour_space_from_name(text);
-}
-
-Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params) {
+Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params,
+                   std::vector<std::string>* notes) {
   std::vector<MapArgument> arguments;
   for (const auto& text : options.maps) arguments.push_back(parse_map_argument(text));
   std::vector<ImageF> images;
@@ -109,10 +94,11 @@ Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params) {
                                              : kind == MapKind::colour
                                                  ? option_space(options.colour_space)
                                                  : ColourSpace::data;
-    auto [image, read_space] =
+    ReadExemplar map =
         read_exemplar(argument.file, space, analysis_limits(options.method, argument.file));
-    images.push_back(std::move(image));
-    maps.push_back({argument.name, kind, {}, argument.file, read_space});
+    if (notes && !map.note.empty()) notes->push_back(map.note);
+    images.push_back(std::move(map.image));
+    maps.push_back({argument.name, kind, {}, argument.file, map.space});
   }
   for (std::size_t i = 0; i < maps.size(); ++i) maps[i].image = images[i].view();
   Progress progress("analyse");
@@ -136,21 +122,22 @@ Model target_model(const AnalyzeOptions& options, const ParamValues& params) {
 
 }  // namespace
 
-Model run_analyze(const AnalyzeOptions& options) {
+Model run_analyze(const AnalyzeOptions& options, std::vector<std::string>* notes) {
   const ParamValues params = resolve_params(options.method, parse_params(options.params));
   if (!options.target.empty()) return target_model(options, params);
-  if (!options.maps.empty()) return analyze_maps(options, params);
+  if (!options.maps.empty()) return analyze_maps(options, params, notes);
   if (options.input.empty())
     throw std::invalid_argument("give an exemplar INPUT, a material's --map NAME=FILE or, for " +
                                 methods_with(CapabilityKind::target) + ", a --target spectrum");
-  const auto [exemplar, space] = read_exemplar(options.input, option_space(options.colour_space),
-                                               analysis_limits(options.method, options.input));
-  validate_exemplar(exemplar.view(), options.input);
+  const ReadExemplar exemplar = read_exemplar(options.input, option_space(options.colour_space),
+                                              analysis_limits(options.method, options.input));
+  validate_exemplar(exemplar.image.view(), options.input);
+  if (notes && !exemplar.note.empty()) notes->push_back(exemplar.note);
   Progress progress("analyse");
   progress.message(fmt::format("analysing {} with {}...", options.input, options.method));
   return analyze(
-      options.method, exemplar.view(), params, options.seed, options.input,
-      [&](double fraction) { progress(fraction); }, space);
+      options.method, exemplar.image.view(), params, options.seed, options.input,
+      [&](double fraction) { progress(fraction); }, exemplar.space);
 }
 
 Command add_analyze_command(CLI::App& app) {
@@ -167,8 +154,10 @@ Command add_analyze_command(CLI::App& app) {
             for (const auto& text : options->analyze.maps)
               inputs.emplace_back(parse_map_argument(text).file);
             check_output_path(options->output, false, inputs);
-            save_model(run_analyze(options->analyze), options->output);
+            std::vector<std::string> notes;
+            save_model(run_analyze(options->analyze, &notes), options->output);
             fmt::print(stderr, "wrote {}\n", options->output);
+            for (const std::string& note : notes) fmt::print(stderr, "{}\n", note);
             return 0;
           }};
 }

@@ -27,7 +27,8 @@ struct AnalyzeOptions {
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options);
 
 // The model of the options' exemplar or target. The method and parameters are checked before
-// anything is read, so usage errors come first.
-Model run_analyze(const AnalyzeOptions& options);
+// anything is read, so usage errors come first. With --colour-space auto, `notes` gets what each
+// file said its colour is (ReadExemplar::note), for the caller to print once it succeeds.
+Model run_analyze(const AnalyzeOptions& options, std::vector<std::string>* notes = nullptr);
 
 }  // namespace stochtex::cli

@@ -135,4 +135,17 @@ ImageF load_exemplar(const std::string& path,
   return image;
 }
 
+ReadExemplar read_exemplar(const std::string& path, std::optional<ColourSpace> space,
+                           const ImageReadLimits& limits) {
+  if (space) return {read_image(path, limits), *space, {}};
+  ImageColour colour;
+  ImageF image = read_image(path, limits, &colour);
+  return {std::move(image), colour.space,
+          fmt::format("{}: {} ({})", path, colour_space_name(colour.space), colour.origin)};
+}
+
+std::optional<ColourSpace> option_space(const std::string& text) {
+  return text == "auto" ? std::nullopt : colour_space_from_name(text);
+}
+
 }  // namespace stochtex::cli

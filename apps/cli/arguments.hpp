@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "renderer/plan.hpp"
+#include "stochtex/io.hpp"
 #include "stochtex/stochtex.hpp"
 
 namespace stochtex::cli {
@@ -66,5 +67,19 @@ MapArgument parse_map_argument(const std::string& text);
 // ImageReadLimits) refuses, before the pixels are decoded, a size the command cannot afford.
 ImageF load_exemplar(const std::string& path,
                      std::function<void(int width, int height, int channels)> check_declared = {});
+
+// The image at `path` as `space` says its values are, or with none (--colour-space auto) as the
+// file says (read_image's ImageColour), with that colour space and, for auto, the note a command
+// prints once it succeeds: "x.png: srgb (no colour chunk: sRGB by default)".
+struct ReadExemplar {
+  ImageF image;
+  ColourSpace space = ColourSpace::data;
+  std::string note;
+};
+ReadExemplar read_exemplar(const std::string& path, std::optional<ColourSpace> space,
+                           const ImageReadLimits& limits);
+
+// --colour-space's value: none for auto, else its colour space.
+std::optional<ColourSpace> option_space(const std::string& text);
 
 }  // namespace stochtex::cli

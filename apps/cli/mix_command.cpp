@@ -28,6 +28,7 @@ Command add_mix_command(CLI::App& app) {
     std::string mask;
     std::string mask_scale;
     std::uint32_t seed = 0;
+    std::string colour_space = "data";
   };
   auto options = std::make_shared<Options>();
   auto* command = app.add_subcommand(
@@ -51,6 +52,12 @@ Command add_mix_command(CLI::App& app) {
   mask->excludes(ramp)->excludes(direction);
   command->add_option("-p,--param", options->params,
                       "texton parameter key=value: support, order, iterations, mni (repeatable)");
+  command
+      ->add_option("--colour-space", options->colour_space,
+                   "what both exemplars' values are, as analyze's --colour-space: data, auto, "
+                   "srgb or linear (the mix then renders linear light)")
+      ->check(CLI::IsMember({"auto", "srgb", "linear", "data"}))
+      ->capture_default_str();
   command->add_option("--analysis-seed", options->seed, "seed of Algorithm 1's white-noise start")
       ->capture_default_str();
   return {command, [options] {
@@ -73,9 +80,24 @@ Command add_mix_command(CLI::App& app) {
             const ParamValues params = resolve_params("texton_mix", given);
             check_output_path(options->output, false, {options->a, options->b, options->mask});
             HeldImages held;
-            const ImageF a = load_exemplar(options->a, held.check(options->a));
-            const ImageF b = load_exemplar(options->b, held.check(options->b));
-            MixInputs inputs{a.view(), b.view(), options->a, options->b, std::nullopt, "mask"};
+            const std::optional<ColourSpace> space = option_space(options->colour_space);
+            const auto read = [&](const std::string& path) {
+              ImageReadLimits limits;
+              limits.check_declared = held.check(path);
+              ReadExemplar exemplar = read_exemplar(path, space, limits);
+              validate_exemplar(exemplar.image.view(), path);
+              return exemplar;
+            };
+            const ReadExemplar a = read(options->a);
+            const ReadExemplar b = read(options->b);
+            if (a.space != b.space)
+              throw Error(ErrorCode::invalid_input,
+                          fmt::format("'{}' is {} and '{}' is {}; a mix needs both exemplars in "
+                                      "one colour space: give --colour-space",
+                                      options->a, colour_space_name(a.space), options->b,
+                                      colour_space_name(b.space)));
+            MixInputs inputs{a.image.view(), b.image.view(), options->a,
+                             options->b,     std::nullopt,   "mask"};
             ImageF mask_image;
             if (!options->mask.empty()) {
               ImageReadLimits limits;
@@ -86,8 +108,12 @@ Command add_mix_command(CLI::App& app) {
             }
             Progress progress("mix");
             progress.message(fmt::format("mixing {} and {}...", options->a, options->b));
-            save_model(mix(inputs, params, options->seed), options->output);
+            const Model model = mix(inputs, params, options->seed);
+            save_model(a.space == ColourSpace::data ? model : with_colour_space(model, a.space),
+                       options->output);
             fmt::print(stderr, "wrote {}\n", options->output);
+            for (const ReadExemplar* exemplar : {&a, &b})
+              if (!exemplar->note.empty()) fmt::print(stderr, "{}\n", exemplar->note);
             return 0;
           }};
 }

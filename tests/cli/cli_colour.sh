@@ -89,6 +89,18 @@ expect_ok "render-mesh of a srgb model" "$stochtex" render-mesh "$meshes/scan.ob
     fail "render-mesh of a srgb model" "the PNG has no sRGB chunk"
   fi
 
+# mix takes the colour space of both exemplars, and refuses two.
+expect_ok "mix --colour-space srgb" "$stochtex" mix "$nuts" "$textures/metal_grey_256.png" \
+  -p support=16 -p iterations=5 --steps 3 --colour-space srgb -o "$models/mix.stx" &&
+  expect_ok "info of a srgb mix" "$stochtex" info "$models/mix.stx" &&
+  if grep -q '^colour    srgb$' "$work/stdout"; then pass; else
+    fail "mix --colour-space srgb" "$(cat "$work/stdout")"
+  fi
+expect_ok "a grey PFM" "$stochtex" render "$models/data.stx" --size 64x64 -o "$inputs/grey.pfm"
+expect_error "mix of a srgb PNG and a linear PFM, auto" 1 "one colour space" "$stochtex" mix \
+  "$nuts" "$inputs/grey.pfm" -p support=16 -p iterations=5 --steps 3 --colour-space auto \
+  -o "$out/x.stx"
+
 # The GL backend and the exports render data models only, for now, and say so.
 expect_error "render --backend gl of a srgb model" 1 "--backend cpu" "$stochtex" render \
   "$models/srgb.stx" --backend gl --size 8x8 -o "$out/x.png"

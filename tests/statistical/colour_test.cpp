@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -74,7 +75,7 @@ class ColourZoomedOut : public testing::TestWithParam<Case> {};
 
 TEST_P(ColourZoomedOut, MatchesTheSupersampledLinearAverage) {
   const Case& c = GetParam();
-  const ImageF exemplar = read_image(kTextureDir + "/" + c.exemplar);
+  const ImageF exemplar = read_image(std::filesystem::path(kTextureDir) / c.exemplar);
   // nuts and water are not among the shared fixture's exemplars: their gabor fits take a quarter
   // of the default impulse budget and a third of its iterations (a cheaper texture, filtered the
   // same way).

@@ -220,18 +220,19 @@ TEST(ModelFile, FilesWrittenBeforeColourSpacesRenderAsBefore) {
       {"tiling_grey", 0x17b59e55a087975full, 0x24986b6ffcc0e2ceull},
   };
   for (const auto& file : files) {
-    const std::string path =
-        std::string(STOCHTEX_SOURCE_DIR) + "/tests/fuzz/corpus/model/" + file.name + ".stx";
+    const std::filesystem::path path = std::filesystem::path(STOCHTEX_SOURCE_DIR) / "tests" /
+                                       "fuzz" / "corpus" / "model" /
+                                       (std::string(file.name) + ".stx");
     std::ifstream in(path, std::ios::binary);
     const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
                                           std::istreambuf_iterator<char>());
-    const Model model = deserialize_model(bytes, path);
+    const Model model = deserialize_model(bytes, path.string());
     EXPECT_EQ(model.colour_space(), ColourSpace::data) << file.name;
     // Written again in the file's version without a colour space (texton's file predates its
     // `points` parameter, which is written now).
     const std::vector<std::uint8_t> again = serialize_model(model);
     EXPECT_EQ(again[8], bytes[8]) << file.name;
-    const ModelRecord record = read_model_record(again, path);
+    const ModelRecord record = read_model_record(again, path.string());
     EXPECT_FALSE(has_colour(record)) << file.name;
     EXPECT_TRUE(std::none_of(record.arrays.begin(), record.arrays.end(), [](const NamedArray& a) {
       return a.name == "colour_removed_deviation";
