@@ -1,7 +1,7 @@
-#include "stochtex/colour.hpp"
-
 #include <array>
 #include <utility>
+
+#include "stochtex/colour.hpp"
 
 namespace stochtex {
 namespace {
