@@ -177,39 +177,4 @@ double footprint_area_width(const Footprint& footprint) noexcept {
       std::abs(footprint.dpdx.x * footprint.dpdy.y - footprint.dpdx.y * footprint.dpdy.x));
 }
 
-void decode_expectation(const ModelColour& colour, std::size_t count,
-                        std::span<const Footprint> footprints, ImageView<float> out) noexcept {
-  if (!colour.expects_any()) return;
-  const int channels = out.channels;
-  // A grid's pixels share one footprint: each channel's r(w) is looked up when the width changes.
-  std::array<float, kMaxChannels> removed{};
-  double last_width = -1.0;
-  for (std::size_t index = 0; index < count; ++index) {
-    const int x = static_cast<int>(index % static_cast<std::size_t>(out.width));
-    const int y = static_cast<int>(index / static_cast<std::size_t>(out.width));
-    const double width = footprints.empty() ? 0.0 : footprint_area_width(footprints[index]);
-    if (width != last_width) {
-      for (int c = 0; c < channels; ++c)
-        removed[static_cast<std::size_t>(c)] = removed_deviation(colour, channels, c, width);
-      last_width = width;
-    }
-    for (int c = 0; c < channels; ++c)
-      if (colour.expects(c))
-        out.at(x, y, c) = expected_decoded(out.at(x, y, c), removed[static_cast<std::size_t>(c)]);
-  }
-}
-
-void decode_expectation(const ModelColour& colour, double width, ImageView<float> out) noexcept {
-  if (!colour.expects_any()) return;
-  const int channels = out.channels;
-  std::vector<float> removed(static_cast<std::size_t>(channels));
-  for (int c = 0; c < channels; ++c)
-    removed[static_cast<std::size_t>(c)] = removed_deviation(colour, channels, c, width);
-  for (int y = 0; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x)
-      for (int c = 0; c < channels; ++c)
-        if (colour.expects(c))
-          out.at(x, y, c) = expected_decoded(out.at(x, y, c), removed[static_cast<std::size_t>(c)]);
-}
-
 }  // namespace stochtex

@@ -10,6 +10,8 @@
 // width w removed from the channel (removed_deviation). A point sample (w <= 1) is decoded
 // exactly: D(v, 0) = decode(v).
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -49,6 +51,12 @@ struct ModelColour {
   bool expects_any() const;
 };
 
+// What a render's values are for a model (or map) in `space`: linear light for srgb and linear
+// (which a PNG output encodes), data as it is.
+constexpr ColourSpace rendered_space(ColourSpace space) {
+  return space == ColourSpace::data ? ColourSpace::data : ColourSpace::linear;
+}
+
 // The channels' colour spaces of an image of `channels` channels (1 to 4) in `space`: its alpha
 // (2 or 4 channels) is data.
 std::vector<ColourSpace> image_channel_spaces(ColourSpace space, int channels);
@@ -76,11 +84,39 @@ std::vector<Vec2d> spread_positions(std::size_t count, std::uint64_t seed);
 double footprint_area_width(const Footprint& footprint) noexcept;
 
 // The evaluator's values -> linear light, in place: each srgb channel of the first `count` pixels
-// of `out` (row-major, one per footprint) becomes D(v, r(w)) of its footprint's width
-// (footprints empty: point samples, decode(v)). Linear and data channels are left as they are.
-void decode_expectation(const ModelColour& colour, std::size_t count,
-                        std::span<const Footprint> footprints, ImageView<float> out) noexcept;
-// The same with one width for every pixel.
-void decode_expectation(const ModelColour& colour, double width, ImageView<float> out) noexcept;
+// of `out` (row-major) becomes D(v, r(w)), w = width_of(i) the width of pixel i's footprint (0 for
+// a point sample, decode(v)). Linear and data channels are left as they are. Neighbouring pixels
+// of one width (a grid's) look r(w) up once.
+template <typename WidthOf>
+void decode_expectation_with(const ModelColour& colour, std::size_t count, WidthOf width_of,
+                             ImageView<float> out) noexcept {
+  if (!colour.expects_any()) return;
+  const int channels = out.channels;
+  std::array<float, kMaxChannels> removed{};
+  double last_width = -1.0;
+  for (std::size_t index = 0; index < count; ++index) {
+    const double width = width_of(index);
+    if (width != last_width) {
+      for (int c = 0; c < channels; ++c)
+        removed[static_cast<std::size_t>(c)] = removed_deviation(colour, channels, c, width);
+      last_width = width;
+    }
+    const int x = static_cast<int>(index % static_cast<std::size_t>(out.width));
+    const int y = static_cast<int>(index / static_cast<std::size_t>(out.width));
+    for (int c = 0; c < channels; ++c)
+      if (colour.expects(c))
+        out.at(x, y, c) = expected_decoded(out.at(x, y, c), removed[static_cast<std::size_t>(c)]);
+  }
+}
+
+// The same for evaluate()'s footprints (footprint_area_width; empty: point samples).
+inline void decode_expectation(const ModelColour& colour, std::size_t count,
+                               std::span<const Footprint> footprints,
+                               ImageView<float> out) noexcept {
+  decode_expectation_with(
+      colour, count,
+      [&](std::size_t i) { return footprints.empty() ? 0.0 : footprint_area_width(footprints[i]); },
+      out);
+}
 
 }  // namespace stochtex

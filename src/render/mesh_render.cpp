@@ -369,11 +369,10 @@ int mesh_output_channels(const Model& model) {
 ColourSpace mesh_output_space(const Model& model) {
   if (model.empty()) throw std::invalid_argument("render_mesh: the model is empty");
   const MeshMaterial material = mesh_material(model);
-  const ColourSpace space =
+  return rendered_space(
       material.colours > 0
           ? map_channel_spaces(model.maps())[static_cast<std::size_t>(material.colour)]
-          : model.colour_space();
-  return space == ColourSpace::data ? ColourSpace::data : ColourSpace::linear;
+          : model.colour_space());
 }
 
 double default_texture_scale(const Mesh& mesh) {

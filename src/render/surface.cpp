@@ -115,15 +115,15 @@ void evaluate_triplanar_linear(const MethodModel& m, const ModelColour& colour,
 // area its 3-D footprint covers, |dpdx x dpdy|^(1/2).
 void decode_surface(const ModelColour& colour, std::span<const SurfacePoint> points,
                     ImageView<float> out) {
-  if (!colour.expects_any()) return;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Vec3d& a = points[i].dpdx;
-    const Vec3d& b = points[i].dpdy;
-    const double width =
-        std::sqrt(std::hypot(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x));
-    const auto index = static_cast<int>(i);
-    decode_expectation(colour, width, out.sub(index % out.width, index / out.width, 1, 1));
-  }
+  decode_expectation_with(
+      colour, points.size(),
+      [&](std::size_t i) {
+        const Vec3d& a = points[i].dpdx;
+        const Vec3d& b = points[i].dpdy;
+        return std::sqrt(
+            std::hypot(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x));
+      },
+      out);
 }
 
 // "[low, high]" for whole-number bounds.

@@ -11,6 +11,7 @@
 #include "core/memory_budget.hpp"
 #include "io/image_io.hpp"
 #include "io/tiled_exr.hpp"
+#include "model/model_colour.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/material.hpp"
 
@@ -52,12 +53,6 @@ class TrackedBackend {
 // The channels of each map's image as split_maps writes it.
 int written_channels(const MapInfo& map) {
   return map.kind == MapKind::normal ? 3 : map.channels;
-}
-
-// What a render's values are (docs/design.md §14): linear light for a model of srgb or linear
-// values, which a PNG output encodes; data as it is.
-ColourSpace rendered_space(ColourSpace model_space) {
-  return model_space == ColourSpace::data ? ColourSpace::data : ColourSpace::linear;
 }
 
 // Checks a material's outputs before the render: {map} in the name exactly when the model has

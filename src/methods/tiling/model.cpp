@@ -184,15 +184,9 @@ void TilingModel::calibrate_colour() {
 }
 
 bool TilingModel::decodes_in_tables(int channel) const noexcept {
-  if (data_.colour.empty() ||
-      data_.colour[static_cast<std::size_t>(channel)] != ColourSpace::srgb ||
-      data_.blend != Blend::histogram)
-    return false;
   for (const TableGroup& group : layout_.groups)
     if (channel >= group.first && channel < group.first + group.channels)
-      return group.transform == GroupTransform::lut || group.transform == GroupTransform::direct ||
-             (group.transform == GroupTransform::decorrelated && group.channels == 1 &&
-              data_.colour_basis[static_cast<std::size_t>(group.first_basis)] != 0.0f);
+      return tiling::decodes_in_tables(data_, group, channel);
   return false;
 }
 

@@ -138,6 +138,23 @@ void prefilter_radial(const std::vector<float>& base, int table, int size, doubl
 
 }  // namespace
 
+bool decodes_in_tables(const TilingData& d, const TableGroup& group, int channel) {
+  if (d.colour.empty() || d.colour[static_cast<std::size_t>(channel)] != ColourSpace::srgb ||
+      d.blend != Blend::histogram)
+    return false;
+  switch (group.transform) {
+    case GroupTransform::lut:
+    case GroupTransform::direct:
+      return true;
+    case GroupTransform::decorrelated:
+      return group.channels == 1 &&
+             d.colour_basis[static_cast<std::size_t>(group.first_basis)] != 0.0f;
+    case GroupTransform::radial:
+      return false;
+  }
+  return false;
+}
+
 std::vector<std::vector<float>> build_pyramid(const std::vector<float>& base, int width, int height,
                                               int channels, std::vector<int>& widths,
                                               std::vector<int>& heights) {
@@ -178,28 +195,25 @@ void prefilter_levels(const TilingData& d, const TilingLayout& layout,
   // (TilingModel::calibrate_colour corrects what the Gaussian residual gets wrong).
   std::vector<float> base_lut = d.lut;
   std::vector<float> base_tables = d.tables;
-  const auto srgb = [&](int channel) {
-    return !d.colour.empty() && d.colour[static_cast<std::size_t>(channel)] == ColourSpace::srgb;
-  };
   for (const TableGroup& group : layout.groups) {
     if (group.transform == GroupTransform::lut) {
       for (std::size_t i = 0; i < base_lut.size(); ++i)
-        if (srgb(group.first + static_cast<int>(i % 3))) base_lut[i] = srgb_decode(base_lut[i]);
-    } else if (group.transform == GroupTransform::direct && srgb(group.first)) {
-      const auto first = static_cast<std::size_t>(group.first_table) * d.table_size;
-      for (std::size_t i = first; i < first + static_cast<std::size_t>(d.table_size); ++i)
-        base_tables[i] = srgb_decode(base_tables[i]);
-    } else if (group.transform == GroupTransform::decorrelated && group.channels == 1 &&
-               srgb(group.first)) {
-      // One channel: out = mean + b t, so the table t' = (decode(mean + b t) - mean) / b makes
-      // it decode(out) (a grey image). Groups of more channels mix their tables: decoded after
-      // evaluation (model/model_colour.hpp).
+        if (decodes_in_tables(d, group, group.first + static_cast<int>(i % 3)))
+          base_lut[i] = srgb_decode(base_lut[i]);
+      continue;
+    }
+    if (!decodes_in_tables(d, group, group.first)) continue;
+    const auto first = static_cast<std::size_t>(group.first_table) * d.table_size;
+    float* table = base_tables.data() + first;
+    if (group.transform == GroupTransform::direct) {
+      for (int i = 0; i < d.table_size; ++i) table[i] = srgb_decode(table[i]);
+    } else {
+      // One decorrelated channel: out = mean + b t, so the table t' = (decode(mean + b t) -
+      // mean) / b makes it decode(out) (a grey image).
       const double mean = d.colour_mean[static_cast<std::size_t>(group.first_mean)];
       const double b = d.colour_basis[static_cast<std::size_t>(group.first_basis)];
-      if (b == 0.0) continue;
-      const auto first = static_cast<std::size_t>(group.first_table) * d.table_size;
-      for (std::size_t i = first; i < first + static_cast<std::size_t>(d.table_size); ++i)
-        base_tables[i] = static_cast<float>((srgb_decode(mean + b * base_tables[i]) - mean) / b);
+      for (int i = 0; i < d.table_size; ++i)
+        table[i] = static_cast<float>((srgb_decode(mean + b * table[i]) - mean) / b);
     }
   }
   const std::vector<double> base_variance =
