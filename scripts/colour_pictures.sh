@@ -7,24 +7,18 @@
 # outputs are committed.
 # Usage: bash scripts/colour_pictures.sh [build-dir]
 set -euo pipefail
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${1:-$root/build}"
-out="$root/docs/images/colour"
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" --parallel --target stochtex
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
+gallery=colour
+source "$(dirname "$0")/gallery_common.sh"
 render=(--size 128x128 --scale 16 --seed 5)
 for name in nuts_grey_256 water_caustics_256; do
   for method in texton tiling; do
-    "$build/stochtex" analyze "$root/data/exemplars/$name.png" -m "$method" --colour-space srgb \
+    "$stochtex" analyze "$textures/$name.png" -m "$method" --colour-space srgb \
       -o "$work/$method.stx" 2>/dev/null
-    "$build/stochtex" render "$work/$method.stx" "${render[@]}" --colour-space data \
+    "$stochtex" render "$work/$method.stx" "${render[@]}" --colour-space data \
       -o "$out/${name}_${method}_data.png" 2>/dev/null
-    "$build/stochtex" render "$work/$method.stx" "${render[@]}" \
+    "$stochtex" render "$work/$method.stx" "${render[@]}" \
       -o "$out/${name}_${method}_srgb.png" 2>/dev/null
-    "$build/stochtex" render "$work/$method.stx" "${render[@]}" --supersample 8 \
+    "$stochtex" render "$work/$method.stx" "${render[@]}" --supersample 8 \
       -o "$out/${name}_${method}_supersampled.png" 2>/dev/null
   done
 done
