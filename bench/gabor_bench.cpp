@@ -1,7 +1,7 @@
-// Gabor noise by example costs (docs/design.md §10): analysis time for 128² and 256² exemplars
-// (the paper's Matlab takes about 2 minutes for 128² grey, section 9.1), and evaluation cost per
-// sample against the impulse budget N (the paper: roughly linear in N), point-sampled and with
-// scale-8 footprints, on one thread through the batch `evaluate`.
+// Gabor noise by example costs (docs/design.md §10): analysis time for 128², 256² and 512²
+// exemplars (the paper's Matlab takes about 2 minutes for 128² grey, section 9.1), and evaluation
+// cost per sample against the impulse budget N (the paper: roughly linear in N), point-sampled and
+// with scale-8 footprints, on one thread through the batch `evaluate`.
 
 #include <benchmark/benchmark.h>
 
@@ -30,6 +30,7 @@ BENCHMARK(BM_GaborAnalysisGrey)
     ->ArgName("side")
     ->Arg(128)
     ->Arg(256)
+    ->Arg(512)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
@@ -40,6 +41,7 @@ BENCHMARK(BM_GaborAnalysisColour)
     ->ArgName("side")
     ->Arg(128)
     ->Arg(256)
+    ->Arg(512)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -203,6 +203,42 @@ TEST(GaborFit, WeightsFollowTheSmoothedPeriodogramLevel) {
   }
 }
 
+// The automatic coarse fit of an exemplar larger than 256² runs on the decimated periodogram: it
+// must keep the variance (the sum), the symmetry m -> -m of a periodogram, and put a bin's power
+// on the coarse bins around it with the tent weights.
+TEST(GaborFit, DecimatedSpectrumKeepsTheVarianceAndTheSymmetry) {
+  constexpr int width = 32;
+  constexpr int height = 16;
+  std::vector<float> plane(static_cast<std::size_t>(width) * height);
+  std::mt19937 random(5);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t index = static_cast<std::size_t>(y) * width + x;
+      const std::size_t mirror =
+          static_cast<std::size_t>((height - y) % height) * width + (width - x) % width;
+      plane[index] = mirror < index ? plane[mirror] : uniform(random);
+    }
+  for (const int factor : {2, 4}) {
+    const int cw = width / factor;
+    const int ch = height / factor;
+    const std::vector<float> coarse = decimate_spectrum(plane, width, height, factor);
+    ASSERT_EQ(coarse.size(), static_cast<std::size_t>(cw) * ch);
+    EXPECT_NEAR(std::accumulate(coarse.begin(), coarse.end(), 0.0),
+                std::accumulate(plane.begin(), plane.end(), 0.0), 1e-4);
+    for (int y = 0; y < ch; ++y)
+      for (int x = 0; x < cw; ++x)
+        EXPECT_FLOAT_EQ(coarse[static_cast<std::size_t>(y) * cw + x],
+                        coarse[static_cast<std::size_t>((ch - y) % ch) * cw + (cw - x) % cw]);
+  }
+  // One bin at (3, 0): factor 2 puts 1/2 on coarse bins 1 and 2 of row 0, nothing elsewhere.
+  std::vector<float> single(plane.size(), 0.0f);
+  single[3] = 1.0f;
+  const std::vector<float> coarse = decimate_spectrum(single, width, height, 2);
+  for (std::size_t i = 0; i < coarse.size(); ++i)
+    EXPECT_FLOAT_EQ(coarse[i], i == 1 || i == 2 ? 0.5f : 0.0f) << i;
+}
+
 TEST(GaborFit, WeightedFitConvergesWithPerCoefficientSteps) {
   // The known Gaussians of RecoversKnownGaussians..., fitted through data weights. The diagonal
   // preconditioner lets every coefficient move at its own pace: with gamma = 1 (relative errors:

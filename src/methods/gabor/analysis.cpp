@@ -36,11 +36,26 @@ constexpr int kMaxFitsInFlight = 4;
 // l2 fit of a feature narrower than the dictionary's Gaussians spreads it and inflates its mass
 // (a one-bin peak fitted by one Gaussian of any width gets twice its mass): when the first fit's
 // variance exceeds the periodogram's by more than kAutoVarianceExcess, it is redone down to one
-// bin (measured: wood_planks_256 1.31, rock_sandstone_512 1.06, the diffuse exemplars 0.99-1.03).
+// bin (measured: wood_planks_256 1.31, the 512² colour exemplars 1.00-1.08 on the decimated plane
+// below, paving_height_grey_512 1.13, the diffuse 256² exemplars 0.99-1.03).
 // The coarse fit costs about kAutoCoarseShare of the full one (its bands are all sub-sampled).
 constexpr int kAutoNarrowest = 4;
 constexpr double kAutoVarianceExcess = 1.15;
 constexpr double kAutoCoarseShare = 0.25;
+// The coarse fit's bands are at least kAutoNarrowest bins wide, smooth at the exemplar's bin: on
+// an exemplar larger than kCoarsePlane bins a side, it runs on the periodogram decimated by a
+// power of two `factor` <= kAutoNarrowest (decimate_spectrum) that leaves at least kCoarsePlane
+// bins a side, its narrowest band kAutoNarrowest / factor bins there: the same Gaussians, at the
+// same frequencies, fitted on factor^2 fewer bins.
+constexpr int kCoarsePlane = 256;
+
+int coarse_fit_factor(int width, int height) {
+  int factor = 1;
+  while (2 * factor <= kAutoNarrowest && width % (2 * factor) == 0 && height % (2 * factor) == 0 &&
+         std::min(width, height) / (2 * factor) >= kCoarsePlane)
+    factor *= 2;
+  return factor;
+}
 
 }  // namespace
 
@@ -139,11 +154,13 @@ GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::u
       }
     };
   };
-  // Fits channel k with a dictionary whose narrowest band spans `narrowest` bins; the weighted
-  // problem: operator diag(w) S_n, target w S_ex.
-  const auto fit_channel = [&](std::size_t k, int narrowest, std::span<const float> weights,
-                               std::span<const float> target, double from, double to) {
-    GaussianDictionary dictionary(width, height, narrowest);
+  // Fits channel k on a plane of width x height bins (the exemplar's, or a decimated one) with a
+  // dictionary whose narrowest band spans `narrowest` bins; the weighted problem: operator
+  // diag(w) S_n, target w S_ex.
+  const auto fit_channel = [&](std::size_t k, int plane_width, int plane_height, int narrowest,
+                               std::span<const float> weights, std::span<const float> target,
+                               double from, double to) {
+    GaussianDictionary dictionary(plane_width, plane_height, narrowest);
     dictionary.set_weights(std::vector<float>(weights.begin(), weights.end()));
     const SpectrumFit fit = fit_spectrum(dictionary, target, options, fit_progress(k, from, to));
     ChannelFit result;
@@ -154,21 +171,22 @@ GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::u
     // of eq. (6) with variance alpha(m) + alpha(-m) (half-plane, section 5.3).
     for (int b = 0; b < dictionary.band_count(); ++b) {
       const std::vector<float>& alpha = fit.alpha[static_cast<std::size_t>(b)];
-      for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-          const std::size_t index = static_cast<std::size_t>(y) * width + x;
+      for (int y = 0; y < plane_height; ++y)
+        for (int x = 0; x < plane_width; ++x) {
+          const std::size_t index = static_cast<std::size_t>(y) * plane_width + x;
           const std::size_t mirror =
-              static_cast<std::size_t>((height - y) % height) * width + (width - x) % width;
+              static_cast<std::size_t>((plane_height - y) % plane_height) * plane_width +
+              (plane_width - x) % plane_width;
           if (mirror < index) continue;
           const auto variance = static_cast<float>(
               dictionary.mass(b) * (mirror == index ? alpha[index] : alpha[index] + alpha[mirror]));
           if (!(variance > 0.0f)) continue;
-          const int signed_x = x < (width + 1) / 2 ? x : x - width;
-          const int signed_y = y < (height + 1) / 2 ? y : y - height;
-          result.gaussians.push_back({static_cast<int>(k), dictionary.band(b),
-                                      static_cast<float>(static_cast<double>(signed_x) / width),
-                                      static_cast<float>(static_cast<double>(signed_y) / height),
-                                      variance});
+          const int signed_x = x < (plane_width + 1) / 2 ? x : x - plane_width;
+          const int signed_y = y < (plane_height + 1) / 2 ? y : y - plane_height;
+          result.gaussians.push_back(
+              {static_cast<int>(k), dictionary.band(b),
+               static_cast<float>(static_cast<double>(signed_x) / plane_width),
+               static_cast<float>(static_cast<double>(signed_y) / plane_height), variance});
         }
     }
     return result;
@@ -176,24 +194,34 @@ GaborModel analyze(ImageView<const float> exemplar, const Params& params, std::u
   try {
     parallel_for(
         fits.size(), std::min(resolve_thread_count(0), kMaxFitsInFlight), [&](std::size_t k) {
-          std::vector<float> weights =
-              spectrum_weights(targets[k], width, height, params.weighting);
           double target_variance = 0.0;
           for (const float v : targets[k]) target_variance += v;
-          for (std::size_t i = 0; i < weights.size(); ++i) targets[k][i] *= weights[i];
+          // The fit on a plane of width / factor x height / factor bins.
+          const auto weighted_fit = [&](int factor, int narrowest, double from, double to) {
+            const int plane_width = width / factor;
+            const int plane_height = height / factor;
+            std::vector<float> target =
+                factor == 1 ? targets[k] : decimate_spectrum(targets[k], width, height, factor);
+            const std::vector<float> weights =
+                spectrum_weights(target, plane_width, plane_height, params.weighting);
+            for (std::size_t i = 0; i < weights.size(); ++i) target[i] *= weights[i];
+            return fit_channel(k, plane_width, plane_height, narrowest, weights, target, from, to);
+          };
           const auto fitted_variance = [&] {
             double variance = 0.0;
             for (const GaussianComponent& g : fits[k].gaussians) variance += g.variance;
             return variance;
           };
           if (params.narrowest > 0) {
-            fits[k] = fit_channel(k, params.narrowest, weights, targets[k], 0.0, 1.0);
+            fits[k] = weighted_fit(1, params.narrowest, 0.0, 1.0);
           } else {
-            // Automatic: the dictionary down to kAutoNarrowest bins first; the full one (one
-            // bin) when that fit inflates the variance (features narrower than its Gaussians).
-            fits[k] = fit_channel(k, kAutoNarrowest, weights, targets[k], 0.0, kAutoCoarseShare);
+            // Automatic: the dictionary down to kAutoNarrowest bins first, on the coarsest plane
+            // that still resolves its narrowest band; the full one (one bin, on the exemplar's
+            // plane) when that fit inflates the variance (features narrower than its Gaussians).
+            const int factor = coarse_fit_factor(width, height);
+            fits[k] = weighted_fit(factor, kAutoNarrowest / factor, 0.0, kAutoCoarseShare);
             if (fitted_variance() > kAutoVarianceExcess * target_variance)
-              fits[k] = fit_channel(k, 1, weights, targets[k], kAutoCoarseShare, 1.0);
+              fits[k] = weighted_fit(1, 1, kAutoCoarseShare, 1.0);
           }
           // The channel's noise gets its periodogram's variance (the periodic component's, as
           // ADSN's); the fit error reports the fit itself.

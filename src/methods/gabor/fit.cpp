@@ -232,6 +232,31 @@ std::vector<float> periodogram(std::span<const float> plane, int width, int heig
   return result;
 }
 
+std::vector<float> decimate_spectrum(std::span<const float> plane, int width, int height,
+                                     int factor) {
+  const int coarse_width = width / factor;
+  const int coarse_height = height / factor;
+  std::vector<double> tent;
+  for (int k = 1 - factor; k < factor; ++k)
+    tent.push_back(1.0 - std::abs(k) / static_cast<double>(factor));
+  std::vector<float> result(static_cast<std::size_t>(coarse_width) * coarse_height);
+  for (int y = 0; y < coarse_height; ++y)
+    for (int x = 0; x < coarse_width; ++x) {
+      double sum = 0.0;
+      for (int ky = 1 - factor; ky < factor; ++ky) {
+        const int fine_y = (y * factor + ky + height) % height;
+        for (int kx = 1 - factor; kx < factor; ++kx) {
+          const int fine_x = (x * factor + kx + width) % width;
+          sum += tent[static_cast<std::size_t>(ky + factor - 1)] *
+                 tent[static_cast<std::size_t>(kx + factor - 1)] *
+                 plane[static_cast<std::size_t>(fine_y) * width + fine_x];
+        }
+      }
+      result[static_cast<std::size_t>(y) * coarse_width + x] = static_cast<float>(sum);
+    }
+  return result;
+}
+
 std::vector<float> spectrum_weights(std::span<const float> periodogram, int width, int height,
                                     double gamma) {
   const std::size_t pixels = static_cast<std::size_t>(width) * height;

@@ -56,6 +56,13 @@ DualityGap duality_gap(const GaussianDictionary& dictionary, std::span<const flo
 // it sums to the plane's mean square.
 std::vector<float> periodogram(std::span<const float> plane, int width, int height);
 
+// The periodogram on a coarser plane of (width / factor) x (height / factor) bins, bin j reading
+// the bins factor j + k of `plane` with the triangle weights (1 - |k_x| / factor)
+// (1 - |k_y| / factor), |k| < factor: the weights of every fine bin sum to 1, so the coarse plane
+// keeps the total (the variance), and it stays symmetric under m -> -m. factor divides both sizes.
+std::vector<float> decimate_spectrum(std::span<const float> plane, int width, int height,
+                                     int factor);
+
 // Data weights of the fit: w = (level / max level)^-gamma, the level being the periodogram
 // smoothed by a Gaussian of kLevelSmoothing bins (floored at 1e-6 of its peak). The periodogram's
 // noise has a standard deviation equal to its mean, so an unweighted fit (gamma = 0, the paper's)
