@@ -13,6 +13,7 @@
 #include "methods/texton/evaluate.hpp"
 #include "spectral/fft.hpp"
 #include "spectral/periodic.hpp"
+#include "spectral/principal_components.hpp"
 #include "spectral/white_noise.hpp"
 #include "stochtex/stochtex.hpp"
 
@@ -73,12 +74,21 @@ void project_spectrum(const std::vector<std::vector<Complex>>& kernel,
   }
 }
 
+// The decomposition is principal_components' (one instantiation of Eigen's eigen-solver for the
+// library: it is among the costliest templates to compile).
 Eigen::MatrixXd symmetric_power(const Eigen::MatrixXd& matrix, double power) {
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(matrix);
+  const auto n = static_cast<int>(matrix.rows());
+  std::vector<double> entries(static_cast<std::size_t>(n) * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) entries[static_cast<std::size_t>(i) * n + j] = matrix(i, j);
+  const PrincipalComponents components = principal_components(entries, n);
+  const Eigen::Map<const Eigen::VectorXd> eigenvalues(components.variances.data(), n);
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+      eigenvectors(components.axes.data(), n, n);
   // Eigenvalues of a covariance are >= 0; a floor keeps a channel with no variance finite.
-  const double floor = 1e-12 * std::max(1e-30, solver.eigenvalues().cwiseAbs().maxCoeff());
-  Eigen::VectorXd values = solver.eigenvalues().cwiseMax(floor).array().pow(power);
-  return solver.eigenvectors() * values.asDiagonal() * solver.eigenvectors().transpose();
+  const double floor = 1e-12 * std::max(1e-30, eigenvalues.cwiseAbs().maxCoeff());
+  Eigen::VectorXd values = eigenvalues.cwiseMax(floor).array().pow(power);
+  return eigenvectors * values.asDiagonal() * eigenvectors.transpose();
 }
 
 }  // namespace
