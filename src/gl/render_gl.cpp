@@ -12,6 +12,7 @@
 #include "gl/context.hpp"
 #include "gl/program.hpp"
 #include "gl/twin.hpp"
+#include "model/model_colour.hpp"
 #include "model/model_data.hpp"
 #include "stochtex/gpu.hpp"
 #include "stochtex_gl_twins.hpp"
@@ -56,7 +57,6 @@ namespace {
 
 const Model& checked_model(const Model& model) {
   if (model.empty()) throw std::invalid_argument("GlRenderer: the model is empty");
-  gl::check_gl_colour(model, "the GL backend");
   return model;
 }
 
@@ -79,6 +79,9 @@ void GlRenderer::render(const Grid& grid, std::uint32_t seed, ImageView<float> o
         "render_gl: the region's pixel indices exceed 2^30; move the origin instead");
   gl::Pass& pass = *impl_->pass;
   pass.prepare(grid, seed, options);
+  const ModelColour& colour = impl_->model.data().colour;
+  const double width =
+      options.filter ? footprint_area_width({{grid.scale, 0.0}, {0.0, grid.scale}}) : 0.0;
   const int tile_width = std::clamp(options.tile_size, 1, std::max(grid.width, 1));
   const int tile_height = std::clamp(options.tile_size, 1, std::max(grid.height, 1));
   const gl::Buffer result(static_cast<std::size_t>(tile_width) * tile_height * channels *
@@ -104,6 +107,12 @@ void GlRenderer::render(const Grid& grid, std::uint32_t seed, ImageView<float> o
           for (int c = 0; c < channels; ++c)
             out.at(x0 + x, y0 + y, c) = values[(static_cast<std::size_t>(y) * w + x) * channels +
                                                static_cast<std::size_t>(c)];
+      // The srgb channels that the shader returns encoded become linear light here, as render()
+      // does after the CPU evaluators (model/model_colour.hpp): the same function of the same
+      // values, so the GL render keeps the CPU's parity. One footprint width for the grid.
+      decode_expectation_with(
+          colour, static_cast<std::size_t>(w) * h, [&](std::size_t) { return width; },
+          out.sub(x0, y0, w, h));
     }
 }
 

@@ -76,9 +76,7 @@ bool gl_supports_mapping(const Model& model, SurfaceMapping mapping) {
   return gl::model_surface_shader(model, options).has_value();
 }
 
-GlSurfaceEvaluator::GlSurfaceEvaluator(const Model& model) : impl_(new Impl(model)) {
-  if (!model.empty()) gl::check_gl_colour(model, "the GL backend");
-}
+GlSurfaceEvaluator::GlSurfaceEvaluator(const Model& model) : impl_(new Impl(model)) {}
 
 GlSurfaceEvaluator::~GlSurfaceEvaluator() = default;
 
@@ -87,6 +85,14 @@ void GlSurfaceEvaluator::evaluate(std::span<const SurfacePoint> points,
                                   ImageView<float> out) {
   const Model& model = impl_->model;
   check_surface_arguments(model, points, options, out);
+  // The values of srgb channels become linear light after the read-back (decode_surface, as the
+  // CPU's), but linear triplanar mapping decodes each plane before the blend: in GLSL, not yet.
+  const ModelColour& colour = model.data().colour;
+  if (options.mapping == SurfaceMapping::triplanar_linear && colour.expects_any())
+    throw Error(ErrorCode::invalid_input,
+                "the gl backend does not map srgb " + std::string(model.method()) +
+                    " models by linear triplanar mapping yet, only the CPU does: use --backend "
+                    "cpu, or analyse the exemplar with --colour-space data");
   auto& compiled = impl_->compiled[static_cast<std::size_t>(options.mapping)];
   // The library may depend on the options (the constants of texton surface noise's MNI).
   if (!compiled || compiled->options.surface_mni != options.surface_mni ||
@@ -143,6 +149,7 @@ void GlSurfaceEvaluator::evaluate(std::span<const SurfacePoint> points,
             values[static_cast<std::size_t>(i) * channels + static_cast<std::size_t>(c)];
     }
   }
+  if (options.mapping != SurfaceMapping::triplanar_linear) decode_surface(colour, points, out);
 }
 
 void evaluate_surface_gl(const Model& model, std::span<const SurfacePoint> points,
