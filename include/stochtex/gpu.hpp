@@ -178,10 +178,10 @@ struct TextFile {
 //   vec4 stochtex_<method>(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)
 // (float2/float4 in HLSL and MSL; p in exemplar pixels, dpdx/dpdy its screen derivatives, zero =
 // no filtering), the model's data as images to bind as textures, and a README showing how. The
-// result has the model's values: those of the analysed exemplar file (PNG bytes / 255, not decoded
-// from sRGB), so for an ordinary sRGB exemplar it is sRGB-encoded, as the CPU render's PNG is, and
-// a linear-space engine converts it to linear (or writes it unconverted to a non-sRGB target).
-// Needs no GL context.
+// result is the CPU render's: linear light for a model whose colour is srgb (each channel the
+// expectation of the decoded colour over the footprint, docs/design.md §14), the model's values
+// as they are for one of data (for an ordinary sRGB exemplar analysed as data, sRGB-encoded).
+// A material whose maps are decoded after evaluation is refused for now. Needs no GL context.
 struct ShaderExport {
   TextFile shader;  // stochtex_<method> with the language's extension (.glsl, .metal, ...)
   // Engine-shaped wrappers of `shader` (HLSL: a Unity Shader Graph custom function file).

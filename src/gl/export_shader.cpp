@@ -17,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "gl/colour.hpp"
 #include "gl/cross_compile.hpp"
 #include "gl/export_material.hpp"
 #include "gl/readme.hpp"
@@ -459,7 +460,6 @@ std::string ShaderTexture::file_name() const {
 
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options) {
   if (model.empty()) throw std::invalid_argument("export_shader: the model is empty");
-  gl::check_gl_colour(model, "export-shader");
   if (model.maps().empty() && model.channels() > kMaxImageChannels)
     throw Error(ErrorCode::invalid_input,
                 "export-shader writes a vec4 function for a model of one image, and this model "
@@ -470,8 +470,10 @@ ShaderExport export_shader(const Model& model, const ShaderExportOptions& option
   return std::visit(
       [&](const auto& method_model) -> ShaderExport {
         using Method = std::decay_t<decltype(method_model)>;
-        return gl::assemble_export(gl::Twin<Method>::shader(method_model, options.variant),
-                                   options.language, model.maps(), model.channels());
+        gl::ExportParts parts = gl::Twin<Method>::shader(method_model, options.variant);
+        gl::add_colour(parts, model.data().colour, model.channels(), model.maps());
+        return gl::assemble_export(std::move(parts), options.language, model.maps(),
+                                   model.channels());
       },
       model.data().model);
 }

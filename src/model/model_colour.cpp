@@ -10,15 +10,11 @@
 namespace stochtex {
 namespace {
 
-// The table of D: means kMeanLow to kMeanHigh, deviations 0 to kDeviationHigh at the squares of
-// kDeviationCells + 1 even steps of (deviation / kDeviationHigh)^(1/2): finest near 0, where D
-// changes fastest (a mean near the decoding's knee at 0.04045 sees the power segment as soon as
-// the deviation reaches it).
-constexpr float kMeanLow = -1.0f;
-constexpr float kMeanHigh = 2.0f;
-constexpr int kMeanCells = 1024;
-constexpr float kDeviationHigh = 1.5f;
-constexpr int kDeviationCells = 128;
+constexpr float kMeanLow = kExpectationMeanLow;
+constexpr float kMeanHigh = kExpectationMeanHigh;
+constexpr int kMeanCells = kExpectationMeanCells;
+constexpr float kDeviationHigh = kExpectationDeviationHigh;
+constexpr int kDeviationCells = kExpectationDeviationCells;
 constexpr int kLegendrePoints = 48;
 constexpr double kNormalReach = 8.0;  // Z beyond +-8 carries 1e-15 of the probability
 
@@ -94,12 +90,12 @@ std::vector<float> make_expectation_table() {
   return table;
 }
 
+}  // namespace
+
 const std::vector<float>& expectation_table() {
   static const std::vector<float> table = make_expectation_table();
   return table;
 }
-
-}  // namespace
 
 bool ModelColour::decodes() const {
   return std::find(spaces.begin(), spaces.end(), ColourSpace::srgb) != spaces.end();

@@ -65,6 +65,19 @@ std::vector<ColourSpace> map_channel_spaces(std::span<const MapInfo> maps);
 // The colour space of a single image's colour channels (its first channel's).
 ColourSpace image_colour_space(const ModelColour& colour);
 
+// The table of D: means kExpectationMeanLow to kExpectationMeanHigh, deviations 0 to
+// kExpectationDeviationHigh at the squares of kExpectationDeviationCells + 1 even steps of
+// (deviation / kExpectationDeviationHigh)^(1/2): finest near 0, where D changes fastest (a mean
+// near the decoding's knee at 0.04045 sees the power segment as soon as the deviation reaches it).
+inline constexpr float kExpectationMeanLow = -1.0f;
+inline constexpr float kExpectationMeanHigh = 2.0f;
+inline constexpr int kExpectationMeanCells = 1024;
+inline constexpr float kExpectationDeviationHigh = 1.5f;
+inline constexpr int kExpectationDeviationCells = 128;
+// Its (kExpectationDeviationCells + 1) x (kExpectationMeanCells + 1) values, row by deviation, made
+// on first use (the GLSL twin's data, gl/colour.glsl).
+const std::vector<float>& expectation_table();
+
 // D(mean, deviation) = E[srgb_decode(mean + deviation Z)]: srgb_decode itself for deviation <= 0,
 // else bilinear in a table of the means -1 to 2 and deviations 0 to 1.5 (clamped beyond), made
 // once per process: the decoding's linear segment in closed form, its power by 48-point

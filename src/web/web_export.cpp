@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "model/model_data.hpp"
 #include "stochtex/error.hpp"
 
 namespace stochtex::web {
@@ -132,6 +133,11 @@ std::vector<WebFile> web_export(const Model& model, ShaderVariant variant) {
                 "the web viewer shows a model of up to 4 channels, and this " +
                     std::string(model.method()) + " model has " + std::to_string(model.channels()) +
                     "; export its shader with `stochtex export-shader` instead");
+  if (model.data().colour.decodes())
+    throw Error(ErrorCode::invalid_input,
+                "the web viewer shows models of data only for now (its canvas does not encode "
+                "linear light yet): analyse the exemplar with --colour-space data, or export the "
+                "shader with `stochtex export-shader`");
   // An exact shader that GLSL ES cannot run (gabor's needs double precision) is refused by the
   // exporter with its reason: the web export then holds the model's fast shader and says why.
   ShaderVariant shader_variant = variant;

@@ -104,14 +104,21 @@ expect_error "mix of a srgb PNG and a linear PFM, auto" 1 "one colour space" "$s
   "$nuts" "$inputs/grey.pfm" -p support=16 -p iterations=5 --steps 3 --colour-space auto \
   -o "$out/x.stx"
 
-# The GL backend renders srgb models (tests/gl/colour_gl_test.cpp compares it with the CPU); the
-# exports take data models only, for now, and say so.
+# The GL backend renders srgb models and their exported shaders return linear light
+# (tests/gl/colour_gl_test.cpp and export_language_test.cpp compare them with the CPU); the web
+# viewer shows data models only, for now, and says so.
 if ! gl_skipped 1 "render --backend gl of a srgb model"; then
   expect_ok "render --backend gl of a srgb model" "$stochtex" render "$models/srgb.stx" \
     --backend gl --size 8x8 -o "$models/gl.png"
 fi
-expect_error "export-shader of a srgb model" 1 "export-shader" "$stochtex" export-shader \
-  "$models/srgb.stx" -o "$out/export"
+expect_ok "export-shader of a srgb model" "$stochtex" export-shader "$models/srgb.stx" \
+  -o "$models/export" &&
+  if grep -q "returns linear light" "$models/export/README.md" &&
+    [[ -f $models/export/decoded.exr && -f $models/export/removed.exr ]]; then pass; else
+    fail "export-shader of a srgb model" "$(ls "$models/export")"
+  fi
+expect_error "export-web of a srgb model" 1 "colour-space data" "$stochtex" export-web \
+  "$models/srgb.stx" -o "$out/web"
 
 # A material's colour maps take a colour space; its data maps refuse one.
 rock=$textures/../materials/rock_sandstone

@@ -201,15 +201,25 @@ float worst_difference(const Model& model, const std::vector<float>& values, int
   return worst;
 }
 
-// A model of each export case, analysed once.
-const std::vector<Model>& case_models() {
-  static const std::vector<Model> models = [] {
-    std::vector<Model> made;
-    for (const ExportCase& c : export_cases()) made.push_back(case_model(c));
+// A model of each export case, analysed once: [k][0] of data (the exemplar's values), [k][1] the
+// same in the srgb colour space, whose exports return linear light (gl/colour.glsl).
+const std::vector<std::array<Model, 2>>& case_models() {
+  static const std::vector<std::array<Model, 2>> models = [] {
+    std::vector<std::array<Model, 2>> made;
+    for (const ExportCase& c : export_cases()) {
+      Model data = case_model(c);
+      Model srgb = with_colour_space(data, ColourSpace::srgb);
+      made.push_back({std::move(data), std::move(srgb)});
+    }
     return made;
   }();
   return models;
 }
+
+// The decoding multiplies a difference by at most its slope over the table's means -1 to 2,
+// 2.4 / 1.055 ((2 + 0.055) / 1.055)^1.4 (colour_gl_test.cpp): an srgb export's bound is its data
+// export's times this.
+constexpr float kDecodingSlope = 5.8f;
 
 bool uses_doubles(const ExportCase& c) {
   return std::string(c.method) == "gabor";
@@ -220,95 +230,99 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const ExportCase& c = cases[k];
     const std::string method = c.method;
-    for (const ShaderVariant variant : {ShaderVariant::exact, ShaderVariant::fast})
-      for (const gl::LanguageRow& row : gl::kLanguageRows) {
-        const ShaderLanguage language = row.language;
-        const std::string name(row.name);
-        SCOPED_TRACE(testing::Message()
-                     << method << (variant == ShaderVariant::fast ? " fast " : " exact ") << name);
-        const ShaderExportOptions options{variant, language};
-        if (language != ShaderLanguage::glsl && variant == ShaderVariant::exact &&
-            uses_doubles(c)) {
-          // Gabor's exact shader keeps positions and cell corners in double precision.
-          try {
-            export_shader(case_models()[k], options);
-            ADD_FAILURE() << "the export did not refuse the language";
-          } catch (const std::invalid_argument& e) {
-            const std::string message = e.what();
-            EXPECT_NE(message.find("the gabor shader"), std::string::npos) << message;
-            EXPECT_NE(message.find(row.title), std::string::npos) << message;
-            EXPECT_NE(message.find("double precision"), std::string::npos) << message;
-            EXPECT_NE(message.find("--variant fast"), std::string::npos) << message;
-            EXPECT_NE(message.find("--language glsl"), std::string::npos) << message;
+    for (const Model& model : case_models()[k])
+      for (const ShaderVariant variant : {ShaderVariant::exact, ShaderVariant::fast})
+        for (const gl::LanguageRow& row : gl::kLanguageRows) {
+          const ShaderLanguage language = row.language;
+          const std::string name(row.name);
+          SCOPED_TRACE(testing::Message()
+                       << method << (variant == ShaderVariant::fast ? " fast " : " exact ") << name
+                       << (&model == &case_models()[k][1] ? " srgb" : " data"));
+          const ShaderExportOptions options{variant, language};
+          if (language != ShaderLanguage::glsl && variant == ShaderVariant::exact &&
+              uses_doubles(c)) {
+            // Gabor's exact shader keeps positions and cell corners in double precision.
+            try {
+              export_shader(model, options);
+              ADD_FAILURE() << "the export did not refuse the language";
+            } catch (const std::invalid_argument& e) {
+              const std::string message = e.what();
+              EXPECT_NE(message.find("the gabor shader"), std::string::npos) << message;
+              EXPECT_NE(message.find(row.title), std::string::npos) << message;
+              EXPECT_NE(message.find("double precision"), std::string::npos) << message;
+              EXPECT_NE(message.find("--variant fast"), std::string::npos) << message;
+              EXPECT_NE(message.find("--language glsl"), std::string::npos) << message;
+            }
+            continue;
           }
-          continue;
-        }
-        const ShaderExport files = export_shader(case_models()[k], options);
-        // The README names every data file the export holds.
-        for (const ShaderTexture& t : files.textures) {
-          std::string quoted = t.file_name();
-          quoted.insert(quoted.begin(), '`');
-          quoted.push_back('`');
-          EXPECT_NE(files.readme.find(quoted), std::string::npos) << t.name;
-        }
-        if (variant == ShaderVariant::fast && c.method != std::string_view("lrp") &&
-            c.method != std::string_view("texton_mix")) {
-          EXPECT_NE(files.readme.find("fast variant"), std::string::npos);
-        }
-        const std::string extension = language == ShaderLanguage::msl ? ".metal" : "." + name;
-        EXPECT_EQ(files.shader.name, "stochtex_" + method + extension);
-        // One signature in every language, the parameter names kept by SPIRV-Cross (GLSL ES: highp
-        // is the default precision, so no qualifier is written); Metal's then takes each texture
-        // and sampler (and, for the fast variant, the library's private variables).
-        const std::vector<std::string> signatures = {
-            "vec4 stochtex_" + method + "(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)",
-            "vec4 stochtex_" + method + "(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)",
-            "float4 stochtex_" + method + "(float2 p, float2 dpdx, float2 dpdy, uint seed)",
-            "float4 stochtex_" + method +
-                "(thread const float2& p, thread const float2& dpdx, thread const float2& dpdy, "
-                "thread const uint& seed, "};
-        const std::string& signature = signatures[static_cast<std::size_t>(language)];
-        EXPECT_NE(files.shader.text.find(signature), std::string::npos) << signature;
-        EXPECT_NE(files.readme.find(signature), std::string::npos) << signature;
-        if (language == ShaderLanguage::msl) {
-          const std::size_t start = files.shader.text.find(signature);
-          const std::string line =
-              files.shader.text.substr(start, files.shader.text.find('\n', start) - start);
+          const ShaderExport files = export_shader(model, options);
+          // The README names every data file the export holds.
           for (const ShaderTexture& t : files.textures) {
-            std::string parameters = t.depth == 1 ? "texture2d" : "texture3d";
-            parameters += "<float> stochtex_" + t.name + ", sampler stochtex_" + t.name + "Smplr";
-            EXPECT_NE(line.find(parameters), std::string::npos) << parameters;
+            std::string quoted = t.file_name();
+            quoted.insert(quoted.begin(), '`');
+            quoted.push_back('`');
+            EXPECT_NE(files.readme.find(quoted), std::string::npos) << t.name;
+          }
+          if (variant == ShaderVariant::fast && c.method != std::string_view("lrp") &&
+              c.method != std::string_view("texton_mix")) {
+            EXPECT_NE(files.readme.find("fast variant"), std::string::npos);
+          }
+          const std::string extension = language == ShaderLanguage::msl ? ".metal" : "." + name;
+          EXPECT_EQ(files.shader.name, "stochtex_" + method + extension);
+          // One signature in every language, the parameter names kept by SPIRV-Cross (GLSL ES:
+          // highp is the default precision, so no qualifier is written); Metal's then takes each
+          // texture and sampler (and, for the fast variant, the library's private variables).
+          const std::vector<std::string> signatures = {
+              "vec4 stochtex_" + method + "(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)",
+              "vec4 stochtex_" + method + "(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)",
+              "float4 stochtex_" + method + "(float2 p, float2 dpdx, float2 dpdy, uint seed)",
+              "float4 stochtex_" + method +
+                  "(thread const float2& p, thread const float2& dpdx, thread const float2& dpdy, "
+                  "thread const uint& seed, "};
+          const std::string& signature = signatures[static_cast<std::size_t>(language)];
+          EXPECT_NE(files.shader.text.find(signature), std::string::npos) << signature;
+          EXPECT_NE(files.readme.find(signature), std::string::npos) << signature;
+          if (language == ShaderLanguage::msl) {
+            const std::size_t start = files.shader.text.find(signature);
+            const std::string line =
+                files.shader.text.substr(start, files.shader.text.find('\n', start) - start);
+            for (const ShaderTexture& t : files.textures) {
+              std::string parameters = t.depth == 1 ? "texture2d" : "texture3d";
+              parameters += "<float> stochtex_" + t.name + ", sampler stochtex_" + t.name + "Smplr";
+              EXPECT_NE(line.find(parameters), std::string::npos) << parameters;
+            }
+          }
+          for (const char* entry : {"void main(", "frag_main", "main0("})
+            EXPECT_EQ(files.shader.text.find(entry), std::string::npos) << "an entry point is left";
+          switch (language) {
+            case ShaderLanguage::glsl:
+              EXPECT_EQ(gl::front_end_errors(
+                            fragment_shader("#version 450", files.shader.text, method), language),
+                        "");
+              break;
+            case ShaderLanguage::essl:
+              EXPECT_EQ(
+                  gl::front_end_errors(
+                      fragment_shader("#version 300 es", files.shader.text, method), language),
+                  "");
+              break;
+            case ShaderLanguage::hlsl:
+              EXPECT_EQ(
+                  gl::front_end_errors(hlsl_shader(files.shader.text, method, false), language),
+                  "");
+              ASSERT_EQ(files.wrappers.size(), 1u);
+              EXPECT_EQ(files.wrappers[0].name, "stochtex_" + method + "_shadergraph.hlsl");
+              EXPECT_EQ(
+                  gl::front_end_errors(hlsl_shader(files.wrappers[0].text, method, true), language),
+                  "");
+              break;
+            case ShaderLanguage::msl:
+              break;  // no Metal compiler on Linux
+          }
+          if (language != ShaderLanguage::hlsl) {
+            EXPECT_TRUE(files.wrappers.empty());
           }
         }
-        for (const char* entry : {"void main(", "frag_main", "main0("})
-          EXPECT_EQ(files.shader.text.find(entry), std::string::npos) << "an entry point is left";
-        switch (language) {
-          case ShaderLanguage::glsl:
-            EXPECT_EQ(gl::front_end_errors(
-                          fragment_shader("#version 450", files.shader.text, method), language),
-                      "");
-            break;
-          case ShaderLanguage::essl:
-            EXPECT_EQ(gl::front_end_errors(
-                          fragment_shader("#version 300 es", files.shader.text, method), language),
-                      "");
-            break;
-          case ShaderLanguage::hlsl:
-            EXPECT_EQ(gl::front_end_errors(hlsl_shader(files.shader.text, method, false), language),
-                      "");
-            ASSERT_EQ(files.wrappers.size(), 1u);
-            EXPECT_EQ(files.wrappers[0].name, "stochtex_" + method + "_shadergraph.hlsl");
-            EXPECT_EQ(
-                gl::front_end_errors(hlsl_shader(files.wrappers[0].text, method, true), language),
-                "");
-            break;
-          case ShaderLanguage::msl:
-            break;  // no Metal compiler on Linux
-        }
-        if (language != ShaderLanguage::hlsl) {
-          EXPECT_TRUE(files.wrappers.empty());
-        }
-      }
   }
 }
 
@@ -355,20 +369,26 @@ void expect_renders_match(gl::Api api, ShaderLanguage language, const std::strin
       const bool fast = variant == ShaderVariant::fast;
       if (language != ShaderLanguage::glsl && !fast && uses_doubles(c)) continue;
       const bool filtered = fast && (method == "texton" || method == "tiling");
-      const ShaderExport files = export_shader(case_models()[k], {variant, language});
-      for (const float scale : {1.0f, 3.0f}) {
-        if (filtered && scale != 1.0f) continue;
-        const std::vector<float> values = render_fragments(files, version, c.method, c.size, scale);
-        const float worst = worst_difference(case_models()[k], values, c.size, scale);
-        std::cout << version << (fast ? " fast " : " exact ") << c.method << " (" << c.exemplar
-                  << "), scale " << scale << ": max |cpu - fragment| = " << worst << "\n";
-        float bound = 1e-4f;
-        if (filtered) bound = 1.0f / 255.0f;
-        if (fast && method == "gabor")
-          bound = static_cast<float>(
-              1e-3 * deviation(render_cpu(case_models()[k], Grid{{0.0, 0.0}, scale, c.size, c.size},
-                                          kSeed)));
-        EXPECT_LT(worst, bound) << c.method << " scale " << scale;
+      for (const bool srgb : {false, true}) {
+        const Model& model = case_models()[k][srgb ? 1 : 0];
+        const ShaderExport files = export_shader(model, {variant, language});
+        for (const float scale : {1.0f, 3.0f}) {
+          if (filtered && scale != 1.0f) continue;
+          const std::vector<float> values =
+              render_fragments(files, version, c.method, c.size, scale);
+          const float worst = worst_difference(model, values, c.size, scale);
+          std::cout << version << (fast ? " fast " : " exact ") << c.method << " (" << c.exemplar
+                    << (srgb ? ", srgb" : "") << "), scale " << scale
+                    << ": max |cpu - fragment| = " << worst << "\n";
+          float bound = 1e-4f;
+          if (filtered) bound = 1.0f / 255.0f;
+          if (fast && method == "gabor")
+            bound = static_cast<float>(
+                1e-3 * deviation(render_cpu(case_models()[k][0],
+                                            Grid{{0.0, 0.0}, scale, c.size, c.size}, kSeed)));
+          if (srgb) bound *= kDecodingSlope;
+          EXPECT_LT(worst, bound) << c.method << (srgb ? " srgb" : "") << " scale " << scale;
+        }
       }
     }
 }
