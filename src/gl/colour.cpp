@@ -97,4 +97,18 @@ void add_colour(ExportParts& parts, const ModelColour& colour, int channels,
   parts.textures.push_back(removed_texture(colour, channels));
 }
 
+void add_colour(SurfaceShader& shader, const ModelColour& colour, int channels,
+                SurfaceMapping mapping) {
+  if (!colour.expects_any()) return;
+  if (mapping == SurfaceMapping::triplanar_linear)
+    shader.library =
+        colour_library(colour, channels) + "#define STOCHTEX_TRIPLANAR_DECODE\n" + shader.library;
+  else
+    shader.library += colour_library(colour, channels);
+  if (mapping != SurfaceMapping::triplanar_linear)
+    shader.call = "stochtex_surface_linear_light(" + shader.call + ", dpdx, dpdy)";
+  shader.textures.push_back(decoded_texture());
+  shader.textures.push_back(removed_texture(colour, channels));
+}
+
 }  // namespace stochtex::gl

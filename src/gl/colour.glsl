@@ -49,9 +49,21 @@ vec4 stochtex_removed_deviation(float width) {
   return low + t * (high - low);
 }
 
-vec4 stochtex_linear_light(vec4 value, vec2 dpdx, vec2 dpdy) {
-  vec4 removed = stochtex_removed_deviation(sqrt(abs(dpdx.x * dpdy.y - dpdx.y * dpdy.x)));
+// `value` of a footprint of width `width` as linear light.
+vec4 stochtex_linear_light_of_width(vec4 value, float width) {
+  vec4 removed = stochtex_removed_deviation(width);
   for (int c = 0; c < 4; ++c)
     if (STOCHTEX_DECODE[c]) value[c] = stochtex_expected_decoded(value[c], removed[c]);
   return value;
+}
+
+// A planar footprint's width: |det(dpdx, dpdy)|^(1/2).
+vec4 stochtex_linear_light(vec4 value, vec2 dpdx, vec2 dpdy) {
+  return stochtex_linear_light_of_width(value, sqrt(abs(dpdx.x * dpdy.y - dpdx.y * dpdy.x)));
+}
+
+// A surface point's: the square root of the area its 3-D footprint covers, |dpdx x dpdy|^(1/2)
+// (decode_surface).
+vec4 stochtex_surface_linear_light(vec4 value, vec3 dpdx, vec3 dpdy) {
+  return stochtex_linear_light_of_width(value, sqrt(length(cross(dpdx, dpdy))));
 }

@@ -7,6 +7,7 @@
 
 #include "gl/twin.hpp"
 #include "model/model_colour.hpp"
+#include "stochtex/surface.hpp"
 
 namespace stochtex::gl {
 
@@ -18,5 +19,12 @@ namespace stochtex::gl {
 // textures (`decoded`, `removed`); a material (`maps`) of that kind is refused (Error) for now.
 void add_colour(ExportParts& parts, const ModelColour& colour, int channels,
                 std::span<const MapInfo> maps);
+
+// For the surface function `shader` (`mapping`) of a model of `channels` (1 to 4) channels whose
+// `colour` decodes some after evaluation: its values as linear light, as evaluate_surface's
+// (decode_surface; each plane's before the blend for linear triplanar mapping), reading the
+// tables as two more textures. Other models' shaders are left as they are.
+void add_colour(SurfaceShader& shader, const ModelColour& colour, int channels,
+                SurfaceMapping mapping);
 
 }  // namespace stochtex::gl

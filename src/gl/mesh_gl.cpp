@@ -248,7 +248,6 @@ std::array<float, 16> clip_from_eye(const PixelRays& rays, int x0, int y0, int w
 void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
                     const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out) {
   check_mesh_render_arguments(model, mesh, options, out);
-  gl::check_gl_colour(model, "the GL mesh renderer");
   const PixelRays rays = pixel_rays(camera, out.width, out.height);
   const Texturing parts = texturing(model, options);
 

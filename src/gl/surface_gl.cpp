@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "gl/colour.hpp"
 #include "gl/context.hpp"
 #include "gl/program.hpp"
 #include "gl/shaders.hpp"
@@ -28,7 +29,7 @@ std::optional<gl::SurfaceShader> gl::model_surface_shader(const Model& model,
                                                           const SurfaceOptions& options) {
   // The surface functions return a vec4 (gl/surface.glsl).
   if (model.empty() || model.channels() > kMaxImageChannels) return std::nullopt;
-  return std::visit(
+  std::optional<gl::SurfaceShader> shader = std::visit(
       [&](const auto& m) -> std::optional<gl::SurfaceShader> {
         using M = std::decay_t<decltype(m)>;
         if constexpr (gl::HasSurfaceTwin<M>)
@@ -37,6 +38,9 @@ std::optional<gl::SurfaceShader> gl::model_surface_shader(const Model& model,
           return std::nullopt;
       },
       model.data().model);
+  // A model of sRGB colour returns linear light, as evaluate_surface does.
+  if (shader) add_colour(*shader, model.data().colour, model.channels(), options.mapping);
+  return shader;
 }
 
 namespace {
@@ -85,14 +89,6 @@ void GlSurfaceEvaluator::evaluate(std::span<const SurfacePoint> points,
                                   ImageView<float> out) {
   const Model& model = impl_->model;
   check_surface_arguments(model, points, options, out);
-  // The values of srgb channels become linear light after the read-back (decode_surface, as the
-  // CPU's), but linear triplanar mapping decodes each plane before the blend: in GLSL, not yet.
-  const ModelColour& colour = model.data().colour;
-  if (options.mapping == SurfaceMapping::triplanar_linear && colour.expects_any())
-    throw Error(ErrorCode::invalid_input,
-                "the gl backend does not map srgb " + std::string(model.method()) +
-                    " models by linear triplanar mapping yet, only the CPU does: use --backend "
-                    "cpu, or analyse the exemplar with --colour-space data");
   auto& compiled = impl_->compiled[static_cast<std::size_t>(options.mapping)];
   // The library may depend on the options (the constants of texton surface noise's MNI).
   if (!compiled || compiled->options.surface_mni != options.surface_mni ||
@@ -149,7 +145,6 @@ void GlSurfaceEvaluator::evaluate(std::span<const SurfacePoint> points,
             values[static_cast<std::size_t>(i) * channels + static_cast<std::size_t>(c)];
     }
   }
-  if (options.mapping != SurfaceMapping::triplanar_linear) decode_surface(colour, points, out);
 }
 
 void evaluate_surface_gl(const Model& model, std::span<const SurfacePoint> points,

@@ -145,12 +145,4 @@ SurfaceShader triplanar_linear_shader(std::string_view method, std::string libra
                        {}};
 }
 
-void check_gl_colour(const Model& model, std::string_view what) {
-  if (model.data().colour.decodes())
-    throw Error(ErrorCode::invalid_input,
-                std::string(what) +
-                    " does not render srgb models yet, only the CPU does: render it with "
-                    "--backend cpu, or analyse the exemplar with --colour-space data");
-}
-
 }  // namespace stochtex::gl

@@ -132,12 +132,6 @@ void run_tile(const Program& program, std::int64_t first_x, std::int64_t first_y
 // derivatives' length, the grid's scale, or zero for point samples.
 float hardware_footprint(const Grid& grid, bool filter);
 
-// Refuses (Error, invalid_input), for `what` ("the GL mesh renderer", "export-shader"), a model
-// whose renders decode sRGB (stochtex/colour.hpp): the GLSL twins do not take the expectation of
-// the decoded colour yet (issue 36), and would return other values than the CPU. (render_gl and
-// the GL surface evaluator decode after their read-back.)
-void check_gl_colour(const Model& model, std::string_view what);
-
 // `image` rounded to what a PNG of `bits` (8 or 16) bits per channel holds and reads back (values
 // clamped to [0, 1], sample / (2^bits - 1)), as write_image and read_image do.
 ImageF quantized(ImageF image, int bits);

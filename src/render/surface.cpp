@@ -111,6 +111,21 @@ void evaluate_triplanar_linear(const MethodModel& m, const ModelColour& colour,
   }
 }
 
+// decode_expectation of surface points: each point's footprint width is the square root of the
+// area its 3-D footprint covers, |dpdx x dpdy|^(1/2).
+void decode_surface(const ModelColour& colour, std::span<const SurfacePoint> points,
+                    ImageView<float> out) {
+  decode_expectation_with(
+      colour, points.size(),
+      [&](std::size_t i) {
+        const Vec3d& a = points[i].dpdx;
+        const Vec3d& b = points[i].dpdy;
+        return std::sqrt(
+            std::hypot(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x));
+      },
+      out);
+}
+
 // "[low, high]" for whole-number bounds.
 std::string range_text(double low, double high) {
   return "[" + std::to_string(static_cast<int>(low)) + ", " +
@@ -151,19 +166,6 @@ bool supports_mapping(const Model& model, SurfaceMapping mapping) {
         return false;
       },
       model.data().model);
-}
-
-void decode_surface(const ModelColour& colour, std::span<const SurfacePoint> points,
-                    ImageView<float> out) {
-  decode_expectation_with(
-      colour, points.size(),
-      [&](std::size_t i) {
-        const Vec3d& a = points[i].dpdx;
-        const Vec3d& b = points[i].dpdy;
-        return std::sqrt(
-            std::hypot(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x));
-      },
-      out);
 }
 
 void check_surface_arguments(const Model& model, std::span<const SurfacePoint> points,

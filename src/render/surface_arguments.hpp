@@ -1,11 +1,9 @@
 #pragma once
-// The argument checks of evaluate_surface() (stochtex/surface.hpp) and its decoding of srgb
-// channels, shared with its GL twin evaluate_surface_gl() (src/gl/surface_gl.cpp) so both refuse
-// the same input with the same words and return the same linear light.
+// The argument checks of evaluate_surface() (stochtex/surface.hpp), shared with its GL twin
+// evaluate_surface_gl() (src/gl/surface_gl.cpp) so both refuse the same input with the same words.
 
 #include <span>
 
-#include "model/model_colour.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
 #include "stochtex/surface.hpp"
@@ -17,10 +15,5 @@ namespace stochtex {
 // channel count, or a point is not finite, beyond kPositionLimit, or its frame is not orthonormal.
 void check_surface_arguments(const Model& model, std::span<const SurfacePoint> points,
                              const SurfaceOptions& options, ImageView<float> out);
-
-// The evaluator's values of `points` -> linear light (decode_expectation_with), each point's
-// footprint width the square root of the area its 3-D footprint covers, |dpdx x dpdy|^(1/2).
-void decode_surface(const ModelColour& colour, std::span<const SurfacePoint> points,
-                    ImageView<float> out);
 
 }  // namespace stochtex

@@ -191,6 +191,33 @@ TEST(GlMesh, SurfaceNoiseAndLinearTriplanarMatchTheCpuReference) {
   }
 }
 
+// Models of sRGB colour return linear light on both renderers (gl/colour.glsl in the exported
+// and surface functions). Against the same model as data: the decoding multiplies a difference by
+// at most its slope, 5.8 over the table's means (colour_gl_test.cpp), so the srgb render's largest
+// and mean differences stay within 5.8 times the data render's (plus float rounding), with the
+// same coverage.
+TEST(GlMesh, SrgbModelsMatchTheCpuReference) {
+  constexpr float kDecodingSlope = 5.8f;
+  const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
+  const Model data = analyze("texton", exemplar.view(), {{"support", 24}}, 0);
+  const Model srgb = with_colour_space(data, ColourSpace::srgb);
+  const Mesh sphere = read_mesh(kMeshes + "sphere.obj");
+  // (The uv mapping runs the exported function, which ExportLanguage's tests check.)
+  for (const SurfaceMapping mapping : {SurfaceMapping::surface, SurfaceMapping::triplanar_linear}) {
+    MeshRenderOptions options;
+    options.mapping = mapping;
+    options.texture_scale = 1024.0;
+    const Parity d = parity(render_both(data, sphere, options));
+    const Parity p = parity(render_both(srgb, sphere, options));
+    const std::string name = "texton " + std::string(mapping_name(mapping));
+    std::cout << name << ": srgb " << p << "; data " << d << "\n";
+    EXPECT_EQ(p.coverage_differences, d.coverage_differences) << name;
+    EXPECT_EQ(p.interior, d.interior) << name;
+    EXPECT_LE(p.largest, kDecodingSlope * d.largest + 1e-6f) << name;
+    EXPECT_LE(p.mean, kDecodingSlope * d.mean + 1e-7) << name;
+  }
+}
+
 TEST(GlMesh, AMappingWithoutGlslIsRefused) {
   const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
   const Model lrp = analyze("lrp", exemplar.view(), {{"cosines", 10}}, 0);
