@@ -100,13 +100,14 @@ void add_colour(ExportParts& parts, const ModelColour& colour, int channels,
 void add_colour(SurfaceShader& shader, const ModelColour& colour, int channels,
                 SurfaceMapping mapping) {
   if (!colour.expects_any()) return;
-  if (mapping == SurfaceMapping::triplanar_linear)
+  if (mapping == SurfaceMapping::triplanar_linear) {
+    // triplanar_linear.glsl decodes each plane: the functions come before it.
     shader.library =
         colour_library(colour, channels) + "#define STOCHTEX_TRIPLANAR_DECODE\n" + shader.library;
-  else
+  } else {
     shader.library += colour_library(colour, channels);
-  if (mapping != SurfaceMapping::triplanar_linear)
     shader.call = "stochtex_surface_linear_light(" + shader.call + ", dpdx, dpdy)";
+  }
   shader.textures.push_back(decoded_texture());
   shader.textures.push_back(removed_texture(colour, channels));
 }

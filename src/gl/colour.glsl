@@ -6,7 +6,8 @@
 //   stochtex_decoded: D, STOCHTEX_DEVIATION_CELLS + 1 rows of STOCHTEX_MEAN_CELLS + 1 means, four
 //                     consecutive means per RGBA texel (mean m in texel m / 4, component m % 4);
 //   stochtex_removed: r, one RGBA texel per width step (channel c in component c).
-// Requires the constants of colour_glsl_constants (colour.cpp) and STOCHTEX_DECODE.
+// Requires the constants that colour_library (colour.cpp) writes before it, STOCHTEX_DECODE
+// among them.
 
 uniform sampler2D stochtex_decoded;
 uniform sampler2D stochtex_removed;
