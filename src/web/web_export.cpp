@@ -133,11 +133,6 @@ std::vector<WebFile> web_export(const Model& model, ShaderVariant variant) {
                 "the web viewer shows a model of up to 4 channels, and this " +
                     std::string(model.method()) + " model has " + std::to_string(model.channels()) +
                     "; export its shader with `stochtex export-shader` instead");
-  if (model.data().colour.decodes())
-    throw Error(ErrorCode::invalid_input,
-                "the web viewer shows models of data only for now (its canvas does not encode "
-                "linear light yet): analyse the exemplar with --colour-space data, or export the "
-                "shader with `stochtex export-shader`");
   // An exact shader that GLSL ES cannot run (gabor's needs double precision) is refused by the
   // exporter with its reason: the web export then holds the model's fast shader and says why.
   ShaderVariant shader_variant = variant;
@@ -161,6 +156,9 @@ std::vector<WebFile> web_export(const Model& model, ShaderVariant variant) {
       {"version", 1},
       {"method", model.method()},
       {"channels", model.channels()},
+      // What the shader returns: linear light (a srgb model: the viewer encodes it for the
+      // canvas) or the model's values as they are (data: shown as they are).
+      {"colour", model.data().colour.decodes() ? "linear" : "data"},
       {"variant", variant_name(variant)},
       {"shader_variant", variant_name(shader_variant)},
       {"entry", entry},

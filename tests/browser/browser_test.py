@@ -7,8 +7,10 @@ HTTP and loads the page in headless Chromium (SwiftShader's WebGL2). For each mo
 it checks that the viewer loaded that variant's export, reads the viewer's float values back
 (viewer.readPixels through the page's window.stochtexPage) and compares them with `stochtex
 render` of the same model, view and seed: pixel for pixel where the shader is the CPU's to float
-rounding, in variance when zoomed out 16x (the filtered render's). It checks the wheel and drag
-and a shader that does not compile, and fails on any JavaScript console error.
+rounding, in variance when zoomed out 16x (the filtered render's). A texton model of the srgb
+colour space is among them: its values are linear light, and the canvas must show them
+sRGB-encoded (a data model's as they are). It checks the wheel and drag and a shader that does
+not compile, and fails on any JavaScript console error.
 
 Usage: browser_test.py STOCHTEX EXEMPLAR [--second EXEMPLAR] [--screenshots DIR] [--measure]
 Exit 77 (CTest's SKIP_RETURN_CODE) when chromium is not installed.
@@ -59,11 +61,21 @@ FAST_BOUND = 1.0 / 255.0
 #   unfiltered render's variance there is 13 to 35 times the filtered one, so a viewer that did
 #   not filter (shimmering when zoomed out) fails.
 VARIANCE_BOUND = 0.08 + 3 * 0.021
+# - a srgb model's values (linear light): the decoding's largest slope over its table's means
+#   -1 to 2, 2.4 / 1.055 ((2 + 0.055) / 1.055)^1.4, times the bound of its data model;
+DECODING_SLOPE = 5.8
+# - what the canvas shows against the values read back: the sRGB encoding of a srgb model's
+#   linear light, a data model's values as they are, up to float rounding of the shader's pow.
+DISPLAY_BOUND = 1e-5
 
 
 def pixel_bound(method, shader_variant, scale, cpu):
     """The bound on |web - CPU| per value for the CPU render `cpu` (parse_pfm's tuple), or None
-    where only the variance is compared."""
+    where only the variance is compared. A srgb model (`<method>_srgb`) returns linear light: the
+    decoding multiplies a difference by at most DECODING_SLOPE."""
+    if method.endswith("_srgb"):
+        bound = pixel_bound(method.removesuffix("_srgb"), shader_variant, scale, cpu)
+        return None if bound is None else DECODING_SLOPE * bound
     if method == "gabor":
         return GABOR_DEVIATIONS * math.sqrt(min(variances(cpu[3], cpu[2])))
     if shader_variant == "exact" or method not in ("texton", "tiling"):
@@ -168,9 +180,10 @@ def browser():
 
 
 READ_BACK = """
-const [name, done] = arguments;
+const [name, display, done] = arguments;
 try {
-  const r = (window.stochtexPage || window.stochtexStudio.group).viewers.get(name).readPixels();
+  const r = (window.stochtexPage || window.stochtexStudio.group).viewers.get(name)
+      .readPixels({display});
   const bytes = new Uint8Array(r.data.buffer);
   let text = '';
   for (let i = 0; i < bytes.length; i += 0x8000)
@@ -180,8 +193,9 @@ try {
 """
 
 
-def read_back(driver, name):
-    result = driver.execute_async_script(READ_BACK, name)
+def read_back(driver, name, display=False):
+    """The viewer's values of model `name` (display: what its canvas shows), as floats."""
+    result = driver.execute_async_script(READ_BACK, name, display)
     if result[0] == "error":
         raise RuntimeError(f"{name}: readPixels failed: {result[1]}")
     width, height, channels, text = result
@@ -260,6 +274,30 @@ return [before.x + before.scale * px, before.y + before.scale * py,
         view.x + view.scale * px, view.y + view.scale * py, before.scale,
         [view.x, view.y, view.scale], [other.x, other.y, other.scale]];
 """
+
+
+def srgb_encode(value):
+    value = min(max(value, 0.0), 1.0)
+    return value * 12.92 if value <= 0.0031308 else 1.055 * value ** (1 / 2.4) - 0.055
+
+
+def check_display(driver, names):
+    """The canvas of each model of `names` against its values read back: encoded for a srgb
+    model (`<method>_srgb`), as they are otherwise (colour channels; 1 or 2 channels show the
+    first as grey)."""
+    failures = []
+    for name in names:
+        width, height, channels, raw = read_back(driver, name)
+        shown = read_back(driver, name, display=True)[3]
+        encode = srgb_encode if name.endswith("_srgb") else (lambda v: v)
+        compared = 3 if channels >= 3 else 1
+        largest = max(abs(shown[i * channels + c] - encode(raw[i * channels + c]))
+                      for i in range(width * height) for c in range(compared))
+        print(f"{name} display: max |shown - expected| {largest:.3g} (bound {DISPLAY_BOUND:g})")
+        if not largest <= DISPLAY_BOUND:
+            failures.append(f"{name}: the canvas shows values {largest:.3g} off "
+                            f"{'the sRGB encoding of ' if encode is srgb_encode else ''}its values")
+    return failures
 
 
 def check_interaction(driver):
@@ -364,6 +402,12 @@ def main():
                 command = [args.stochtex, "analyze", args.exemplar, "-m", method, "-o", path]
             subprocess.run(command, check=True, capture_output=True)
             models[method] = path
+        # A srgb model (docs/design.md §14): its shader returns linear light, which the viewer
+        # encodes for the canvas.
+        path = os.path.join(work, "texton_srgb.stx")
+        subprocess.run([args.stochtex, "analyze", args.exemplar, "-m", "texton", "--colour-space",
+                        "srgb", "-o", path], check=True, capture_output=True)
+        models["texton_srgb"] = path
         site = os.path.join(work, "site")
         subprocess.run([args.stochtex, "export-web", *models.values(), "-o", site], check=True,
                        capture_output=True)
@@ -407,6 +451,7 @@ def main():
                         cpu = cpu_renders[path, view]
                         bound = pixel_bound(method, manifest["shader_variant"], scale, cpu)
                         failures += compare(what, read_back(driver, method), cpu, bound, scale)
+            failures += check_display(driver, ["texton_srgb", "texton"])
             failures += check_interaction(driver)
             failures += check_compile_error(driver, site)
             if args.screenshots:

@@ -8,6 +8,7 @@
 //   viewer.setSeed(n);                 // the render's --seed
 //   viewer.render();                   // draws on the canvas (requestRender(): at the next frame)
 //   const {width, height, channels, data} = viewer.readPixels();  // the values, as floats
+//   viewer.readPixels({display: true});  // what the canvas shows, as floats
 //
 // Pixel (i, j), j counted downwards from the top row, samples p = (x, y) + scale * (i + 1/2,
 // j + 1/2) with dpdx = (scale, 0) and dpdy = (0, scale), as `stochtex render --origin X,Y
@@ -23,9 +24,17 @@ void main() {
 `;
 
 // The fragment shader's main after the exported library: the pixel's position by the render's
-// convention, the model's value raw (read-back) or as a colour (display: 1 or 2 channels grey).
+// convention, the model's value raw (read-back) or as a colour (display: 1 or 2 channels grey;
+// linear light, what a srgb model's shader returns, sRGB-encoded for the canvas, whose values
+// the browser shows as sRGB).
 function fragmentMain(entry) {
   return `
+uniform int stochtex_view_encode;
+highp vec3 stochtex_view_shown(highp vec3 v) {
+  if (stochtex_view_encode == 0) return v;
+  highp vec3 c = clamp(v, 0.0, 1.0);
+  return mix(1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, c * 12.92, lessThanEqual(c, vec3(0.0031308)));
+}
 uniform highp vec2 stochtex_view_origin;
 uniform highp float stochtex_view_scale;
 uniform highp float stochtex_view_height;
@@ -41,9 +50,9 @@ void main() {
   if (stochtex_view_display == 0) {
     stochtex_view_colour = value;
   } else if (stochtex_view_channels < 3) {
-    stochtex_view_colour = vec4(value.rrr, 1.0);
+    stochtex_view_colour = vec4(stochtex_view_shown(value.rrr), 1.0);
   } else {
-    stochtex_view_colour = vec4(value.rgb, 1.0);
+    stochtex_view_colour = vec4(stochtex_view_shown(value.rgb), 1.0);
   }
 }
 `;
@@ -235,9 +244,10 @@ export function createViewer(canvas, options = {}) {
     manifest = loaded;
     textures = made;
     uniforms = {};
-    for (const name of ['origin', 'scale', 'height', 'seed', 'display', 'channels'])
+    for (const name of ['origin', 'scale', 'height', 'seed', 'display', 'channels', 'encode'])
       uniforms[name] = gl.getUniformLocation(program, `stochtex_view_${name}`);
     gl.uniform1i(uniforms.channels, loaded.channels);
+    gl.uniform1i(uniforms.encode, loaded.colour === 'linear' ? 1 : 0);
     return manifest;
   }
 
@@ -264,7 +274,7 @@ export function createViewer(canvas, options = {}) {
     draw(true, canvas.width, canvas.height);
   }
 
-  function readPixels() {
+  function readPixels({display = false} = {}) {
     if (!colourBufferFloat)
       throw new Error('stochtex viewer: this browser\'s WebGL2 lacks EXT_color_buffer_float, ' +
                       'which reading the values back needs');
@@ -284,7 +294,7 @@ export function createViewer(canvas, options = {}) {
       target = {framebuffer, texture, width, height};
     }
     gl.bindFramebuffer(gl.FRAMEBUFFER, target.framebuffer);
-    draw(false, width, height);
+    draw(display, width, height);
     const rgba = new Float32Array(width * height * 4);
     gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, rgba);
     gl.bindFramebuffer(gl.FRAMEBUFFER, null);
