@@ -506,7 +506,13 @@ def test_memory_stays_bounded(studio):
     upload_some(30)
     after = studio.rss_kib()
     print(f"studio RSS {before} KiB -> {after} KiB after 30 uploads")
-    assert after - before < 16 * 1024, (before, after)
+    # Under AddressSanitizer (scripts/sanitize.sh) the resident size is its allocator's, which
+    # keeps the pages of freed chunks: the same 30 uploads measured +28 to +29 MiB on a server
+    # that had just started (a build of main before this check was written too) and +17 MiB after
+    # the other tests, whatever the store keeps. There LeakSanitizer checks that nothing is lost;
+    # the release tier measures the growth.
+    if "ASAN_OPTIONS" not in os.environ:
+        assert after - before < 16 * 1024, (before, after)
     studio.assert_serving()
 
 
