@@ -10,11 +10,6 @@
 namespace stochtex {
 namespace {
 
-constexpr float kMeanLow = kExpectationMeanLow;
-constexpr float kMeanHigh = kExpectationMeanHigh;
-constexpr int kMeanCells = kExpectationMeanCells;
-constexpr float kDeviationHigh = kExpectationDeviationHigh;
-constexpr int kDeviationCells = kExpectationDeviationCells;
 constexpr int kLegendrePoints = 48;
 constexpr double kNormalReach = 8.0;  // Z beyond +-8 carries 1e-15 of the probability
 
@@ -74,16 +69,20 @@ double expectation(double mean, double deviation, const Legendre& rule) {
   return sum;
 }
 
-// (kDeviationCells + 1) x (kMeanCells + 1) values of D, row by deviation.
+// (kExpectationDeviationCells + 1) x (kExpectationMeanCells + 1) values of D, row by deviation.
 std::vector<float> make_expectation_table() {
   const Legendre rule = legendre_rule();
-  std::vector<float> table(static_cast<std::size_t>(kDeviationCells + 1) * (kMeanCells + 1));
-  for (int s = 0; s <= kDeviationCells; ++s) {
-    const double step = static_cast<double>(s) / kDeviationCells;
-    const double deviation = kDeviationHigh * step * step;
-    for (int m = 0; m <= kMeanCells; ++m) {
-      const double mean = kMeanLow + static_cast<double>(kMeanHigh - kMeanLow) * m / kMeanCells;
-      table[static_cast<std::size_t>(s) * (kMeanCells + 1) + static_cast<std::size_t>(m)] =
+  std::vector<float> table(static_cast<std::size_t>(kExpectationDeviationCells + 1) *
+                           (kExpectationMeanCells + 1));
+  for (int s = 0; s <= kExpectationDeviationCells; ++s) {
+    const double step = static_cast<double>(s) / kExpectationDeviationCells;
+    const double deviation = kExpectationDeviationHigh * step * step;
+    for (int m = 0; m <= kExpectationMeanCells; ++m) {
+      const double mean =
+          kExpectationMeanLow + static_cast<double>(kExpectationMeanHigh - kExpectationMeanLow) *
+                                    m / kExpectationMeanCells;
+      table[static_cast<std::size_t>(s) * (kExpectationMeanCells + 1) +
+            static_cast<std::size_t>(m)] =
           static_cast<float>(s == 0 ? srgb_decode(mean) : expectation(mean, deviation, rule));
     }
   }
@@ -127,16 +126,18 @@ ColourSpace image_colour_space(const ModelColour& colour) {
 float expected_decoded(float mean, float deviation) noexcept {
   if (!(deviation > 0.0f)) return srgb_decode(mean);
   const std::vector<float>& table = expectation_table();
-  const float u = (std::clamp(mean, kMeanLow, kMeanHigh) - kMeanLow) *
-                  (static_cast<float>(kMeanCells) / (kMeanHigh - kMeanLow));
-  const float v =
-      std::sqrt(std::min(deviation, kDeviationHigh) * (1.0f / kDeviationHigh)) * kDeviationCells;
-  const int m = std::min(static_cast<int>(u), kMeanCells - 1);
-  const int s = std::min(static_cast<int>(v), kDeviationCells - 1);
+  const float u =
+      (std::clamp(mean, kExpectationMeanLow, kExpectationMeanHigh) - kExpectationMeanLow) *
+      (static_cast<float>(kExpectationMeanCells) / (kExpectationMeanHigh - kExpectationMeanLow));
+  const float v = std::sqrt(std::min(deviation, kExpectationDeviationHigh) *
+                            (1.0f / kExpectationDeviationHigh)) *
+                  kExpectationDeviationCells;
+  const int m = std::min(static_cast<int>(u), kExpectationMeanCells - 1);
+  const int s = std::min(static_cast<int>(v), kExpectationDeviationCells - 1);
   const float fu = u - static_cast<float>(m);
   const float fv = v - static_cast<float>(s);
-  const float* row = table.data() + static_cast<std::size_t>(s) * (kMeanCells + 1) + m;
-  const float* next = row + (kMeanCells + 1);
+  const float* row = table.data() + static_cast<std::size_t>(s) * (kExpectationMeanCells + 1) + m;
+  const float* next = row + (kExpectationMeanCells + 1);
   const float low = row[0] + fu * (row[1] - row[0]);
   const float high = next[0] + fu * (next[1] - next[0]);
   return low + fv * (high - low);

@@ -27,7 +27,7 @@ using gl_test::kTextureDir;
 using gl_test::max_difference;
 using gl_test::render_cpu;
 
-constexpr float kDecodingSlope = 5.8f;
+using gl_test::kDecodingSlope;
 
 ImageF render_gpu(const Model& model, const Grid& grid, GlFilter filter) {
   ImageF out(grid.width, grid.height, model.channels());

@@ -216,11 +216,6 @@ const std::vector<std::array<Model, 2>>& case_models() {
   return models;
 }
 
-// The decoding multiplies a difference by at most its slope over the table's means -1 to 2,
-// 2.4 / 1.055 ((2 + 0.055) / 1.055)^1.4 (colour_gl_test.cpp): an srgb export's bound is its data
-// export's times this.
-constexpr float kDecodingSlope = 5.8f;
-
 bool uses_doubles(const ExportCase& c) {
   return std::string(c.method) == "gabor";
 }

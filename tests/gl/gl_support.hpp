@@ -42,6 +42,12 @@ inline ImageF render_gpu(const Model& model, const Grid& grid, std::uint32_t see
 
 using test_support::same_bytes;
 
+// The largest slope of the decoding of an srgb model's values (D(m, s) of model/model_colour.hpp,
+// 2.4 / 1.055 ((2 + 0.055) / 1.055)^1.4 at the table's top mean, 2): a difference between two
+// renders of a model as data becomes at most this many times larger once decoded, so the GL tests
+// bound an srgb model's gap by its data model's times this.
+inline constexpr float kDecodingSlope = 5.8f;
+
 // A model to export (tests of export-shader): method, exemplar, parameters and the side of the
 // grid its renders are compared on; texton_mix (`stochtex mix`) also the second exemplar and,
 // for a mask field, the mask image.

@@ -197,7 +197,6 @@ TEST(GlMesh, SurfaceNoiseAndLinearTriplanarMatchTheCpuReference) {
 // and mean differences stay within 5.8 times the data render's (plus float rounding), with the
 // same coverage.
 TEST(GlMesh, SrgbModelsMatchTheCpuReference) {
-  constexpr float kDecodingSlope = 5.8f;
   const ImageF exemplar = read_image(kTextureDir + "/grass_lawn_128.png");
   const Model data = analyze("texton", exemplar.view(), {{"support", 24}}, 0);
   const Model srgb = with_colour_space(data, ColourSpace::srgb);
