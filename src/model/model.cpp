@@ -68,14 +68,14 @@ std::vector<float> measure_removed_deviation(const MethodModel& model) {
   std::vector<float> values(n * static_cast<std::size_t>(channels));
   const ImageView<float> view{values.data(), kMeasuredSamples, 1, channels,
                               static_cast<std::ptrdiff_t>(values.size())};
-  // Each channel's variance of the evaluator's values with footprints of width `width` (0: point
-  // samples).
-  const auto variances = [&](double width) {
+  // Each channel's variance of the evaluator's values at the first `count` positions (a multiple
+  // of kChunk) with footprints of width `width` (0: point samples).
+  constexpr std::size_t kChunk = 1024;
+  const auto variances = [&](double width, std::size_t count) {
     std::vector<Footprint> footprints;
-    if (width > 0.0) footprints.assign(n, Footprint{{width, 0.0}, {0.0, width}});
+    if (width > 0.0) footprints.assign(count, Footprint{{width, 0.0}, {0.0, width}});
     // In chunks on every core: evaluate() is a pure function of each position.
-    constexpr std::size_t kChunk = 1024;
-    parallel_for(n / kChunk, 0, [&](std::size_t chunk) {
+    parallel_for(count / kChunk, 0, [&](std::size_t chunk) {
       const std::size_t first = chunk * kChunk;
       std::visit(
           [&](const auto& m) {
@@ -91,25 +91,44 @@ std::vector<float> measure_removed_deviation(const MethodModel& model) {
     for (int c = 0; c < channels; ++c) {
       double sum = 0.0;
       double squares = 0.0;
-      for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t i = 0; i < count; ++i) {
         const double v = values[i * static_cast<std::size_t>(channels) + c];
         sum += v;
         squares += v * v;
       }
-      const double mean = sum / static_cast<double>(n);
+      const double mean = sum / static_cast<double>(count);
       result[static_cast<std::size_t>(c)] =
-          std::max(0.0, squares / static_cast<double>(n) - mean * mean);
+          std::max(0.0, squares / static_cast<double>(count) - mean * mean);
     }
     return result;
   };
-  const std::vector<double> point = variances(0.0);
+  // The positions for the next width, from the variances `last` measured at the previous one: a
+  // variance V from m independent values is off by about V (2 / m)^(1/2), and V(w) <= last. With
+  // m >= 16 n (last / V(1))^2 that error stays within a quarter of V(1) (2 / n)^(1/2), the error of
+  // the first widths, measured at all n; at least kChunk. The narrow widths, where V(w) is close
+  // to V(1), take every position, the wide ones, whose variance is small, few. Measured on the
+  // default models of grass_lawn_128 against all n at every width: the tables moved by at most
+  // 0.15% of r's last value, and srgb analysis took 1.2 s instead of 3.5 s for lrp (whose V(w)
+  // stays at 3e-3 V(1) to the table's end), 0.6 s instead of 1.3 s for texton, 1.6 s instead of
+  // 2.3 s for gabor.
+  const auto samples_after = [&](const std::vector<double>& last,
+                                 const std::vector<double>& point) {
+    double ratio = 0.0;
+    for (std::size_t c = 0; c < last.size(); ++c)
+      if (point[c] > 0.0) ratio = std::max(ratio, last[c] / point[c]);
+    const double wanted = std::ceil(16.0 * static_cast<double>(n) * ratio * ratio / kChunk);
+    return std::clamp(static_cast<std::size_t>(wanted), std::size_t{1}, n / kChunk) * kChunk;
+  };
+  const std::vector<double> point = variances(0.0, n);
   // removed[k][c] = r^2 at step k, measured at even steps until every channel's V(w) is below a
   // thousandth of V(1), then V(1).
   std::vector<std::vector<double>> removed(kRemovedSteps, point);
   int measured = 0;
+  std::vector<double> filtered = point;
   for (int k = 0; k < kRemovedSteps; k += 2) {
-    const std::vector<double> filtered =
-        k == 0 ? point : variances(std::exp2(static_cast<double>(k) / kRemovedStepsPerOctave));
+    if (k > 0)
+      filtered = variances(std::exp2(static_cast<double>(k) / kRemovedStepsPerOctave),
+                           samples_after(filtered, point));
     bool faded = true;
     for (int c = 0; c < channels; ++c) {
       const auto cc = static_cast<std::size_t>(c);

@@ -32,8 +32,9 @@ struct ModelData {
 // ModelColour::removed_deviation of a method model (the model's srgb channels decoded after
 // evaluation): r(w)^2 = V(1) - V(w), where V(w) is the variance of each channel's values that the
 // method's own evaluator returns with footprints of width w, measured at kMeasuredSamples
-// positions far apart (independent values), the same positions for every width, on every core.
-// A footprint
+// positions far apart (independent values) on every core: every position for the narrow widths,
+// and as the variance falls, the first of them, fewer, as many as keep its error within a quarter
+// of the narrow widths' (measure_removed_deviation). A footprint
 // filters each method in its own way (texton's pyramid and probes, gabor's and lrp's analytic
 // filters); measured, r(w) is the method's. Widths are measured every two steps of the table,
 // until V(w) falls below a thousandth of V(1); the others are interpolated in r^2, and beyond,
