@@ -6,8 +6,10 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -25,6 +27,16 @@ namespace stochtex::test_support {
 // The shipped rock material set (data/materials/rock_sandstone) and meshes (data/meshes).
 inline const std::string kRock = std::string(STOCHTEX_MATERIAL_DIR) + "/rock_sandstone/";
 inline const std::string kMeshes = std::string(STOCHTEX_SOURCE_DIR) + "/data/meshes/";
+
+// The folder that CTest's fixture tests fill with what several tests share and is costly to make
+// (tests/CMakeLists.txt sets STOCHTEX_TEST_CACHE for them: the statistical tests' default models,
+// the GL tests' export case models), when the test runs under CTest. Run by hand, without it, a
+// test makes what it needs itself, so a stale folder is never read.
+inline std::optional<std::filesystem::path> shared_folder() {
+  const char* folder = std::getenv("STOCHTEX_TEST_CACHE");
+  if (folder == nullptr || *folder == '\0') return std::nullopt;
+  return std::filesystem::path(folder);
+}
 
 // A fixture with an empty folder of its own, named after the test and the process, removed after.
 class FolderTest : public testing::Test {

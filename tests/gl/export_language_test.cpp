@@ -201,19 +201,18 @@ float worst_difference(const Model& model, const std::vector<float>& values, int
   return worst;
 }
 
-// A model of each export case, analysed once: [k][0] of data (the exemplar's values), [k][1] the
-// same in the srgb colour space, whose exports return linear light (gl/colour.glsl).
-const std::vector<std::array<Model, 2>>& case_models() {
-  static const std::vector<std::array<Model, 2>> models = [] {
-    std::vector<std::array<Model, 2>> made;
-    for (const ExportCase& c : export_cases()) {
-      Model data = case_model(c);
-      Model srgb = with_colour_space(data, ColourSpace::srgb);
-      made.push_back({std::move(data), std::move(srgb)});
-    }
-    return made;
-  }();
-  return models;
+// The fixture (FIXTURES_SETUP gl_shared under CTest): the export cases' models, made once per run
+// for the GL tests that use them (case_models()).
+TEST(GlShared, ExportCaseModels) {
+  const auto folder = test_support::shared_folder();
+  if (!folder) GTEST_SKIP() << "STOCHTEX_TEST_CACHE is not set: the tests make their own";
+  std::filesystem::create_directories(*folder);
+  const std::vector<ExportCase> cases = export_cases();
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Model data = case_model(cases[k]);
+    save_model(data, case_model_path(*folder, k, false));
+    save_model(with_colour_space(data, ColourSpace::srgb), case_model_path(*folder, k, true));
+  }
 }
 
 bool uses_doubles(const ExportCase& c) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -104,6 +105,37 @@ inline std::vector<ExportCase> export_cases() {
                             [&](const ExportCase& c) { return c.method == method.name; }))
         << "no export case for " << method.name;
   return cases;
+}
+
+inline std::filesystem::path case_model_path(const std::filesystem::path& folder, std::size_t k,
+                                             bool srgb) {
+  return folder / ("export_case_" + std::to_string(k) + (srgb ? "_srgb.stx" : "_data.stx"));
+}
+
+// The models of export_cases(): [k][0] of data (the exemplar's values), [k][1] the same in the
+// srgb colour space, whose exports return linear light (gl/colour.glsl). Made once per process
+// or, under CTest, loaded from the files that the fixture test GlShared.ExportCaseModels made
+// once per run (gl_shared, tests/CMakeLists.txt): making them takes seconds (measuring the srgb
+// models' removed deviations), and four test programs use them. A model file holds the model
+// exactly, so both render the same bytes.
+inline const std::vector<std::array<Model, 2>>& case_models() {
+  static const std::vector<std::array<Model, 2>> models = [] {
+    const std::vector<ExportCase> cases = export_cases();
+    const auto folder = test_support::shared_folder();
+    std::vector<std::array<Model, 2>> made;
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      if (folder && std::filesystem::exists(case_model_path(*folder, k, true))) {
+        made.push_back({load_model(case_model_path(*folder, k, false)),
+                        load_model(case_model_path(*folder, k, true))});
+        continue;
+      }
+      Model data = case_model(cases[k]);
+      Model srgb = with_colour_space(data, ColourSpace::srgb);
+      made.push_back({std::move(data), std::move(srgb)});
+    }
+    return made;
+  }();
+  return models;
 }
 
 // The maps `names` of the shipped material set `set` (data/materials/<set>/<name>.png) for

@@ -313,8 +313,9 @@ TEST(Gl, ExportedShadersCompileAndMatchTheCpu) {
   // Gabor kernel filter).
   const std::vector<ExportCase> cases = export_cases();
   const gl::Context context;
-  for (const auto& c : cases) {
-    const Model model = case_model(c);
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const ExportCase& c = cases[k];
+    const Model& model = case_models()[k][0];
     const ShaderExport files = export_shader(model);
     ASSERT_EQ(files.shader.name, "stochtex_" + std::string(c.method) + ".glsl");
     EXPECT_NE(files.readme.find("stochtex_" + std::string(c.method) + "(vec2 p"),

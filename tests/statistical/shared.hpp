@@ -7,16 +7,15 @@
 // what it needs itself, so a stale folder can never be read.
 
 #include <cctype>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
 
 #include "stochtex/image.hpp"
 #include "stochtex/stochtex.hpp"
+#include "test_support.hpp"
 
 namespace stochtex::test_support {
 
@@ -44,13 +43,6 @@ inline std::string test_name(std::string text) {
   for (char& c : text)
     if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
   return text;
-}
-
-// The folder CTest's fixtures fill, when the test runs under CTest.
-inline std::optional<std::filesystem::path> shared_folder() {
-  const char* folder = std::getenv("STOCHTEX_TEST_CACHE");
-  if (folder == nullptr || *folder == '\0') return std::nullopt;
-  return std::filesystem::path(folder);
 }
 
 inline std::filesystem::path shared_model_path(const std::filesystem::path& folder,
