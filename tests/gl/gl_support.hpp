@@ -116,8 +116,8 @@ inline std::filesystem::path case_model_path(const std::filesystem::path& folder
 // srgb colour space, whose exports return linear light (gl/colour.glsl). Made once per process
 // or, under CTest, loaded from the files that the fixture test GlShared.ExportCaseModels made
 // once per run (gl_shared, tests/CMakeLists.txt): making them takes seconds (measuring the srgb
-// models' removed deviations), and four test programs use them. A model file holds the model
-// exactly, so both render the same bytes.
+// models' removed deviations), and six tests use them, each in a process of its own under CTest.
+// A model file holds the model exactly, so both render the same bytes.
 inline const std::vector<std::array<Model, 2>>& case_models() {
   static const std::vector<std::array<Model, 2>> models = [] {
     const std::vector<ExportCase> cases = export_cases();
