@@ -112,6 +112,14 @@ inline std::filesystem::path case_model_path(const std::filesystem::path& folder
   return folder / ("export_case_" + std::to_string(k) + (srgb ? "_srgb.stx" : "_data.stx"));
 }
 
+// The models of export case `c`: of data (the exemplar's values), and the same in the srgb colour
+// space.
+inline std::array<Model, 2> make_case_models(const ExportCase& c) {
+  Model data = case_model(c);
+  Model srgb = with_colour_space(data, ColourSpace::srgb);
+  return {std::move(data), std::move(srgb)};
+}
+
 // The models of export_cases(): [k][0] of data (the exemplar's values), [k][1] the same in the
 // srgb colour space, whose exports return linear light (gl/colour.glsl). Made once per process
 // or, under CTest, loaded from the files that the fixture test GlShared.ExportCaseModels made
@@ -129,9 +137,7 @@ inline const std::vector<std::array<Model, 2>>& case_models() {
                         load_model(case_model_path(*folder, k, true))});
         continue;
       }
-      Model data = case_model(cases[k]);
-      Model srgb = with_colour_space(data, ColourSpace::srgb);
-      made.push_back({std::move(data), std::move(srgb)});
+      made.push_back(make_case_models(cases[k]));
     }
     return made;
   }();
