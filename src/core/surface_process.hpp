@@ -46,15 +46,12 @@ inline Footprint tangent_footprint(const SurfacePoint& p, const SurfaceFrame& f)
   return {{along(p.dpdx, f.u1), along(p.dpdx, f.u2)}, {along(p.dpdy, f.u1), along(p.dpdy, f.u2)}};
 }
 
-// Calls visit(rng, t, z1, z2) for every impulse of the cells that meet the bounding box of the
-// point's oriented box (half sides reach, reach, depth), impulses outside the box included: the
-// callee rejects them, after drawing from `rng` whatever per-impulse marks it needs, so that an
-// impulse's marks do not depend on the point that sees it. `count` draws the cell's impulse count
-// for cells of side `cell_size`.
-template <typename Visit>
-void for_each_surface_impulse(const SurfacePoint& p, const SurfaceFrame& f, double reach,
-                              double depth, double cell_size, const CellCount& count,
-                              std::uint32_t seed, Visit&& visit) noexcept {
+// Calls visit_cell(cx, cy, cz, ox, oy, oz) for every cell that meets the bounding box of the
+// point's oriented box (half sides reach, reach, depth), in a fixed order (z, then y, then x), with
+// the point's offset (ox, oy, oz) from the cell's corner in float.
+template <typename VisitCell>
+void for_each_surface_cell(const SurfacePoint& p, const SurfaceFrame& f, double reach, double depth,
+                           double cell_size, VisitCell&& visit_cell) noexcept {
   const double position[3] = {p.position.x, p.position.y, p.position.z};
   std::int64_t first[3];
   std::int64_t last[3];
@@ -64,7 +61,6 @@ void for_each_surface_impulse(const SurfacePoint& p, const SurfaceFrame& f, doub
     first[k] = static_cast<std::int64_t>(std::floor((position[k] - extent) / cell_size));
     last[k] = static_cast<std::int64_t>(std::floor((position[k] + extent) / cell_size));
   }
-  const auto side = static_cast<float>(cell_size);
   for (std::int64_t cz = first[2]; cz <= last[2]; ++cz) {
     // Offsets from the cell corner in double, then float (docs/design.md §4).
     const auto oz = static_cast<float>(position[2] - static_cast<double>(cz) * cell_size);
@@ -72,6 +68,27 @@ void for_each_surface_impulse(const SurfacePoint& p, const SurfaceFrame& f, doub
       const auto oy = static_cast<float>(position[1] - static_cast<double>(cy) * cell_size);
       for (std::int64_t cx = first[0]; cx <= last[0]; ++cx) {
         const auto ox = static_cast<float>(position[0] - static_cast<double>(cx) * cell_size);
+        visit_cell(cx, cy, cz, ox, oy, oz);
+      }
+    }
+  }
+}
+
+// Calls visit(rng, t, z1, z2) for every impulse of the cells of for_each_surface_cell, impulses
+// outside the box included: the callee rejects them, after drawing from `rng` whatever per-impulse
+// marks it needs, so that an impulse's marks do not depend on the point that sees it. `count`
+// draws the cell's impulse count for cells of side `cell_size`. A cell's draws: the count's
+// `chunks` uniforms, then per impulse its position's three and the marks; a callee that always
+// draws (or skips) the same number of marks M puts impulse i's position at draw
+// chunks + i (3 + M), which a vectorised twin uses (gabor/simd.cpp).
+template <typename Visit>
+void for_each_surface_impulse(const SurfacePoint& p, const SurfaceFrame& f, double reach,
+                              double depth, double cell_size, const CellCount& count,
+                              std::uint32_t seed, Visit&& visit) noexcept {
+  const auto side = static_cast<float>(cell_size);
+  for_each_surface_cell(
+      p, f, reach, depth, cell_size,
+      [&](std::int64_t cx, std::int64_t cy, std::int64_t cz, float ox, float oy, float oz) {
         CounterRng rng(cell_key(cx, cy, cz, seed, Stream::points));
         const std::uint32_t impulses = count(rng);
         for (std::uint32_t i = 0; i < impulses; ++i) {
@@ -86,9 +103,7 @@ void for_each_surface_impulse(const SurfacePoint& p, const SurfaceFrame& f, doub
           const float z2 = dx * f.u2[0] + dy * f.u2[1] + dz * f.u2[2];
           visit(rng, t, z1, z2);
         }
-      }
-    }
-  }
+      });
 }
 
 }  // namespace stochtex

@@ -57,13 +57,13 @@ ImageF render_plane(const Model& model, int width, int height, std::uint32_t see
 
 // On the plane, surface noise is the planar noise of the same model in distribution: the same
 // expected spectrum and covariance. Measured over kSeeds seeds on grass_lawn_128 (gaussian class),
-// error against the exemplar, surface vs planar: spectral error texton 0.336 (sd 0.009) vs 0.343
-// (sd 0.015), gabor 0.408 (sd 0.022) vs 0.415 (sd 0.011); covariance error texton 0.089 (sd 0.064)
-// vs 0.075 (sd 0.049), gabor 0.022 (sd 0.017) vs 0.033 (sd 0.017). The bound: the mean gap within
+// error against the exemplar, surface vs planar: spectral error texton 0.336 (sd 0.009) vs 0.318
+// (sd 0.008), gabor 0.308 (sd 0.011) vs 0.316 (sd 0.004); covariance error texton 0.089 (sd 0.064)
+// vs 0.036 (sd 0.036), gabor 0.025 (sd 0.004) vs 0.015 (sd 0.009). The bound: the mean gap within
 // 4 pooled standard deviations of one measurement, as texton_quality_test's "reaches the ADSN
-// level" (measured gaps: -0.2 to 0.3 pooled sd). It can fail: normalising by the planar
-// sqrt(lambda) instead of Proposition 3's sqrt(lambda r / 3) scales the variance by r / 3 (43
-// here).
+// level" (measured gaps, spectral and covariance: texton 2.2 and 1.0, gabor -1.0 and 1.4 pooled
+// sd). It can fail: normalising by the planar sqrt(lambda) instead of Proposition 3's
+// sqrt(lambda r / 3) scales the variance by r / 3 (43 here).
 TEST(SurfaceQuality, OnAPlaneTheSpectrumAndVarianceAreThoseOfPlanarNoise) {
   const std::string name = "grass_lawn_128.png";
   const ImageF exemplar = read_image(kTextureDir + "/" + name);

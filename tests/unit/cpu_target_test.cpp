@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <random>
 #include <stdexcept>
@@ -16,6 +17,7 @@
 
 #include "stochtex/io.hpp"
 #include "stochtex/stochtex.hpp"
+#include "stochtex/surface.hpp"
 #include "test_support.hpp"
 
 namespace stochtex::cpu_target_test {
@@ -259,6 +261,51 @@ TEST_F(CpuTargets, GaborCellsBeyondACacheSlotGiveTheReferencesBytes) {
         return renders(model, {{{-3.5, 2e5}, 2.0, 7, 5}});
       },
       "gabor large cells");
+}
+
+TEST_F(CpuTargets, GaborSurfaceNoiseGivesTheReferencesBytes) {
+  // Surface Gabor noise (gabor/simd.hpp surface_impulse_sum) at scattered points of a sphere far
+  // from the origin, each with its own frame: point samples, then footprints from a tenth of a
+  // pixel to 40 pixels (thinning levels 0 to about 5), at two impulse densities.
+  std::mt19937 engine(8);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_real_distribution<double> width(-3.0, 1.6);
+  std::vector<SurfacePoint> points;
+  for (int i = 0; i < 97; ++i) {
+    Vec3d n{unit(engine), unit(engine), unit(engine)};
+    const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    n = {n.x / length, n.y / length, n.z / length};
+    // The tangent: e_x or e_y projected on the tangent plane, whichever is further from n.
+    const Vec3d axis = std::abs(n.x) < 0.7 ? Vec3d{1.0, 0.0, 0.0} : Vec3d{0.0, 1.0, 0.0};
+    const double along = axis.x * n.x + axis.y * n.y;
+    Vec3d t{axis.x - along * n.x, axis.y - along * n.y, -along * n.z};
+    const double t_length = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
+    t = {t.x / t_length, t.y / t_length, t.z / t_length};
+    const Vec3d b{n.y * t.z - n.z * t.y, n.z * t.x - n.x * t.z, n.x * t.y - n.y * t.x};
+    const double w = std::pow(10.0, width(engine));
+    points.push_back({{3e4 + 40.0 * n.x, -75.0 + 40.0 * n.y, 40.0 * n.z},
+                      n,
+                      t,
+                      {w * t.x, w * t.y, w * t.z},
+                      {0.5 * w * b.x, 0.5 * w * b.y, 0.5 * w * b.z}});
+  }
+  std::vector<SurfacePoint> samples = points;
+  for (SurfacePoint& p : samples) p.dpdx = p.dpdy = {};
+  for (const int impulses : {64, 1024}) {
+    const Model model =
+        analyze("gabor", colour_exemplar().view(), {{"impulses", impulses}, {"iterations", 20}}, 5);
+    expect_the_references_bytes(
+        [&] {
+          std::vector<ImageF> images;
+          for (const auto* batch : {&samples, &points}) {
+            ImageF out(1, static_cast<int>(batch->size()), model.channels());
+            evaluate_surface(model, *batch, {}, 11, out.view());
+            images.push_back(std::move(out));
+          }
+          return images;
+        },
+        "gabor surface, " + std::to_string(impulses) + " impulses");
+  }
 }
 
 }  // namespace

@@ -514,6 +514,7 @@ void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double s
   // sqrt(lambda_2 / (lambda_3 2 r_b / 3)) = sqrt(1.5 kSurfaceMniReference / surface_mni), and the
   // noise keeps the planar noise's variance (and zero mean, the phases being uniform).
   const double amplitude_gain = surface_amplitude_gain(surface_mni);
+  const bool simd = simd_enabled();
   for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
     const Grid& grid = grids_[grid_index];
     const GridKernels kernels = grid_kernels(*this, grid);
@@ -529,22 +530,28 @@ void GaborModel::evaluate_surface(std::span<const SurfacePoint> points, double s
       const auto inverse_depth = static_cast<float>(1.0 / depth);
       const std::uint32_t level_seed =
           cell_key(static_cast<std::int64_t>(grid_index), filter.level, seed, Stream::kernels);
+      const double cell_size = std::ldexp(surface.cell_size, filter.level);
       float sum = 0.0f;
-      for_each_surface_impulse(
-          p, frame, filter.reach, depth, std::ldexp(surface.cell_size, filter.level), surface.count,
-          level_seed, [&](CounterRng& rng, float t, float z1, float z2) {
-            // An impulse outside the tent or the kernel's support is
-            // rejected before its kernel, whose draws are skipped.
-            const float weight = 1.0f - std::abs(t) * inverse_depth;
-            const float envelope = weight > 0.0f ? shape.envelope(z1, z2) : kPiF;
-            if (envelope >= kPiF) {
-              rng.skip(GridKernels::kDraws);
-              return;
-            }
-            float wx, wy, phase;
-            kernels.draw(rng, wx, wy, phase);
-            sum += weight * shape.value(envelope, wx, wy, phase, z1, z2);
-          });
+      if (simd) {
+        sum = surface_impulse_sum(kernels, shape, p, frame, filter.reach, depth, cell_size,
+                                  surface.count, level_seed);
+      } else {
+        for_each_surface_impulse(p, frame, filter.reach, depth, cell_size, surface.count,
+                                 level_seed, [&](CounterRng& rng, float t, float z1, float z2) {
+                                   // An impulse outside the tent or the kernel's support is
+                                   // rejected before its kernel, whose draws are skipped.
+                                   const float weight = 1.0f - std::abs(t) * inverse_depth;
+                                   const float envelope =
+                                       weight > 0.0f ? shape.envelope(z1, z2) : kPiF;
+                                   if (envelope >= kPiF) {
+                                     rng.skip(GridKernels::kDraws);
+                                     return;
+                                   }
+                                   float wx, wy, phase;
+                                   kernels.draw(rng, wx, wy, phase);
+                                   sum += weight * shape.value(envelope, wx, wy, phase, z1, z2);
+                                 });
+      }
       pixel(index, grid.channel) +=
           static_cast<float>(std::ldexp(grid.amplitude * filter.gain, filter.level) *
                              amplitude_gain) *

@@ -182,6 +182,120 @@ float impulse_sum_typed(ImpulseCache& cache, const KernelShape& shape, const Cel
   return pending.count == 0 ? sum : evaluate_pending<Filtered>(shape, pending, pending.count, sum);
 }
 
+// The impulses of one surface point found within the tent and the kernel's support and not yet
+// evaluated, in the reference's order: their offsets z1, z2 in the tangent frame, envelopes,
+// frequencies, phases and tent weights.
+struct SurfacePending {
+  static constexpr std::size_t kFields = 7;
+  HWY_ALIGN float field[kFields][2 * kMaxLanes] = {};
+  std::size_t count = 0;
+};
+
+// The reference's weight * KernelShape::value for the first `count` pending impulses, one per
+// lane, added to `sum` in their order.
+template <bool Filtered>
+float evaluate_surface_pending(const KernelShape& shape, const SurfacePending& pending,
+                               std::size_t count, float sum) {
+  const DF df;
+  const auto field = [&](std::size_t f) HWY_ATTR { return hn::Load(df, pending.field[f]); };
+  HWY_ALIGN float values[kMaxLanes] = {};
+  hn::Store(hn::Mul(field(6),
+                    HWY_NAMESPACE::kernel_value(VectorOps{}, shape, Filtered, field(2), field(3),
+                                                field(4), field(5), field(0), field(1))),
+            df, values);
+  for (std::size_t i = 0; i < count; ++i) sum += values[i];
+  return sum;
+}
+
+template <bool Filtered>
+float surface_sum_typed(const GridKernels& grid, const KernelShape& shape, const SurfacePoint& p,
+                        const SurfaceFrame& f, double reach, double depth, double cell_size,
+                        const CellCount& count, std::uint32_t seed) {
+  const DF df;
+  const DU du;
+  const DI di;
+  const std::size_t lanes = hn::Lanes(df);
+  // An impulse's draws: its position's three, then its kernel's (the reference's visitor draws
+  // or skips them alike).
+  constexpr std::uint32_t kStride = 3 + GridKernels::kDraws;
+  const VF side = hn::Set(df, static_cast<float>(cell_size));
+  const VF inverse_depth = hn::Set(df, static_cast<float>(1.0 / depth));
+  const VF u1[3] = {hn::Set(df, f.u1[0]), hn::Set(df, f.u1[1]), hn::Set(df, f.u1[2])};
+  const VF u2[3] = {hn::Set(df, f.u2[0]), hn::Set(df, f.u2[1]), hn::Set(df, f.u2[2])};
+  const VF u3[3] = {hn::Set(df, f.u3[0]), hn::Set(df, f.u3[1]), hn::Set(df, f.u3[2])};
+  const auto along = [](const VF(&u)[3], VF x, VF y, VF z) HWY_ATTR {
+    return hn::Add(hn::Add(hn::Mul(x, u[0]), hn::Mul(y, u[1])), hn::Mul(z, u[2]));
+  };
+  float sum = 0.0f;
+  SurfacePending pending;
+  HWY_ALIGN std::uint32_t words[kMaxLanes];
+  HWY_ALIGN std::int32_t columns[kMaxLanes];
+  for_each_surface_cell(
+      p, f, reach, depth, cell_size,
+      [&](std::int64_t cx, std::int64_t cy, std::int64_t cz, float ox, float oy,
+          float oz) HWY_ATTR {
+        const std::uint32_t key = cell_key(cx, cy, cz, seed, Stream::points);
+        CounterRng rng(key);
+        const std::uint32_t n = count(rng);
+        const VU first_draw = hn::Set(du, count.chunks());
+        for (std::uint32_t j = 0; j < n; j += static_cast<std::uint32_t>(lanes)) {
+          const VU draw = hn::Add(first_draw, hn::Mul(hn::Iota(du, j), hn::Set(du, kStride)));
+          const auto uniform = [&](std::uint32_t k) HWY_ATTR {
+            return UniformFromDraw(df, CounterDraw(du, key, hn::Add(draw, hn::Set(du, k))));
+          };
+          const VF dx = hn::Sub(hn::Set(df, ox), hn::Mul(uniform(0), side));
+          const VF dy = hn::Sub(hn::Set(df, oy), hn::Mul(uniform(1), side));
+          const VF dz = hn::Sub(hn::Set(df, oz), hn::Mul(uniform(2), side));
+          const VF t = along(u3, dx, dy, dz);
+          const VF z1 = along(u1, dx, dy, dz);
+          const VF z2 = along(u2, dx, dy, dz);
+          const VF weight = hn::Sub(hn::Set(df, 1.0f), hn::Mul(hn::Abs(t), inverse_depth));
+          const VF envelope = hn::IfThenElse(
+              hn::Gt(weight, hn::Zero(df)),
+              HWY_NAMESPACE::kernel_envelope(VectorOps{}, shape, z1, z2), hn::Set(df, kPiF));
+          const auto inside = hn::And(hn::FirstN(df, n - j), hn::Lt(envelope, hn::Set(df, kPiF)));
+          if (hn::AllFalse(df, inside)) continue;
+          // GridKernels::draw in every lane: column word, coin, phase.
+          hn::Store(CounterDraw(du, key, hn::Add(draw, hn::Set(du, 3u))), du, words);
+          const VF coin = uniform(4);
+          const VF phase = uniform(5);
+          for (std::size_t lane = 0; lane < lanes; ++lane)
+            columns[lane] = static_cast<std::int32_t>(alias_column(words[lane], grid.count));
+          const VI column = hn::Load(di, columns);
+          const auto keep =
+              hn::RebindMask(di, hn::Lt(coin, hn::GatherIndex(df, grid.probability, column)));
+          const VI pick = hn::IfThenElse(keep, column,
+                                         hn::BitCast(di, hn::GatherIndex(du, grid.alias, column)));
+          const VF fields[SurfacePending::kFields] = {z1,
+                                                      z2,
+                                                      envelope,
+                                                      hn::GatherIndex(df, grid.frequency_x, pick),
+                                                      hn::GatherIndex(df, grid.frequency_y, pick),
+                                                      phase,
+                                                      weight};
+          for (std::size_t k = 0; k < SurfacePending::kFields; ++k)
+            hn::StoreU(hn::Compress(fields[k], inside), df, pending.field[k] + pending.count);
+          pending.count += hn::CountTrue(df, inside);
+          if (pending.count < lanes) continue;
+          sum = evaluate_surface_pending<Filtered>(shape, pending, lanes, sum);
+          pending.count -= lanes;
+          for (std::size_t k = 0; k < SurfacePending::kFields; ++k)
+            hn::Store(hn::LoadU(df, pending.field[k] + lanes), df, pending.field[k]);
+        }
+      });
+  return pending.count == 0
+             ? sum
+             : evaluate_surface_pending<Filtered>(shape, pending, pending.count, sum);
+}
+
+float SurfaceImpulseSum(const GridKernels& grid, const KernelShape& shape, const SurfacePoint& p,
+                        const SurfaceFrame& f, double reach, double depth, double cell_size,
+                        const CellCount& count, std::uint32_t seed) {
+  return shape.filtered
+             ? surface_sum_typed<true>(grid, shape, p, f, reach, depth, cell_size, count, seed)
+             : surface_sum_typed<false>(grid, shape, p, f, reach, depth, cell_size, count, seed);
+}
+
 float ImpulseSum(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells, Vec2d p,
                  double cell_size) {
   return shape.filtered ? impulse_sum_typed<true>(cache, shape, cells, p, cell_size)
@@ -195,10 +309,21 @@ HWY_AFTER_NAMESPACE();
 namespace stochtex::gabor {
 
 HWY_EXPORT(ImpulseSum);
+HWY_EXPORT(SurfaceImpulseSum);
 
 float impulse_sum(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells, Vec2d p,
                   double cell_size) noexcept {
   const float sum = HWY_DYNAMIC_DISPATCH(ImpulseSum)(cache, shape, cells, p, cell_size);
+  end_simd_call();
+  return sum;
+}
+
+float surface_impulse_sum(const GridKernels& kernels, const KernelShape& shape,
+                          const SurfacePoint& p, const SurfaceFrame& frame, double reach,
+                          double depth, double cell_size, const CellCount& count,
+                          std::uint32_t seed) noexcept {
+  const float sum = HWY_DYNAMIC_DISPATCH(SurfaceImpulseSum)(kernels, shape, p, frame, reach, depth,
+                                                            cell_size, count, seed);
   end_simd_call();
   return sum;
 }

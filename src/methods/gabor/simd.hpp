@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "core/cell_count.hpp"
+#include "core/surface_process.hpp"
 #include "methods/gabor/evaluate.hpp"
 #include "stochtex/model.hpp"
 
@@ -80,5 +81,16 @@ inline std::size_t strip_width(double step, double reach, double cell_size) noex
 // and level, `cell_size` is its cell side in double.
 float impulse_sum(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells, Vec2d p,
                   double cell_size) noexcept;
+
+// Surface Gabor noise's kernel sum of one grid at one point, as GaborModel::evaluate_surface's
+// scalar loop over for_each_surface_impulse sums it (bit for bit): the impulses of a cell of the
+// 3-D process are drawn 4 to 16 at a time (their draws by their counters,
+// core/surface_process.hpp), rejected by the tent weight and the envelope in every lane, and the
+// kernels of the others are evaluated a vector at a time; `seed` is the grid's level seed, `depth`
+// the tent's half width.
+float surface_impulse_sum(const GridKernels& kernels, const KernelShape& shape,
+                          const SurfacePoint& p, const SurfaceFrame& frame, double reach,
+                          double depth, double cell_size, const CellCount& count,
+                          std::uint32_t seed) noexcept;
 
 }  // namespace stochtex::gabor
