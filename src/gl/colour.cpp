@@ -9,7 +9,6 @@
 #include "gl/glsl_text.hpp"
 #include "gl/readme.hpp"
 #include "gl/shaders.hpp"
-#include "stochtex/error.hpp"
 
 namespace stochtex::gl {
 namespace {
@@ -27,13 +26,14 @@ ShaderTexture decoded_texture() {
   return ShaderTexture{"decoded", std::move(image)};
 }
 
-// r(w) of every channel, one RGBA texel per width step (zeros past the model's channels).
+// r(w) of every channel, one RGBA texel per width step, channel c in row c / 4, component c % 4
+// (zeros past the model's channels): one row for a model of one image.
 ShaderTexture removed_texture(const ModelColour& colour, int channels) {
-  ImageF image(kRemovedSteps, 1, 4);
+  ImageF image(kRemovedSteps, (channels + 3) / 4, 4);
   for (int k = 0; k < kRemovedSteps; ++k)
     for (int c = 0; c < channels; ++c)
-      image.at(k, 0, c) = colour.removed_deviation[static_cast<std::size_t>(k) * channels +
-                                                   static_cast<std::size_t>(c)];
+      image.at(k, c / 4, c % 4) = colour.removed_deviation[static_cast<std::size_t>(k) * channels +
+                                                           static_cast<std::size_t>(c)];
   return ShaderTexture{"removed", std::move(image)};
 }
 
@@ -75,11 +75,19 @@ void add_colour(ExportParts& parts, const ModelColour& colour, int channels,
                      .flag("data", !colour.decodes())
                      .text();
   if (!decoded) return;
-  if (!maps.empty())
-    throw Error(ErrorCode::invalid_input,
-                "export-shader does not decode a material's sRGB maps in GLSL yet, only single "
-                "images: analyse the maps with --colour-space data, or render the material with "
-                "`stochtex render`");
+  for (const ShaderTexture& texture : parts.textures)
+    if (texture.name == "decoded" || texture.name == "removed")
+      throw std::logic_error("add_colour: the method already has a texture " + texture.name);
+  parts.textures.push_back(decoded_texture());
+  parts.textures.push_back(removed_texture(colour, channels));
+  if (!maps.empty()) {
+    // The material function decodes its srgb maps' channels (export_material.cpp).
+    parts.library +=
+        colour_library(colour, std::min(channels, 4)) + shader_source("gl/colour_material.glsl");
+    for (int c = 0; c < channels; ++c)
+      if (colour.expects(c)) parts.decoded_channels.push_back(c);
+    return;
+  }
   // The entry point is the library's last definition of that name (a fast library may hold the
   // exact one before it, renamed by a macro).
   const std::string definition = "vec4 " + entry + "(";
@@ -90,11 +98,6 @@ void add_colour(ExportParts& parts, const ModelColour& colour, int channels,
   parts.library += colour_library(colour, channels) + "\nvec4 " + entry +
                    "(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {\n  return stochtex_linear_light(" +
                    entry + "_encoded(p, dpdx, dpdy, seed), dpdx, dpdy);\n}\n";
-  for (const ShaderTexture& texture : parts.textures)
-    if (texture.name == "decoded" || texture.name == "removed")
-      throw std::logic_error("add_colour: the method already has a texture " + texture.name);
-  parts.textures.push_back(decoded_texture());
-  parts.textures.push_back(removed_texture(colour, channels));
 }
 
 void add_colour(SurfaceShader& shader, const ModelColour& colour, int channels,

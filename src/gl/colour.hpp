@@ -16,7 +16,9 @@ namespace stochtex::gl {
 // evaluation (ModelColour::expects_any), also renames `parts`' entry point stochtex_<method> to
 // stochtex_<method>_encoded and adds a stochtex_<method> of the same signature returning its
 // value as linear light (stochtex_linear_light, colour.glsl), with the tables it reads as two more
-// textures (`decoded`, `removed`); a material (`maps`) of that kind is refused (Error) for now.
+// textures (`decoded`, `removed`). For a material (`maps`) of that kind, the library gets
+// stochtex_material_linear_light (colour_material.glsl) and `parts.decoded_channels` the channels
+// its material function decodes (export_material.cpp).
 void add_colour(ExportParts& parts, const ModelColour& colour, int channels,
                 std::span<const MapInfo> maps);
 

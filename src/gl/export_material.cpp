@@ -76,7 +76,7 @@ std::vector<MaterialMember> material_members(std::span<const MapInfo> maps) {
 }
 
 MaterialShader material_shader(std::span<const MapInfo> maps, int channels, std::string_view method,
-                               const std::string& channels_function) {
+                               const std::string& channels_function, std::span<const int> decoded) {
   if (channels > 4 && channels_function.empty())
     throw std::logic_error("material_shader: the " + std::string(method) +
                            " library gives no function of more than 4 channels");
@@ -92,14 +92,27 @@ MaterialShader material_shader(std::span<const MapInfo> maps, int channels, std:
           "its own as its\n// 2 slopes; a derived one has none).\n"
        << "float[STOCHTEX_MATERIAL_CHANNELS] stochtex_material_channels(vec2 p, vec2 dpdx, vec2 "
           "dpdy,\n                                                              uint seed) {\n";
+  // The method's values: returned as they are, or into `channels` to decode some.
+  const std::string result =
+      decoded.empty() ? "  return " : "  float channels[STOCHTEX_MATERIAL_CHANNELS] = ";
   if (channels_function.empty()) {
     text << "  vec4 value = stochtex_" << method << "(p, dpdx, dpdy, seed);\n"
-         << "  return float[STOCHTEX_MATERIAL_CHANNELS](";
+         << result << "float[STOCHTEX_MATERIAL_CHANNELS](";
     for (int c = 0; c < channels; ++c) text << (c == 0 ? "" : ", ") << "value[" << c << "]";
-    text << ");\n}\n";
+    text << ");\n";
   } else {
-    text << "  return " << channels_function << "(p, dpdx, dpdy, seed);\n}\n";
+    text << result << channels_function << "(p, dpdx, dpdy, seed);\n";
   }
+  if (!decoded.empty()) {
+    text << "  // The sRGB maps' channels as linear light, the CPU render's "
+            "(colour_material.glsl).\n"
+         << "  float width = sqrt(abs(dpdx.x * dpdy.y - dpdx.y * dpdy.x));\n";
+    for (const int c : decoded)
+      text << "  channels[" << c << "] = stochtex_material_linear_light(channels[" << c
+           << "], width, " << c << ");\n";
+    text << "  return channels;\n";
+  }
+  text << "}\n";
   const bool normals = std::any_of(maps.begin(), maps.end(),
                                    [](const MapInfo& map) { return map.kind == MapKind::normal; });
   if (normals) text << "\n" << shader_source("gl/material.glsl");

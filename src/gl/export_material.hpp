@@ -36,10 +36,12 @@ struct MaterialShader {
 std::vector<MaterialMember> material_members(std::span<const MapInfo> maps);
 
 // The material function of a model of `channels` channels with `maps` (not empty), whose library
-// defines `channels_function` (ExportParts), or stochtex_<method> when that is empty. Throws as
-// material_members does.
+// defines `channels_function` (ExportParts), or stochtex_<method> when that is empty; the channels
+// `decoded` become linear light (stochtex_material_linear_light, gl/colour_material.glsl, which
+// the library then holds). Throws as material_members does.
 MaterialShader material_shader(std::span<const MapInfo> maps, int channels, std::string_view method,
-                               const std::string& channels_function);
+                               const std::string& channels_function,
+                               std::span<const int> decoded = {});
 
 // The README's account of the struct in `language` (the templates readme/material*.md): its
 // declaration in the language's types, what each member holds, and what a derived normal map

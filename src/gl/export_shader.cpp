@@ -420,7 +420,8 @@ ShaderExport assemble_export(ExportParts parts, ShaderLanguage language,
   const std::string method(parts.method);
   std::optional<MaterialShader> material;
   if (!maps.empty()) {
-    material = material_shader(maps, channels, method, parts.channels_function);
+    material =
+        material_shader(maps, channels, method, parts.channels_function, parts.decoded_channels);
     parts.library += material->glsl;
   }
   const Entry entry{method, material ? &*material : nullptr};

@@ -59,6 +59,9 @@ struct ExportParts {
   // stochtex_<method>, whose vec4 cannot hold them (the library has no stochtex_<method> then).
   // Empty for 1 to 4 channels.
   std::string channels_function = {};
+  // A material's channels that its function returns as linear light, decoded after evaluation
+  // (gl/colour.cpp add_colour: the srgb maps' channels); empty for a model of one image.
+  std::vector<int> decoded_channels = {};
 };
 
 // Declared only: the specialisations in the method folders are the twins.

@@ -33,16 +33,22 @@ using namespace gl_test;
 
 const std::vector<std::string> kRock = {"albedo", "normal", "roughness", "height", "ao"};
 
-// rock_sandstone's maps `names` (their top-left side x side pixels) analysed by `method`.
+// rock_sandstone's maps `names` (their top-left side x side pixels) analysed by `method`, the
+// albedo's values in colour space `albedo` (the other maps are data).
 Model rock(const std::string& method, const std::vector<std::string>& names,
-           const ParamValues& params, int side, const MaterialOptions& options = {}) {
+           const ParamValues& params, int side, const MaterialOptions& options = {},
+           ColourSpace albedo = ColourSpace::data) {
   std::vector<ImageF> images;
   for (const std::string& name : names)
     images.push_back(read_image(std::filesystem::path(STOCHTEX_MATERIAL_DIR) / "rock_sandstone" /
                                 (name + ".png")));
   std::vector<MaterialMap> maps;
   for (std::size_t m = 0; m < names.size(); ++m)
-    maps.push_back({names[m], {}, images[m].view().sub(0, 0, side, side), names[m] + ".png"});
+    maps.push_back({names[m],
+                    {},
+                    images[m].view().sub(0, 0, side, side),
+                    names[m] + ".png",
+                    names[m] == "albedo" ? albedo : ColourSpace::data});
   return analyze_material(method, maps, params, 0, options);
 }
 
@@ -108,6 +114,7 @@ struct MaterialCase {
   int side;  // of the exemplar crop
   MaterialOptions options;
   int size;  // of the grid compared
+  ColourSpace albedo = ColourSpace::data;
 };
 
 // The cases: every method that derives normal maps, with its normal map derived (6 channels:
@@ -131,6 +138,17 @@ std::vector<MaterialCase> material_cases() {
        {},
        32},
       {"tiling", {"albedo", "height"}, {{"sharpness", 4}}, 256, {}, 32},
+      // An sRGB albedo, decoded in the material function (gl/colour_material.glsl): beyond a
+      // vec4 (texton's channels function; the albedo last, channels 3 to 5, whose removed
+      // deviations straddle two rows of removed.exr) and within one (lrp).
+      {"texton",
+       {"height", "normal", "roughness", "ao", "albedo"},
+       {{"support", 48}, {"iterations", 3}},
+       256,
+       {},
+       32,
+       ColourSpace::srgb},
+      {"lrp", {"albedo", "normal", "height"}, {{"cosines", 10}}, 256, {}, 32, ColourSpace::srgb},
   };
 }
 
@@ -138,20 +156,24 @@ TEST(ExportMaterial, MapsMatchTheCpu) {
   // The bound is the exact export's (ExportLanguage.GlslRunsInAFragmentShaderAndMatchesTheCpu),
   // the renderers' parity bound 1e-4. A derived normal map's slopes are slope_scale / (2 scale)
   // times a difference of two heights (35 / 2 on the full rock for texton), which multiplies the
-  // heights' float error of ~1e-7 to the 1e-6 order, still far within it.
+  // heights' float error of ~1e-7 to the 1e-6 order, still far within it. A decoded map's, times
+  // the decoding's largest slope (kDecodingSlope), as GlColour's.
   const gl::Context context;
   for (const MaterialCase& c : material_cases()) {
-    const Model model = rock(c.method, c.maps, c.params, c.side, c.options);
+    const Model model = rock(c.method, c.maps, c.params, c.side, c.options, c.albedo);
     const bool derived = c.options.derive_normals && method_info(c.method).derives_normals;
     ASSERT_EQ(model.maps()[1].derived_from, derived ? "height" : "") << c.method;
     const ShaderExport files = export_shader(model);
     for (const auto& [seed, scale] : {std::pair{2u, 1.0f}, std::pair{9u, 3.0f}}) {
       const std::vector<float> worst = map_differences(model, files, c.size, scale, seed);
       for (std::size_t m = 0; m < worst.size(); ++m) {
-        std::cout << c.method << " (" << model.channels() << " channels), seed " << seed
-                  << ", scale " << scale << ", " << model.maps()[m].name
-                  << ": max |cpu - exported| = " << worst[m] << "\n";
-        EXPECT_LT(worst[m], 1e-4f) << c.method << " " << model.maps()[m].name;
+        const bool decoded = model.maps()[m].colour_space == ColourSpace::srgb;
+        std::cout << c.method << " (" << model.channels() << " channels"
+                  << (decoded ? ", srgb albedo" : "") << "), seed " << seed << ", scale " << scale
+                  << ", " << model.maps()[m].name << ": max |cpu - exported| = " << worst[m]
+                  << "\n";
+        EXPECT_LT(worst[m], 1e-4f * (decoded ? kDecodingSlope : 1.0f))
+            << c.method << " " << model.maps()[m].name;
       }
     }
   }
@@ -171,11 +193,13 @@ TEST(ExportMaterial, EveryLanguageCompiles) {
   // lrp, with derived normal maps, and gabor's float-only variant (its exact one keeps doubles,
   // GLSL only) with the normal map's slopes of its own (on a crop whose wrapped edges break the
   // slopes' fit to the height's gradient), and tiling with every control (the per-patch arrays
-  // flattened for ESSL 3.00, which has no arrays of arrays).
+  // flattened for ESSL 3.00, which has no arrays of arrays). The second texton material and lrp's
+  // decode an sRGB albedo (gl/colour_material.glsl).
   const std::vector<Model> models = {
       rock("texton", kRock, {{"support", 16}, {"iterations", 3}}, 256),
-      rock("texton", {"albedo", "normal", "height"}, {{"support", 16}, {"iterations", 3}}, 256),
-      rock("lrp", kRock, {{"cosines", 4}}, 256),
+      rock("texton", {"albedo", "normal", "height"}, {{"support", 16}, {"iterations", 3}}, 256, {},
+           ColourSpace::srgb),
+      rock("lrp", kRock, {{"cosines", 4}}, 256, {}, ColourSpace::srgb),
       rock("gabor", kRock, {{"impulses", 64}, {"iterations", 20}}, 32),
       rock("tiling", kRock, {{"rotation", 90}, {"scale_jitter", 0.3}, {"height_blend", 0.1}}, 64),
   };
@@ -203,6 +227,15 @@ TEST(ExportMaterial, EveryLanguageCompiles) {
         EXPECT_NE(files.readme.find(member), std::string::npos) << member;
       }
       EXPECT_NE(files.readme.find("StochtexMaterial " + function + "("), std::string::npos);
+      // A material that decodes its sRGB maps reads two more files, named in its README.
+      const bool decodes = model.data().colour.expects_any();
+      for (const char* table : {"decoded", "removed"}) {
+        const bool shipped = std::any_of(files.textures.begin(), files.textures.end(),
+                                         [&](const ShaderTexture& t) { return t.name == table; });
+        EXPECT_EQ(shipped, decodes) << table;
+        EXPECT_EQ(files.readme.find(std::string(table) + ".exr") != std::string::npos, decodes)
+            << table;
+      }
       const std::string call = "StochtexMaterial material = " + function;
       switch (language) {
         case ShaderLanguage::glsl:
