@@ -425,6 +425,9 @@ ShaderExport assemble_export(ExportParts parts, ShaderLanguage language,
     parts.library += material->glsl;
   }
   const Entry entry{method, material ? &*material : nullptr};
+  parts.notes +=
+      std::string(parts.notes.empty() ? "" : "\n\n") +
+      ReadmeTemplate("engines").flag("fast", parts.variant == ShaderVariant::fast).text();
   ShaderExport result;
   result.shader.name = "stochtex_" + method + std::string(language_row(language).extension);
   const std::string header =

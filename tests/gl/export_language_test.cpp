@@ -258,10 +258,18 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
             quoted.push_back('`');
             EXPECT_NE(files.readme.find(quoted), std::string::npos) << t.name;
           }
-          if (variant == ShaderVariant::fast && c.method != std::string_view("lrp") &&
-              c.method != std::string_view("texton_mix")) {
+          // lrp and texton mixing export their exact shader for both variants.
+          const bool fast = variant == ShaderVariant::fast && c.method != std::string_view("lrp") &&
+                            c.method != std::string_view("texton_mix");
+          if (fast) {
             EXPECT_NE(files.readme.find("fast variant"), std::string::npos);
           }
+          // It ends with each engine's import settings, the exact variant's for texelFetch.
+          EXPECT_NE(files.readme.find("Importing the data files, engine by engine."),
+                    std::string::npos);
+          EXPECT_EQ(files.readme.find("with one mip level (the shader reads texels with "
+                                      "`texelFetch`)") != std::string::npos,
+                    !fast);
           const std::string extension = language == ShaderLanguage::msl ? ".metal" : "." + name;
           EXPECT_EQ(files.shader.name, "stochtex_" + method + extension);
           // One signature in every language, the parameter names kept by SPIRV-Cross (GLSL ES:
