@@ -62,9 +62,9 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
                    "unless its sRGB, gAMA, cICP or ICC profile chunks say otherwise, OpenEXR and "
                    "PFM are linear), srgb (an ordinary photo: the model renders linear light, "
                    "each filtered value the mean of the decoded colour), linear (linear light) or "
-                   "data (numbers that are not colour, filtered as they are; for now the only "
-                   "one the GL backend and the shader exports render); for --map, the colour maps' "
-                   "(a map's own :COLOUR_SPACE overrides it; every other kind is data)")
+                   "data (numbers that are not colour, filtered and rendered as they are); for "
+                   "--map, the colour maps' (a map's own :COLOUR_SPACE overrides it; every other "
+                   "kind is data)")
       ->check(CLI::IsMember({"auto", "srgb", "linear", "data"}))
       ->capture_default_str();
 }

@@ -19,7 +19,7 @@ struct AnalyzeOptions {
   std::string method;
   std::vector<std::string> params;
   std::uint32_t seed = 0;
-  std::string colour_space = "data";
+  std::string colour_space = "auto";
 };
 
 // INPUT, --target, --map, --normal-y, --synthesise-normals, --method, -p, --analysis-seed and

@@ -28,7 +28,7 @@ Command add_mix_command(CLI::App& app) {
     std::string mask;
     std::string mask_scale;
     std::uint32_t seed = 0;
-    std::string colour_space = "data";
+    std::string colour_space = "auto";
   };
   auto options = std::make_shared<Options>();
   auto* command = app.add_subcommand(
@@ -54,8 +54,8 @@ Command add_mix_command(CLI::App& app) {
                       "texton parameter key=value: support, order, iterations, mni (repeatable)");
   command
       ->add_option("--colour-space", options->colour_space,
-                   "what both exemplars' values are, as analyze's --colour-space: data, auto, "
-                   "srgb or linear (the mix then renders linear light)")
+                   "what both exemplars' values are, as analyze's --colour-space: auto, srgb, "
+                   "linear (the mix then renders linear light) or data")
       ->check(CLI::IsMember({"auto", "srgb", "linear", "data"}))
       ->capture_default_str();
   command->add_option("--analysis-seed", options->seed, "seed of Algorithm 1's white-noise start")

@@ -121,14 +121,20 @@ std::vector<float> measure_removed_deviation(const MethodModel& model) {
   };
   const std::vector<double> point = variances(0.0, n);
   // removed[k][c] = r^2 at step k, measured at even steps until every channel's V(w) is below a
-  // thousandth of V(1), then V(1).
+  // thousandth of V(1), then V(1); or until the evaluator has returned the same values at the
+  // same positions for three widths an octave apart (its filter has nothing left to remove: lrp's
+  // zero frequency, whose random offset per node no clamping fades), then that.
   std::vector<std::vector<double>> removed(kRemovedSteps, point);
   int measured = 0;
   std::vector<double> filtered = point;
+  std::vector<float> previous;
+  int unchanged = 0;
   for (int k = 0; k < kRemovedSteps; k += 2) {
-    if (k > 0)
-      filtered = variances(std::exp2(static_cast<double>(k) / kRemovedStepsPerOctave),
-                           samples_after(filtered, point));
+    std::size_t count = n;
+    if (k > 0) {
+      count = samples_after(filtered, point);
+      filtered = variances(std::exp2(static_cast<double>(k) / kRemovedStepsPerOctave), count);
+    }
     bool faded = true;
     for (int c = 0; c < channels; ++c) {
       const auto cc = static_cast<std::size_t>(c);
@@ -136,6 +142,15 @@ std::vector<float> measure_removed_deviation(const MethodModel& model) {
       faded = faded && filtered[cc] <= 1e-3 * point[cc];
     }
     measured = k;
+    const std::span<const float> now(values.data(), count * static_cast<std::size_t>(channels));
+    unchanged = std::equal(now.begin(), now.end(), previous.begin(), previous.end()) ? unchanged + 1
+                                                                                      : 0;
+    previous.assign(now.begin(), now.end());
+    if (unchanged == 2) {
+      for (std::size_t rest = static_cast<std::size_t>(k) + 1; rest < removed.size(); ++rest)
+        removed[rest] = removed[static_cast<std::size_t>(k)];
+      break;
+    }
     if (faded) break;
   }
   for (int k = 1; k < measured; k += 2)

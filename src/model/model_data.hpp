@@ -37,8 +37,9 @@ struct ModelData {
 // of the narrow widths' (measure_removed_deviation). A footprint
 // filters each method in its own way (texton's pyramid and probes, gabor's and lrp's analytic
 // filters); measured, r(w) is the method's. Widths are measured every two steps of the table,
-// until V(w) falls below a thousandth of V(1); the others are interpolated in r^2, and beyond,
-// r = V(1)^(1/2).
+// until V(w) falls below a thousandth of V(1) (beyond, r = V(1)^(1/2)), or until three widths
+// an octave apart gave the same values at the same positions (beyond, r keeps its last value: the
+// filter has nothing left to remove); the others are interpolated in r^2.
 inline constexpr int kMeasuredSamples = 8192;
 std::vector<float> measure_removed_deviation(const MethodModel& model);
 

@@ -68,7 +68,8 @@ if [[ -s $models/s6.pfm ]] && ! cmp -s "$models/t1.pfm" "$models/s6.pfm"; then p
 fi
 
 # Every CPU target gives the scalar reference's bytes (tests/unit/cpu_target_test.cpp forces each).
-expect_ok "analyze lrp" "$stochtex" analyze "$exemplar" -m lrp -p cosines=12 -o "$models/lrp.stx"
+expect_ok "analyze lrp" "$stochtex" analyze "$exemplar" -m lrp -p cosines=12 "${data[@]}" \
+  -o "$models/lrp.stx"
 for target in reference best; do
   expect_ok "render --cpu-target $target" "$stochtex" render "$models/lrp.stx" \
     -o "$models/cpu_$target.pfm" --size 40x30 --scale 3 --seed 4 --cpu-target "$target"
@@ -134,7 +135,7 @@ expect_ok "export-shader" "$stochtex" export-shader "$model" -o "$models/shader"
   expect_file "export-shader writes the GLSL" "$models/shader/stochtex_texton.glsl" &&
   expect_file "export-shader writes the atlas" "$models/shader/texton_atlas.exr" &&
   expect_file "export-shader writes the README" "$models/shader/README.md"
-if expect_ok "analyze gabor" "$stochtex" analyze "$exemplar" -m gabor -p impulses=64 \
+if expect_ok "analyze gabor" "$stochtex" analyze "$exemplar" -m gabor -p impulses=64 "${data[@]}" \
   -o "$models/gabor.stx"; then
   if ! gl_skipped 2 "render gabor --backend gl"; then
     expect_ok "render gabor --backend gl" "$stochtex" render "$models/gabor.stx" \
@@ -195,7 +196,7 @@ fi
 
 # lrp structure preservation (section 5) and continuous targets (section 6.1, figure 10).
 expect_ok "analyze lrp with structure" "$stochtex" analyze "$exemplar" -m lrp -p cosines=10 \
-  -p ratio=0.3 -p turbulence=2 -o "$models/lrp_structure.stx" &&
+  -p ratio=0.3 -p turbulence=2 "${data[@]}" -o "$models/lrp_structure.stx" &&
   expect_ok "render lrp with structure" "$stochtex" render "$models/lrp_structure.stx" \
     -o "$models/lrp_structure.png" "${size[@]}" &&
   expect_file "render lrp with structure writes the image" "$models/lrp_structure.png"

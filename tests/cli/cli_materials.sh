@@ -11,7 +11,7 @@ expect_ok "analyze a material" "$stochtex" analyze --map albedo="$rock/albedo.pn
   --map roughness="$rock/roughness.png" -m tiling -o "$models/material.stx" &&
   expect_file "the material model" "$models/material.stx"
 expect_ok "info lists a material's maps" "$stochtex" info "$models/material.stx" &&
-  if grep -q '^map       albedo (colour, 3 channels, data)' "$work/stdout" &&
+  if grep -q '^map       albedo (colour, 3 channels, srgb)' "$work/stdout" &&
     grep -q '^map       roughness (scalar, 1 channel, data)' "$work/stdout"; then pass; else
     fail "info lists a material's maps" "no map lines in: $(cat "$work/stdout")"
   fi

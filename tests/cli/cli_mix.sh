@@ -6,7 +6,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 
 grey=$textures/metal_grey_256.png
-mixfast=(-p support=16 -p iterations=5 --steps 3)
+mixfast=(-p support=16 -p iterations=5 --steps 3 "${data[@]}")
 if expect_ok "mix" "$stochtex" mix "$exemplar" "$textures/wood_planks_256.png" "${mixfast[@]}" \
   --ramp 0,64 --direction 1,1 -o "$models/mix.stx"; then
   expect_file "mix writes the model" "$models/mix.stx"

@@ -71,7 +71,7 @@ for method in $methods; do
     -o "$models/every_$method.stx"
 done
 expect_ok "analyze gabor" "$stochtex" analyze "$exemplar" -m gabor -p iterations=30 \
-  -o "$gabor_model"
+  "${data[@]}" -o "$gabor_model"
 
 # Saved only when every check passed; the list of methods, written last, says the folder is whole.
 if [[ ${#failed[@]} -eq 0 ]]; then

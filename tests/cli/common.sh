@@ -80,6 +80,10 @@ gabor_model=$models/gabor_edit.stx
 tiling_model=$models/every_tiling.stx
 size=(--size 64x64)
 fast=(-m texton -p support=32)
+# A model of data, for the checks whose subject is not colour: the default (auto: a PNG is sRGB)
+# measures a srgb model's removed deviations at analysis (docs/colour.md), seconds of the
+# sanitizer run per analysis. The default is what every_<method> and cli_colour analyse with.
+data=(--colour-space data)
 analyze_to=(-o "$out/model.stx")
 edit_to=(-o "$out/edited.stx")
 

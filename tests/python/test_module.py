@@ -352,8 +352,10 @@ def test_mix(exemplar):
 
 def test_python_equals_the_cli(exemplar, texton_model, cli, tmp_path):
     write_pfm(tmp_path / "exemplar.pfm", exemplar)
+    # The CLI's default, auto, takes a PFM as linear light; an array's default is data.
     subprocess.run([cli, "analyze", str(tmp_path / "exemplar.pfm"), "-m", "texton", "-p",
-                    "iterations=5", "-o", str(tmp_path / "cli.stx")], check=True)
+                    "iterations=5", "--colour-space", "data", "-o", str(tmp_path / "cli.stx")],
+                   check=True)
     assert pickle.dumps(stochtex.load(tmp_path / "cli.stx")) == pickle.dumps(texton_model)
     subprocess.run([cli, "render", str(tmp_path / "cli.stx"), "--size", "40x30", "--seed", "5",
                     "-o", str(tmp_path / "render.pfm")], check=True)
