@@ -395,11 +395,15 @@ def main():
         models = {}
         for method in registry_methods(args.stochtex) + ["texton_mix"]:
             path = os.path.join(work, f"{method}.stx")
+            # Models of data (the exemplar's values), each viewer's against the CPU's; the srgb
+            # model below checks the viewer's colour.
             if method == "texton_mix":
                 command = [args.stochtex, "mix", args.exemplar, args.second or args.exemplar,
-                           "-o", path, "--steps", "3", "--ramp", "0,128", "-p", "support=64"]
+                           "-o", path, "--steps", "3", "--ramp", "0,128", "-p", "support=64",
+                           "--colour-space", "data"]
             else:
-                command = [args.stochtex, "analyze", args.exemplar, "-m", method, "-o", path]
+                command = [args.stochtex, "analyze", args.exemplar, "-m", method, "-o", path,
+                           "--colour-space", "data"]
             subprocess.run(command, check=True, capture_output=True)
             models[method] = path
         # A srgb model (docs/design.md §14): its shader returns linear light, which the viewer
