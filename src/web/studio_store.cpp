@@ -16,11 +16,13 @@
 #include <utility>
 #include <vector>
 
+#include "core/srgb.hpp"
 #include "io/image_io.hpp"
 #include "model/model_data.hpp"
 #include "registry.hpp"
 #include "renderer/plan.hpp"
 #include "report/compare.hpp"
+#include "stochtex/colour.hpp"
 #include "stochtex/error.hpp"
 #include "stochtex/io.hpp"
 #include "stochtex/stochtex.hpp"
@@ -54,8 +56,9 @@ const char* state_name(State state) {
 struct Cancelled {};
 
 // An image's file bytes in `format`, as the HTTP answers hold them.
-std::string encode(ImageView<const float> image, ImageFormat format, int png_bit_depth = 8) {
-  const std::vector<std::uint8_t> bytes = encode_image(image, format, png_bit_depth);
+std::string encode(ImageView<const float> image, ImageFormat format, int png_bit_depth = 8,
+                   ColourSpace space = ColourSpace::data) {
+  const std::vector<std::uint8_t> bytes = encode_image(image, format, png_bit_depth, space);
   return {bytes.begin(), bytes.end()};
 }
 
@@ -117,6 +120,9 @@ typename Map::mapped_type find_kept(const Map& map, const std::string& id, std::
 
 struct StudioStore::Exemplar {
   ImageF image;
+  // What the upload's values are, as `analyze --colour-space auto` reads a file (a PNG is sRGB
+  // unless its chunks say otherwise, OpenEXR linear): its models render linear light.
+  ImageColour colour;
   std::string png;
   mutable std::string gaussian_png;  // filled once, under heavy_
 };
@@ -182,9 +188,9 @@ nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
   auto exemplar = std::make_shared<Exemplar>();
   const std::int64_t side = limits_.max_exemplar_side;
   try {
-    exemplar->image =
-        decode_image({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()},
-                     kUploadName, {.max_pixels = side * side, .check_declared = {}});
+    exemplar->image = decode_image(
+        {reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, kUploadName,
+        {.max_pixels = side * side, .check_declared = {}}, &exemplar->colour);
     validate_exemplar(exemplar->image.view(), kUploadName);
   } catch (const Error& e) {
     std::string message = e.what();
@@ -196,14 +202,16 @@ nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
   }
   {
     const std::lock_guard heavy(heavy_);
-    exemplar->png = encode(exemplar->image.view(), ImageFormat::png);
+    exemplar->png = encode(exemplar->image.view(), ImageFormat::png, 8, exemplar->colour.space);
   }
   std::lock_guard lock(mutex_);
   const std::string id = new_id();
   const nlohmann::ordered_json info{{"id", id},
                                     {"width", exemplar->image.width()},
                                     {"height", exemplar->image.height()},
-                                    {"channels", exemplar->image.channels()}};
+                                    {"channels", exemplar->image.channels()},
+                                    {"colour_space", colour_space_name(exemplar->colour.space)},
+                                    {"colour", exemplar->colour.origin}};
   exemplars_[id] = std::move(exemplar);
   exemplar_order_.push_back(id);
   evict_oldest(exemplars_, exemplar_order_, limits_.max_exemplars);
@@ -223,7 +231,7 @@ std::string StudioStore::exemplar_png(const std::string& id, bool gaussian) {
   if (cached.empty()) {
     const ImageView<const float> image = exemplar->image.view();
     const ImageF version = gaussian_version(image, image.width, image.height, 1);
-    cached = encode(version.view(), ImageFormat::png);
+    cached = encode(version.view(), ImageFormat::png, 8, exemplar->colour.space);
   }
   return cached;
 }
@@ -357,11 +365,14 @@ void StudioStore::run(Analysis& analysis) {
   std::string error;
   Model model;
   try {
-    model = analyze(analysis.method, analysis.exemplar->image.view(), analysis.params,
-                    analysis.seed, kUploadName, [&analysis](double fraction) {
-                      if (analysis.cancel) throw Cancelled{};
-                      analysis.progress = fraction;
-                    });
+    model = analyze(
+        analysis.method, analysis.exemplar->image.view(), analysis.params, analysis.seed,
+        kUploadName,
+        [&analysis](double fraction) {
+          if (analysis.cancel) throw Cancelled{};
+          analysis.progress = fraction;
+        },
+        analysis.exemplar->colour.space);
   } catch (const Cancelled&) {
     state = State::cancelled;
   } catch (const std::bad_alloc&) {
@@ -513,7 +524,7 @@ std::string StudioStore::render_png(const std::string& id, const RenderRequest& 
   const std::lock_guard heavy(heavy_);
   ImageF image(request.width, request.height, stored->model.channels());
   render(stored->model, grid, request.seed, image.view(), options);
-  return encode(image.view(), ImageFormat::png);
+  return encode(image.view(), ImageFormat::png, 8, rendered_space(stored->model.colour_space()));
 }
 
 nlohmann::ordered_json StudioStore::compare(const std::string& id, std::uint32_t seed) {
@@ -522,6 +533,13 @@ nlohmann::ordered_json StudioStore::compare(const std::string& id, std::uint32_t
   const std::lock_guard heavy(heavy_);
   ImageF image(exemplar.width, exemplar.height, stored->model.channels());
   render(stored->model, Grid{{0.0, 0.0}, 1.0, exemplar.width, exemplar.height}, seed, image.view());
+  // The exemplar's values are sRGB-encoded where the render's are linear light: compared encoded.
+  if (stored->model.colour_space() == ColourSpace::srgb)
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x)
+        for (int c = 0; c < image.channels(); ++c)
+          if (is_colour_channel(c, image.channels()))
+            image.at(x, y, c) = srgb_encode(image.at(x, y, c));
   Comparison comparison(exemplar);
   try {
     add_checked(comparison, exemplar, "the exemplar", image.view(), "the render");

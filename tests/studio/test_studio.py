@@ -205,6 +205,8 @@ def test_languages_are_the_table(studio):
 
 def test_upload_analyse_download(studio, grass, tmp_path):
     assert grass["width"] == 128 and grass["height"] == 128 and grass["channels"] == 3
+    # Read as `analyze --colour-space auto` reads the file: its models render linear light.
+    assert grass["colour_space"] == "srgb" and "sRGB" in grass["colour"], grass
     for picture in ["image", "gaussian"]:
         status, headers, data = studio.request("GET", f"/api/exemplars/{grass['id']}/{picture}.png")
         assert status == 200 and headers["Content-Type"] == "image/png"
@@ -223,10 +225,20 @@ def test_upload_analyse_download(studio, grass, tmp_path):
                           text=True)
     assert info.returncode == 0, info.stderr
     assert "texton" in info.stdout and "order = cubic" in info.stdout
+    assert "colour    srgb" in info.stdout
 
     code, _, data = studio.request(
         "GET", f"/api/models/{model}/render.png?width=96&height=40&seed=3&scale=0.5&x=-7&y=2.5")
     assert code == 200 and png_size(data) == (96, 40)
+    # The CLI's render of the downloaded model, byte for byte: linear light encoded into a PNG
+    # with an sRGB chunk, zoomed out the mean of the decoded colour.
+    code, _, zoomed = studio.request(
+        "GET", f"/api/models/{model}/render.png?width=32&height=24&seed=3&scale=16&x=5&y=-3")
+    assert code == 200 and b"sRGB" in zoomed
+    subprocess.run([STOCHTEX, "render", str(tmp_path / "model.stx"), "--size", "32x24", "--seed",
+                    "3", "--scale", "16", "--origin", "5,-3", "-o", str(tmp_path / "cli.png")],
+                   check=True, capture_output=True)
+    assert zoomed == (tmp_path / "cli.png").read_bytes()
     compare = studio.json("GET", f"/api/models/{model}/compare?seed=2")
     assert compare["model"] == model and compare["seed"] == 2
     for key in ["spectral_error", "spectral_error_adsn", "histogram_error", "covariance_error"]:
