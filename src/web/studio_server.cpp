@@ -537,33 +537,35 @@ void add_routes(httplib::Server& server, StudioStore& store, const Gate& gate,
                res.set_content(store.exemplar_png(req.matches[1], req.matches[2] == "gaussian"),
                                "image/png");
              }));
-  server.Post(
-      "/api/analyses",
-      with_body(kMaxJsonBody, [&store](const httplib::Request& req, httplib::Response& res,
-                                       const std::string& text_body) {
-        const std::string client = required_client(req);
-        const auto body = nlohmann::ordered_json::parse(text_body, nullptr, false);
-        if (body.is_discarded() || !body.is_object())
-          throw StudioError(400,
-                            "the body is not a JSON object; send {\"exemplar\": id, "
-                            "\"method\": name, \"params\": {...}, \"seed\": n}");
-        const auto text = [&body](const char* key) {
-          if (!body.contains(key) || !body[key].is_string())
-            throw StudioError(400, fmt::format("the JSON body needs \"{}\" as a string", key));
-          return body[key].get<std::string>();
-        };
-        std::uint32_t seed = 0;
-        if (body.contains("seed")) {
-          if (!body["seed"].is_number_unsigned() ||
-              body["seed"].get<std::uint64_t>() > std::numeric_limits<std::uint32_t>::max())
-            throw StudioError(400, "\"seed\" must be an integer from 0 to 4294967295");
-          seed = body["seed"].get<std::uint32_t>();
-        }
-        const std::string id =
-            store.start_analysis(client, text("exemplar"), text("method"),
-                                 body.value("params", nlohmann::ordered_json::object()), seed);
-        send_json(res, store.analysis_status(id), 202);
-      }));
+  server.Post("/api/analyses",
+              with_body(kMaxJsonBody, [&store](const httplib::Request& req, httplib::Response& res,
+                                               const std::string& text_body) {
+                const std::string client = required_client(req);
+                const auto body = nlohmann::ordered_json::parse(text_body, nullptr, false);
+                if (body.is_discarded() || !body.is_object())
+                  throw StudioError(400,
+                                    "the body is not a JSON object; send {\"exemplar\": id, "
+                                    "\"method\": name, \"params\": {...}, \"seed\": n}");
+                const auto text = [&body](const char* key) {
+                  if (!body.contains(key) || !body[key].is_string())
+                    throw StudioError(400,
+                                      fmt::format("the JSON body needs \"{}\" as a string", key));
+                  return body[key].get<std::string>();
+                };
+                std::uint32_t seed = 0;
+                if (body.contains("seed")) {
+                  if (!body["seed"].is_number_unsigned() ||
+                      body["seed"].get<std::uint64_t>() > std::numeric_limits<std::uint32_t>::max())
+                    throw StudioError(400, "\"seed\" must be an integer from 0 to 4294967295");
+                  seed = body["seed"].get<std::uint32_t>();
+                }
+                std::string colour_space = "auto";
+                if (body.contains("colour_space")) colour_space = text("colour_space");
+                const std::string id = store.start_analysis(
+                    client, text("exemplar"), text("method"),
+                    body.value("params", nlohmann::ordered_json::object()), seed, colour_space);
+                send_json(res, store.analysis_status(id), 202);
+              }));
   server.Get("/api/analyses/" + kId,
              guarded([&store](const httplib::Request& req, httplib::Response& res) {
                send_json(res, store.analysis_status(req.matches[1]));

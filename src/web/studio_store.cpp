@@ -123,6 +123,9 @@ struct StudioStore::Exemplar {
   // What the upload's values are, as `analyze --colour-space auto` reads a file (a PNG is sRGB
   // unless its chunks say otherwise, OpenEXR linear): its models render linear light.
   ImageColour colour;
+  // The stored values, where reading the colour changed them (a gAMA or an ICC profile other
+  // than sRGB): what an analysis as data takes, as `analyze --colour-space data` reads the file.
+  std::optional<ImageF> stored;
   std::string png;
   mutable std::string gaussian_png;  // filled once, under heavy_
 };
@@ -134,6 +137,7 @@ struct StudioStore::Analysis {
   std::string method;
   ParamValues params;
   std::uint32_t seed = 0;
+  bool data = false;  // analysed as data: the stored values, no colour
   std::atomic<State> state{State::queued};
   std::atomic<double> progress{0.0};
   std::atomic<bool> cancel{false};
@@ -188,9 +192,13 @@ nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
   auto exemplar = std::make_shared<Exemplar>();
   const std::int64_t side = limits_.max_exemplar_side;
   try {
-    exemplar->image = decode_image(
-        {reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, kUploadName,
-        {.max_pixels = side * side, .check_declared = {}}, &exemplar->colour);
+    const std::span<const std::uint8_t> file(reinterpret_cast<const std::uint8_t*>(bytes.data()),
+                                             bytes.size());
+    const ImageReadLimits limits{.max_pixels = side * side, .check_declared = {}};
+    exemplar->image = decode_image(file, kUploadName, limits, &exemplar->colour);
+    ImageF stored = decode_image(file, kUploadName, limits);
+    if (!std::ranges::equal(stored.pixels(), exemplar->image.pixels()))
+      exemplar->stored = std::move(stored);
     validate_exemplar(exemplar->image.view(), kUploadName);
   } catch (const Error& e) {
     std::string message = e.what();
@@ -238,7 +246,12 @@ std::string StudioStore::exemplar_png(const std::string& id, bool gaussian) {
 
 std::string StudioStore::start_analysis(const std::string& client, const std::string& exemplar,
                                         const std::string& method,
-                                        const nlohmann::ordered_json& params, std::uint32_t seed) {
+                                        const nlohmann::ordered_json& params, std::uint32_t seed,
+                                        const std::string& colour_space) {
+  if (colour_space != "auto" && colour_space != "data")
+    throw StudioError(400, fmt::format("\"colour_space\" is auto (what the upload says) or data "
+                                       "(its values as they are), not '{}'",
+                                       colour_space));
   if (!params.is_object())
     throw StudioError(400, "\"params\" must be an object of parameter names and values");
   std::map<std::string, std::string, std::less<>> text;
@@ -254,6 +267,7 @@ std::string StudioStore::start_analysis(const std::string& client, const std::st
           400, fmt::format("the parameter '{}' must be a number or a choice's name", name));
   }
   auto analysis = std::make_shared<Analysis>();
+  analysis->data = colour_space == "data";
   analysis->exemplar = find_exemplar(exemplar);
   // The registry refuses what it cannot analyse before any work, as `stochtex analyze` does: a
   // method without a row of its own (one not analysed from one exemplar, such as a mix), more
@@ -365,14 +379,16 @@ void StudioStore::run(Analysis& analysis) {
   std::string error;
   Model model;
   try {
+    // As data: the values as stored, which reading the colour may have converted.
+    const Exemplar& exemplar = *analysis.exemplar;
+    const ImageF& values = analysis.data && exemplar.stored ? *exemplar.stored : exemplar.image;
     model = analyze(
-        analysis.method, analysis.exemplar->image.view(), analysis.params, analysis.seed,
-        kUploadName,
+        analysis.method, values.view(), analysis.params, analysis.seed, kUploadName,
         [&analysis](double fraction) {
           if (analysis.cancel) throw Cancelled{};
           analysis.progress = fraction;
         },
-        analysis.exemplar->colour.space);
+        analysis.data ? ColourSpace::data : exemplar.colour.space);
   } catch (const Cancelled&) {
     state = State::cancelled;
   } catch (const std::bad_alloc&) {
@@ -529,7 +545,11 @@ std::string StudioStore::render_png(const std::string& id, const RenderRequest& 
 
 nlohmann::ordered_json StudioStore::compare(const std::string& id, std::uint32_t seed) {
   const auto stored = find_model(id);
-  const ImageView<const float> exemplar = stored->exemplar->image.view();
+  // A model of data was analysed from the stored values (start_analysis).
+  const bool data = stored->model.colour_space() == ColourSpace::data;
+  const ImageView<const float> exemplar =
+      (data && stored->exemplar->stored ? *stored->exemplar->stored : stored->exemplar->image)
+          .view();
   const std::lock_guard heavy(heavy_);
   ImageF image(exemplar.width, exemplar.height, stored->model.channels());
   render(stored->model, Grid{{0.0, 0.0}, 1.0, exemplar.width, exemplar.height}, seed, image.view());

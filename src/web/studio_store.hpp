@@ -72,10 +72,11 @@ class StudioStore {
   std::string exemplar_png(const std::string& id, bool gaussian);
 
   // Queues an analysis of exemplar `exemplar` for `client`; `params` maps names to numbers or
-  // choice names. Returns its id.
+  // choice names; `colour_space` is analyze's --colour-space (auto: what the upload says; data:
+  // its stored values, as they are). Returns its id.
   std::string start_analysis(const std::string& client, const std::string& exemplar,
                              const std::string& method, const nlohmann::ordered_json& params,
-                             std::uint32_t seed);
+                             std::uint32_t seed, const std::string& colour_space = "auto");
   // {"id", "method", "state", "progress", "seconds", "error"?, "model"?}.
   nlohmann::ordered_json analysis_status(const std::string& id);
   // Cancels `client`'s queued or running analysis (a finished one is left as it is); its status.

@@ -145,8 +145,11 @@ class Studio:
         self.assert_serving()
         return response
 
-    def analyse(self, exemplar, method, params=None, client="a000000000000001", expect=202):
+    def analyse(self, exemplar, method, params=None, client="a000000000000001", expect=202,
+                colour_space=None):
         body = {"exemplar": exemplar, "method": method, "params": params or {}}
+        if colour_space is not None:
+            body["colour_space"] = colour_space
         return self.json("POST", "/api/analyses", body, expect=expect, client=client)
 
     def wait(self, analysis, states, seconds):
@@ -226,6 +229,13 @@ def test_upload_analyse_download(studio, grass, tmp_path):
     assert info.returncode == 0, info.stderr
     assert "texton" in info.stdout and "order = cubic" in info.stdout
     assert "colour    srgb" in info.stdout
+    # Values that are not colour (a height map) are analysed as data when asked.
+    analysis = studio.analyse(grass["id"], "texton", {"iterations": 2}, colour_space="data")
+    data_model = studio.wait(analysis["id"], {"done", "failed", "cancelled"}, 60)["model"]
+    (tmp_path / "data.stx").write_bytes(studio.request("GET", f"/api/models/{data_model}.stx")[2])
+    info = subprocess.run([STOCHTEX, "info", str(tmp_path / "data.stx")], capture_output=True,
+                          text=True)
+    assert "colour    data" in info.stdout, info.stdout
 
     code, _, data = studio.request(
         "GET", f"/api/models/{model}/render.png?width=96&height=40&seed=3&scale=0.5&x=-7&y=2.5")
@@ -308,6 +318,9 @@ def test_bad_analyses_and_queries_are_refused(studio, grass):
     for params, words in bad_params:
         assert words in studio.error("POST", "/api/analyses", {
             "exemplar": exemplar, "method": "texton", "params": params}), params
+    for colour_space in ["srgb-ish", 3]:
+        assert "colour_space" in studio.error("POST", "/api/analyses", {
+            "exemplar": exemplar, "method": "texton", "colour_space": colour_space}), colour_space
     assert "unknown method" in studio.error("POST", "/api/analyses",
                                             {"exemplar": exemplar, "method": "nope"})
     # NaN is not JSON: Python writes it as a bare NaN, which the server must refuse.
@@ -426,9 +439,11 @@ def test_cancel_one_analysis_at_a_time_and_a_bounded_queue(studio):
 @pytest.fixture(scope="module")
 def plaid_gabor(studio):
     """A gabor model of the plaid (light parameters: about 4 s) and its groups: 71 periodic
-    Gaussians of 25k holding 64% of the variance."""
+    Gaussians of 25k holding 64% of the variance. As data: each edit of a srgb model measures
+    its removed deviations again, seconds under the sanitizers."""
     plaid = studio.upload(exemplar_bytes("plaid_fabric_256.png"))
-    analysis = studio.analyse(plaid["id"], "gabor", {"iterations": 50, "impulses": 64})
+    analysis = studio.analyse(plaid["id"], "gabor", {"iterations": 50, "impulses": 64},
+                              colour_space="data")
     status = studio.wait(analysis["id"], {"done", "failed", "cancelled"}, 120)
     assert status["state"] == "done", status
     return status["model"]

@@ -167,6 +167,7 @@ async function analyse() {
         method: $('method').value,
         params: paramValues(),
         seed: Number($('analysis-seed').value),
+        colour_space: $('colour-space').value,
       }),
     });
     state.analysis = (await response.json()).id;
