@@ -143,8 +143,8 @@ std::vector<float> measure_removed_deviation(const MethodModel& model) {
     }
     measured = k;
     const std::span<const float> now(values.data(), count * static_cast<std::size_t>(channels));
-    unchanged = std::equal(now.begin(), now.end(), previous.begin(), previous.end()) ? unchanged + 1
-                                                                                      : 0;
+    unchanged =
+        std::equal(now.begin(), now.end(), previous.begin(), previous.end()) ? unchanged + 1 : 0;
     previous.assign(now.begin(), now.end());
     if (unchanged == 2) {
       for (std::size_t rest = static_cast<std::size_t>(k) + 1; rest < removed.size(); ++rest)
