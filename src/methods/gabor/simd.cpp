@@ -86,26 +86,50 @@ void draw_impulses(const ImpulseCache& cache, std::int64_t x, std::int64_t y, st
 }
 
 // The impulses of one sample found within the kernel's support and not yet evaluated, in the
-// reference's order: their offsets dx, dy from p, envelopes, frequencies and phases. Fewer than
-// one vector's worth wait for the next cell, so the exp and cos polynomials run on full vectors.
+// reference's order: their offsets from the sample (dx, dy in the plane, z1, z2 in a surface
+// point's tangent frame), envelopes, frequencies and phases, and for surface noise (7 fields)
+// their tent weights. Fewer than one vector's worth wait for the next cell, so the exp and cos
+// polynomials run on full vectors.
+template <std::size_t Fields>
 struct Pending {
-  static constexpr std::size_t kFields = 6;
+  static constexpr std::size_t kFields = Fields;
   HWY_ALIGN float field[kFields][2 * kMaxLanes] = {};
   std::size_t count = 0;
 };
+using PlanarPending = Pending<6>;
+using SurfacePending = Pending<7>;
 
-// KernelShape::at's value for the first `count` pending impulses, one per lane, added to `sum` in
-// their order.
-template <bool Filtered>
-float evaluate_pending(const KernelShape& shape, const Pending& pending, std::size_t count,
+// KernelShape::at's value (surface noise: the reference's weight * KernelShape::value) for the
+// first `count` pending impulses, one per lane, added to `sum` in their order.
+template <bool Filtered, std::size_t Fields>
+float evaluate_pending(const KernelShape& shape, const Pending<Fields>& pending, std::size_t count,
                        float sum) {
   const DF df;
   const auto field = [&](std::size_t f) HWY_ATTR { return hn::Load(df, pending.field[f]); };
   HWY_ALIGN float values[kMaxLanes] = {};
-  hn::Store(HWY_NAMESPACE::kernel_value(VectorOps{}, shape, Filtered, field(2), field(3), field(4),
-                                        field(5), field(0), field(1)),
-            df, values);
+  VF value = HWY_NAMESPACE::kernel_value(VectorOps{}, shape, Filtered, field(2), field(3), field(4),
+                                         field(5), field(0), field(1));
+  if constexpr (Fields == SurfacePending::kFields) value = hn::Mul(field(6), value);
+  hn::Store(value, df, values);
   for (std::size_t i = 0; i < count; ++i) sum += values[i];
+  return sum;
+}
+
+// Appends the lanes `inside` of `fields` to `pending`, in their order, and evaluates a full
+// vector of pending impulses into `sum`.
+template <bool Filtered, std::size_t Fields>
+float append_pending(const KernelShape& shape, const VF (&fields)[Fields], hn::Mask<DF> inside,
+                     Pending<Fields>& pending, float sum) {
+  const DF df;
+  const std::size_t lanes = hn::Lanes(df);
+  for (std::size_t f = 0; f < Fields; ++f)
+    hn::StoreU(hn::Compress(fields[f], inside), df, pending.field[f] + pending.count);
+  pending.count += hn::CountTrue(df, inside);
+  if (pending.count < lanes) return sum;
+  sum = evaluate_pending<Filtered>(shape, pending, lanes, sum);
+  pending.count -= lanes;
+  for (std::size_t f = 0; f < Fields; ++f)
+    hn::Store(hn::LoadU(df, pending.field[f] + lanes), df, pending.field[f]);
   return sum;
 }
 
@@ -114,7 +138,7 @@ float evaluate_pending(const KernelShape& shape, const Pending& pending, std::si
 // full vector of them into `sum`.
 template <bool Filtered>
 float add_kernels(const KernelShape& shape, const float* list, std::uint32_t n, float offset_x,
-                  float offset_y, Pending& pending, float sum) {
+                  float offset_y, PlanarPending& pending, float sum) {
   const DF df;
   const std::size_t lanes = hn::Lanes(df);
   const VF ox = hn::Set(df, offset_x);
@@ -125,20 +149,13 @@ float add_kernels(const KernelShape& shape, const float* list, std::uint32_t n, 
     const VF envelope = HWY_NAMESPACE::kernel_envelope(VectorOps{}, shape, dx, dy);
     const auto inside = hn::And(hn::FirstN(df, n - j), hn::Lt(envelope, hn::Set(df, kPiF)));
     if (hn::AllFalse(df, inside)) continue;
-    const VF fields[Pending::kFields] = {dx,
-                                         dy,
-                                         envelope,
-                                         hn::Load(df, list + 2 * kCapacity + j),
-                                         hn::Load(df, list + 3 * kCapacity + j),
-                                         hn::Load(df, list + 4 * kCapacity + j)};
-    for (std::size_t f = 0; f < Pending::kFields; ++f)
-      hn::StoreU(hn::Compress(fields[f], inside), df, pending.field[f] + pending.count);
-    pending.count += hn::CountTrue(df, inside);
-    if (pending.count < lanes) continue;
-    sum = evaluate_pending<Filtered>(shape, pending, lanes, sum);
-    pending.count -= lanes;
-    for (std::size_t f = 0; f < Pending::kFields; ++f)
-      hn::Store(hn::LoadU(df, pending.field[f] + lanes), df, pending.field[f]);
+    const VF fields[PlanarPending::kFields] = {dx,
+                                               dy,
+                                               envelope,
+                                               hn::Load(df, list + 2 * kCapacity + j),
+                                               hn::Load(df, list + 3 * kCapacity + j),
+                                               hn::Load(df, list + 4 * kCapacity + j)};
+    sum = append_pending<Filtered>(shape, fields, inside, pending, sum);
   }
   return sum;
 }
@@ -147,7 +164,7 @@ template <bool Filtered>
 float impulse_sum_typed(ImpulseCache& cache, const KernelShape& shape, const CellRange& cells,
                         Vec2d p, double cell_size) {
   float sum = 0.0f;
-  Pending pending;
+  PlanarPending pending;
   for (std::int64_t cell_y = cells.first_y; cell_y <= cells.last_y; ++cell_y) {
     const float offset_y = cell_offset(p.y, cell_y, cell_size);
     for (std::int64_t cell_x = cells.first_x; cell_x <= cells.last_x; ++cell_x) {
@@ -180,31 +197,6 @@ float impulse_sum_typed(ImpulseCache& cache, const KernelShape& shape, const Cel
     }
   }
   return pending.count == 0 ? sum : evaluate_pending<Filtered>(shape, pending, pending.count, sum);
-}
-
-// The impulses of one surface point found within the tent and the kernel's support and not yet
-// evaluated, in the reference's order: their offsets z1, z2 in the tangent frame, envelopes,
-// frequencies, phases and tent weights.
-struct SurfacePending {
-  static constexpr std::size_t kFields = 7;
-  HWY_ALIGN float field[kFields][2 * kMaxLanes] = {};
-  std::size_t count = 0;
-};
-
-// The reference's weight * KernelShape::value for the first `count` pending impulses, one per
-// lane, added to `sum` in their order.
-template <bool Filtered>
-float evaluate_surface_pending(const KernelShape& shape, const SurfacePending& pending,
-                               std::size_t count, float sum) {
-  const DF df;
-  const auto field = [&](std::size_t f) HWY_ATTR { return hn::Load(df, pending.field[f]); };
-  HWY_ALIGN float values[kMaxLanes] = {};
-  hn::Store(hn::Mul(field(6),
-                    HWY_NAMESPACE::kernel_value(VectorOps{}, shape, Filtered, field(2), field(3),
-                                                field(4), field(5), field(0), field(1))),
-            df, values);
-  for (std::size_t i = 0; i < count; ++i) sum += values[i];
-  return sum;
 }
 
 template <bool Filtered>
@@ -273,19 +265,10 @@ float surface_sum_typed(const GridKernels& grid, const KernelShape& shape, const
                                                       hn::GatherIndex(df, grid.frequency_y, pick),
                                                       phase,
                                                       weight};
-          for (std::size_t k = 0; k < SurfacePending::kFields; ++k)
-            hn::StoreU(hn::Compress(fields[k], inside), df, pending.field[k] + pending.count);
-          pending.count += hn::CountTrue(df, inside);
-          if (pending.count < lanes) continue;
-          sum = evaluate_surface_pending<Filtered>(shape, pending, lanes, sum);
-          pending.count -= lanes;
-          for (std::size_t k = 0; k < SurfacePending::kFields; ++k)
-            hn::Store(hn::LoadU(df, pending.field[k] + lanes), df, pending.field[k]);
+          sum = append_pending<Filtered>(shape, fields, inside, pending, sum);
         }
       });
-  return pending.count == 0
-             ? sum
-             : evaluate_surface_pending<Filtered>(shape, pending, pending.count, sum);
+  return pending.count == 0 ? sum : evaluate_pending<Filtered>(shape, pending, pending.count, sum);
 }
 
 float SurfaceImpulseSum(const GridKernels& grid, const KernelShape& shape, const SurfacePoint& p,
