@@ -19,8 +19,8 @@
 
 #include "arrays.hpp"
 #include "core/memory_budget.hpp"
-#include "core/srgb.hpp"
 #include "model/map_layout.hpp"
+#include "model/model_colour.hpp"
 #include "registry.hpp"
 #include "renderer/plan.hpp"
 #include "renderer/render_file.hpp"
@@ -253,11 +253,7 @@ py::array_t<float> render_model(const Model& model, int width, int height,
   render(model, job.grid, seed, output.view, job.options);
   // Linear light back to sRGB-encoded values, as a PNG output holds them.
   if (encoded && model.maps().empty() && model.colour_space() != ColourSpace::data)
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x)
-        for (int c = 0; c < model.channels(); ++c)
-          if (is_colour_channel(c, model.channels()))
-            output.view.at(x, y, c) = srgb_encode(output.view.at(x, y, c));
+    encode_colour_channels(output.view);
   return output.array;
 }
 

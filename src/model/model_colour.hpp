@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "core/srgb.hpp"
 #include "stochtex/colour.hpp"
 #include "stochtex/image.hpp"
 #include "stochtex/model.hpp"
@@ -50,6 +51,16 @@ struct ModelColour {
   // Some channel is decoded by decode_expectation: the model needs removed_deviation.
   bool expects_any() const;
 };
+
+// A render's linear light back to sRGB-encoded values, in place: the colour channels
+// (is_colour_channel) of `image`, as a PNG output holds them.
+inline void encode_colour_channels(ImageView<float> image) noexcept {
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < image.channels; ++c)
+        if (is_colour_channel(c, image.channels))
+          image.at(x, y, c) = srgb_encode(image.at(x, y, c));
+}
 
 // What a render's values are for a model (or map) in `space`: linear light for srgb and linear
 // (which a PNG output encodes), data as it is.

@@ -16,7 +16,6 @@
 #include <utility>
 #include <vector>
 
-#include "core/srgb.hpp"
 #include "io/image_io.hpp"
 #include "model/model_data.hpp"
 #include "registry.hpp"
@@ -554,12 +553,7 @@ nlohmann::ordered_json StudioStore::compare(const std::string& id, std::uint32_t
   ImageF image(exemplar.width, exemplar.height, stored->model.channels());
   render(stored->model, Grid{{0.0, 0.0}, 1.0, exemplar.width, exemplar.height}, seed, image.view());
   // The exemplar's values are sRGB-encoded where the render's are linear light: compared encoded.
-  if (stored->model.colour_space() == ColourSpace::srgb)
-    for (int y = 0; y < image.height(); ++y)
-      for (int x = 0; x < image.width(); ++x)
-        for (int c = 0; c < image.channels(); ++c)
-          if (is_colour_channel(c, image.channels()))
-            image.at(x, y, c) = srgb_encode(image.at(x, y, c));
+  if (stored->model.colour_space() == ColourSpace::srgb) encode_colour_channels(image.view());
   Comparison comparison(exemplar);
   try {
     add_checked(comparison, exemplar, "the exemplar", image.view(), "the render");
