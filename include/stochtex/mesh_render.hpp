@@ -44,8 +44,10 @@ struct MeshRenderOptions {
   SurfaceOptions surface;  // its `mapping` is replaced by the one above
   // Exemplar pixels per mesh unit (per uv unit with the uv mapping).
   double texture_scale = 1.0;
-  float background = 0.2f;  // every colour channel of the pixels no triangle covers; alpha 0
-  int threads = 0;          // 0 = all hardware threads
+  // Every colour channel of the pixels no triangle covers, as an output file shows it (sRGB-encoded
+  // where mesh_output_space is linear light: mesh_background); alpha 0.
+  float background = 0.2f;
+  int threads = 0;                       // 0 = all hardware threads
   std::function<void(double)> progress;  // called with the fraction done, from one thread
 };
 
@@ -59,6 +61,10 @@ int mesh_output_channels(const Model& model);
 // What render_mesh's pixels are (stochtex/colour.hpp): linear light when that colour is srgb or
 // linear (each pixel the mean of the decoded colour over its footprint, lit), else data.
 ColourSpace mesh_output_space(const Model& model);
+
+// The value render_mesh writes for options.background: decoded from sRGB when the pixels are linear
+// light (mesh_output_space), so that every model shows the same background.
+float mesh_background(const Model& model, const MeshRenderOptions& options);
 
 // Renders the mesh (prepared by prepare_mesh) seen by the camera into `out`, which has
 // mesh_output_channels(model) channels. Throws std::invalid_argument, before any work, when the

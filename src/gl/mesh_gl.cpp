@@ -294,7 +294,8 @@ void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, data.id());
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffers.faces.id());
   std::array<float, 4> background{};
-  for (int c = 0; c < colours; ++c) background[static_cast<std::size_t>(c)] = options.background;
+  for (int c = 0; c < colours; ++c)
+    background[static_cast<std::size_t>(c)] = mesh_background(model, options);
   const float far_depth = 0.0f;
   std::vector<float> values(static_cast<std::size_t>(tile_width) * tile_height * 4);
   for (int y0 = 0; y0 < out.height; y0 += kTile)

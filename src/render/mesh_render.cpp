@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/srgb.hpp"
 #include "model/model_colour.hpp"
 #include "render/mesh_material.hpp"
 #include "render/mesh_shading.hpp"
@@ -375,6 +376,11 @@ ColourSpace mesh_output_space(const Model& model) {
           : model.colour_space());
 }
 
+float mesh_background(const Model& model, const MeshRenderOptions& options) {
+  return mesh_output_space(model) == ColourSpace::linear ? srgb_decode(options.background)
+                                                         : options.background;
+}
+
 double default_texture_scale(const Mesh& mesh) {
   const Box box = bounding_box(mesh.positions);
   const Vec3d size = box.max - box.min;
@@ -392,6 +398,7 @@ void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
   const Bins bins = bin_triangles(rays, mesh);
   const int channels = out.channels;
   const int colours = channels == 2 || channels == 4 ? channels - 1 : channels;
+  const float background = mesh_background(model, options);
   const bool uv = !options.mapping;
 
   const auto tiles =
@@ -419,8 +426,7 @@ void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
         if (hit.triangle != kNoTriangle)
           fragments.push_back(make_fragment(rays, mesh, hit, x, y, options.texture_scale, uv));
         else
-          for (int c = 0; c < channels; ++c)
-            out.at(x, y, c) = c < colours ? options.background : 0.0f;
+          for (int c = 0; c < channels; ++c) out.at(x, y, c) = c < colours ? background : 0.0f;
       }
     if (fragments.empty()) return;
     const auto count = static_cast<int>(fragments.size());

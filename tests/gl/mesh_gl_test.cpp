@@ -39,13 +39,15 @@ constexpr float kBackground = -1000.0f;
 struct Renders {
   ImageF cpu;
   ImageF gl;
+  float background;  // as written (mesh_background: decoded for a model of colour)
 };
 
 Renders render_both(const Model& model, const Mesh& mesh, MeshRenderOptions options) {
   options.background = kBackground;
   const Camera camera = orbit_camera(mesh, 30.0, 20.0, 1.0, kWidth, kHeight);
   const int channels = mesh_output_channels(model);
-  Renders r{ImageF(kWidth, kHeight, channels), ImageF(kWidth, kHeight, channels)};
+  Renders r{ImageF(kWidth, kHeight, channels), ImageF(kWidth, kHeight, channels),
+            mesh_background(model, options)};
   render_mesh(model, mesh, camera, options, kSeed, r.cpu.view());
   render_mesh_gl(model, mesh, camera, options, kSeed, r.gl.view());
   return r;
@@ -63,8 +65,8 @@ struct Parity {
 constexpr float kFloatParity = 1e-4f;
 
 Parity parity(const Renders& r) {
-  const auto covered = [](const ImageF& image, int x, int y) {
-    return image.at(x, y, 0) != kBackground;
+  const auto covered = [&](const ImageF& image, int x, int y) {
+    return image.at(x, y, 0) != r.background;
   };
   Parity p;
   double sum = 0.0;

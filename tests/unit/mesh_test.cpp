@@ -12,6 +12,7 @@
 #include <random>
 #include <string>
 
+#include "core/srgb.hpp"
 #include "render/mesh_shading.hpp"
 #include "stochtex/mesh_render.hpp"
 #include "stochtex/stochtex.hpp"
@@ -188,6 +189,23 @@ TEST(MeshRender, SameBytesWhateverTheThreadCount) {
       render_mesh(tiling_model(), mesh, camera, options, 5, image.view());
       EXPECT_TRUE(test_support::same_bytes(reference, image)) << name << ", " << threads;
     }
+  }
+}
+
+// The background is the value an output file shows: as it is for data, decoded from sRGB for a
+// model of colour, whose render is linear light encoded into its PNG (before, such a render's
+// background showed 124 of 255 where a data model's showed 51).
+TEST(MeshRender, TheBackgroundLooksTheSameForEveryColourSpace) {
+  const Mesh mesh = read_mesh(kMeshes + "sphere.obj");
+  const Camera camera = orbit_camera(mesh, 30.0, 20.0, 1.0, 32, 24);
+  MeshRenderOptions options;
+  for (const ColourSpace space : {ColourSpace::data, ColourSpace::srgb}) {
+    const Model model = with_colour_space(tiling_model(), space);
+    ImageF image(32, 24, 3);
+    render_mesh(model, mesh, camera, options, 5, image.view());
+    const float expected = space == ColourSpace::srgb ? srgb_decode(0.2f) : 0.2f;
+    EXPECT_EQ(mesh_background(model, options), expected);
+    EXPECT_EQ(image.at(0, 0, 0), expected) << "the corner shows the background";
   }
 }
 
