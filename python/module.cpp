@@ -447,7 +447,8 @@ PYBIND11_MODULE(_stochtex, m) {
         return to_array(std::move(image));
       },
       py::arg("path"),
-      "The image file at path (PNG, OpenEXR or PFM) as `stochtex analyze` reads it: a float32 "
+      "The image file at path (PNG, JPEG, TIFF, WebP, TGA, OpenEXR or PFM) as `stochtex analyze` "
+      "reads it: a float32 "
       "HxWxC array, a PNG's values divided by 255 or 65535 as stored.");
   m.def(
       "write_image",

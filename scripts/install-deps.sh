@@ -8,11 +8,14 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config ninja-build clang-format
   libfftw3-dev libpng-dev liblcms2-dev libopenexr-dev libeigen3-dev
+  libjpeg-dev libexif-dev libtiff-dev libwebp-dev libstb-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev libhwy-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev libcpp-httplib-dev
   libarchive-dev
+  # the photo tests (tests/cli/cli_photos.sh) write a JPEG with cjpeg
+  libjpeg-turbo-progs
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-dask python3-distributed
   python3-zarr
   # the browser test (tests/browser): headless Chromium, its WebDriver and Selenium

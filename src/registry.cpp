@@ -31,6 +31,7 @@ struct MethodEntry {
   AnalyzeFunction analyze;
   AnalysisMemory analysis_memory;
   double analysis_cost = 1.0;
+  int analysis_side = 1024;
   const TargetCapability* target = nullptr;
   const EditCapability* edit = nullptr;
 };
@@ -68,6 +69,7 @@ MethodEntry entry_of() {
           },
           row.analysis_memory,
           row.analysis_cost,
+          row.analysis_side,
           row.target,
           row.edit};
 }
@@ -243,6 +245,8 @@ std::string methods_text() {
   std::string text;
   for (const auto& method : methods()) {
     text += std::string(method.name) + ": " + std::string(method.summary) + "\n";
+    text += "  analyses exemplars up to " + std::to_string(analysis_side(method.name)) +
+            " pixels on the longer side by default (larger ones downscaled: --scale-input)\n";
     for (const auto& p : method.params) {
       std::string option = std::string(p.name) + "=" + format_value(p, p.default_value);
       option.resize(std::max<std::size_t>(option.size(), 20), ' ');
@@ -276,6 +280,7 @@ std::string methods_json() {
     nlohmann::ordered_json entry{{"name", method.name},
                                  {"summary", method.summary},
                                  {"max_channels", method.max_channels},
+                                 {"analysis_side", analysis_side(method.name)},
                                  {"derives_normals", method.derives_normals},
                                  {"params", params}};
     // The optional capabilities (methods/capabilities.hpp), present only where the method has one.
@@ -322,6 +327,10 @@ std::string methods_with(CapabilityKind kind) {
 
 double analysis_cost(std::string_view method) {
   return find_entry(method).analysis_cost;
+}
+
+int analysis_side(std::string_view method) {
+  return find_entry(method).analysis_side;
 }
 
 EditValues edit_values_from_json(const EditCapability& edit, const nlohmann::ordered_json& body) {

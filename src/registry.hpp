@@ -37,6 +37,8 @@ std::string methods_with(CapabilityKind kind);
 
 // The row's relative analysis cost per pixel and channel (RegistryRow::analysis_cost).
 double analysis_cost(std::string_view method);
+// The row's default analysis side (RegistryRow::analysis_side).
+int analysis_side(std::string_view method);
 
 // An edit sent as JSON ({"group": name, FIELD: number or [x, y], ...}, each optional) read against
 // the capability's records; a std::invalid_argument of one sentence for a key or type it lacks.

@@ -15,6 +15,9 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "core/file_message.hpp"
+#include "core/memory_budget.hpp"
+#include "io/exemplar_region.hpp"
 #include "io/image_io.hpp"
 #include "progress.hpp"
 #include "registry.hpp"
@@ -22,7 +25,8 @@
 
 namespace stochtex::cli {
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
-  auto* input = command->add_option("INPUT", options.input, "exemplar image (PNG, EXR or PFM)");
+  auto* input = command->add_option("INPUT", options.input,
+                                    "exemplar image (PNG, JPEG, TIFF, WebP, TGA, OpenEXR or PFM)");
   std::string target_help = "continuous target spectrum instead of INPUT (" +
                             methods_with(CapabilityKind::target) + " only):";
   for (const MethodInfo& method : methods())
@@ -67,17 +71,66 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
                    "kind is data)")
       ->check(CLI::IsMember({"auto", "srgb", "linear", "data"}))
       ->capture_default_str();
+  command->add_option("--crop", options.crop,
+                      "analyse this part of the exemplar (and of each --map): WIDTHxHEIGHT+X+Y "
+                      "in pixels, as 1024x1024+1500+800");
+  command
+      ->add_option("--scale-input", options.scale_input,
+                   "analyse the exemplar (after --crop) downscaled by this factor, in (0, 1], "
+                   "averaging linear light; by default an exemplar longer than the method "
+                   "analyses (`stochtex methods`) is downscaled to it, and a note says so")
+      ->check(CLI::Validator(
+          [](const std::string& text) {
+            double value = 0.0;
+            return CLI::detail::lexical_cast(text, value) && value > 0.0 && value <= 1.0
+                       ? std::string()
+                       : "--scale-input " + text + " is not a factor above 0 and at most 1";
+          },
+          "FACTOR in (0, 1]"));
 }
 
 namespace {
 
-// Refuses, before decoding, an image `method` cannot analyse within the memory budget.
-ImageReadLimits analysis_limits(const std::string& method, const std::string& path) {
+ExemplarRegion exemplar_region_of(const AnalyzeOptions& options) {
+  ExemplarRegion region;
+  if (!options.crop.empty()) region.crop = parse_crop(options.crop, "--crop");
+  region.scale = options.scale_input;
+  return region;
+}
+
+// Refuses, before decoding, an image whose region `method` cannot analyse within the memory
+// budget, or whose --crop is not inside it.
+ImageReadLimits analysis_limits(const std::string& method, const std::string& path,
+                                const ExemplarRegion& region) {
   ImageReadLimits limits;
-  limits.check_declared = [method, path](int width, int height, int channels) {
-    check_analysis_request(method, width, height, channels, path);
+  limits.check_declared = [method, path, region](int width, int height, int channels) {
+    // The decoded image and its region live together while the region is made.
+    check_memory_budget(std::uint64_t(width) * height * channels * sizeof(float) * 2,
+                        "reading the " + std::to_string(width) + "x" + std::to_string(height) +
+                            " exemplar '" + path + "'",
+                        "crop or downscale the exemplar");
+    const RegionSize size = region_size(width, height, region, analysis_side(method),
+                                        stochtex::quoted(std::filesystem::path(path)));
+    check_analysis_request(method, size.width, size.height, channels, path);
   };
   return limits;
+}
+
+// The exemplar `path` in `space` (auto where none), cropped and scaled to the region its method
+// analyses; a scale the user did not ask for is said at once, before the analysis' wait.
+ReadExemplar read_region(const std::string& path, std::optional<ColourSpace> space,
+                         const AnalyzeOptions& options) {
+  const ExemplarRegion region = exemplar_region_of(options);
+  ReadExemplar exemplar = read_exemplar(path, space, analysis_limits(options.method, path, region));
+  std::string note;
+  exemplar.image = exemplar_region(
+      std::move(exemplar.image), exemplar.space, region, analysis_side(options.method),
+      stochtex::quoted(std::filesystem::path(path)), options.method, &note);
+  if (!note.empty())
+    fmt::print(stderr,
+               "{}; give --scale-input 1 to analyse every pixel, or --crop to choose a part\n",
+               note);
+  return exemplar;
 }
 
 Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params,
@@ -94,8 +147,7 @@ Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params,
                                              : kind == MapKind::colour
                                                  ? option_space(options.colour_space)
                                                  : ColourSpace::data;
-    ReadExemplar map =
-        read_exemplar(argument.file, space, analysis_limits(options.method, argument.file));
+    ReadExemplar map = read_region(argument.file, space, options);
     if (notes && !map.note.empty()) notes->push_back(map.note);
     images.push_back(std::move(map.image));
     maps.push_back({argument.name, kind, {}, argument.file, map.space});
@@ -129,8 +181,8 @@ Model run_analyze(const AnalyzeOptions& options, std::vector<std::string>* notes
   if (options.input.empty())
     throw std::invalid_argument("give an exemplar INPUT, a material's --map NAME=FILE or, for " +
                                 methods_with(CapabilityKind::target) + ", a --target spectrum");
-  const ReadExemplar exemplar = read_exemplar(options.input, option_space(options.colour_space),
-                                              analysis_limits(options.method, options.input));
+  const ReadExemplar exemplar =
+      read_region(options.input, option_space(options.colour_space), options);
   validate_exemplar(exemplar.image.view(), options.input);
   if (notes && !exemplar.note.empty()) notes->push_back(exemplar.note);
   Progress progress("analyse");

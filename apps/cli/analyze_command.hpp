@@ -20,10 +20,12 @@ struct AnalyzeOptions {
   std::vector<std::string> params;
   std::uint32_t seed = 0;
   std::string colour_space = "auto";
+  std::string crop;          // --crop WIDTHxHEIGHT+X+Y, empty for the whole image
+  double scale_input = 0.0;  // --scale-input; 0: the method's default (io/exemplar_region.hpp)
 };
 
-// INPUT, --target, --map, --normal-y, --synthesise-normals, --method, -p, --analysis-seed and
-// --colour-space.
+// INPUT, --target, --map, --normal-y, --synthesise-normals, --method, -p, --analysis-seed,
+// --colour-space, --crop and --scale-input.
 void add_analyze_options(CLI::App* command, AnalyzeOptions& options);
 
 // The model of the options' exemplar or target. The method and parameters are checked before

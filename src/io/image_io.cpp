@@ -6,7 +6,6 @@
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
-#include <lcms2_plugin.h>
 #include <openexr.h>
 #include <png.h>
 
@@ -42,6 +41,7 @@
 #include "core/file_message.hpp"
 #include "core/input_file.hpp"
 #include "core/srgb.hpp"
+#include "io/decoding.hpp"
 #include "io/image_streams.hpp"
 #include "io/png_sample.hpp"
 #include "stochtex/colour.hpp"
@@ -56,54 +56,6 @@ struct FileCloser {
   void operator()(std::FILE* file) const { std::fclose(file); }
 };
 using File = std::unique_ptr<std::FILE, FileCloser>;
-
-// An image file's bytes being decoded: a stdio stream at its start (the file, or a buffer opened
-// with fmemopen), their count, and what the messages call them.
-struct Input {
-  std::FILE* file = nullptr;
-  std::uintmax_t bytes = 0;
-  std::string name;         // in stochtex's messages: the path in quotes, or the caller's name
-  std::string stream_name;  // in OpenEXR's messages: the path as it is, or the caller's name
-};
-
-// Refuses a declared size before anything proportional to it is allocated (docs/design.md §9).
-void check_size(const std::string& name, std::int64_t width, std::int64_t height,
-                const ImageReadLimits& limits) {
-  const std::string size = std::to_string(width) + "x" + std::to_string(height);
-  if (width <= 0 || height <= 0)
-    throw Error(ErrorCode::format,
-                name + " declares a size of " + size + " pixels; the file is corrupt");
-  if (width > INT_MAX || height > INT_MAX || width > limits.max_pixels / height)
-    throw Error(ErrorCode::invalid_input,
-                name + " is " + size + " pixels, more than the limit of " +
-                    std::to_string(limits.max_pixels) + " pixels; use a smaller image");
-}
-
-// The caller's refusal of a size its memory budget cannot hold, once the size and channels are
-// known (check_size passed) and before the pixels are allocated.
-void check_declared(std::int64_t width, std::int64_t height, int channels,
-                    const ImageReadLimits& limits) {
-  if (limits.check_declared)
-    limits.check_declared(static_cast<int>(width), static_cast<int>(height), channels);
-}
-
-// Deflate codes a 258-byte match in 2 bits at best, so zlib data never expands more than 1032
-// times: the bound behind every minimum compressed size below.
-constexpr double kMaxDeflateRatio = 1032.0;
-
-// A tiny file declaring a huge image must not cost the image's memory: what the declared pixels
-// need at least, compressed as well as the format possibly can, is compared with the file's size
-// before anything proportional to the pixels is allocated (docs/design.md §9).
-void check_fits_file(const std::string& name, std::int64_t width, std::int64_t height,
-                     double minimum_bytes, std::uintmax_t file_bytes) {
-  if (minimum_bytes > static_cast<double>(file_bytes))
-    throw Error(ErrorCode::format,
-                name + " declares " + std::to_string(width) + "x" + std::to_string(height) +
-                    " pixels, which need at least " +
-                    std::to_string(static_cast<std::uintmax_t>(std::ceil(minimum_bytes))) +
-                    " bytes, but the file has " + std::to_string(file_bytes) +
-                    "; it is truncated or corrupt");
-}
 
 // ---------------------------------------------------------------------------------------------
 // PNG. libpng reports errors by longjmp, which would skip C++ destructors: every function that
@@ -302,190 +254,13 @@ std::array<bool, kPngColourChunkCount> check_png_chunks(const Input& input) {
 // PNG colour (docs/design.md §14): what the colour chunks say the values are, and how they become
 // sRGB-encoded or linear ones (include/stochtex/io.hpp).
 
-// Text from a file (a profile's description, libpng's warning quoting a profile's name), for a
-// message: printable ASCII, other bytes as '?', at most `limit` characters.
-std::string printable(std::string_view text, std::size_t limit) {
-  std::string result;
-  for (char c : text.substr(0, limit)) result.push_back(c >= ' ' && c <= '~' ? c : '?');
-  while (!result.empty() && result.back() == ' ') result.pop_back();
-  if (text.size() > limit) result += "...";
-  return result;
-}
-
-// Little CMS allocates from what a profile declares (a lookup table's grid) before it reads the
-// data: within the contexts below, no allocation may exceed 32 MiB, well above what a profile
-// that fits in a PNG chunk (kMaxPngChunkBytes) needs, so that a hostile profile is refused
-// rather than allocated (docs/design.md §9). Little CMS handles a failed allocation as an error.
-constexpr cmsUInt32Number kMaxIccAllocation = cmsUInt32Number{32} << 20;
-
-void* icc_malloc(cmsContext, cmsUInt32Number size) {
-  return size == 0 || size > kMaxIccAllocation ? nullptr : std::malloc(size);
-}
-void icc_free(cmsContext, void* pointer) {
-  std::free(pointer);
-}
-void* icc_realloc(cmsContext, void* pointer, cmsUInt32Number size) {
-  return size == 0 || size > kMaxIccAllocation ? nullptr : std::realloc(pointer, size);
-}
-
-// The allocator of Little CMS's contexts below (its memory handler plug-in, whose interface dates
-// from Little CMS 2.0); cmsCreateContext takes it as a mutable pointer but only reads it.
-cmsPluginMemHandler icc_memory_plugin = {
-    {cmsPluginMagicNumber, 2000, cmsPluginMemHandlerSig, nullptr},
-    icc_malloc,
-    icc_free,
-    icc_realloc,
-    nullptr,
-    nullptr,
-    nullptr};
-
-// The first error Little CMS reports in a context, for the message that refuses the profile.
-struct IccErrors {
-  char first[200] = {};
-};
-
-void on_icc_error(cmsContext context, cmsUInt32Number, const char* text) {
-  auto* errors = static_cast<IccErrors*>(cmsGetContextUserData(context));
-  if (errors && !errors->first[0] && text)
-    std::snprintf(errors->first, sizeof errors->first, "%s", text);
-}
-
-// An ICC profile's conversion of an image's colour channels to sRGB (the built-in sRGB profile;
-// for grey, a grey profile with the sRGB tone curve), relative colorimetric, on floats, in place:
-// Little CMS reads a pixel whole before it writes it, and leaves the alpha channel (an extra
-// channel, without cmsFLAGS_COPY_ALPHA) as it is.
-class IccConversion {
- public:
-  // Refuses (throws) a profile Little CMS cannot open or turn into a transform, or whose colour
-  // space is not the image's.
-  IccConversion(std::span<const png_byte> profile, int channels, const std::string& name)
-      : channels_(channels) {
-    context_.reset(cmsCreateContext(&icc_memory_plugin, &errors_));
-    if (!context_) throw std::bad_alloc();
-    cmsSetLogErrorHandlerTHR(context_.get(), on_icc_error);
-    const auto refuse = [&](const std::string& problem) {
-      return Error(ErrorCode::format, name + " carries an ICC profile stochtex cannot use (" +
-                                          problem + "); convert the image to sRGB");
-    };
-    // What failed, with Little CMS's first error ("Unknown tag type 'junk' found.") but its
-    // period, which would end the sentence inside the message.
-    const auto icc_problem = [&](const char* what) {
-      std::string problem = what;
-      if (errors_.first[0]) problem += ": " + printable(errors_.first, 160);
-      while (problem.back() == '.') problem.pop_back();
-      return problem;
-    };
-    profile_.reset(cmsOpenProfileFromMemTHR(context_.get(), profile.data(),
-                                            static_cast<cmsUInt32Number>(profile.size())));
-    if (!profile_) throw refuse(icc_problem("Little CMS cannot open it"));
-    const bool grey = channels == 1 || channels == 2;
-    const cmsColorSpaceSignature space = cmsGetColorSpace(profile_.get());
-    if (space != (grey ? cmsSigGrayData : cmsSigRgbData)) {
-      const auto code = static_cast<std::uint32_t>(space);
-      const char signature[4] = {static_cast<char>(code >> 24), static_cast<char>(code >> 16),
-                                 static_cast<char>(code >> 8), static_cast<char>(code)};
-      throw refuse("its colour space is '" + printable({signature, 4}, 4) + "' and the image is " +
-                   (grey ? "grey" : "RGB"));
-    }
-    const cmsProfileClassSignature device_class = cmsGetDeviceClass(profile_.get());
-    if (device_class == cmsSigLinkClass || device_class == cmsSigAbstractClass ||
-        device_class == cmsSigNamedColorClass)
-      throw refuse("it is a device link, abstract or named colour profile, not an image's");
-    char text[256] = {};
-    cmsGetProfileInfoASCII(profile_.get(), cmsInfoDescription, "en", "US", text, sizeof text);
-    text[sizeof text - 1] = '\0';
-    description_ = printable(text, 64);
-
-    if (grey) {
-      // The sRGB tone curve (IEC 61966-2-1) as Little CMS's parametric curve of type 4, on sRGB's
-      // white point (D65); relative colorimetric maps white to white whatever the white points.
-      const cmsFloat64Number srgb_curve[5] = {2.4, 1.0 / 1.055, 0.055 / 1.055, 1.0 / 12.92,
-                                              0.04045};
-      const cmsCIExyY d65 = {0.3127, 0.3290, 1.0};
-      cmsToneCurve* curve = cmsBuildParametricToneCurve(context_.get(), 4, srgb_curve);
-      if (curve) srgb_.reset(cmsCreateGrayProfileTHR(context_.get(), &d65, curve));
-      if (curve) cmsFreeToneCurve(curve);
-    } else {
-      srgb_.reset(cmsCreate_sRGBProfileTHR(context_.get()));
-    }
-    if (!srgb_) throw std::bad_alloc();
-    constexpr std::array<cmsUInt32Number, 4> kFormats = {TYPE_GRAY_FLT, TYPE_GRAYA_FLT,
-                                                         TYPE_RGB_FLT, TYPE_RGBA_FLT};
-    const cmsUInt32Number format = kFormats[channels - 1];
-    transform_.reset(cmsCreateTransformTHR(context_.get(), profile_.get(), format, srgb_.get(),
-                                           format, INTENT_RELATIVE_COLORIMETRIC, 0));
-    if (!transform_) throw refuse(icc_problem("Little CMS cannot convert it to sRGB"));
-  }
-  IccConversion(const IccConversion&) = delete;
-  IccConversion& operator=(const IccConversion&) = delete;
-
-  // The profile's description, printable, or "" when it has none.
-  const std::string& description() const { return description_; }
-
-  // Whether the profile is sRGB: it maps test colours (each channel 0, 0.02, 0.1, 0.25, 0.5,
-  // 0.75, 0.9 and 1) onto themselves within 1/4096 of linear light — decided by what it does, not
-  // by its name. Linear light, because the encoded values near 0 magnify every difference by
-  // 12.92: Little CMS's own sRGB profile, saved (its colorants rounded to 1/65536), moves a dark
-  // channel of a saturated test colour by 4.8e-4 encoded, 3.8e-5 of linear light; a gamma 2.2
-  // profile moves a mid grey by 5.5e-3 of linear light.
-  bool is_srgb() const {
-    constexpr std::array<float, 8> kLevels = {0.0f, 0.02f, 0.1f, 0.25f, 0.5f, 0.75f, 0.9f, 1.0f};
-    const int colour_channels = channels_ <= 2 ? 1 : 3;
-    const std::size_t colours = colour_channels == 1 ? kLevels.size() : kLevels.size() * 64;
-    std::vector<float> test(colours * channels_, 0.5f);
-    for (std::size_t i = 0; i < colours; ++i)
-      for (int c = 0, rest = static_cast<int>(i); c < colour_channels; ++c, rest /= 8)
-        test[i * channels_ + c] = kLevels[rest % 8];
-    std::vector<float> mapped(test.size(), 0.5f);
-    cmsDoTransform(transform_.get(), test.data(), mapped.data(),
-                   static_cast<cmsUInt32Number>(colours));
-    for (std::size_t i = 0; i < test.size(); ++i)
-      if (!(std::abs(srgb_decode(mapped[i]) - srgb_decode(test[i])) <= 1.0f / 4096.0f))
-        return false;
-    return true;
-  }
-
-  // Converts `image`'s colour channels, row by row; a value the profile makes infinite or NaN
-  // (a degenerate curve) becomes 0, so that every value read stays finite.
-  void convert(ImageF& image) const {
-    ImageView<float> view = image.view();
-    for (int y = 0; y < view.height; ++y) {
-      float* row = view.row(y);
-      cmsDoTransform(transform_.get(), row, row, static_cast<cmsUInt32Number>(view.width));
-      for (std::ptrdiff_t i = 0; i < view.row_stride; ++i)
-        if (!std::isfinite(row[i])) row[i] = 0.0f;
-    }
-  }
-
- private:
-  struct DeleteContext {
-    void operator()(cmsContext context) const { cmsDeleteContext(context); }
-  };
-  struct CloseProfile {
-    void operator()(cmsHPROFILE profile) const { cmsCloseProfile(profile); }
-  };
-  struct DeleteTransform {
-    void operator()(cmsHTRANSFORM transform) const { cmsDeleteTransform(transform); }
-  };
-
-  int channels_;
-  std::string description_;
-  // Destroyed in the reverse order: the transform and profiles before their context, the context
-  // before the errors it writes to; a constructor that throws destroys them too.
-  IccErrors errors_;
-  std::unique_ptr<std::remove_pointer_t<cmsContext>, DeleteContext> context_;
-  std::unique_ptr<void, CloseProfile> profile_;
-  std::unique_ptr<void, CloseProfile> srgb_;
-  std::unique_ptr<void, DeleteTransform> transform_;
-};
-
 // What a PNG's colour chunks make of its values: the space they are read in, the phrase saying
 // why, and the conversion to apply, if any.
 struct PngColour {
   ColourSpace space = ColourSpace::srgb;
   std::string origin;
-  double gamma_exponent = 0.0;  // > 0: each colour value v becomes srgb_encode(v^gamma_exponent)
-  std::unique_ptr<IccConversion> icc;
+  double gamma_exponent = 0.0;     // > 0: each colour value v becomes srgb_encode(v^gamma_exponent)
+  std::unique_ptr<IccColour> icc;  // null when the values need no conversion
 };
 
 // A colour chunk libpng kept as it is (read_png_layout), or none.
@@ -572,23 +347,20 @@ PngColour png_colour(const Input& input, const PngReader& reader, const PngLayou
                       &profile_bytes) ||
         !profile) {
       const char* warning = reader.error.colour_warning[kIccp];
+      // libpng drops a grey profile on RGB, or an RGB one on grey, saying so.
+      if (std::strstr(warning, "color space not permitted on")) {
+        colour.origin = mismatched_profile_origin(layout.channels);
+        return colour;
+      }
       throw Error(ErrorCode::format,
                   input.name + " carries an ICC profile stochtex cannot use (" +
                       (warning[0] ? printable(warning, 160) : "libpng dropped it") +
                       "); convert the image to sRGB");
     }
     if (reader.error.colour_crc_error[kIccp]) throw unreadable(kIccp);
-    colour.icc = std::make_unique<IccConversion>(std::span<const png_byte>(profile, profile_bytes),
-                                                 layout.channels, input.name);
-    const std::string named = colour.icc->description().empty()
-                                  ? "ICC profile without a description"
-                                  : "ICC profile '" + colour.icc->description() + "'";
-    if (colour.icc->is_srgb()) {
-      colour.icc.reset();
-      colour.origin = named + ": sRGB";
-    } else {
-      colour.origin = named + ", converted to sRGB";
-    }
+    colour.icc = std::make_unique<IccColour>(std::span<const png_byte>(profile, profile_bytes),
+                                             layout.channels, input.name);
+    colour.origin = colour.icc->origin();
     return colour;
   }
   if (present[kSrgb]) {
@@ -1081,8 +853,8 @@ void write_pfm(Imf::OStream& stream, ImageView<const float> image) {
 // format. A new format is one row; one that is only read has no encoder (nullptr), and
 // write_image refuses its extension.
 
-// How many of an image's first bytes the rows' signatures look at.
-constexpr std::size_t kSignatureBytes = 8;
+// How many of an image's first bytes the rows' signatures look at (a TGA header's 18).
+constexpr std::size_t kSignatureBytes = 18;
 
 // The float formats hold linear light: an srgb image is decoded before it is written.
 template <void (*write)(Imf::OStream&, ImageView<const float>)>
@@ -1096,7 +868,7 @@ void write_linear(Imf::OStream& stream, ImageView<const float> image, int, Colou
 }
 
 struct Codec {
-  ImageFormat format;
+  ImageFormat format;     // of a format write_image writes (`encode`); png for the others
   const char* name;       // in messages: "PNG"
   const char* extension;  // what write_image writes the format for, in lower case: ".png"
   bool (*recognises)(std::span<const unsigned char> first_bytes);
@@ -1107,7 +879,7 @@ struct Codec {
                  ColourSpace space);
 };
 
-const std::array<Codec, 3> kCodecs = {{
+const std::array<Codec, 7> kCodecs = {{
     {ImageFormat::png, "PNG", ".png",
      [](std::span<const unsigned char> first) {
        return first.size() >= 8 && png_sig_cmp(first.data(), 0, 8) == 0;
@@ -1124,6 +896,11 @@ const std::array<Codec, 3> kCodecs = {{
        return first.size() >= 2 && first[0] == 'P' && (first[1] == 'F' || first[1] == 'f');
      },
      read_pfm, write_linear<write_pfm>},
+    // Read only: what photos and paint programs write. TGA has no signature and comes last.
+    {ImageFormat::png, "JPEG", ".jpg", is_jpeg, read_jpeg, nullptr},
+    {ImageFormat::png, "TIFF", ".tif", is_tiff, read_tiff, nullptr},
+    {ImageFormat::png, "WebP", ".webp", is_webp, read_webp, nullptr},
+    {ImageFormat::png, "TGA", ".tga", is_tga, read_tga, nullptr},
 }};
 
 // The rows' `field` that `keep` keeps, as "a, b or c".

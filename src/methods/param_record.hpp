@@ -137,8 +137,8 @@ struct AnalysisMemory {
 
 // A method's row of the registry (src/registry.cpp): its one-line summary, its parameter record,
 // its analysis's memory, the most channels it analyses, whether it derives a material's normal
-// map from the height (MethodInfo), the relative cost of its analysis and its optional
-// capabilities (methods/capabilities.hpp). Each method's analysis.hpp returns it from
+// map from the height (MethodInfo), the relative cost and default size of its analysis and its
+// optional capabilities (methods/capabilities.hpp). Each method's analysis.hpp returns it from
 // `registry_row(std::type_identity<Model>)`, which the registry finds by argument-dependent lookup
 // for every alternative of MethodModel.
 template <class P, std::size_t N>
@@ -151,6 +151,10 @@ struct RegistryRow {
   // The analysis's time per pixel and channel against the other methods' (about 1), by which
   // `stochtex report` starts the longest analyses first.
   double analysis_cost = 1.0;
+  // The longer side of the largest exemplar analysed by default: a larger photo is downscaled to
+  // it (io/exemplar_region.hpp), unless the user chooses a scale, so that a phone's photo takes
+  // seconds, not minutes (docs/inputs.md).
+  int analysis_side = 1024;
   const TargetCapability* target = nullptr;  // `stochtex analyze --target`
   const EditCapability* edit = nullptr;      // `stochtex edit`, the studio's editor
 };

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/exemplar_region.hpp"
 #include "io/image_io.hpp"
 #include "model/model_data.hpp"
 #include "registry.hpp"
@@ -189,23 +190,27 @@ nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
                                        "upload a smaller image",
                                        bytes.size(), limits_.max_upload_bytes));
   auto exemplar = std::make_shared<Exemplar>();
-  const std::int64_t side = limits_.max_exemplar_side;
+  std::string note;
   try {
     const std::span<const std::uint8_t> file(reinterpret_cast<const std::uint8_t*>(bytes.data()),
                                              bytes.size());
-    const ImageReadLimits limits{.max_pixels = side * side, .check_declared = {}};
-    exemplar->image = decode_image(file, kUploadName, limits, &exemplar->colour);
-    ImageF stored = decode_image(file, kUploadName, limits);
+    const ImageReadLimits limits{.max_pixels = limits_.max_upload_pixels, .check_declared = {}};
+    // A photo larger than the studio's exemplars is downscaled in linear light, and the answer
+    // says so (io/exemplar_region.hpp).
+    const auto fitted = [&](ImageF image, ColourSpace space, std::string* said) {
+      return exemplar_region(std::move(image), space, {}, limits_.max_exemplar_side, kUploadName,
+                             "the studio", said);
+    };
+    exemplar->image = fitted(decode_image(file, kUploadName, limits, &exemplar->colour),
+                             exemplar->colour.space, &note);
+    ImageF stored =
+        fitted(decode_image(file, kUploadName, limits), exemplar->colour.space, nullptr);
     if (!std::ranges::equal(stored.pixels(), exemplar->image.pixels()))
       exemplar->stored = std::move(stored);
     validate_exemplar(exemplar->image.view(), kUploadName);
+    if (!note.empty()) note += "; crop the photo first to keep its finest detail";
   } catch (const Error& e) {
-    std::string message = e.what();
-    if (e.code() == ErrorCode::invalid_input &&
-        message.find("more than the limit") != std::string::npos)
-      message =
-          fmt::format("{} (the studio takes exemplars up to {}x{} pixels)", message, side, side);
-    throw StudioError(400, message);
+    throw StudioError(400, e.what());
   }
   {
     const std::lock_guard heavy(heavy_);
@@ -218,7 +223,8 @@ nlohmann::ordered_json StudioStore::add_exemplar(const std::string& bytes) {
                                     {"height", exemplar->image.height()},
                                     {"channels", exemplar->image.channels()},
                                     {"colour_space", colour_space_name(exemplar->colour.space)},
-                                    {"colour", exemplar->colour.origin}};
+                                    {"colour", exemplar->colour.origin},
+                                    {"note", note}};
   exemplars_[id] = std::move(exemplar);
   exemplar_order_.push_back(id);
   evict_oldest(exemplars_, exemplar_order_, limits_.max_exemplars);

@@ -28,7 +28,8 @@ namespace stochtex::web {
 
 struct StudioLimits {
   std::size_t max_upload_bytes = std::size_t{16} << 20;  // an upload's body, 16 MiB
-  int max_exemplar_side = 1024;  // an exemplar's pixels: at most this squared
+  std::int64_t max_upload_pixels = 24'000'000;           // an upload's pixels: a 6000x4000 photo
+  int max_exemplar_side = 1024;  // an exemplar's longer side: a larger upload is downscaled to it
   std::size_t max_exemplars = 8;
   std::size_t max_models = 8;         // analysed models
   std::size_t max_edited_models = 4;  // edited ones, evicted among themselves

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "image_files.hpp"
 #include "io/image_io.hpp"
 #include "stochtex/colour.hpp"
 #include "stochtex/error.hpp"
@@ -34,7 +35,7 @@ namespace {
 namespace fs = std::filesystem;
 using Bytes = std::vector<unsigned char>;
 
-constexpr int kMutatedFiles = 3000;
+constexpr int kMutatedFiles = 5000;
 constexpr std::uint32_t kSeed = 20240611;
 
 Bytes read_bytes(const fs::path& path) {
@@ -79,17 +80,7 @@ Bytes with_chunk(const Bytes& png, const char* type, const Bytes& data) {
 // An iCCP chunk's data: a name, its terminator, compression method 0, then an RGB profile that is
 // not sRGB (Adobe RGB (1998)'s primaries, gamma 2.2), compressed, so that reading converts.
 Bytes wide_rgb_iccp() {
-  const cmsCIExyY d65 = {0.3127, 0.3290, 1.0};
-  const cmsCIExyYTRIPLE primaries = {{0.64, 0.33, 1.0}, {0.21, 0.71, 1.0}, {0.15, 0.06, 1.0}};
-  cmsToneCurve* gamma = cmsBuildGamma(nullptr, 2.2);
-  cmsToneCurve* curves[3] = {gamma, gamma, gamma};
-  cmsHPROFILE profile = cmsCreateRGBProfile(&d65, &primaries, curves);
-  cmsFreeToneCurve(gamma);
-  cmsUInt32Number size = 0;
-  cmsSaveProfileToMem(profile, nullptr, &size);
-  Bytes icc(size);
-  cmsSaveProfileToMem(profile, icc.data(), &size);
-  cmsCloseProfile(profile);
+  const Bytes icc = test_support::wide_rgb_icc();
   uLongf compressed_size = compressBound(static_cast<uLong>(icc.size()));
   Bytes data = {'i', 'c', 'c', 0, 0};
   data.resize(data.size() + compressed_size);
@@ -135,6 +126,25 @@ std::vector<Seed> make_seeds(const fs::path& folder) {
       {"gama_grey_alpha8.png", with_chunk(seeds[1].bytes, "gAMA", {0, 0, 0xb1, 0x8f}), true});
   seeds.push_back({"cicp_rgba16.png", with_chunk(seeds[2].bytes, "cICP", {1, 8, 0, 1}), true});
   seeds.push_back({"iccp_rgb8.png", with_chunk(seeds[0].bytes, "iCCP", wide_rgb_iccp()), true});
+  // The formats read but not written, as their libraries write them: EXIF orientation, ICC
+  // profiles, progressive JPEG, compressed and tiled TIFF, lossless
+  // WebP with alpha, run-length TGA.
+  const Bytes icc = test_support::wide_rgb_icc();
+  using namespace test_support;
+  seeds.push_back({"grey.jpg", jpeg_file(image(9, 7, 1), {.quality = 80}), false});
+  seeds.push_back({"rgb.jpg",
+                   jpeg_file(image(12, 10, 3), {.progressive = true, .icc = icc, .orientation = 6}),
+                   false});
+  seeds.push_back({"rgb16.tif",
+                   tiff_file(image(6, 5, 3), folder, {.bits = 16, .compression = COMPRESSION_LZW}),
+                   false});
+  seeds.push_back(
+      {"grey_float.tif", tiff_file(image(5, 4, 1), folder, {.bits = 32, .tiled = true}), false});
+  seeds.push_back({"rgb_icc.tif", tiff_file(image(4, 3, 3), folder, {.icc = icc}), false});
+  seeds.push_back({"rgba.webp", webp_file(image(7, 6, 4), true), false});
+  seeds.push_back({"rgb_icc.webp", webp_file(image(8, 8, 3), false, icc), false});
+  seeds.push_back({"rgb_rle.tga", tga_file(image(6, 5, 3), true), false});
+  seeds.push_back({"grey.tga", tga_file(image(5, 3, 1), false), false});
   return seeds;
 }
 

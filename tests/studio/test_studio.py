@@ -287,7 +287,7 @@ def test_shader_export_downloads(studio, grass, tmp_path):
 
 
 def test_bad_uploads_are_refused(studio):
-    assert "not a PNG, OpenEXR or PFM" in studio.error(
+    assert "not a PNG, OpenEXR, PFM, JPEG, TIFF, WebP or TGA" in studio.error(
         "POST", "/api/exemplars", b"hello, not an image",
         headers={"Content-Type": "application/octet-stream"})
     truncated = exemplar_bytes("grass_lawn_128.png")[:2000]
@@ -297,12 +297,24 @@ def test_bad_uploads_are_refused(studio):
         "POST", "/api/exemplars", b"\0" * (16 * 1024 * 1024 + 1), expect=413,
         headers={"Content-Type": "application/octet-stream"})
     assert "limit of 16777216 bytes" in studio.chunked_upload_refused(128)
-    assert "1024x1024" in studio.error("POST", "/api/exemplars", grey_png(1025, 1024),
-                                       headers={"Content-Type": "application/octet-stream"})
+    assert "limit of 24000000 pixels" in studio.error(
+        "POST", "/api/exemplars", grey_png(6001, 4000),
+        headers={"Content-Type": "application/octet-stream"})
     assert "constant" in studio.error("POST", "/api/exemplars", grey_png(16, 16, constant=True),
                                       headers={"Content-Type": "application/octet-stream"})
     assert "client id" in studio.error("POST", "/api/exemplars", grey_png(16, 16), expect=403,
                                        client=None)
+
+
+def test_large_photos_are_downscaled(studio):
+    """A photo longer than 1024 pixels is kept downscaled (in linear light), and the answer says so."""
+    info = studio.json("POST", "/api/exemplars", grey_png(2048, 1536), expect=201,
+                       headers={"Content-Type": "application/octet-stream"})
+    assert (info["width"], info["height"]) == (1024, 768), info
+    assert "downscaled to 1024x768 (a factor of 0.5); crop the photo first" in info["note"], info
+    small = studio.json("POST", "/api/exemplars", grey_png(64, 64), expect=201,
+                        headers={"Content-Type": "application/octet-stream"})
+    assert small["note"] == "", small
 
 
 def test_bad_analyses_and_queries_are_refused(studio, grass):

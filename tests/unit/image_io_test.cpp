@@ -600,7 +600,9 @@ TEST_F(ImageIoTest, BadBuffersAreRefusedWithASentenceNamingThem) {
   EXPECT_EQ(std::string(decode_error({}).what()), "the upload is empty (0 bytes), not an image");
   const Error noise = decode_error({'h', 'e', 'l', 'l', 'o'});
   EXPECT_EQ(noise.code(), ErrorCode::format);
-  EXPECT_NE(std::string(noise.what()).find("not a PNG, OpenEXR or PFM image"), std::string::npos)
+  EXPECT_NE(
+      std::string(noise.what()).find("not a PNG, OpenEXR, PFM, JPEG, TIFF, WebP or TGA image"),
+      std::string::npos)
       << noise.what();
   ImageReadLimits limits;
   limits.max_pixels = 255;
@@ -1144,10 +1146,15 @@ TEST_F(ImageIoTest, IccProfilesThatCannotBeUsedAreRefused) {
   Bytes cmyk = saved_profile(wide_rgb_profile());
   std::copy_n("CMYK", 4, cmyk.begin() + 16);
   expect_refused("cmyk.png", with_chunks(rgb, {iccp_chunk(cmyk)}), "'CMYK'");
-  expect_refused("rgb_on_grey.png",
-                 with_chunks(handmade_png(1, 1, 8, 0, {0, 10}),
-                             {iccp_chunk(saved_profile(wide_rgb_profile()))}),
-                 "RGB color space not permitted on grayscale PNG");
+  // A profile of the wrong kind (exemplars of ours had one: sand_height_grey_512.png) is ignored,
+  // as browsers do, and the values read as sRGB.
+  const Bytes rgb_on_grey = with_chunks(handmade_png(1, 1, 8, 0, {0, 10}),
+                                        {iccp_chunk(saved_profile(wide_rgb_profile()))});
+  ImageColour ignored;
+  const ImageF grey = read_colour(file("rgb_on_grey.png"), rgb_on_grey, ignored);
+  EXPECT_EQ(ignored.space, ColourSpace::srgb);
+  EXPECT_EQ(ignored.origin, "an RGB ICC profile on a grey image, ignored: sRGB by default");
+  EXPECT_EQ(grey.at(0, 0, 0), 10.0f / 255.0f);
   // Tag data Little CMS cannot read: each tag's type signature replaced.
   Bytes damaged = saved_profile(wide_rgb_profile());
   const std::uint32_t tags = std::uint32_t{damaged[128]} << 24 | std::uint32_t{damaged[129]} << 16 |

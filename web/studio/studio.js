@@ -54,8 +54,10 @@ async function upload(file) {
     state.exemplar = exemplar;
     $('exemplar-image').src = `/api/exemplars/${exemplar.id}/image.png`;
     $('gaussian-image').src = `/api/exemplars/${exemplar.id}/gaussian.png`;
+    // A photo larger than the studio's exemplars comes back downscaled, with a note saying so.
     $('exemplar-info').textContent =
-      `${file.name}: ${exemplar.width}\u00d7${exemplar.height}, ${exemplar.channels} channel(s)`;
+      `${file.name}: ${exemplar.width}\u00d7${exemplar.height}, ${exemplar.channels} channel(s)` +
+      (exemplar.note ? ` (${exemplar.note})` : '');
     updateButtons();
   } catch (error) {
     $('exemplar-info').textContent = '';
