@@ -12,6 +12,6 @@ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" --parallel --target stochtex_triplanar_sphere
 mkdir -p "$out"
 for name in moss_ground_512 metal_grey_256; do
-  "$build/stochtex_triplanar_sphere" "$root/data/exemplars/$name.png" "$out/${name}_sphere.png" \
+  "$build/bench/stochtex_triplanar_sphere" "$root/data/exemplars/$name.png" "$out/${name}_sphere.png" \
     256 1
 done
