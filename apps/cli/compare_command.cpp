@@ -16,6 +16,7 @@
 #include "core/memory_budget.hpp"
 #include "io/image_io.hpp"
 #include "metrics/metrics.hpp"
+#include "progress.hpp"
 #include "report/compare.hpp"
 #include "report/measures.hpp"
 
@@ -83,17 +84,26 @@ Command add_compare_command(CLI::App& app) {
                 load_exemplar(options->exemplar, [&](int width, int height, int channels) {
                   budget(0, width, height, channels, options->exemplar);
                 });
-            Comparison comparison(exemplar.view());
-            for (const std::string& path : options->images) {
-              ImageReadLimits limits;
-              limits.check_declared = [&](int width, int height, int channels) {
-                budget(exemplar.pixel_count(), width, height,
-                       std::max(channels, exemplar.channels()), path);
-              };
-              const ImageF image = read_image(path, limits);
-              add_checked(comparison, exemplar.view(), options->exemplar, image.view(), path);
-            }
-            const ComparisonReport report = comparison.report();
+            // The bar ends (its destructor) before the report is printed.
+            const ComparisonReport report = [&] {
+              Progress progress("compare");
+              progress.message(fmt::format("measuring {} image(s) against {}...",
+                                           options->images.size(), options->exemplar));
+              Comparison comparison(exemplar.view());
+              for (const std::string& path : options->images) {
+                progress(static_cast<double>(comparison.images()) /
+                         static_cast<double>(options->images.size()));
+                ImageReadLimits limits;
+                limits.check_declared = [&](int width, int height, int channels) {
+                  budget(exemplar.pixel_count(), width, height,
+                         std::max(channels, exemplar.channels()), path);
+                };
+                const ImageF image = read_image(path, limits);
+                add_checked(comparison, exemplar.view(), options->exemplar, image.view(), path);
+              }
+              progress(1.0);
+              return comparison.report();
+            }();
             if (options->json)
               fmt::print("{}\n", json(report, options->exemplar, options->images).dump(2));
             else

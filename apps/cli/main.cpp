@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/input_file.hpp"
+#include "progress.hpp"
 #include "stochtex/error.hpp"
 
 namespace {
@@ -24,6 +25,12 @@ int run(int argc, char** argv) {
   CLI::App app{"stochtex: infinite, seedable, filterable textures from a small exemplar photo"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "stochtex 0.1.0");
+  bool progress_lines = false;
+  app.add_flag("--progress", progress_lines,
+               "show progress as a line every 2 seconds also when stderr is not a terminal (a "
+               "log, CI); on a terminal a bar is always shown");
+  // --progress may follow the subcommand, as users type it.
+  app.fallthrough();
   const std::vector<cli::Command> commands{
       cli::add_analyze_command(app),       cli::add_mix_command(app),
       cli::add_render_command(app),        cli::add_render_mesh_command(app),
@@ -44,6 +51,7 @@ int run(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : cli::kExitUsage;
   }
 
+  cli::set_progress_lines(progress_lines);
   try {
     for (const cli::Command& command : commands)
       if (*command.subcommand) {

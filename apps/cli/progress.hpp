@@ -1,9 +1,15 @@
 #pragma once
-// A progress bar on stderr, shown only when stdout is a terminal (never in pipes, CI or --json).
+// Progress on stderr: a bar when stdout and stderr are terminals; with `stochtex --progress` and
+// stderr not a terminal (a log, CI), a line "analyse: 40%" at most every 2 seconds and at the end;
+// otherwise nothing (pipes, --json).
 
+#include <chrono>
 #include <string>
 
 namespace stochtex::cli {
+
+// `stochtex --progress`: progress lines where no bar can be drawn.
+void set_progress_lines(bool on);
 
 class Progress {
  public:
@@ -16,10 +22,12 @@ class Progress {
   void message(const std::string& text) const;
 
  private:
+  enum class Mode { none, bar, lines };
   std::string label_;
-  bool enabled_;
+  Mode mode_;
   bool drawn_ = false;
   int last_percent_ = -1;
+  std::chrono::steady_clock::time_point last_line_;
 };
 
 }  // namespace stochtex::cli

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Photos as artists have them (issue 37): a JPEG larger than a method analyses by default is
 # downscaled in linear light and a note says so; --crop and --scale-input choose the part and the
-# scale; bad choices are refused in one sentence. The decoders themselves are tested in
+# scale; bad choices are refused in one sentence; --progress shows progress in a log. The decoders themselves are tested in
 # tests/unit/image_formats_test.cpp and fuzzed in tests/fuzz/image_fuzz.cpp.
 # usage and running by hand: tests/cli/common.sh.
 # shellcheck source-path=SCRIPTDIR source=common.sh
@@ -49,6 +49,19 @@ expect_ok "analyze at a chosen scale: no note" \
 expect_ok "synth a JPEG photo in one command" \
   "$stochtex" synth "$photo" "${fast[@]}" -o "$out/photo_synth.png" --size 256x256 &&
   expect_file "synth wrote its PNG" "$out/photo_synth.png"
+
+# Progress in a log (stderr not a terminal): lines with --progress, wherever it is given; none
+# without.
+expect_ok "compare --progress in a log" "$stochtex" compare "$out/photo_synth.png" \
+  "$out/photo_synth.png" --progress &&
+  if grep -qx 'compare: 100%' "$work/stderr"; then pass; else
+    fail "--progress prints progress lines" "$(cat "$work/stderr")"
+  fi
+expect_ok "compare without --progress in a log" "$stochtex" compare "$out/photo_synth.png" \
+  "$out/photo_synth.png" &&
+  if [[ ! -s $work/stderr ]]; then pass; else
+    fail "no progress in a log by default" "$(cat "$work/stderr")"
+  fi
 find "$out" -mindepth 1 -delete
 
 expect_error "a crop outside the photo" 2 "photo.jpg" \
