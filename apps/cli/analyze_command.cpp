@@ -19,6 +19,7 @@
 #include "core/memory_budget.hpp"
 #include "io/exemplar_region.hpp"
 #include "io/image_io.hpp"
+#include "metrics/metrics.hpp"
 #include "progress.hpp"
 #include "registry.hpp"
 #include "stochtex/material.hpp"
@@ -185,6 +186,13 @@ Model run_analyze(const AnalyzeOptions& options, std::vector<std::string>* notes
       read_region(options.input, option_space(options.colour_space), options);
   validate_exemplar(exemplar.image.view(), options.input);
   if (notes && !exemplar.note.empty()) notes->push_back(exemplar.note);
+  const WrapSteps wrap = wrap_steps(exemplar.image.view());
+  if (notes && wrap.largest() > kTileableWrapStep)
+    notes->push_back(fmt::format(
+        "{}: not tileable: a repeat of it steps {:.1f} times as much at its wrap as between "
+        "neighbouring pixels (x {:.1f}, y {:.1f}); tiling's patches, which wrap, may show seams "
+        "(docs/inputs.md)",
+        options.input, wrap.largest(), wrap.x, wrap.y));
   Progress progress("analyse");
   progress.message(fmt::format("analysing {} with {}...", options.input, options.method));
   return analyze(

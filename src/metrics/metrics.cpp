@@ -321,6 +321,26 @@ double covariance_error(const ColourStatistics& a, const ColourStatistics& refer
   return relative(std::sqrt(difference), std::sqrt(norm));
 }
 
+WrapSteps wrap_steps(ImageView<const float> image) {
+  if (!image.data || image.width < 2 || image.height < 2 || image.channels < 1)
+    throw std::invalid_argument("wrap_steps needs an image of at least 2x2 pixels");
+  double inside_x = 0.0, wrap_x = 0.0, inside_y = 0.0, wrap_y = 0.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < image.channels; ++c) {
+        const double value = image.at(x, y, c);
+        const double right = image.at(x + 1 < image.width ? x + 1 : 0, y, c);
+        const double below = image.at(x, y + 1 < image.height ? y + 1 : 0, c);
+        (x + 1 < image.width ? inside_x : wrap_x) += std::abs(right - value);
+        (y + 1 < image.height ? inside_y : wrap_y) += std::abs(below - value);
+      }
+  // Means: the wrap has one column (row), the inside width - 1 (height - 1) of them.
+  const auto ratio = [](double wrap, double inside, int steps) {
+    return inside > 0.0 ? wrap * steps / inside : 1.0;
+  };
+  return {ratio(wrap_x, inside_x, image.width - 1), ratio(wrap_y, inside_y, image.height - 1)};
+}
+
 double variance_nonstationarity(std::span<const ImageView<const float>> renders, int block) {
   if (renders.size() < 2)
     throw std::invalid_argument("variance_nonstationarity: at least 2 renders are needed");

@@ -50,6 +50,18 @@ expect_ok "synth a JPEG photo in one command" \
   "$stochtex" synth "$photo" "${fast[@]}" -o "$out/photo_synth.png" --size 256x256 &&
   expect_file "synth wrote its PNG" "$out/photo_synth.png"
 
+# Tileability: a photo cut from a larger scene is said to be one; a tileable exemplar is not.
+expect_ok "analyze a non-tileable exemplar" "$stochtex" analyze "$textures/water_caustics_256.png" \
+  "${fast[@]}" -o "$models/water.stx" &&
+  if grep -qF "water_caustics_256.png: not tileable: a repeat of it steps 4.6 times as much at its wrap as between neighbouring pixels (x 4.6, y 4.4)" "$work/stderr"; then pass; else
+    fail "a non-tileable exemplar is said to be one" "$(cat "$work/stderr")"
+  fi
+expect_ok "analyze a tileable exemplar" "$stochtex" analyze "$textures/grass_lawn_256.png" \
+  "${fast[@]}" -o "$models/grass.stx" &&
+  if ! grep -q "not tileable" "$work/stderr"; then pass; else
+    fail "a tileable exemplar is not said to be otherwise" "$(cat "$work/stderr")"
+  fi
+
 # Progress in a log (stderr not a terminal): lines with --progress, wherever it is given; none
 # without.
 expect_ok "compare --progress in a log" "$stochtex" compare "$out/photo_synth.png" \
