@@ -17,7 +17,12 @@
 
 namespace stochtex {
 
-std::vector<unsigned char> read_all(const Input& input) {
+std::vector<unsigned char> read_all(const Input& input, double max_bytes) {
+  if (static_cast<double>(input.bytes) > max_bytes)
+    throw Error(ErrorCode::format,
+                input.name + " is " + std::to_string(input.bytes) +
+                    " bytes, more than its format can hold for an image within the limits; it is "
+                    "corrupt");
   std::vector<unsigned char> bytes(input.bytes);
   if (std::fseek(input.file, 0, SEEK_SET) != 0 ||
       std::fread(bytes.data(), 1, bytes.size(), input.file) != bytes.size())
@@ -125,8 +130,9 @@ namespace {
 
 // Little CMS allocates from what a profile declares (a lookup table's grid) before it reads the
 // data: within the contexts below, no allocation may exceed 32 MiB, well above what a profile
-// that fits in a PNG chunk (kMaxPngChunkBytes) needs, so that a hostile profile is refused
-// rather than allocated (docs/design.md §9). Little CMS handles a failed allocation as an error.
+// that fits in a PNG chunk (8 MiB) or a JPEG's APP2 markers (255 of 64 KiB) needs, so that a
+// hostile profile is refused rather than allocated (docs/design.md §9). Little CMS handles a failed
+// allocation as an error.
 constexpr cmsUInt32Number kMaxIccAllocation = cmsUInt32Number{32} << 20;
 
 void* icc_malloc(cmsContext, cmsUInt32Number size) {

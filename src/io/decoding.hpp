@@ -27,10 +27,10 @@ struct Input {
   std::string stream_name;  // in OpenEXR's messages: the path as it is, or the caller's name
 };
 
-// The whole input, for the decoders that take a buffer (WebP, TGA). Its size is the file's, which
-// the caller's checks bound before this is called only where the format's header is in the first
-// bytes; Error(io) when it cannot be read.
-std::vector<unsigned char> read_all(const Input& input);
+// The whole input, for the decoders that take a buffer (WebP, TGA): Error(format) before reading,
+// when it is larger than `max_bytes`, the most a valid file of its format can hold; Error(io)
+// when it cannot be read.
+std::vector<unsigned char> read_all(const Input& input, double max_bytes);
 
 // Refuses a declared size before anything proportional to it is allocated (docs/design.md §9):
 // Error(format) for a size below one pixel, Error(invalid_input) beyond limits.max_pixels.

@@ -73,7 +73,11 @@ ImageF read_tga(const Input& input, const ImageReadLimits& limits, ImageColour* 
     throw Error(ErrorCode::invalid_input, input.name +
                                               " is a TGA file of more than 2 GiB; save "
                                               "it as PNG, TIFF or OpenEXR");
-  const std::vector<unsigned char> bytes = read_all(input);
+  // At most a run-length packet per pixel, the header, its identification, a colour map and the
+  // TGA 2.0 extension and developer areas (1 MiB is far more than writers put there).
+  const std::vector<unsigned char> bytes =
+      read_all(input, kTgaHeaderBytes + header.id_bytes + map_bytes + pixels * (1.0 + pixel_bytes) +
+                          double(1 << 20));
   const auto unreadable = [&] {
     const char* reason = stbi_failure_reason();
     return Error(ErrorCode::format,

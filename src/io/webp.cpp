@@ -20,7 +20,10 @@ bool is_webp(std::span<const unsigned char> first) {
 }
 
 ImageF read_webp(const Input& input, const ImageReadLimits& limits, ImageColour* colour) {
-  const std::vector<unsigned char> bytes = read_all(input);
+  // Lossless WebP codes a pixel in at most about its 4 bytes; metadata (ICC, EXIF, XMP) in the
+  // rest of 64 MiB.
+  const std::vector<unsigned char> bytes =
+      read_all(input, 4.5 * static_cast<double>(limits.max_pixels) + double(64 << 20));
   const auto corrupt = [&](const std::string& problem) {
     return Error(ErrorCode::format, input.name + " is not a readable WebP image (" + problem +
                                         "); it is truncated or corrupt, export it again");

@@ -233,6 +233,11 @@ TEST_F(ImageFormatsTest, BadFilesAreRefusedInOneSentence) {
     FileBytes cut(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(bytes.size() / 2));
     EXPECT_EQ(read_error(file(name), cut).code(), ErrorCode::format);
   }
+  // A file far larger than its image can take is refused before it is read whole.
+  FileBytes padded = test_support::tga_file(grid_image(2, 2, 3), false);
+  padded.resize(padded.size() + (std::size_t{2} << 20));
+  const std::string large = read_error(file("padded.tga"), padded).what();
+  EXPECT_NE(large.find("more than its format can hold"), std::string::npos) << large;
   // A CMYK JPEG says what it is and what to do.
   ImageF four = grid_image(16, 8, 4);
   const std::string cmyk =
