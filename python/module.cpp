@@ -448,8 +448,7 @@ PYBIND11_MODULE(_stochtex, m) {
       },
       py::arg("path"),
       "The image file at path (PNG, JPEG, TIFF, WebP, TGA, OpenEXR or PFM) as `stochtex analyze` "
-      "reads it: a float32 "
-      "HxWxC array, a PNG's values divided by 255 or 65535 as stored.");
+      "reads it: a float32 HxWxC array, 8- and 16-bit values divided by 255 or 65535 as stored.");
   m.def(
       "write_image",
       [](const std::filesystem::path& path, const py::array& image, int bit_depth,
