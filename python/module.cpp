@@ -223,7 +223,7 @@ RenderJob checked_render(int width, int height, int channels, std::array<double,
 
 py::dict render_material(const Model& model, int width, int height, std::array<double, 2> origin,
                          double scale, std::uint32_t seed, int threads,
-                         std::array<std::int64_t, 2> offset) {
+                         std::array<std::int64_t, 2> offset, bool encoded) {
   const RenderJob job =
       checked_render(width, height, model.channels(), origin, scale, threads, offset);
   check_memory_budget(
@@ -236,6 +236,12 @@ py::dict render_material(const Model& model, int width, int height, std::array<d
     maps = render_maps(model, job.grid, [&](const Grid& part, ImageView<float> out) {
       render(model, part, seed, out, job.options);
     });
+    // A colour map's linear light back to sRGB-encoded values, as its PNG holds them.
+    if (encoded)
+      for (NamedImage& map : maps)
+        for (const MapInfo& info : model.maps())
+          if (info.name == map.name && info.colour_space != ColourSpace::data)
+            encode_colour_channels(map.image.view());
   }
   py::dict result;
   for (auto& [name, map] : maps) result[py::str(name)] = to_array(std::move(map));
@@ -393,9 +399,10 @@ PYBIND11_MODULE(_stochtex, m) {
       .def("render_maps", method(&render_material), py::arg("width"), py::arg("height"),
            py::arg("origin") = std::array<double, 2>{0.0, 0.0}, py::arg("scale") = 1.0,
            py::arg("seed") = 0, py::arg("threads") = 0,
-           py::arg("offset") = std::array<std::int64_t, 2>{0, 0},
+           py::arg("offset") = std::array<std::int64_t, 2>{0, 0}, py::arg("encoded") = false,
            "A material's maps of the render's grid, {name: HxWxC array} (a derived normal map "
-           "from the height around each pixel); render's arguments.")
+           "from the height around each pixel); render's arguments. A colour map of srgb or "
+           "linear colour is linear light, or with encoded=True sRGB-encoded as its PNG holds it.")
       .def("split", method(&split_image), py::arg("image"),
            "A render of a material cut into its maps: {name: HxWxC array}, a normal map as "
            "unit normals encoded 0.5 + 0.5 n (stochtex.split_maps).")

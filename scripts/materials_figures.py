@@ -74,7 +74,9 @@ for label, method, params in [("texton", "texton", {}), ("tiling", "tiling", {})
     start = time.perf_counter()
     model = stochtex.analyze_material(maps, method, **params)
     seconds = time.perf_counter() - start
-    parts = model.render_maps(SIZE, SIZE, seed=1)
+    # The albedo (sRGB) encoded as its PNG and the exemplar hold it, for the pictures and the
+    # correlations with the other maps.
+    parts = model.render_maps(SIZE, SIZE, seed=1, encoded=True)
     picture = {name: part[:PICTURE, :PICTURE] for name, part in parts.items()}
     save(picture["albedo"], f"{label}_albedo")
     save(picture["normal"], f"{label}_normal")

@@ -433,6 +433,24 @@ def test_material_maps_analyse_render_and_split(exemplar):
     assert pickle.loads(pickle.dumps(model)).maps == model.maps
 
 
+def test_material_colour_maps_render_linear_light_or_encoded(exemplar, cli, tmp_path):
+    """A CLI material's srgb albedo: render_maps gives linear light, and with
+    encoded=True sRGB-encoded values as its PNG holds them; the data maps stay as they are."""
+    write_pfm(tmp_path / "albedo.pfm", exemplar)
+    write_pfm(tmp_path / "roughness.pfm", smooth_noise(32, 40, 1, 11))
+    subprocess.run([cli, "analyze", "--map", f"albedo={tmp_path / 'albedo.pfm'}",
+                    "--map", f"roughness={tmp_path / 'roughness.pfm'}", "-m", "tiling",
+                    "--colour-space", "srgb", "-o", str(tmp_path / "material.stx")], check=True)
+    model = stochtex.load(tmp_path / "material.stx")
+    linear = model.render_maps(24, 16, seed=3)
+    encoded = model.render_maps(24, 16, seed=3, encoded=True)
+    expected = numpy.where(linear["albedo"] <= 0.0031308, linear["albedo"] * 12.92,
+                           1.055 * numpy.abs(linear["albedo"]) ** (1 / 2.4) - 0.055)
+    assert numpy.abs(encoded["albedo"] - expected).max() < 1e-5
+    assert not numpy.allclose(encoded["albedo"], linear["albedo"])
+    assert numpy.array_equal(linear["roughness"], encoded["roughness"])
+
+
 def test_material_normal_maps_come_back_unit_length(exemplar):
     # A normal map of the gradient of a smooth height, encoded 0.5 + 0.5 n.
     height = smooth_noise(32, 40, 1, 5)[:, :, 0] * 8.0
