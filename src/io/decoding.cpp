@@ -156,18 +156,19 @@ cmsPluginMemHandler icc_memory_plugin = {
     nullptr,
     nullptr};
 
-// The first error Little CMS reports in a context, for the message that refuses the profile.
+}  // namespace
+
+// The first error Little CMS reports in a context, for the message that refuses the profile
+// (outside the anonymous namespace: IccConversion, declared in the header, holds one).
 struct IccErrors {
   char first[200] = {};
 };
 
-void on_icc_error(cmsContext context, cmsUInt32Number, const char* text) {
+static void on_icc_error(cmsContext context, cmsUInt32Number, const char* text) {
   auto* errors = static_cast<IccErrors*>(cmsGetContextUserData(context));
   if (errors && !errors->first[0] && text)
     std::snprintf(errors->first, sizeof errors->first, "%s", text);
 }
-
-}  // namespace
 
 // An ICC profile's conversion of an image's colour channels to sRGB (the built-in sRGB profile;
 // for grey, a grey profile with the sRGB tone curve), relative colorimetric, on floats, in place:

@@ -1,12 +1,13 @@
 // Coverage-guided fuzzing (libFuzzer) of the image readers (docs/design.md §9): the input is an
 // image file's bytes in any format, decoded from memory by decode_image, which shares read_image's
-// decoders and recognises the format by its first bytes (PNG, OpenEXR, PFM; the seed corpus in
-// tests/fuzz/corpus/image has each, and PNGs with colour chunks: iCCP, cICP). Each input is
-// decoded twice: as stored, then with an ImageColour, which reads the colour chunks (the ICC
-// profile through Little CMS) and converts the values. Every input must decode to a consistent
-// image or be refused with stochtex::Error; with its colour, a PNG's values must be finite and
-// its space sRGB or linear. Anything else (another exception, a crash, a sanitizer report, an
-// allocation beyond libFuzzer's -rss_limit_mb) is a finding. Built by scripts/sanitize.sh.
+// decoders and recognises the format by its first bytes (PNG, OpenEXR, PFM, JPEG, TIFF, WebP, TGA;
+// the seed corpus in tests/fuzz/corpus/image has each, and PNGs with colour chunks: iCCP, cICP).
+// Each input is decoded twice: as stored, then with an ImageColour, which reads the colour chunks
+// (the ICC profile through Little CMS) and converts the values. Every input must decode to a
+// consistent image or be refused with stochtex::Error; with its colour, a PNG's values must be
+// finite and its space sRGB or linear. Anything else (another exception, a crash, a sanitizer
+// report, an allocation beyond libFuzzer's -rss_limit_mb) is a finding. Built by
+// scripts/sanitize.sh.
 
 #include <cmath>
 #include <cstddef>
