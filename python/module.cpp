@@ -112,8 +112,9 @@ Model analyze_array(const py::array& array, const std::string& method, std::uint
 // map's kind by name where its name does not imply it.
 Model analyze_maps(const py::dict& arrays, const std::string& method, std::uint32_t seed,
                    const py::dict& kinds, const std::string& normal_y, const py::object& progress,
-                   const py::kwargs& params) {
+                   const std::string& colour, const py::kwargs& params) {
   const ParamValues values = resolve_params(method, text_params(params));
+  const ColourSpace colour_space = colour_space_argument(colour, "colour");
   if (normal_y != "up" && normal_y != "down")
     throw py::value_error("normal_y must be 'up' or 'down', not '" + normal_y + "'");
   // The copies of the arrays held at once, as `stochtex analyze --map` reads the files.
@@ -139,7 +140,10 @@ Model analyze_maps(const py::dict& arrays, const std::string& method, std::uint3
         throw py::value_error("the kind '" + kind_name + "' of map '" + names[i] +
                               "' is not one of colour, normal, height, scalar");
     }
-    maps.push_back({names[i], kind, images[i].view(), names[i] + " array"});
+    // Colour maps (albedo, base colour, emission) in `colour`; every other kind is data.
+    const bool colour_map = kind.value_or(default_map_kind(names[i])) == MapKind::colour;
+    maps.push_back({names[i], kind, images[i].view(), names[i] + " array",
+                    colour_map ? colour_space : ColourSpace::data});
   }
   const auto hook = progress_hook(progress);
   py::gil_scoped_release release;
@@ -151,7 +155,8 @@ py::list map_list(const Model& model) {
   for (const MapInfo& map : model.maps()) {
     py::dict entry(py::arg("name") = map.name,
                    py::arg("kind") = std::string(map_kind_name(map.kind)),
-                   py::arg("channels") = map.channels);
+                   py::arg("channels") = map.channels,
+                   py::arg("colour_space") = std::string(colour_space_name(map.colour_space)));
     if (!map.derived_from.empty()) {
       entry["from"] = map.derived_from;
       entry["scale"] = map.slope_scale;
@@ -439,9 +444,13 @@ PYBIND11_MODULE(_stochtex, m) {
         "linear light) or 'linear'.");
   m.def("analyze_material", &analyze_maps, py::arg("maps"), py::arg("method"), py::arg("seed") = 0,
         py::arg("kinds") = py::dict(), py::arg("normal_y") = "up", py::arg("progress") = py::none(),
+        py::arg("colour") = "srgb",
         "Analyses a material: maps is a dict {name: HxW or HxWxC array} of aligned maps, in "
         "channel order (docs/materials.md); kinds {name: 'colour' | 'normal' | 'height' | "
-        "'scalar'} where the name does not imply it; normal_y 'down' for DirectX normal maps.");
+        "'scalar'} where the name does not imply it; normal_y 'down' for DirectX normal maps. "
+        "colour is what the colour maps' values are: 'srgb' (the convention for an albedo, the "
+        "default: render_maps returns its linear light), 'linear' or 'data'; the other maps are "
+        "data.");
   m.def(
       "load", [](const std::filesystem::path& path) { return load_model(path); }, py::arg("path"));
   m.def(

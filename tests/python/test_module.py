@@ -422,8 +422,15 @@ def test_ctrl_c_interrupts_a_long_analysis():
 def test_material_maps_analyse_render_and_split(exemplar):
     roughness = smooth_noise(32, 40, 1, 11)[:, :, 0]
     model = stochtex.analyze_material({"albedo": exemplar, "roughness": roughness}, "tiling")
-    assert model.maps == [{"name": "albedo", "kind": "colour", "channels": 3},
-                          {"name": "roughness", "kind": "scalar", "channels": 1}]
+    # The albedo is srgb by convention (colour="srgb", the default), the other maps data.
+    assert model.maps == [
+        {"name": "albedo", "kind": "colour", "channels": 3, "colour_space": "srgb"},
+        {"name": "roughness", "kind": "scalar", "channels": 1, "colour_space": "data"}]
+    as_data = stochtex.analyze_material({"albedo": exemplar, "roughness": roughness}, "tiling",
+                                        colour="data")
+    assert as_data.maps[0]["colour_space"] == "data"
+    with pytest.raises(ValueError, match="colour must be"):
+        stochtex.analyze_material({"albedo": exemplar}, "tiling", colour="oklab")
     assert model.channels == 4
     image = model.render(24, 16, seed=3)
     maps = model.split(image)
@@ -458,7 +465,8 @@ def test_material_normal_maps_come_back_unit_length(exemplar):
     n = numpy.stack([-gx, gy, numpy.ones_like(gx)], axis=2)
     n /= numpy.linalg.norm(n, axis=2, keepdims=True)
     model = stochtex.analyze_material({"normal": (0.5 + 0.5 * n).astype(numpy.float32)}, "tiling")
-    assert model.maps == [{"name": "normal", "kind": "normal", "channels": 2}]
+    assert model.maps == [{"name": "normal", "kind": "normal", "channels": 2,
+                           "colour_space": "data"}]
     normal = model.split(model.render(32, 32))["normal"] * 2.0 - 1.0
     assert numpy.allclose(numpy.linalg.norm(normal, axis=2), 1.0, atol=1e-5)
 
