@@ -56,6 +56,14 @@ expect_ok "analyze a non-tileable exemplar" "$stochtex" analyze "$textures/water
   if grep -qF "water_caustics_256.png: not tileable: a repeat of it steps 4.6 times as much at its wrap as between neighbouring pixels (x 4.6, y 4.4)" "$work/stderr"; then pass; else
     fail "a non-tileable exemplar is said to be one" "$(cat "$work/stderr")"
   fi
+expect_ok "synth says it too" "$stochtex" synth "$textures/water_caustics_256.png" "${fast[@]}" \
+  -o "$work/water.png" --size 64x64 &&
+  if grep -qF "water_caustics_256.png: not tileable" "$work/stderr" &&
+    grep -qF "water_caustics_256.png: srgb (no colour chunk: sRGB by default)" "$work/stderr"; then
+    pass
+  else
+    fail "synth says what analyze says" "$(cat "$work/stderr")"
+  fi
 expect_ok "analyze a tileable exemplar" "$stochtex" analyze "$textures/grass_lawn_256.png" \
   "${fast[@]}" -o "$models/grass.stx" &&
   if ! grep -q "not tileable" "$work/stderr"; then pass; else
