@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/srgb.hpp"
+#include "stochtex/colour.hpp"
 
 namespace stochtex {
 namespace {
@@ -86,8 +87,7 @@ ImageF exemplar_region(ImageF image, ColourSpace space, const ExemplarRegion& re
   const int channels = image.channels();
   const bool decode = space == ColourSpace::srgb;
   const auto is_colour = [&](std::size_t i) {
-    const int c = static_cast<int>(i % channels);
-    return channels <= 2 ? c == 0 : c < 3;
+    return is_colour_channel(static_cast<int>(i % channels), channels);
   };
   if (decode) {
     std::span<float> values = image.pixels();
