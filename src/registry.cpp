@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "core/memory_budget.hpp"
+#include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
 #include "spectral/adsn.hpp"
 #include "stochtex/stochtex.hpp"
@@ -416,7 +417,8 @@ Model analyze_exemplar(std::string_view method, ImageView<const float> exemplar,
   std::vector<ColourSpace> spaces = maps.empty()
                                         ? image_channel_spaces(colour_space, exemplar.channels)
                                         : map_channel_spaces(maps);
-  return assemble_model(std::move(resolved), std::move(model), std::move(maps), std::move(spaces));
+  return assemble_model(std::move(resolved), std::move(model), std::move(maps), std::move(spaces),
+                        std::nullopt, wrap_steps(exemplar));
 }
 
 Model analyze(std::string_view method, ImageView<const float> exemplar, const ParamValues& params,

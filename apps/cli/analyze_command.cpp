@@ -186,18 +186,25 @@ Model run_analyze(const AnalyzeOptions& options, std::vector<std::string>* notes
       read_region(options.input, option_space(options.colour_space), options);
   validate_exemplar(exemplar.image.view(), options.input);
   if (notes && !exemplar.note.empty()) notes->push_back(exemplar.note);
-  const WrapSteps wrap = wrap_steps(exemplar.image.view());
-  if (notes && wrap.largest() > kTileableWrapStep)
-    notes->push_back(fmt::format(
-        "{}: not tileable: a repeat of it steps {:.1f} times as much at its wrap as between "
-        "neighbouring pixels (x {:.1f}, y {:.1f}); tiling's patches, which wrap, may show seams "
-        "(docs/inputs.md)",
-        options.input, wrap.largest(), wrap.x, wrap.y));
   Progress progress("analyse");
   progress.message(fmt::format("analysing {} with {}...", options.input, options.method));
-  return analyze(
+  Model model = analyze(
       options.method, exemplar.image.view(), params, options.seed, options.input,
       [&](double fraction) { progress(fraction); }, exemplar.space);
+  const std::optional<WrapSteps> wrap = model.exemplar_wrap();
+  if (notes && wrap && wrap->largest() > kTileableWrapStep) {
+    // Tiling's patches read across the border unless it makes the exemplar tileable; the
+    // Gaussian methods estimate the spectrum without the border (docs/inputs.md).
+    const auto made = model.params().find("make_tileable");
+    const bool seams = made != model.params().end() && made->second == 0.0;
+    notes->push_back(fmt::format(
+        "{}: not tileable: a repeat of it steps {:.1f} times as much at its wrap as between "
+        "neighbouring pixels (x {:.1f}, y {:.1f}); {}",
+        options.input, wrap->largest(), wrap->x, wrap->y,
+        seams ? "with make_tileable=off tiling's patches show that seam"
+              : "the analysis keeps that seam out of the renders (docs/inputs.md)"));
+  }
+  return model;
 }
 
 Command add_analyze_command(CLI::App& app) {

@@ -36,6 +36,9 @@ void print_text(const Model& model, const std::string& path, const std::string& 
   const auto doc = nlohmann::json::parse(description);
   fmt::print("model     {}\nmethod    {}\nchannels  {}\n", path, model.method(), model.channels());
   if (model.maps().empty()) fmt::print("colour    {}\n", colour_space_name(model.colour_space()));
+  if (const auto wrap = model.exemplar_wrap())
+    fmt::print("wrap step x {:.2f}, y {:.2f}: the exemplar {}\n", wrap->x, wrap->y,
+               wrap->largest() > kTileableWrapStep ? "is not tileable" : "tiles");
   for (const auto& [name, value] : doc["params"].items())
     fmt::print("  {} = {}\n", name, format_param(model.method(), name, value.get<double>()));
   for (const MapInfo& map : model.maps())

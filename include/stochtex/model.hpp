@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -91,6 +92,20 @@ struct MapInfo {
 };
 std::string_view map_kind_name(MapKind kind);
 
+// How tileable an exemplar is: the mean absolute difference between its last and first columns
+// (x) or rows (y), the step a repeat of it shows at its wrap, divided by the mean absolute
+// difference between neighbouring columns (rows) inside it; all channels together (wrap_steps,
+// metrics/metrics.hpp, measures it). A tileable image gives about 1, a photo cut from a larger
+// scene more (docs/inputs.md).
+struct WrapSteps {
+  double x = 1.0;
+  double y = 1.0;
+  double largest() const { return x > y ? x : y; }
+};
+// Beyond this wrap step an exemplar is not tileable: above the tileable exemplars' spread (1.25)
+// with a margin for smaller ones' noisier wrap.
+inline constexpr double kTileableWrapStep = 1.5;
+
 struct ModelData;  // the closed variant of method models (src/model_data.hpp)
 
 class Model {
@@ -108,6 +123,10 @@ class Model {
   // render's values are: linear light for srgb and linear, as they are for data (a model
   // written before colour spaces). A material's maps each have theirs (MapInfo::colour_space).
   ColourSpace colour_space() const;
+  // The wrap steps of the exemplar it was analysed from, as given (before any change the method
+  // made to it, such as tiling's make_tileable); none for a model made without one exemplar (a
+  // target spectrum, a mix) or written before they were kept.
+  std::optional<WrapSteps> exemplar_wrap() const;
   const ModelData& data() const { return *data_; }
 
  private:

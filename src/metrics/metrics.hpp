@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "stochtex/image.hpp"
+#include "stochtex/model.hpp"
 
 namespace stochtex {
 
@@ -91,22 +92,12 @@ double covariance_error(const ColourStatistics& a, const ColourStatistics& refer
 // block x block pixels; pixels beyond the last whole block are ignored.
 double variance_nonstationarity(std::span<const ImageView<const float>> renders, int block);
 
-// How far an image is from tiling seamlessly: along each axis, the mean absolute difference between
-// its last and first columns (x) or rows (y), the step a repeat of it shows at its wrap, divided by
-// the mean absolute difference between neighbouring columns (rows) inside it; all channels
-// together. A tileable image gives about 1 (0.85 to 1.25 on the shipped tileable exemplars: the
-// wrap is one column's sample); a photo cut from a larger scene more (water_caustics_256 4.6,
-// wood_planks_256 5.6 and 7.1, docs/inputs.md). Needs at least 2x2 pixels and an image that is not
-// constant along the axis (else that axis gives 1).
-struct WrapSteps {
-  double x = 1.0;
-  double y = 1.0;
-  double largest() const { return x > y ? x : y; }
-};
+// How far an image is from tiling seamlessly (WrapSteps, stochtex/model.hpp). A tileable image
+// gives about 1 (0.85 to 1.25 on the shipped tileable exemplars: the wrap is one column's sample);
+// a photo cut from a larger scene more (water_caustics_256 4.6, wood_planks_256 5.6 and 7.1,
+// docs/inputs.md). Needs at least 2x2 pixels and an image that is not constant along the axis
+// (else that axis gives 1).
 WrapSteps wrap_steps(ImageView<const float> image);
-// Beyond this wrap step an exemplar is not tileable: above the tileable exemplars' spread (1.25)
-// with a margin for smaller ones' noisier wrap.
-inline constexpr double kTileableWrapStep = 1.5;
 
 // The measured numbers of one synthesis against its exemplar, as the rows of the measure table
 // (report/measures.hpp) read them. Each caller fills the measures it takes: compare_images the

@@ -40,6 +40,7 @@ ModelRecord record_of(const Model& model) {
   record.maps = model.data().maps;
   const ModelColour& colour = model.data().colour;
   if (record.maps.empty()) record.colour_space = image_colour_space(colour);
+  record.exemplar_wrap = model.data().exemplar_wrap;
   if (!colour.removed_deviation.empty())
     record.arrays.push_back({std::string(kRemovedDeviationArray),
                              {kRemovedSteps, model.channels()},
@@ -170,7 +171,8 @@ std::vector<float> measure_removed_deviation(const MethodModel& model) {
 
 Model assemble_model(ParamValues params, MethodModel model, std::vector<MapInfo> maps,
                      std::vector<ColourSpace> spaces,
-                     std::optional<std::vector<float>> removed_deviation) {
+                     std::optional<std::vector<float>> removed_deviation,
+                     std::optional<WrapSteps> exemplar_wrap) {
   const int channels = std::visit([](const auto& m) { return m.channels(); }, model);
   if (std::all_of(spaces.begin(), spaces.end(),
                   [](ColourSpace space) { return space == ColourSpace::data; }))
@@ -190,14 +192,14 @@ Model assemble_model(ParamValues params, MethodModel model, std::vector<MapInfo>
       throw std::invalid_argument("the removed deviations of the srgb channels are missing");
     colour.removed_deviation = std::move(*removed_deviation);
   }
-  return Model(std::make_shared<const ModelData>(
-      ModelData{std::move(params), std::move(model), std::move(maps), std::move(colour)}));
+  return Model(std::make_shared<const ModelData>(ModelData{
+      std::move(params), std::move(model), std::move(maps), std::move(colour), exemplar_wrap}));
 }
 
 Model with_method_model(const Model& model, MethodModel edited) {
   const ModelData& data = model.data();
-  return assemble_model(data.params, std::move(edited), data.maps, data.colour.spaces,
-                        std::nullopt);
+  return assemble_model(data.params, std::move(edited), data.maps, data.colour.spaces, std::nullopt,
+                        data.exemplar_wrap);
 }
 
 std::string_view Model::method() const {
@@ -211,6 +213,10 @@ int Model::channels() const {
 
 ColourSpace Model::colour_space() const {
   return image_colour_space(data_->colour);
+}
+
+std::optional<WrapSteps> Model::exemplar_wrap() const {
+  return data_->exemplar_wrap;
 }
 
 const ParamValues& Model::params() const {
@@ -228,7 +234,8 @@ Model with_colour_space(const Model& model, ColourSpace space) {
         "with_colour_space: a material's maps each have their colour space (MapInfo)");
   const ModelData& data = model.data();
   return assemble_model(data.params, data.model, data.maps,
-                        image_channel_spaces(space, model.channels()));
+                        image_channel_spaces(space, model.channels()), std::nullopt,
+                        data.exemplar_wrap);
 }
 
 std::vector<std::uint8_t> serialize_model(const Model& model) {
@@ -260,7 +267,8 @@ Model deserialize_model(std::span<const std::uint8_t> bytes, const std::string& 
     throw corrupt("has a table of removed deviations of the wrong shape or values");
   try {
     return assemble_model(std::move(record.params), std::move(method_model), std::move(record.maps),
-                          record.channel_spaces(channels), std::move(removed));
+                          record.channel_spaces(channels), std::move(removed),
+                          record.exemplar_wrap);
   } catch (const std::invalid_argument& e) {
     throw corrupt(std::string("has a colour that does not fit its model (") + e.what() + ")");
   }
@@ -291,6 +299,8 @@ std::string describe_model(const Model& model) {
   json["params"] = record.params;
   if (!record.maps.empty()) json["maps"] = maps_json(record.maps);
   if (record.maps.empty()) json["colour_space"] = colour_space_name(record.colour_space);
+  if (record.exemplar_wrap)
+    json["exemplar_wrap_step"] = {record.exemplar_wrap->x, record.exemplar_wrap->y};
   json["scalars"] = record.scalars;
   auto arrays = nlohmann::ordered_json::array();
   std::size_t bytes = 0;

@@ -27,6 +27,7 @@ struct ModelData {
   MethodModel model;
   std::vector<MapInfo> maps;  // a material's maps in channel order; empty for one image
   ModelColour colour;         // each channel's colour space (model/model_colour.hpp)
+  std::optional<WrapSteps> exemplar_wrap;  // Model::exemplar_wrap
 };
 
 // ModelColour::removed_deviation of a method model (the model's srgb channels decoded after
@@ -51,9 +52,10 @@ std::vector<float> measure_removed_deviation(const MethodModel& model);
 // or a table of the wrong size.
 Model assemble_model(ParamValues params, MethodModel model, std::vector<MapInfo> maps,
                      std::vector<ColourSpace> spaces,
-                     std::optional<std::vector<float>> removed_deviation = std::nullopt);
-// The same model with another method model (an edit), keeping its parameters, maps and colour
-// spaces; the removed deviations are measured again.
+                     std::optional<std::vector<float>> removed_deviation = std::nullopt,
+                     std::optional<WrapSteps> exemplar_wrap = std::nullopt);
+// The same model with another method model (an edit), keeping its parameters, maps, colour
+// spaces and exemplar's wrap steps; the removed deviations are measured again.
 Model with_method_model(const Model& model, MethodModel edited);
 
 }  // namespace stochtex

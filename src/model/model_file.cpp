@@ -125,6 +125,19 @@ class Reader {
     }
     if (version == kModelFormatVersion && !has_colour(record))
       fail("is a version-3 model file without a colour space; the file is corrupt");
+    if (const auto wrap = json.find("exemplar_wrap_step"); wrap != json.end()) {
+      const auto step = [&](std::size_t i) {
+        const double value = wrap->is_array() && wrap->size() == 2 && (*wrap)[i].is_number()
+                                 ? (*wrap)[i].get<double>()
+                                 : -1.0;
+        if (!(value >= 0.0 && std::isfinite(value)))
+          fail(
+              "has an exemplar wrap step that is not two finite numbers >= 0; the file is "
+              "corrupt");
+        return value;
+      };
+      record.exemplar_wrap = WrapSteps{step(0), step(1)};
+    }
 
     const auto arrays = json.find("arrays");
     if (arrays == json.end() || !arrays->is_array() || arrays->size() > kMaxArrays)
@@ -281,6 +294,8 @@ std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
   if (!record.maps.empty()) header["maps"] = maps_json(record.maps);
   if (record.maps.empty() && record.colour_space != ColourSpace::data)
     header["colour_space"] = colour_space_name(record.colour_space);
+  if (record.exemplar_wrap)
+    header["exemplar_wrap_step"] = {record.exemplar_wrap->x, record.exemplar_wrap->y};
   const std::string text = header.dump();
 
   std::vector<std::uint8_t> out(std::begin(kMagic), std::end(kMagic));

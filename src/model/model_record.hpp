@@ -4,6 +4,7 @@
 // (model_file.hpp) reads and writes records and knows nothing about methods.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -27,6 +28,9 @@ struct ModelRecord {
   std::vector<MapInfo> maps;  // a material's maps (file format version 2); empty for one image
   // A model of one image: its colour channels' colour space (file format version 3 when not data).
   ColourSpace colour_space = ColourSpace::data;
+  // The analysed exemplar's wrap steps (Model::exemplar_wrap), when known: an optional entry of
+  // the header, which an older stochtex ignores.
+  std::optional<WrapSteps> exemplar_wrap;
 
   // Throws Error(format) naming `source` when the array is missing or its shape differs.
   const NamedArray& array(const std::string& name, const std::vector<std::int64_t>& shape,

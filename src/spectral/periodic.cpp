@@ -1,8 +1,11 @@
 #include "spectral/periodic.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstddef>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include "spectral/fft.hpp"
@@ -51,6 +54,31 @@ ImageF periodic_component(ImageView<const float> image) {
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)
         result.at(x, y, c) = image.at(x, y, c) - smooth[static_cast<std::size_t>(y) * w + x];
+  }
+  return result;
+}
+
+ImageF periodic_keeping_histogram(ImageView<const float> image) {
+  ImageF result = periodic_component(image);
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+  std::vector<std::size_t> order(pixels);
+  std::vector<float> values(pixels);
+  for (int c = 0; c < image.channels; ++c) {
+    const auto at = [&](ImageView<const float> view, std::size_t i) {
+      return view.at(static_cast<int>(i % image.width), static_cast<int>(i / image.width), c);
+    };
+    for (std::size_t i = 0; i < pixels; ++i) {
+      order[i] = i;
+      values[i] = at(image, i);
+    }
+    std::sort(values.begin(), values.end());
+    const ImageView<const float> periodic = std::as_const(result).view();
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return at(periodic, a) < at(periodic, b);
+    });
+    for (std::size_t k = 0; k < pixels; ++k)
+      result.at(static_cast<int>(order[k] % image.width), static_cast<int>(order[k] / image.width),
+                c) = values[k];
   }
   return result;
 }

@@ -174,6 +174,23 @@ TEST(ModelFile, HostileAndInconsistentHeadersAreRejected) {
                                                         R"({"name":"texton","shape":[1]}])"),
                                    5),
                   "repeated array name");
+  // The exemplar's wrap steps: optional (a file without them loads, with none), two finite
+  // numbers >= 0 when present.
+  const auto with_wrap = [&](const std::string& wrap) {
+    std::string text = header(good_scalars, good_arrays);
+    text.insert(text.size() - 1, R"(,"exemplar_wrap_step":)" + wrap);
+    return file_with_header(text, 5);
+  };
+  EXPECT_FALSE(deserialize_model(file_with_header(header(good_scalars, good_arrays), 5), "m")
+                   .exemplar_wrap()
+                   .has_value());
+  const Model wrapped = deserialize_model(with_wrap("[4.5,0.75]"), "m");
+  ASSERT_TRUE(wrapped.exemplar_wrap().has_value());
+  EXPECT_EQ(wrapped.exemplar_wrap()->x, 4.5);
+  EXPECT_EQ(wrapped.exemplar_wrap()->y, 0.75);
+  for (const std::string wrap :
+       {R"("4.5")", "[4.5]", "[4.5,-1]", "[4.5,1e400]", R"([1,"a"])", "[1,2,3]", "{}"})
+    expect_rejected(with_wrap(wrap), "exemplar_wrap_step " + wrap);
 }
 
 TEST(ModelFile, NonFiniteValuesAreRejected) {

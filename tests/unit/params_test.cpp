@@ -258,7 +258,7 @@ TEST(Params, TypedRecordsRoundTripThroughValues) {
   expect_round_trip("texton", texton::kFields, texton::Params{64, 3, 10, 12.5});
   expect_round_trip("tiling", tiling::kFields,
                     tiling::Params{0.75, tiling::Transport::per_channel, 8, 16, 256,
-                                   tiling::Blend::linear, true});
+                                   tiling::Blend::linear, true, tiling::MakeTileable::on});
   expect_round_trip("lrp", lrp::kFields,
                     lrp::Params{20, 2, false, false, false, 3, 12, 0.3, 4.5, false});
   expect_round_trip("gabor", gabor::kFields,

@@ -10,6 +10,7 @@
 #include "core/hash.hpp"
 #include "hwy/contrib/sort/vqsort.h"
 #include "methods/tiling/evaluate.hpp"
+#include "metrics/metrics.hpp"
 #include "spectral/fft.hpp"
 #include "spectral/periodic.hpp"
 #include "spectral/principal_components.hpp"
@@ -429,12 +430,19 @@ TilingModel analyze(ImageView<const float> exemplar, const Params& params, std::
   const int iterations = params.iterations;
   const int channels = data.channels;
   const std::size_t pixels = static_cast<std::size_t>(data.width) * data.height;
+  // A photo cut from a larger scene steps at its border, and the lattice's patches read across it
+  // (Algorithm 1 reads the exemplar periodically): the seam would show inside a patch.
+  data.made_tileable = params.make_tileable == MakeTileable::on ||
+                       (params.make_tileable == MakeTileable::automatic &&
+                        wrap_steps(exemplar).largest() > kTileableWrapStep);
+  const ImageF tileable = data.made_tileable ? periodic_keeping_histogram(exemplar) : ImageF();
+  const ImageView<const float> analysed = data.made_tileable ? tileable.view() : exemplar;
   std::vector<float> pixel_values(pixels * channels);
   for (int y = 0; y < data.height; ++y)
     for (int x = 0; x < data.width; ++x)
       for (int c = 0; c < channels; ++c)
         pixel_values[(static_cast<std::size_t>(y) * data.width + x) * channels + c] =
-            exemplar.at(x, y, c);
+            analysed.at(x, y, c);
   const auto set_blend_mean = [&] {
     for (const double mean :
          channel_means(interleaved(data.gaussian, data.width, data.height, channels)))

@@ -64,6 +64,9 @@ struct TilingData {
   // 0 when off; the channel of the material's height map when on, -1 when off.
   double height_blend = 0.0;
   int height_channel = -1;
+  // Whether the analysis made the exemplar tileable (params.hpp's make_tileable, resolved): the
+  // evaluator does not need it; the record's parameters keep it.
+  bool made_tileable = false;
   std::vector<float> gaussian;      // height x width x channels: T(X), or X itself without T
   std::vector<float> blend_mean;    // channels: E[G] in eq. (8)
   std::vector<float> lut;           // lut_size^3 x 3, T^-1 of the colour (3-D transport), or empty

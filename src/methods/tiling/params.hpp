@@ -12,6 +12,10 @@
 
 namespace stochtex::tiling {
 
+// Whether the analysis makes the exemplar tileable first (make_tileable below); automatic: when its
+// wrap step says it is not tileable.
+enum class MakeTileable { off = 0, on = 1, automatic = 2 };
+
 struct Params {
   double tile_radius = 0.0;
   Transport transport = Transport::sliced;
@@ -20,6 +24,7 @@ struct Params {
   int table_size = 1024;
   Blend blend = Blend::histogram;
   bool stationarity = false;
+  MakeTileable make_tileable = MakeTileable::automatic;
   double rotation = 0.0;
   double scale_jitter = 0.0;
   double sharpness = 1.0;
@@ -32,7 +37,9 @@ inline constexpr std::array<ParamChoice, 2> kTransports = {{{"sliced", 0}, {"pca
 inline constexpr std::array<ParamChoice, 3> kBlends = {
     {{"histogram", 0}, {"variance", 1}, {"linear", 2}}};
 
-inline constexpr std::array<ParamField<Params>, 11> kFields = {{
+inline constexpr std::array<ParamChoice, 3> kMakeTileable = {{{"off", 0}, {"on", 1}, {"auto", 2}}};
+
+inline constexpr std::array<ParamField<Params>, 12> kFields = {{
     chosen_number_field<&Params::tile_radius>(
         "tile_radius", 0.05, 4.0,
         "radius of the hexagonal tiles (the edge of the triangle lattice) as a fraction of the "
@@ -65,6 +72,14 @@ inline constexpr std::array<ParamField<Params>, 11> kFields = {{
         "about a tile (a periodic Gaussian high-pass of deviation tile edge / pi), the "
         "preprocessing of section 5.3 for exemplars with large-scale variations; the histogram "
         "kept is then the filtered exemplar's; off: the exemplar as is"),
+    choice_field<&Params::make_tileable>(
+        "make_tileable", kMakeTileable,
+        "patches read across the exemplar's border (the lattice's offsets wrap around it): on, "
+        "analyse the exemplar made tileable, its periodic component (Moisan 2011) with each "
+        "channel's histogram put back exactly, so that a photo cut from a larger scene shows no "
+        "seam inside the patches; off: the exemplar as is; auto: on when the exemplar is not "
+        "tileable (its wrap step, as `analyze` reports it, beyond 1.5). The model keeps the "
+        "choice made"),
     number_field<&Params::rotation>(
         "rotation", 0.0, 180.0,
         "artist control: each tile's patch turns by a random angle uniform in [-rotation, "
@@ -91,7 +106,7 @@ inline constexpr auto kParams = param_infos(kFields);
 // The artist controls are the last fields, from this index on. A model file stores them only when
 // they differ from their defaults (TilingModel::to_record): a model with the defaults is
 // byte-identical to one made before the controls existed, and such an older file loads with them.
-inline constexpr std::size_t kFirstControl = 7;
+inline constexpr std::size_t kFirstControl = 8;
 
 // Artist control i of kParams (i >= kFirstControl) in the data.
 inline double control(const TilingData& data, std::size_t index) {

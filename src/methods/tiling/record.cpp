@@ -40,6 +40,10 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
   data.scale_jitter = read_control(kFirstControl + 1);
   data.sharpness = read_control(kFirstControl + 2);
   data.height_blend = read_control(kFirstControl + 3);
+  // Resolved by the analysis (on or off); absent from a model made before the parameter existed.
+  const auto made_tileable = record.params.find("make_tileable");
+  data.made_tileable = made_tileable != record.params.end() &&
+                       made_tileable->second == static_cast<double>(MakeTileable::on);
   if (data.height_blend > 0.0)
     data.height_channel = static_cast<int>(read("height_channel", 0, data.channels - 1, true));
   const auto take = [&](const std::string& name, const std::vector<std::int64_t>& shape) {
@@ -106,6 +110,8 @@ ModelRecord TilingModel::to_record(const ParamValues& params) const {
   record.params = params;
   // The radius used, also when the analysis chose it (tile_radius = 0): `stochtex info` shows it.
   record.params["tile_radius"] = d.tile_radius;
+  record.params["make_tileable"] =
+      static_cast<double>(d.made_tileable ? MakeTileable::on : MakeTileable::off);
   record.scalars = {{"channels", d.channels},
                     {"width", d.width},
                     {"height", d.height},
