@@ -71,7 +71,7 @@ MethodChoice choose_method(ImageView<const float> exemplar) {
     choice.method = "texton";
     choice.reason = choice_text(
         "texton: close to Gaussian (%s; %s; auto's lines %.0f and %.0f%%): a Gaussian method "
-        "reproduces it, and texton renders 20 to 50 times as fast as lrp and gabor",
+        "reproduces it, and texton renders 15 to 60 times as fast as lrp and gabor",
         kurtosis_text.c_str(), peaks_text.c_str(), kGaussianBandKurtosis,
         100.0 * kPeriodicPeakFraction);
   }
