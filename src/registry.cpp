@@ -254,6 +254,10 @@ std::string methods_text() {
       text += "  -p " + option + " " + std::string(p.help) + "\n";
     }
   }
+  text += std::string(kAutoMethod) +
+          ": not a method but a choice of one (analyze, synth, the studio): tiling where the "
+          "exemplar measures far from Gaussian or periodic, else texton, saying why in one line "
+          "(docs/comparison.md \"Which method?\"); takes no -p\n";
   return text;
 }
 

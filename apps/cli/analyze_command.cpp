@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -53,7 +54,10 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
                     "synthesise a --map normal map as two channels of its own; by default texton, "
                     "lrp and gabor derive it from the synthesised height map when the material "
                     "has one and the normal map follows its gradient (docs/materials.md)");
-  command->add_option("--method,-m", options.method, "texture method (see `stochtex methods`)")
+  command
+      ->add_option("--method,-m", options.method,
+                   "texture method (see `stochtex methods`), or auto: chosen from the exemplar's "
+                   "measured structure, saying why (docs/comparison.md)")
       ->required();
   command->add_option("-p,--param", options.params,
                       "method parameter key=value (repeatable; listed below)");
@@ -92,6 +96,15 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
 
 namespace {
 
+// The side `method` analyses by default; for --method auto, the largest of any method's, so that
+// the exemplar is measured at least as finely as the chosen method analyses it.
+int region_side(const std::string& method) {
+  if (method != kAutoMethod) return analysis_side(method);
+  int side = 0;
+  for (const MethodInfo& info : methods()) side = std::max(side, analysis_side(info.name));
+  return side;
+}
+
 ExemplarRegion exemplar_region_of(const AnalyzeOptions& options) {
   ExemplarRegion region;
   if (!options.crop.empty()) region.crop = parse_crop(options.crop, "--crop");
@@ -101,6 +114,8 @@ ExemplarRegion exemplar_region_of(const AnalyzeOptions& options) {
 
 // Refuses, before decoding, an image whose region `method` cannot analyse within the memory
 // budget, or whose --crop is not inside it.
+// (For --method auto, the method is not known before the exemplar is measured: its analysis is
+// checked by analyze(), before any work.)
 ImageReadLimits analysis_limits(const std::string& method, const std::string& path,
                                 const ExemplarRegion& region) {
   ImageReadLimits limits;
@@ -110,9 +125,10 @@ ImageReadLimits analysis_limits(const std::string& method, const std::string& pa
                         "reading the " + std::to_string(width) + "x" + std::to_string(height) +
                             " exemplar '" + path + "'",
                         "crop or downscale the exemplar");
-    const RegionSize size = region_size(width, height, region, analysis_side(method),
+    const RegionSize size = region_size(width, height, region, region_side(method),
                                         stochtex::quoted(std::filesystem::path(path)));
-    check_analysis_request(method, size.width, size.height, channels, path);
+    if (method != kAutoMethod)
+      check_analysis_request(method, size.width, size.height, channels, path);
   };
   return limits;
 }
@@ -125,7 +141,7 @@ ReadExemplar read_region(const std::string& path, std::optional<ColourSpace> spa
   ReadExemplar exemplar = read_exemplar(path, space, analysis_limits(options.method, path, region));
   std::string note;
   exemplar.image = exemplar_region(
-      std::move(exemplar.image), exemplar.space, region, analysis_side(options.method),
+      std::move(exemplar.image), exemplar.space, region, region_side(options.method),
       stochtex::quoted(std::filesystem::path(path)), options.method, &note);
   if (!note.empty())
     fmt::print(stderr,
@@ -173,23 +189,58 @@ Model target_model(const AnalyzeOptions& options, const ParamValues& params) {
   return target->model(options.target, params, options.seed);
 }
 
+// --method auto measures one exemplar: refused, in one sentence, with what it cannot measure.
+void check_auto_request(const AnalyzeOptions& options) {
+  if (!options.target.empty())
+    throw std::invalid_argument(
+        "--method auto chooses by measuring an exemplar, and --target is a "
+        "spectrum: give --method " +
+        methods_with(CapabilityKind::target) + " with --target");
+  if (!options.maps.empty())
+    throw std::invalid_argument(
+        "--method auto measures one exemplar, not a material's maps: "
+        "give the method, or run auto on the colour map to choose it");
+  if (!options.params.empty())
+    throw std::invalid_argument(
+        "-p sets a named method's parameter, and --method auto chooses "
+        "the method from the exemplar: give the method with -p");
+}
+
 }  // namespace
 
 Model run_analyze(const AnalyzeOptions& options, std::vector<std::string>* notes) {
-  const ParamValues params = resolve_params(options.method, parse_params(options.params));
+  const bool automatic = options.method == kAutoMethod;
+  if (automatic) check_auto_request(options);
+  const ParamValues params =
+      automatic ? ParamValues{} : resolve_params(options.method, parse_params(options.params));
   if (!options.target.empty()) return target_model(options, params);
   if (!options.maps.empty()) return analyze_maps(options, params, notes);
   if (options.input.empty())
     throw std::invalid_argument("give an exemplar INPUT, a material's --map NAME=FILE or, for " +
                                 methods_with(CapabilityKind::target) + ", a --target spectrum");
-  const ReadExemplar exemplar =
-      read_region(options.input, option_space(options.colour_space), options);
+  ReadExemplar exemplar = read_region(options.input, option_space(options.colour_space), options);
   validate_exemplar(exemplar.image.view(), options.input);
+  std::string method = options.method;
+  if (automatic) {
+    const MethodChoice choice = choose_method(exemplar.image.view());
+    method = choice.method;
+    if (notes) notes->push_back(options.input + ": --method auto chose " + choice.reason);
+    // Measured at the largest side any method analyses; the chosen one's may be smaller.
+    if (options.scale_input == 0.0) {
+      std::string note;
+      exemplar.image =
+          exemplar_region(std::move(exemplar.image), exemplar.space, {}, analysis_side(method),
+                          stochtex::quoted(std::filesystem::path(options.input)), method, &note);
+      if (!note.empty())
+        fmt::print(stderr, "{}; give --scale-input 1 to analyse every pixel\n", note);
+    }
+  }
   if (notes && !exemplar.note.empty()) notes->push_back(exemplar.note);
   Progress progress("analyse");
-  progress.message(fmt::format("analysing {} with {}...", options.input, options.method));
+  progress.message(fmt::format("analysing {} with {}{}...", options.input, method,
+                               automatic ? " (chosen by --method auto)" : ""));
   Model model = analyze(
-      options.method, exemplar.image.view(), params, options.seed, options.input,
+      method, exemplar.image.view(), params, options.seed, options.input,
       [&](double fraction) { progress(fraction); }, exemplar.space);
   const std::optional<WrapSteps> wrap = model.exemplar_wrap();
   if (notes && wrap && wrap->largest() > kTileableWrapStep) {

@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 
 #include <array>
-#include <optional>
 #include <string_view>
 #include <utility>
 
@@ -63,10 +62,11 @@ std::string exemplar_page(const ExemplarResults& exemplar, const ReportSettings&
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>stochtex report: {0}</title>"
       "{1}</head><body>\n<p><a href=\"index.html\">&larr; all exemplars</a></p>\n"
       "<h1>{0}</h1>\n<p>{2} ({3}&times;{4}, {5} channel(s)); every synthesis is "
-      "{6}&times;{7} pixels, seed {8}, default parameters.</p>\n<table>\n<tr><th></th>",
+      "{6}&times;{7} pixels, seed {8}, default parameters.</p>\n<p><b>--method auto</b> chose "
+      "{9}</p>\n<table>\n<tr><th></th>",
       html_escape(exemplar.name), kStyle, html_escape(exemplar.path), exemplar.image.width(),
       exemplar.image.height(), exemplar.image.channels(), settings.width, settings.height,
-      settings.seed);
+      settings.seed, html_escape(exemplar.choice.reason));
   std::vector<std::string> kinds{"exemplar"};
   for (const Outcome& outcome : exemplar.outcomes) kinds.push_back(outcome.name);
   for (const auto& kind : kinds)
@@ -137,14 +137,18 @@ std::string index_page(const ReportRun& run) {
       "default parameters, rendered at {}&times;{} with seed {} beside the exemplar's Gaussian "
       "version (ADSN). One run on one machine: {} thread(s), {:.1f} s wall, {:.1f} s CPU. "
       "Analysis and per-sample times are the CPU time of one thread, so work running beside "
-      "them changes them little.</p>\n",
+      "them changes them little.</p>\n<p class=\"help\">No number below ranks the methods: "
+      "a lower spectral or colour error can go with a picture that has lost the exemplar's "
+      "structure (a Gaussian method's blur of bricks). The structure error measures that loss; "
+      "the gallery's last column is what <code>--method auto</code> chooses from the exemplar's "
+      "own measures, and why (docs/comparison.md).</p>\n",
       kStyle, run.exemplars.size(), fmt::join(run.methods, ", "), settings.width, settings.height,
       settings.seed, run.threads, run.wall_seconds, run.cpu_seconds);
   page +=
       "<h2>Gallery</h2>\n<table>\n<tr><th class=\"name\">name</th><th>exemplar</th>"
       "<th>Gaussian (ADSN)</th>";
   for (const auto& method : run.methods) page += fmt::format("<th>{}</th>", method);
-  page += "</tr>\n";
+  page += "<th class=\"name\">--method auto</th></tr>\n";
   for (const ExemplarResults& exemplar : run.exemplars) {
     page += fmt::format(
         "<tr><td class=\"name\"><a href=\"{0}.html\">{0}</a></td>"
@@ -157,7 +161,7 @@ std::string index_page(const ReportRun& run) {
                                   "<td class=\"pictures\"><img src=\"{}/{}.png\" "
                                   "width=\"128\" alt=\"{}\"></td>",
                                   exemplar.name, outcome.name, outcome.name);
-    page += "</tr>\n";
+    page += fmt::format("<td class=\"name\">{}</td></tr>\n", html_escape(exemplar.choice.reason));
   }
   page += "</table>\n";
   for (const Measure& measure : measures()) {
@@ -171,18 +175,10 @@ std::string index_page(const ReportRun& run) {
     for (const ExemplarResults& exemplar : run.exemplars) {
       page +=
           fmt::format("<tr><td class=\"name\"><a href=\"{0}.html\">{0}</a></td>", exemplar.name);
-      // The best (lowest) value among the methods in bold.
-      std::optional<double> best;
-      for (const Outcome& outcome : exemplar.outcomes)
-        if (outcome.name != "gaussian" && !outcome.error)
-          best = std::min(best.value_or(outcome.quality.*measure.value),
-                          outcome.quality.*measure.value);
+      // No value is marked best: the lowest spectral error can be a blur (see the page's top).
       for (const Outcome& outcome : exemplar.outcomes) {
         if (measure.method_only && outcome.name == "gaussian") continue;
-        const std::string text = format_value(measure, outcome);
-        const bool bold = outcome.name != "gaussian" && !outcome.error && best &&
-                          outcome.quality.*measure.value == *best;
-        page += bold ? fmt::format("<td><b>{}</b></td>", text) : fmt::format("<td>{}</td>", text);
+        page += fmt::format("<td>{}</td>", format_value(measure, outcome));
       }
       page += "</tr>\n";
     }

@@ -29,6 +29,13 @@ std::string summary_json(const ReportRun& run) {
     for (const Measure& measure : measures())
       if (!measure.floor_key.empty())
         item[std::string(measure.floor_key)] = exemplar.histogram_error_floor;
+    const MethodChoice& choice = exemplar.choice;
+    item["auto"] = {{"method", choice.method},
+                    {"reason", choice.reason},
+                    {"band_kurtosis", choice.band_kurtosis},
+                    {"band_scale", choice.band_scale},
+                    {"peak_fraction", choice.peak_fraction},
+                    {"wrap_step", choice.wrap_step}};
     item["page"] = exemplar.name + ".html";
     item["syntheses"] = syntheses;
     exemplars.push_back(item);

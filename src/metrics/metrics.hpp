@@ -111,6 +111,10 @@ struct Quality {
   double mean_error = 0.0;        // |mean - exemplar mean|
   double covariance_error = 0.0;  // relative Frobenius distance of colour covariances
   double nonstationarity = 0.0;   // variance_nonstationarity over renders with several seeds
+  // The mean, over the octave bands, of |band kurtosis - the exemplar's| / the exemplar's
+  // (metrics/structure.hpp): the edges, blobs and lines a Gaussian synthesis loses, which the
+  // spectral and colour errors do not see (`stochtex report` only).
+  double structure_error = 0.0;
   double analysis_seconds = 0.0;  // CPU seconds of analyze() with default parameters
   double ns_per_sample = 0.0;     // CPU nanoseconds per sample of a one-thread render
 };

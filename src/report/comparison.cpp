@@ -3,12 +3,14 @@
 #include <time.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "metrics/structure.hpp"
 #include "spectral/adsn.hpp"
 #include "stochtex/stochtex.hpp"
 
@@ -42,6 +44,12 @@ Quality measure_quality(ImageView<const float> image, const ExemplarReference& r
   const ColourStatistics statistics = colour_statistics(image);
   quality.mean_error = mean_error(statistics, reference.statistics);
   quality.covariance_error = covariance_error(statistics, reference.statistics);
+  const std::vector<double> kurtosis =
+      band_kurtosis(image, static_cast<int>(reference.band_kurtosis.size()));
+  for (std::size_t k = 0; k < kurtosis.size(); ++k)
+    quality.structure_error +=
+        std::abs(kurtosis[k] - reference.band_kurtosis[k]) / reference.band_kurtosis[k];
+  quality.structure_error /= static_cast<double>(kurtosis.size());
   return quality;
 }
 
@@ -96,6 +104,9 @@ ExemplarReference make_reference(ImageView<const float> exemplar, const ReportSe
   reference.histogram = colour_histogram(exemplar, settings.histogram_bins, low, high);
   reference.histogram_top = 1.25 * reference.histogram.largest();
   reference.histogram_error_floor = histogram_error_floor(exemplar);
+  reference.band_kurtosis =
+      band_kurtosis(exemplar, std::min(kurtosis_bands(exemplar.width, exemplar.height),
+                                       kurtosis_bands(settings.width, settings.height)));
   reference.colours.emplace(exemplar,
                             std::min(static_cast<std::size_t>(exemplar.width) * exemplar.height,
                                      static_cast<std::size_t>(settings.width) * settings.height));

@@ -45,6 +45,9 @@ struct ExemplarReference {
   ColourHistogram histogram;           // drawn under every histogram plot
   double histogram_top = 0.0;          // vertical range of every histogram plot
   double histogram_error_floor = 0.0;  // sliced W2 of the exemplar's top half vs bottom half
+  // The exemplar's band_kurtosis (metrics/structure.hpp) in the bands both it and a synthesis of
+  // the report's size measure: the reference of the structure error.
+  std::vector<double> band_kurtosis;
   // The exemplar's side of the sliced W2 distance to every synthesis (levels x 64 doubles, 32 MB
   // for a 512^2 exemplar and 256^2 renders: release it once the exemplar's syntheses are done).
   std::optional<SlicedWassersteinReference> colours;

@@ -21,6 +21,7 @@ int measure_all(std::vector<ExemplarResults>& exemplars, const std::vector<std::
     const ExemplarReference& reference = references[i];
     exemplar.crop = reference.crop;
     exemplar.histogram_error_floor = reference.histogram_error_floor;
+    exemplar.choice = choose_method(exemplar.image.view());
     callbacks.pictures(exemplar, {"exemplar", exemplar.image.view(), reference.spectrum_picture,
                                   reference.spectrum_picture, reference.histogram_picture});
     const Synthesis gaussian = measure_gaussian(exemplar.image.view(), reference, settings);

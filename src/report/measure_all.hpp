@@ -12,6 +12,7 @@
 #include "metrics/metrics.hpp"
 #include "report/comparison.hpp"
 #include "stochtex/image.hpp"
+#include "stochtex/stochtex.hpp"
 
 namespace stochtex {
 
@@ -28,6 +29,7 @@ struct ExemplarResults {
   ImageF image;
   int crop = 0;                        // Welch crop of the spectral error
   double histogram_error_floor = 0.0;  // the exemplar's halves against each other
+  MethodChoice choice;                 // --method auto's, with its reason
   std::vector<Outcome> outcomes;       // the Gaussian version first, then the methods in order
 };
 
@@ -49,8 +51,8 @@ struct MeasureCallbacks {
   std::function<void(const ExemplarResults&, const Outcome&)> finished;
 };
 
-// Fills crop, histogram_error_floor and outcomes of every exemplar (path, name and image given):
-// the Gaussian version and then every method of `methods`, with its default parameters, on
+// Fills crop, histogram_error_floor, choice and outcomes of every exemplar (path, name and image
+// given): the Gaussian version and then every method of `methods`, with its default parameters, on
 // `threads` threads. A method that fails on an exemplar is recorded in its outcome's error, not
 // thrown. Returns the number of such failures.
 int measure_all(std::vector<ExemplarResults>& exemplars, const std::vector<std::string>& methods,

@@ -135,6 +135,7 @@ struct StudioStore::Analysis {
   std::string client;
   std::shared_ptr<const Exemplar> exemplar;
   std::string method;
+  std::string reason;  // --method auto's one line, where "auto" chose the method
   ParamValues params;
   std::uint32_t seed = 0;
   bool data = false;  // analysed as data: the stored values, no colour
@@ -274,20 +275,32 @@ std::string StudioStore::start_analysis(const std::string& client, const std::st
   auto analysis = std::make_shared<Analysis>();
   analysis->data = colour_space == "data";
   analysis->exemplar = find_exemplar(exemplar);
+  analysis->method = method;
+  // "auto" (`--method auto`): the method chosen from the values the analysis will read.
+  const Exemplar& source = *analysis->exemplar;
+  const ImageF& image = analysis->data && source.stored ? *source.stored : source.image;
+  if (method == kAutoMethod) {
+    if (!text.empty())
+      throw StudioError(400,
+                        "\"params\" set a named method's parameters, and \"auto\" chooses "
+                        "the method from the exemplar: send the method with them");
+    const MethodChoice choice = choose_method(image.view());
+    analysis->method = choice.method;
+    analysis->reason = choice.reason;
+  }
   // The registry refuses what it cannot analyse before any work, as `stochtex analyze` does: a
   // method without a row of its own (one not analysed from one exemplar, such as a mix), more
   // channels than the method takes, or beyond the memory budget.
-  const ImageF& image = analysis->exemplar->image;
   try {
-    check_analysis_request(method, image.width(), image.height(), image.channels(), kUploadName);
-    analysis->params = resolve_params(method, text);
+    check_analysis_request(analysis->method, image.width(), image.height(), image.channels(),
+                           kUploadName);
+    analysis->params = resolve_params(analysis->method, text);
   } catch (const std::invalid_argument& e) {
     throw StudioError(400, e.what());
   } catch (const Error& e) {
     throw StudioError(400, e.what());
   }
   analysis->client = client;
-  analysis->method = method;
   analysis->seed = seed;
   std::lock_guard lock(mutex_);
   for (const auto& [id, other] : analyses_)
@@ -339,6 +352,10 @@ nlohmann::ordered_json StudioStore::analysis_status(const std::string& id) {
                                 {"state", state_name(state)},
                                 {"progress", state == State::done ? 1.0 : analysis.progress.load()},
                                 {"seconds", seconds}};
+  if (!analysis.reason.empty()) {
+    status["chosen_by"] = kAutoMethod;
+    status["reason"] = analysis.reason;
+  }
   if (state == State::failed) status["error"] = analysis.error;
   if (state == State::done) status["model"] = analysis.model;
   return status;

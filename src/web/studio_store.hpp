@@ -74,11 +74,13 @@ class StudioStore {
 
   // Queues an analysis of exemplar `exemplar` for `client`; `params` maps names to numbers or
   // choice names; `colour_space` is analyze's --colour-space (auto: what the upload says; data:
-  // its stored values, as they are). Returns its id.
+  // its stored values, as they are). `method` "auto" (kAutoMethod) is chosen here by
+  // choose_method, before the queue, and takes no `params`. Returns its id.
   std::string start_analysis(const std::string& client, const std::string& exemplar,
                              const std::string& method, const nlohmann::ordered_json& params,
                              std::uint32_t seed, const std::string& colour_space = "auto");
-  // {"id", "method", "state", "progress", "seconds", "error"?, "model"?}.
+  // {"id", "method", "state", "progress", "seconds", "chosen_by"?, "reason"?, "error"?,
+  // "model"?}: "chosen_by": "auto" and the choice's one-line "reason" where auto chose "method".
   nlohmann::ordered_json analysis_status(const std::string& id);
   // Cancels `client`'s queued or running analysis (a finished one is left as it is); its status.
   // Another client's analysis is a 403.

@@ -8,7 +8,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 load_shared
 
 # The comparison report: two small exemplars, every method, small renders. The pages and pictures
-# must exist and the JSON summary must hold finite, plausible numbers for every synthesis.
+# must exist and the JSON summary must hold finite, plausible numbers for every synthesis, and
+# --method auto's choice for every exemplar.
 report=$models/report
 second=$textures/nuts_grey_256.png
 if expect_json "report --json" "$stochtex" report "$exemplar" "$second" -o "$report" \
@@ -33,10 +34,23 @@ for exemplar in doc["exemplars"]:
             assert math.isfinite(synthesis[key]) and 0 <= synthesis[key] < 5, (key, synthesis)
         if synthesis["name"] != "gaussian":
             assert synthesis["analysis_seconds"] > 0 and synthesis["ns_per_sample"] > 0, synthesis
+        assert math.isfinite(synthesis["structure_error"]), synthesis
+# --method auto's choice per exemplar; the structure error of the Gaussian version: near 0 for
+# the Gaussian grass, 1 - 3 / 4.9 = 0.39 for the nuts' edges (band-pass kurtosis 4.9).
+grass, nuts = doc["exemplars"]
+assert grass["auto"]["method"] == "texton" and nuts["auto"]["method"] == "tiling", doc
+assert nuts["auto"]["reason"].startswith("tiling: far from Gaussian ("), nuts["auto"]
+assert grass["syntheses"][0]["structure_error"] < 0.2 < nuts["syntheses"][0]["structure_error"]
 PY
     pass
   else
     fail "report JSON numbers" "the summary's numbers are not sane"
+  fi
+  # No number is marked best (the lowest spectral error can be a blur); auto's reason is shown.
+  if ! grep -q "<b>[0-9]" "$report/index.html" &&
+    grep -qF "tiling: far from Gaussian (" "$report/index.html" &&
+    grep -qF "chose tiling: far from Gaussian (" "$report/nuts_grey_256.html"; then pass; else
+    fail "report pages" "a value is bolded as best, or auto's choice is missing"
   fi
 fi
 # Same inputs and seed, other threads and the exemplar twice: the same pictures, byte for byte.

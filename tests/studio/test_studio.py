@@ -255,6 +255,21 @@ def test_upload_analyse_download(studio, grass, tmp_path):
         assert 0 <= compare[key] < 10, (key, compare)
 
 
+def test_auto_says_its_choice_as_the_cli_does(studio, grass, tmp_path):
+    # "auto" is chosen by the server from the upload, as `analyze -m auto` chooses from the file.
+    analysis = studio.analyse(grass["id"], "auto", client="a000000000000003")
+    assert analysis["method"] == "texton" and analysis["chosen_by"] == "auto", analysis
+    assert analysis["reason"].startswith("texton: close to Gaussian ("), analysis
+    status = studio.wait(analysis["id"], {"done", "failed", "cancelled"}, 60)
+    assert status["state"] == "done" and status["reason"] == analysis["reason"], status
+    cli = subprocess.run([STOCHTEX, "analyze", os.path.join(EXEMPLARS, "grass_lawn_128.png"), "-m",
+                          "auto", "-o", str(tmp_path / "auto.stx")], capture_output=True, text=True)
+    assert cli.returncode == 0, cli.stderr
+    assert "--method auto chose " + analysis["reason"] in cli.stderr, cli.stderr
+    assert "auto" in studio.error("POST", "/api/analyses", {
+        "exemplar": grass["id"], "method": "auto", "params": {"iterations": 2}})
+
+
 def test_shader_export_downloads(studio, grass, tmp_path):
     # The zip of /shader-<variant>-<language>.zip holds export-shader's files, byte for byte.
     analysis = studio.analyse(grass["id"], "texton", {"iterations": 5})

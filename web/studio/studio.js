@@ -112,7 +112,7 @@ function rangeText(param) {
 
 function buildForm() {
   const method = state.methods.find((m) => m.name === $('method').value);
-  $('method-summary').textContent = method ? method.summary : '';
+  $('method-summary').textContent = method ? method.summary : AUTO_SUMMARY;
   const form = $('params');
   form.replaceChildren();
   for (const param of method ? method.params : []) {
@@ -141,10 +141,15 @@ function paramValues() {
   return params;
 }
 
+// "auto" is no method of /api/methods but a choice of one, made by the server from the exemplar.
+const AUTO_SUMMARY = 'auto: the server measures the exemplar and chooses tiling (far from ' +
+  'Gaussian or periodic) or texton (close to Gaussian), saying why; no parameters';
+
 async function loadMethods() {
   state.methods = await (await api('/api/methods')).json();
   const select = $('method');
   for (const method of state.methods) select.append(new Option(method.name, method.name));
+  select.append(new Option('auto', 'auto'));
   select.addEventListener('change', buildForm);
   buildForm();
 }
@@ -387,7 +392,8 @@ function updateShaderLink() {
 function showModel(status) {
   state.model = status.model;
   $('result-section').hidden = false;
-  $('analysis-time').textContent = `${status.method}: analysed in ${status.seconds.toFixed(2)} s`;
+  $('analysis-time').textContent = `${status.method}: analysed in ${status.seconds.toFixed(2)} s` +
+    (status.reason ? `; auto chose ${status.reason}` : '');
   $('download-model').href = `/api/models/${status.model}.stx`;
   $('download-model').download = `${status.method}.stx`;
   state.method = status.method;
