@@ -30,10 +30,12 @@ std::vector<std::vector<std::complex<float>>> normalised_kernel_spectrum(
 // the colour covariance correction towards `target` (channels x channels, row-major, the kernel's
 // lag-0 covariance): the texton coefficients, S x S x channels with S = min(support, width,
 // height). The white-noise initialisation depends on the seed and the size only, so kernels of
-// one size share it (texton noise mixing, section 7). `progress` as analyze's.
+// one size share it (texton noise mixing, section 7). `progress` as analyze's. `fade_border`:
+// where the support is the whole exemplar, also bring the texton to 0 over its outer eighth
+// (analyze's textons; the mixing's interpolated kernels keep the paper's projection).
 std::vector<float> texton_coefficients(
     const Fft2d& fft, std::vector<std::vector<std::complex<float>>> kernel_spectrum,
-    std::span<const double> target, const Params& params, std::uint32_t seed,
+    std::span<const double> target, const Params& params, std::uint32_t seed, bool fade_border,
     const std::function<void(double)>& progress = {});
 
 // This method's row of the registry (src/registry.cpp).

@@ -88,7 +88,7 @@ TextonMixModel analyze(ImageView<const float> a, ImageView<const float> b, const
         tau[c][i] = (1.0f - rho) * tau_0[c][i] + rho * t_b[c][i];
     const std::vector<double> target = kernel_covariance(fft, tau);
     const std::vector<float> coefficients =
-        texton::texton_coefficients(fft, tau, target, params.texton, seed);
+        texton::texton_coefficients(fft, tau, target, params.texton, seed, false);
     textons.insert(textons.end(), coefficients.begin(), coefficients.end());
   }
   return TextonMixModel(params, channels, support, std::move(textons), std::move(mean_a),
