@@ -74,9 +74,11 @@ def which_method(summary, corpus):
         "smooth spectrum (at most 4% here, brushed aluminium's ridge), high for a repeated "
         "pattern. The line, 10%, sits between 4% and the periodic exemplars (12% and up).")
     out.append(
-        "- *wrap step* (docs/inputs.md): said in the reason where tiling's patches may show "
-        "seams; it does not change the choice, since the Gaussian methods lose the structure of "
-        "every non-tileable exemplar here but the brushed aluminium, which is Gaussian anyway.\n")
+        "- *wrap step* (docs/inputs.md): does not change the choice: tiling makes a non-tileable "
+        "exemplar tileable before analysing it (`make_tileable`, but for a strongly repeated "
+        "pattern), and the Gaussian methods lose the structure of every non-tileable exemplar "
+        "here but the brushed aluminium, which is Gaussian anyway. `analyze` says it in a note "
+        "of its own.\n")
     out.append("| exemplar | category | band-pass kurtosis (at px) | spectral peaks | wrap step | "
                "auto |")
     out.append("|---|---|---|---|---|---|")

@@ -19,10 +19,6 @@ namespace {
 // (wool_knit_blue_256, which is periodic instead); the least non-Gaussian of the others measure
 // 4.40 (cobblestone_512) and 4.42 (wood_planks_256).
 constexpr double kGaussianBandKurtosis = 4.0;
-// Above this share of its power in spectral peaks an exemplar is periodic. The non-periodic
-// shipped exemplars measure at most 0.041 (brushed_aluminium_grey_256, whose streaks make a ridge);
-// the periodic ones 0.12 (bricks_stone_wall_512's courses) to 0.78 (plaid_fabric_256).
-constexpr double kPeriodicPeakFraction = 0.1;
 
 [[gnu::format(printf, 1, 2)]] std::string choice_text(const char* format, ...) {
   std::vector<char> text(512);

@@ -418,6 +418,12 @@ Model analyze_exemplar(std::string_view method, ImageView<const float> exemplar,
     }
   }();
   if (progress) progress(1.0);
+  // The choices the analysis made for automatic parameters, as its model file will hold them.
+  std::visit(
+      [&](const auto& m) {
+        if constexpr (requires { m.resolve_params(resolved); }) m.resolve_params(resolved);
+      },
+      model);
   std::vector<ColourSpace> spaces = maps.empty()
                                         ? image_channel_spaces(colour_space, exemplar.channels)
                                         : map_channel_spaces(maps);

@@ -252,7 +252,8 @@ Model run_analyze(const AnalyzeOptions& options, std::vector<std::string>* notes
         "{}: not tileable: a repeat of it steps {:.1f} times as much at its wrap as between "
         "neighbouring pixels (x {:.1f}, y {:.1f}); {}",
         options.input, wrap->largest(), wrap->x, wrap->y,
-        seams ? "with make_tileable=off tiling's patches show that seam"
+        seams ? "tiling's patches show that seam (make_tileable is off: a repeated pattern is "
+                "left as is unless asked, docs/inputs.md)"
               : "the analysis keeps that seam out of the renders (docs/inputs.md)"));
   }
   return model;

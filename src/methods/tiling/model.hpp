@@ -130,6 +130,10 @@ class TilingModel {
 
   static TilingModel from_record(const ModelRecord& record, const std::string& source);
   ModelRecord to_record(const ParamValues& params) const;
+  // The choices the analysis made in place of its parameters' automatic values: the tile radius
+  // used (tile_radius 0) and whether the exemplar was made tileable (make_tileable auto), as the
+  // model file's parameters hold them (analyze_exemplar applies it to a new model's).
+  void resolve_params(ParamValues& params) const;
 
   int channels() const { return data_.channels; }
   const TilingData& data() const { return data_; }

@@ -78,8 +78,9 @@ inline constexpr std::array<ParamField<Params>, 12> kFields = {{
         "analyse the exemplar made tileable, its periodic component (Moisan 2011) with each "
         "channel's histogram put back exactly, so that a photo cut from a larger scene shows no "
         "seam inside the patches; off: the exemplar as is; auto: on when the exemplar is not "
-        "tileable (its wrap step, as `analyze` reports it, beyond 1.5). The model keeps the "
-        "choice made"),
+        "tileable (its wrap step, as `analyze` reports it, beyond 1.5) and not a periodic "
+        "pattern (more than a quarter of its power in spectral peaks, such as a woven check, "
+        "whose misaligned phase the smoothing would blur). The model keeps the choice made"),
     number_field<&Params::rotation>(
         "rotation", 0.0, 180.0,
         "artist control: each tile's patch turns by a random angle uniform in [-rotation, "

@@ -103,15 +103,19 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
   }
 }
 
+void TilingModel::resolve_params(ParamValues& params) const {
+  // The radius used, also when the analysis chose it (tile_radius = 0): `stochtex info` shows it.
+  params["tile_radius"] = data_.tile_radius;
+  params["make_tileable"] =
+      static_cast<double>(data_.made_tileable ? MakeTileable::on : MakeTileable::off);
+}
+
 ModelRecord TilingModel::to_record(const ParamValues& params) const {
   const TilingData& d = data_;
   ModelRecord record;
   record.method = std::string(kMethodName);
   record.params = params;
-  // The radius used, also when the analysis chose it (tile_radius = 0): `stochtex info` shows it.
-  record.params["tile_radius"] = d.tile_radius;
-  record.params["make_tileable"] =
-      static_cast<double>(d.made_tileable ? MakeTileable::on : MakeTileable::off);
+  resolve_params(record.params);
   record.scalars = {{"channels", d.channels},
                     {"width", d.width},
                     {"height", d.height},
