@@ -117,10 +117,14 @@ void expect_uv_parity(const Model& model, const std::string& name) {
     // pixels; largest difference 0.018 (lrp, metal, scale 1024, a pixel on a triangle edge; a
     // material's 0.023), means up to 7.5e-6 (the same), at most 6 pixels beyond float rounding
     // (texton_mix, metal, scale 1024; a material's 7), all within 2e-4 (in barycentrics) of a
-    // triangle edge.
+    // triangle edge. Since texton's whole-exemplar texton falls to zero at its border (issue 37),
+    // the rock material's derived normals at scale 1024 measure 0.036 in one such pixel (mean
+    // 5.5e-6, 6 pixels beyond float rounding): a pixel whose two renderers hit neighbouring
+    // triangles reads uvs apart by the edge's rounding, and differs by the texture's local slope.
+    // A wrong sign or a missing term moves the mean (0.01 to 0.2), which the mean bound catches.
     EXPECT_LE(p.coverage_differences, 20) << name;
     EXPECT_GT(p.interior, 6000) << name;
-    EXPECT_LT(p.largest, 0.035f) << name;
+    EXPECT_LT(p.largest, 0.045f) << name;
     EXPECT_LT(p.mean, 1.5e-5) << name;
     EXPECT_LE(p.above, 12) << name;
   }
