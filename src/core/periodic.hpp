@@ -22,8 +22,13 @@ struct PeriodicAxis {
   std::int64_t cells = 1;
   double size = 1.0;
 
-  // A cell index reduced into [0, cells): the index a random draw is keyed by.
+  // A cell index reduced into [0, cells): the index a random draw is keyed by. The evaluators
+  // reduce positions into the period first, so their cells lie within a period of it: those skip
+  // the 64-bit division.
   std::int64_t wrap(std::int64_t cell) const noexcept {
+    if (cell >= 0 && cell < cells) return cell;
+    if (cell < 0 && cell >= -cells) return cell + cells;
+    if (cell >= cells && cell < 2 * cells) return cell - cells;
     const std::int64_t r = cell % cells;
     return r < 0 ? r + cells : r;
   }

@@ -11,6 +11,7 @@ load_shared
 # Zoomed in (--scale 0.5) neighbouring pixels are close, so a seam stands out: the default
 # renders of grass step 1.6 to 2.9 times the interior at their wrap (1.1 to 1.4 at --scale 1).
 bake=(--size 200x136 --seed 5 --scale 0.5)
+rock=$textures/../materials/rock_sandstone
 # The wrap steps of an image as `stochtex info` says them for a model analysed from it.
 wrap_of() {
   "$stochtex" analyze "$1" -m tiling -o "$1.stx" >/dev/null 2>&1 && "$stochtex" info "$1.stx" |
@@ -67,6 +68,18 @@ expect_ok "synth --periodic" "$stochtex" synth "$exemplar" "${fast[@]}" -o "$mod
   if wrap_of "$models/synth.png" | grep -q "the exemplar tiles"; then pass; else
     fail "the supersampled synth bake tiles" "$(wrap_of "$models/synth.png")"
   fi
+
+# A material: each map tiles, the normal map derived from the periodic height too.
+expect_ok "analyze a material with a derived normal map" "$stochtex" analyze \
+  --map normal="$rock/normal.png" --map height="$rock/height.png" -m texton -p iterations=3 \
+  -p support=32 -o "$models/material.stx"
+expect_ok "render --periodic a material" "$stochtex" render "$models/material.stx" \
+  -o "$models/material_{map}.png" "${bake[@]}" --periodic
+for map in normal height; do
+  if wrap_of "$models/material_$map.png" | grep -q "the exemplar tiles"; then pass; else
+    fail "the material's $map map tiles" "$(wrap_of "$models/material_$map.png")"
+  fi
+done
 
 expect_error "--periodic on the GL backend" 2 "--backend cpu" \
   "$stochtex" render "$model" -o "$out/gl.png" "${bake[@]}" --periodic --backend gl

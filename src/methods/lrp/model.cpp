@@ -232,6 +232,13 @@ void LrpModel::evaluate_periodic_typed(std::span<const Vec2d> positions,
   const auto mean_envelope = static_cast<float>(mean_envelope_);
   const StratumTables tables{data_.substratum_first.data(), data_.substratum_count.data(),
                              data_.frequencies.data(), data_.weights.data()};
+  // Each stratum's lattice in the period, once per batch.
+  std::array<PeriodicAxis, kMaxChannels * kMaxStrataPerChannel> axes_x{};
+  std::array<PeriodicAxis, kMaxChannels * kMaxStrataPerChannel> axes_y{};
+  for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
+    axes_x[s] = periodic_axis(period.x, runtime_strata_[s].spacing);
+    axes_y[s] = periodic_axis(period.y, runtime_strata_[s].spacing);
+  }
   for (std::size_t index = 0; index < positions.size(); ++index) {
     const Vec2d p = reduce_position(positions[index], period);
     std::array<float, 4> axes{};
@@ -244,12 +251,11 @@ void LrpModel::evaluate_periodic_typed(std::span<const Vec2d> positions,
     for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
       const RuntimeStratum& stratum = runtime_strata_[s];
       if (stratum.amplitude == 0.0f) continue;
-      const auto [sum, window_square] = stratum_sum_periodic<Filtered>(
-          tables,
-          {stratum.inverse_spacing, stratum.spacing_float, stratum.first_substratum,
-           stratum.cosines, seeds[s]},
-          periodic_axis(period.x, stratum.spacing), periodic_axis(period.y, stratum.spacing),
-          window_coefficients_, p, axes);
+      const auto [sum, window_square] =
+          stratum_sum_periodic<Filtered>(tables,
+                                         {stratum.inverse_spacing, stratum.spacing_float,
+                                          stratum.first_substratum, stratum.cosines, seeds[s]},
+                                         axes_x[s], axes_y[s], window_coefficients_, p, axes);
       noise[stratum.channel] +=
           stratum_term(ScalarOps{}, stratum.amplitude, data_.normalise_envelope, mean_envelope,
                        window_square, sum);
