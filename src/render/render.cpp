@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/parallel.hpp"
@@ -51,7 +52,8 @@ void check_evaluation(const Model& model, std::span<const Vec2d> positions,
     throw std::invalid_argument("evaluate: a footprint is not finite or beyond " + range_text());
 }
 
-// The periodic twin of evaluate_checked; the model has no periodic_refusal.
+// The periodic twin of evaluate_checked; the model has no periodic_refusal (so its method has
+// evaluate_periodic).
 void evaluate_periodic_checked(const Model& model, std::span<const Vec2d> positions,
                                std::span<const Footprint> footprints, std::uint32_t seed,
                                ImageView<float> out, Vec2d period) {
@@ -82,6 +84,15 @@ std::string periodic_refusal(const Model& model) {
       lrp != nullptr && !lrp->data().structure.empty())
     return "an lrp model with a structure component cannot render periodic (its fixed cosines do "
            "not repeat with the output)";
+  // A method whose model has no evaluate_periodic.
+  const bool periodic = std::visit(
+      [](const auto& m) {
+        return requires {
+          &std::remove_cvref_t<decltype(m)>::evaluate_periodic;
+        };
+      },
+      model.data().model);
+  if (!periodic) return "a " + std::string(model.method()) + " model cannot render periodic";
   return {};
 }
 

@@ -87,5 +87,9 @@ expect_ok "mix" "$stochtex" mix "$exemplar" "$textures/wood_planks_256.png" -p s
   -p iterations=5 --steps 3 "${data[@]}" -o "$models/mix.stx"
 expect_error "--periodic of a texton mix" 2 "texton mix cannot render periodic" \
   "$stochtex" render "$models/mix.stx" -o "$out/mix.png" "${bake[@]}" --periodic
+expect_ok "analyze lrp with a structure component" "$stochtex" analyze "$exemplar" -m lrp \
+  -p ratio=0.2 -p cosines=4 -p strata=2 -o "$models/structure.stx"
+expect_error "--periodic of an lrp structure" 2 "structure component cannot render periodic" \
+  "$stochtex" render "$models/structure.stx" -o "$out/structure.png" "${bake[@]}" --periodic
 
 summary
