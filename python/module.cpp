@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -203,8 +204,27 @@ void check_in_memory_size(int width, int height, const std::string& what,
 // the memory budget, within which threads=0 takes as many cores as fit
 // (renderer::budgeted_threads, docs/design.md §9; a larger image is rendered in pieces with
 // offset, or as a dask array, whose chunks each stay within it).
+// The period of `periodic` (render's argument): none for False or None, the render's own width x
+// height for True, or the whole image's (width, height) in output pixels (a chunk of it), times
+// scale.
+std::optional<Vec2d> periodic_period(const py::object& periodic, int width, int height,
+                                     double scale) {
+  if (periodic.is_none()) return std::nullopt;
+  if (py::isinstance<py::bool_>(periodic)) {
+    if (!periodic.cast<bool>()) return std::nullopt;
+    return Vec2d{width * scale, height * scale};
+  }
+  const auto whole = periodic.cast<std::array<std::int64_t, 2>>();
+  if (whole[0] < 1 || whole[1] < 1)
+    throw py::value_error(
+        "periodic must be True, False or the whole image's (width, height) in "
+        "pixels, each at least 1");
+  return Vec2d{static_cast<double>(whole[0]) * scale, static_cast<double>(whole[1]) * scale};
+}
+
 RenderJob checked_render(int width, int height, int channels, std::array<double, 2> origin,
-                         double scale, int threads, std::array<std::int64_t, 2> offset) {
+                         double scale, int threads, std::array<std::int64_t, 2> offset,
+                         const py::object& periodic = py::none()) {
   check_in_memory_size(
       width, height, "render",
       " (render a larger image in pieces with offset, or with stochtex.dask.render)");
@@ -217,6 +237,8 @@ RenderJob checked_render(int width, int height, int channels, std::array<double,
   RenderJob job;
   job.grid = {{origin[0], origin[1]}, scale, width, height, offset[0], offset[1]};
   check_grid(job.grid, "render's grid");
+  // render() refuses a model that cannot be periodic (periodic_refusal) as a ValueError.
+  job.options.period = periodic_period(periodic, width, height, scale);
   job.options.threads = renderer::budgeted_threads(
       width, height, job.options.tile_size, job.options.supersample, threads,
       [&](int) {
@@ -228,9 +250,10 @@ RenderJob checked_render(int width, int height, int channels, std::array<double,
 
 py::dict render_material(const Model& model, int width, int height, std::array<double, 2> origin,
                          double scale, std::uint32_t seed, int threads,
-                         std::array<std::int64_t, 2> offset, bool encoded) {
+                         std::array<std::int64_t, 2> offset, bool encoded,
+                         const py::object& periodic) {
   const RenderJob job =
-      checked_render(width, height, model.channels(), origin, scale, threads, offset);
+      checked_render(width, height, model.channels(), origin, scale, threads, offset, periodic);
   check_memory_budget(
       renderer::maps_peak_bytes(model, width, height, false),
       "rendering the maps of " + std::to_string(width) + "x" + std::to_string(height) + " pixels",
@@ -256,8 +279,10 @@ py::dict render_material(const Model& model, int width, int height, std::array<d
 py::array_t<float> render_model(const Model& model, int width, int height,
                                 std::array<double, 2> origin, double scale, std::uint32_t seed,
                                 int threads, std::array<std::int64_t, 2> offset,
-                                const py::object& progress, bool encoded) {
-  RenderJob job = checked_render(width, height, model.channels(), origin, scale, threads, offset);
+                                const py::object& progress, bool encoded,
+                                const py::object& periodic) {
+  RenderJob job =
+      checked_render(width, height, model.channels(), origin, scale, threads, offset, periodic);
   OutputArray output = output_array(width, height, model.channels());
   job.options.progress = progress_hook(progress);
   py::gil_scoped_release release;
@@ -405,6 +430,7 @@ PYBIND11_MODULE(_stochtex, m) {
            py::arg("origin") = std::array<double, 2>{0.0, 0.0}, py::arg("scale") = 1.0,
            py::arg("seed") = 0, py::arg("threads") = 0,
            py::arg("offset") = std::array<std::int64_t, 2>{0, 0}, py::arg("encoded") = false,
+           py::arg("periodic") = false,
            "A material's maps of the render's grid, {name: HxWxC array} (a derived normal map "
            "from the height around each pixel); render's arguments. A colour map of srgb or "
            "linear colour is linear light, or with encoded=True sRGB-encoded as its PNG holds it.")
@@ -418,12 +444,14 @@ PYBIND11_MODULE(_stochtex, m) {
            py::arg("origin") = std::array<double, 2>{0.0, 0.0}, py::arg("scale") = 1.0,
            py::arg("seed") = 0, py::arg("threads") = 0,
            py::arg("offset") = std::array<std::int64_t, 2>{0, 0}, py::arg("progress") = py::none(),
-           py::arg("encoded") = false,
+           py::arg("encoded") = false, py::arg("periodic") = false,
            "A height x width x channels float32 image: pixel (i, j) samples origin + scale * "
            "(offset + (i, j) + 1/2), so a chunk rendered with offset equals the same pixels of "
            "the whole render, bit for bit. A srgb or linear model renders linear light (each "
            "pixel the mean of the colour over its footprint); encoded=True gives its colour "
-           "channels sRGB-encoded, as a PNG holds them.")
+           "channels sRGB-encoded, as a PNG holds them. periodic=True: a tileable bake, the "
+           "texture repeats with this width x height (docs/render.md); a chunk of a larger "
+           "tileable image passes the whole image's (width, height) instead.")
       .def("evaluate", method(&evaluate_model), py::arg("points"),
            py::arg("footprints") = py::none(), py::arg("seed") = 0,
            "The model at N positions (Nx2, exemplar pixels), with optional Nx2x2 footprints "

@@ -69,6 +69,11 @@ void add_render_options(CLI::App* command, RenderSettings& settings, std::string
           "scalar evaluator), portable, sse4, avx2 or avx512; speed only, never the output")
       ->capture_default_str()
       ->check(CLI::IsMember({"best", "reference", "portable", "sse4", "avx2", "avx512"}));
+  command->add_flag(
+      "--periodic", settings.periodic,
+      "a tileable bake: the texture repeats with the --size image (seamless when the image is "
+      "repeated, not repetitive inside it), for engines that can only repeat a bitmap; --region "
+      "renders pixels of that whole image, CPU backend only (docs/render.md)");
   command->add_flag("--no-filter", settings.no_filter,
                     "point-sample even when zoomed out (aliases)");
   command->add_option("--bit-depth", settings.bit_depth, "PNG output bits per channel")
@@ -117,6 +122,7 @@ renderer::RenderRequest render_request(const RenderSettings& settings) {
   request.mipmap = settings.mipmap;
   request.half = settings.half;
   request.bit_depth = settings.bit_depth;
+  request.periodic = settings.periodic;
   request.text = {settings.size, settings.region, settings.origin};
   return request;
 }

@@ -27,6 +27,7 @@ struct RenderSettings {
   bool mipmap = false;
   bool half = false;
   std::string cpu_target = "best";  // a CpuTarget's name, or best
+  bool periodic = false;
 };
 
 // -o (an image), --size (required), --origin, --scale, --seed, --region, the tiled OpenEXR options

@@ -4,7 +4,9 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -33,6 +35,21 @@ inline constexpr double kPositionLimit = 4294967296.0;  // 2^32
 void evaluate(const Model& model, std::span<const Vec2d> positions,
               std::span<const Footprint> footprints, std::uint32_t seed, ImageView<float> out);
 
+// evaluate() of the field that repeats with the model-space period `period` (both components > 0
+// and within kPositionLimit): f(p + period) = f(p) for every p, the same bits wherever p reduced
+// into [0, period) is exact (a render's pixel centres are). Every method's random draws are keyed
+// by its lattice cells wrapped into the period, the cells adjusted per axis to divide it (by at
+// most half a cell over the period, the impulse density kept; docs/render.md "Periodic renders").
+// Runs each method's scalar evaluator. Throws std::invalid_argument (one sentence) as evaluate()
+// does, and for a bad period or a model that cannot be periodic (periodic_refusal).
+void evaluate_periodic(const Model& model, std::span<const Vec2d> positions,
+                       std::span<const Footprint> footprints, std::uint32_t seed,
+                       ImageView<float> out, Vec2d period);
+// Why `model` cannot be evaluated periodically (one sentence), or empty when it can: a texton mix
+// (its mixing field is not periodic) and an lrp model with a structure component (its fixed
+// cosines are not) cannot.
+std::string periodic_refusal(const Model& model);
+
 // A regular grid of samples: output pixel (i, j) samples
 //   p = origin + scale * (first_pixel_x + i + 1/2, first_pixel_y + j + 1/2).
 // A region of a larger render is the same grid with other first_pixel values, so rendering in
@@ -52,7 +69,15 @@ struct RenderOptions {
   int supersample = 1;  // K: average K x K point samples per pixel (reference for filtering)
   bool filter = true;   // pass each pixel's footprint (scale) to the evaluator
   std::function<void(double)> progress;  // called with the fraction done, from one thread
+  // A tileable bake (evaluate_periodic): the field repeats with this model-space period; a whole
+  // render of it is grid_period(grid). Regions of one bake take the whole output's period.
+  std::optional<Vec2d> period;
 };
+
+// The period of a tileable bake of the whole grid: (width, height) * scale.
+inline Vec2d grid_period(const Grid& grid) {
+  return {grid.width * grid.scale, grid.height * grid.scale};
+}
 
 void render(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<float> out,
             const RenderOptions& options = {});

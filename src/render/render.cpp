@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/parallel.hpp"
@@ -34,7 +35,74 @@ void evaluate_checked(const Model& model, std::span<const Vec2d> positions,
   decode_expectation(model.data().colour, positions.size(), footprints, out);
 }
 
+// evaluate()'s and evaluate_periodic()'s checks of their arguments.
+void check_evaluation(const Model& model, std::span<const Vec2d> positions,
+                      std::span<const Footprint> footprints, ImageView<float> out) {
+  if (model.empty()) throw std::invalid_argument("evaluate: the model is empty");
+  if (!footprints.empty() && footprints.size() != positions.size())
+    throw std::invalid_argument("evaluate: footprints must be empty or one per position");
+  if (out.channels != model.channels() ||
+      static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) < positions.size())
+    throw std::invalid_argument("evaluate: the output view must hold one pixel of " +
+                                std::to_string(model.channels()) + " channels per position");
+  if (!std::all_of(positions.begin(), positions.end(), in_range))
+    throw std::invalid_argument("evaluate: a position is not finite or beyond " + range_text());
+  if (!std::all_of(footprints.begin(), footprints.end(),
+                   [](const Footprint& f) { return in_range(f.dpdx) && in_range(f.dpdy); }))
+    throw std::invalid_argument("evaluate: a footprint is not finite or beyond " + range_text());
+}
+
+// The periodic twin of evaluate_checked; the model has no periodic_refusal (so its method has
+// evaluate_periodic).
+void evaluate_periodic_checked(const Model& model, std::span<const Vec2d> positions,
+                               std::span<const Footprint> footprints, std::uint32_t seed,
+                               ImageView<float> out, Vec2d period) {
+  std::visit(
+      [&](const auto& m) {
+        if constexpr (requires { m.evaluate_periodic(positions, footprints, seed, out, period); })
+          m.evaluate_periodic(positions, footprints, seed, out, period);
+      },
+      model.data().model);
+  decode_expectation(model.data().colour, positions.size(), footprints, out);
+}
+
+void check_period(const Model& model, Vec2d period, std::string_view what) {
+  if (!(period.x > 0.0 && period.y > 0.0 && in_range(period)))
+    throw std::invalid_argument(std::string(what) +
+                                ": the period must be positive and finite, within " + range_text());
+  const std::string refusal = periodic_refusal(model);
+  if (!refusal.empty()) throw std::invalid_argument(std::string(what) + ": " + refusal);
+}
+
 }  // namespace
+
+std::string periodic_refusal(const Model& model) {
+  if (model.empty()) return "the model is empty";
+  if (std::holds_alternative<texton_mix::TextonMixModel>(model.data().model))
+    return "a texton mix cannot render periodic (its mixing field does not repeat)";
+  if (const auto* lrp = std::get_if<lrp::LrpModel>(&model.data().model);
+      lrp != nullptr && !lrp->data().structure.empty())
+    return "an lrp model with a structure component cannot render periodic (its fixed cosines do "
+           "not repeat with the output)";
+  // A method whose model has no evaluate_periodic.
+  const bool periodic = std::visit(
+      [](const auto& m) {
+        return requires {
+          &std::remove_cvref_t<decltype(m)>::evaluate_periodic;
+        };
+      },
+      model.data().model);
+  if (!periodic) return "a " + std::string(model.method()) + " model cannot render periodic";
+  return {};
+}
+
+void evaluate_periodic(const Model& model, std::span<const Vec2d> positions,
+                       std::span<const Footprint> footprints, std::uint32_t seed,
+                       ImageView<float> out, Vec2d period) {
+  check_evaluation(model, positions, footprints, out);
+  check_period(model, period, "evaluate_periodic");
+  evaluate_periodic_checked(model, positions, footprints, seed, out, period);
+}
 
 void check_grid(const Grid& grid, std::string_view what) {
   // The pixel indices' extremes, in double (no integer overflow for any first_pixel value); the
@@ -59,18 +127,7 @@ void check_grid(const Grid& grid, std::string_view what) {
 
 void evaluate(const Model& model, std::span<const Vec2d> positions,
               std::span<const Footprint> footprints, std::uint32_t seed, ImageView<float> out) {
-  if (model.empty()) throw std::invalid_argument("evaluate: the model is empty");
-  if (!footprints.empty() && footprints.size() != positions.size())
-    throw std::invalid_argument("evaluate: footprints must be empty or one per position");
-  if (out.channels != model.channels() ||
-      static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) < positions.size())
-    throw std::invalid_argument("evaluate: the output view must hold one pixel of " +
-                                std::to_string(model.channels()) + " channels per position");
-  if (!std::all_of(positions.begin(), positions.end(), in_range))
-    throw std::invalid_argument("evaluate: a position is not finite or beyond " + range_text());
-  if (!std::all_of(footprints.begin(), footprints.end(),
-                   [](const Footprint& f) { return in_range(f.dpdx) && in_range(f.dpdy); }))
-    throw std::invalid_argument("evaluate: a footprint is not finite or beyond " + range_text());
+  check_evaluation(model, positions, footprints, out);
   evaluate_checked(model, positions, footprints, seed, out);
 }
 
@@ -82,6 +139,7 @@ void render(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<
   if (options.tile_size < 1 || options.supersample < 1)
     throw std::invalid_argument("render: tile_size and supersample must be positive");
   check_grid(grid, "render: the grid");
+  if (options.period) check_period(model, *options.period, "render");
   const int tile = options.tile_size;
   const int tiles_x = (grid.width + tile - 1) / tile;
   const int tiles_y = (grid.height + tile - 1) / tile;
@@ -114,14 +172,19 @@ void render(const Model& model, const Grid& grid, std::uint32_t seed, ImageView<
           }
     std::vector<Footprint> footprints;
     if (with_footprints) footprints.assign(samples, pixel_footprint);
+    const auto evaluate_tile = [&](ImageView<float> view) {
+      if (options.period)
+        evaluate_periodic_checked(model, positions, footprints, seed, view, *options.period);
+      else
+        evaluate_checked(model, positions, footprints, seed, view);
+    };
     if (sub == 1) {
-      evaluate_checked(model, positions, footprints, seed, out.sub(x0, y0, w, h));
+      evaluate_tile(out.sub(x0, y0, w, h));
       return;
     }
     std::vector<float> values(samples * static_cast<std::size_t>(channels));
-    evaluate_checked(model, positions, footprints, seed,
-                     ImageView<float>{values.data(), static_cast<int>(samples), 1, channels,
-                                      static_cast<std::ptrdiff_t>(samples) * channels});
+    evaluate_tile(ImageView<float>{values.data(), static_cast<int>(samples), 1, channels,
+                                   static_cast<std::ptrdiff_t>(samples) * channels});
     const std::size_t per_pixel = static_cast<std::size_t>(sub) * sub;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x)

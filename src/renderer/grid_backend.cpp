@@ -11,6 +11,7 @@ class CpuBackend final : public GridBackend {
     options_.tile_size = request.tile;
     options_.supersample = request.supersample;
     options_.filter = request.filter;
+    if (request.periodic) options_.period = request_period(request);
   }
 
   void render(const Grid& grid, ImageView<float> out,

@@ -67,6 +67,10 @@ RenderPlan plan_render(const RenderRequest& request, const std::string& output) 
     throw std::invalid_argument(
         "--tiled, --mipmap and --half write a tiled OpenEXR file: name the output .exr, not '" +
         output + "'");
+  if (request.periodic && request.backend == Backend::gl)
+    throw std::invalid_argument(
+        "--periodic renders on the CPU (each method's scalar evaluator, docs/render.md): use "
+        "--backend cpu");
   if (request.mipmap && request.region)
     throw std::invalid_argument(
         "--mipmap cannot be combined with --region: a region has no mip levels of its own; render "

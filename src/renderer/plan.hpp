@@ -76,8 +76,16 @@ struct RenderRequest {
   bool mipmap = false;
   bool half = false;
   int bit_depth = 8;
+  // A tileable bake (docs/render.md): the field repeats with the whole image, request_period.
+  bool periodic = false;
   RequestText text;
 };
+
+// The model-space period of a periodic request: the whole image, (width, height) * scale; a
+// region and every mip level sample the same field.
+inline Vec2d request_period(const RenderRequest& request) {
+  return {request.width * request.scale, request.height * request.scale};
+}
 
 // What a render does: the grid of its region of the image, whether it is streamed into a tiled
 // OpenEXR file (with the file's options) rather than held in memory, and its CPU threads.

@@ -11,6 +11,7 @@
 
 #include "core/cpu_target.hpp"
 #include "core/hash.hpp"
+#include "core/periodic.hpp"
 #include "core/surface_process.hpp"
 #include "methods/gabor/alias.hpp"
 #include "methods/gabor/evaluate.hpp"
@@ -458,6 +459,78 @@ void GaborModel::evaluate(std::span<const Vec2d> positions, std::span<const Foot
         for (std::size_t i = first; i < std::min(first + strip, row); ++i) sample(start + i);
   }
 
+  mix_to_colour(positions.size(), out);
+}
+
+void GaborModel::evaluate_periodic(std::span<const Vec2d> positions,
+                                   std::span<const Footprint> footprints, std::uint32_t seed,
+                                   ImageView<float> out, Vec2d period) const noexcept {
+  const auto pixel = [&](std::size_t index, int c) -> float& { return batch_pixel(out, index, c); };
+  for (std::size_t index = 0; index < positions.size(); ++index)
+    for (int c = 0; c < channels_; ++c) pixel(index, c) = 0.0f;
+  // evaluate()'s scalar loop, grid-major, with the cells of each level dividing the period.
+  for (std::size_t grid_index = 0; grid_index < grids_.size(); ++grid_index) {
+    const Grid& grid = grids_[grid_index];
+    const GridKernels kernels = grid_kernels(*this, grid);
+    std::optional<CellCount> count;
+    std::optional<texton::CellCache> cells;
+    PeriodicAxis axis_x;
+    PeriodicAxis axis_y;
+    int cached_level = -1;
+    std::uint32_t level_seed = 0;
+    // Derived again only when the footprint changes, as in evaluate().
+    KernelFilter filter = kernel_filter(grid, footprints.empty() ? nullptr : &footprints[0]);
+    const Footprint* filter_footprint = footprints.empty() ? nullptr : &footprints[0];
+    for (std::size_t index = 0; index < positions.size(); ++index) {
+      if (filter_footprint != nullptr &&
+          std::memcmp(&footprints[index], filter_footprint, sizeof(Footprint)) != 0) {
+        filter_footprint = &footprints[index];
+        filter = kernel_filter(grid, filter_footprint);
+      }
+      if (filter.skip) continue;
+      const int level = filter.level;
+      if (level != cached_level) {
+        cached_level = level;
+        level_seed = cell_key(static_cast<std::int64_t>(grid_index), level, seed, Stream::kernels);
+        const double side = std::ldexp(grid.cell_size, level);
+        axis_x = periodic_axis(period.x, side);
+        axis_y = periodic_axis(period.y, side);
+        // The level's intensity (its count per side^2 cell) in cells of another area.
+        count.emplace(
+            CellCount::poisson(grid.cell_count.mean() * axis_x.size * axis_y.size / (side * side)));
+        cells.emplace(level_seed, *count);
+      }
+      const Vec2d p = reduce_position(positions[index], period);
+      const KernelShape shape(filter);
+      const auto size_x = static_cast<float>(axis_x.size);
+      const auto size_y = static_cast<float>(axis_y.size);
+      const auto first_x =
+          static_cast<std::int64_t>(std::floor((p.x - filter.reach) / axis_x.size));
+      const auto last_x = static_cast<std::int64_t>(std::floor((p.x + filter.reach) / axis_x.size));
+      const auto first_y =
+          static_cast<std::int64_t>(std::floor((p.y - filter.reach) / axis_y.size));
+      const auto last_y = static_cast<std::int64_t>(std::floor((p.y + filter.reach) / axis_y.size));
+      float sum = 0.0f;
+      for (std::int64_t cell_y = first_y; cell_y <= last_y; ++cell_y) {
+        const float offset_y = cell_offset(p.y, cell_y, axis_y.size);
+        for (std::int64_t cell_x = first_x; cell_x <= last_x; ++cell_x) {
+          const float offset_x = cell_offset(p.x, cell_x, axis_x.size);
+          const std::int64_t key_x = axis_x.wrap(cell_x);
+          const std::int64_t key_y = axis_y.wrap(cell_y);
+          CounterRng kernel_rng(cell_key(key_x, key_y, level_seed, Stream::kernels));
+          cells->for_each_point(key_x, key_y, [&](float u, float v, float) {
+            float wx, wy, phase;
+            kernels.draw(kernel_rng, wx, wy, phase);
+            float value;
+            if (shape.at(wx, wy, phase, offset_x - u * size_x, offset_y - v * size_y, value))
+              sum += value;
+          });
+        }
+      }
+      pixel(index, grid.channel) +=
+          static_cast<float>(std::ldexp(grid.amplitude * filter.gain, level)) * sum;
+    }
+  }
   mix_to_colour(positions.size(), out);
 }
 

@@ -112,6 +112,12 @@ class GaborModel {
   void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                 std::uint32_t seed, ImageView<float> out) const noexcept;
 
+  // evaluate() for a field of model-space period `period` (core/periodic.hpp): each grid's cells
+  // (at each thinning level) of side period / round(period / side) per axis, holding the same
+  // intensity. The scalar loop, for periodic renders (docs/render.md). noexcept.
+  void evaluate_periodic(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                         std::uint32_t seed, ImageView<float> out, Vec2d period) const noexcept;
+
   // Surface Gabor noise (section 9.1; docs/surface.md) at each surface point: the impulse
   // process of texton surface noise, surface_mni / kSurfaceMniReference times as dense as the
   // planar one, each kernel in the point's tangent frame and filtered by the footprint projected

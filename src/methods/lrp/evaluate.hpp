@@ -9,6 +9,7 @@
 
 #include "core/float_math.hpp"
 #include "core/hash.hpp"
+#include "core/periodic.hpp"
 #include "methods/lrp/window.hpp"
 #include "stochtex/model.hpp"
 
@@ -148,6 +149,45 @@ inline StratumSum stratum_sum(const StratumTables& tables, const StratumDraw& st
         const float fy = tables.frequencies[2 * pick + 1];
         const float phase = draw_phase(draw);
         float c = node_cosine(ScalarOps{}, fx, fy, phase, px, py);
+        if constexpr (Filtered) c *= frequency_clamp(ScalarOps{}, fx, fy, axes.data());
+        local += tables.weights != nullptr ? tables.weights[pick] * c : c;
+      }
+      result.sum += w * local;
+      result.window_square += w * w;
+    }
+  }
+  return result;
+}
+
+// stratum_sum for a periodic field (core/periodic.hpp): nodes on the multiples of (x.size,
+// y.size), each axis's spacing dividing the period, each node's cosines drawn from the node
+// wrapped into the period. The window is taken in lattice units, so it stretches with the spacing
+// (by at most half a node over the period); phases stay relative to the node.
+template <bool Filtered>
+inline StratumSum stratum_sum_periodic(const StratumTables& tables, const StratumDraw& stratum,
+                                       PeriodicAxis x, PeriodicAxis y,
+                                       const std::array<float, kWindowTerms>& window, Vec2d p,
+                                       const std::array<float, 4>& axes) noexcept {
+  const auto [cell_x, cell_y, offset_x, offset_y] = nearest_node(p.x / x.size, p.y / y.size);
+  const auto spacing_x = static_cast<float>(x.size);
+  const auto spacing_y = static_cast<float>(y.size);
+  StratumSum result{0.0f, 0.0f};
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      const float rx = offset_x - static_cast<float>(dx);
+      const float ry = offset_y - static_cast<float>(dy);
+      const float w = window_from_square(window, rx * rx + ry * ry);
+      if (w <= 0.0f) continue;
+      CounterRng rng(
+          cell_key(x.wrap(cell_x + dx), y.wrap(cell_y + dy), stratum.stream, Stream::phases));
+      float local = 0.0f;
+      for (std::uint32_t j = 0; j < stratum.cosines; ++j) {
+        const std::uint32_t draw = rng.next();
+        const std::uint32_t pick = pick_frequency(tables, stratum.first_substratum + j, draw);
+        const float fx = tables.frequencies[2 * pick];
+        const float fy = tables.frequencies[2 * pick + 1];
+        float c =
+            node_cosine(ScalarOps{}, fx, fy, draw_phase(draw), rx * spacing_x, ry * spacing_y);
         if constexpr (Filtered) c *= frequency_clamp(ScalarOps{}, fx, fy, axes.data());
         local += tables.weights != nullptr ? tables.weights[pick] * c : c;
       }

@@ -202,6 +202,68 @@ void LrpModel::evaluate(std::span<const Vec2d> positions, std::span<const Footpr
   }
 }
 
+void LrpModel::evaluate_periodic(std::span<const Vec2d> positions,
+                                 std::span<const Footprint> footprints, std::uint32_t seed,
+                                 ImageView<float> out, Vec2d period) const noexcept {
+  const auto with_channels = [&]<int Channels>() {
+    if (footprints.empty())
+      return evaluate_periodic_typed<Channels, false>(positions, footprints, seed, out, period);
+    return evaluate_periodic_typed<Channels, true>(positions, footprints, seed, out, period);
+  };
+  switch (data_.channels) {
+    case 1:
+      return with_channels.template operator()<1>();
+    case 2:
+      return with_channels.template operator()<2>();
+    case 3:
+      return with_channels.template operator()<3>();
+    case 4:
+      return with_channels.template operator()<4>();
+    default:
+      return with_channels.template operator()<kMaxChannels>();
+  }
+}
+
+template <int Channels, bool Filtered>
+void LrpModel::evaluate_periodic_typed(std::span<const Vec2d> positions,
+                                       std::span<const Footprint> footprints, std::uint32_t seed,
+                                       ImageView<float> out, Vec2d period) const noexcept {
+  const auto seeds = stratum_seeds(seed);
+  const auto mean_envelope = static_cast<float>(mean_envelope_);
+  const StratumTables tables{data_.substratum_first.data(), data_.substratum_count.data(),
+                             data_.frequencies.data(), data_.weights.data()};
+  // Each stratum's lattice in the period, once per batch.
+  std::array<PeriodicAxis, kMaxChannels * kMaxStrataPerChannel> axes_x{};
+  std::array<PeriodicAxis, kMaxChannels * kMaxStrataPerChannel> axes_y{};
+  for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
+    axes_x[s] = periodic_axis(period.x, runtime_strata_[s].spacing);
+    axes_y[s] = periodic_axis(period.y, runtime_strata_[s].spacing);
+  }
+  for (std::size_t index = 0; index < positions.size(); ++index) {
+    const Vec2d p = reduce_position(positions[index], period);
+    std::array<float, 4> axes{};
+    if constexpr (Filtered)
+      axes = {static_cast<float>(footprints[index].dpdx.x),
+              static_cast<float>(footprints[index].dpdx.y),
+              static_cast<float>(footprints[index].dpdy.x),
+              static_cast<float>(footprints[index].dpdy.y)};
+    float noise[Channels] = {};
+    for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
+      const RuntimeStratum& stratum = runtime_strata_[s];
+      if (stratum.amplitude == 0.0f) continue;
+      const auto [sum, window_square] =
+          stratum_sum_periodic<Filtered>(tables,
+                                         {stratum.inverse_spacing, stratum.spacing_float,
+                                          stratum.first_substratum, stratum.cosines, seeds[s]},
+                                         axes_x[s], axes_y[s], window_coefficients_, p, axes);
+      noise[stratum.channel] +=
+          stratum_term(ScalarOps{}, stratum.amplitude, data_.normalise_envelope, mean_envelope,
+                       window_square, sum);
+    }
+    finish_sample<Channels, Filtered>(noise, positions, footprints, index, seed, out);
+  }
+}
+
 std::array<std::uint32_t, kMaxChannels * kMaxStrataPerChannel> LrpModel::stratum_seeds(
     std::uint32_t seed) const noexcept {
   // Each stratum of each channel has its own random stream, so strata and channels are

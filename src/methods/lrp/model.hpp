@@ -69,8 +69,18 @@ class LrpModel {
   // the footprint's limit faded out (section 6.4). noexcept, no allocation.
   void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                 std::uint32_t seed, ImageView<float> out) const noexcept;
+  // evaluate() for a field of model-space period `period` (core/periodic.hpp): each stratum's
+  // lattice spacing becomes period / round(period / spacing) per axis. The scalar loop, for
+  // periodic renders (docs/render.md); a model with a structure component (not periodic) is
+  // refused before (periodic_refusal). noexcept.
+  void evaluate_periodic(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                         std::uint32_t seed, ImageView<float> out, Vec2d period) const noexcept;
 
  private:
+  template <int Channels, bool Filtered>
+  void evaluate_periodic_typed(std::span<const Vec2d> positions,
+                               std::span<const Footprint> footprints, std::uint32_t seed,
+                               ImageView<float> out, Vec2d period) const noexcept;
   template <int Channels, bool Filtered>
   void evaluate_typed(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                       std::uint32_t seed, ImageView<float> out) const noexcept;

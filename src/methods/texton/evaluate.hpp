@@ -12,6 +12,7 @@
 #include "core/cell_count.hpp"
 #include "core/hash.hpp"
 #include "core/level_of_detail.hpp"
+#include "core/periodic.hpp"
 #include "methods/texton/model.hpp"
 
 namespace stochtex::texton {
@@ -412,6 +413,31 @@ inline void sum_impulses(Vec2d p, const FilteredTexton<Order, Channels>& texton,
         const Impulse impulse = impulses(cell_x, cell_y, index++, u, v);
         texton.add(impulse.pyramid, offset_x - u * cell_size, offset_y - v * cell_size,
                    impulse.weight * sign, acc);
+      });
+    }
+  }
+}
+
+// sum_impulses for a periodic field (core/periodic.hpp): cells of side (x.size, y.size), each
+// axis's cells dividing the period, whose points are those of the cell wrapped into the period;
+// `cells` draws them with the count of a cell of that area. The loop of evaluate_periodic.
+template <int Order, int Channels>
+inline void sum_impulses_periodic(Vec2d p, const FilteredTexton<Order, Channels>& texton,
+                                  PeriodicAxis x, PeriodicAxis y, CellCache& cells,
+                                  const PyramidLevel* pyramid, float (&acc)[Channels]) noexcept {
+  const auto size_x = static_cast<float>(x.size);
+  const auto size_y = static_cast<float>(y.size);
+  const double reach = texton.reach();
+  const auto first_cell_x = static_cast<std::int64_t>(std::floor((p.x - reach) / x.size));
+  const auto last_cell_x = static_cast<std::int64_t>(std::floor((p.x + reach) / x.size));
+  const auto first_cell_y = static_cast<std::int64_t>(std::floor((p.y - reach) / y.size));
+  const auto last_cell_y = static_cast<std::int64_t>(std::floor((p.y + reach) / y.size));
+  for (std::int64_t cell_y = first_cell_y; cell_y <= last_cell_y; ++cell_y) {
+    const auto offset_y = static_cast<float>(p.y - static_cast<double>(cell_y) * y.size);
+    for (std::int64_t cell_x = first_cell_x; cell_x <= last_cell_x; ++cell_x) {
+      const auto offset_x = static_cast<float>(p.x - static_cast<double>(cell_x) * x.size);
+      cells.for_each_point(x.wrap(cell_x), y.wrap(cell_y), [&](float u, float v, float sign) {
+        texton.add(pyramid, offset_x - u * size_x, offset_y - v * size_y, sign, acc);
       });
     }
   }

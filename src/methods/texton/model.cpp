@@ -175,6 +175,42 @@ void TextonModel::evaluate(std::span<const Vec2d> positions, std::span<const Foo
   });
 }
 
+void TextonModel::evaluate_periodic(std::span<const Vec2d> positions,
+                                    std::span<const Footprint> footprints, std::uint32_t seed,
+                                    ImageView<float> out, Vec2d period) const noexcept {
+  with_order_and_channels(order_, channels_, [&]<int Order, int Channels>() {
+    evaluate_periodic_typed<Order, Channels>(positions, footprints, seed, out, period);
+  });
+}
+
+template <int Order, int Channels>
+void TextonModel::evaluate_periodic_typed(std::span<const Vec2d> positions,
+                                          std::span<const Footprint> footprints, std::uint32_t seed,
+                                          ImageView<float> out, Vec2d period) const noexcept {
+  const PeriodicAxis x = periodic_axis(period.x, cell_size_);
+  const PeriodicAxis y = periodic_axis(period.y, cell_size_);
+  // The same intensity lambda in cells of another area: Poisson counts stay exact (the process
+  // does not depend on how the plane is cut into cells); balanced counts of a mean that is no
+  // longer whole vary by at most one point per chunk (core/cell_count.hpp).
+  const double mean = intensity_ * x.size * y.size;
+  const CellCount count = balanced_points() ? CellCount::balanced(mean) : CellCount::poisson(mean);
+  CellCache cells(seed, count, balanced_points());
+  const int top_level = static_cast<int>(pyramid_.size()) - 1;
+  for (std::size_t index = 0; index < positions.size(); ++index) {
+    const FilterSetup filter =
+        footprints.empty() ? FilterSetup{} : filter_setup(footprints[index], top_level);
+    const FilteredTexton<Order, Channels> texton(pyramid_, filter);
+    float acc[Channels] = {};
+    sum_impulses_periodic<Order, Channels>(reduce_position(positions[index], period), texton, x, y,
+                                           cells, pyramid_.data(), acc);
+    const auto px = static_cast<int>(index % static_cast<std::size_t>(out.width));
+    const auto py = static_cast<int>(index / static_cast<std::size_t>(out.width));
+    for (int c = 0; c < channels_; ++c)
+      out.at(px, py, c) =
+          texton.output(acc[c], inverse_sqrt_intensity_, constant_term_[c], mean_[c]);
+  }
+}
+
 void TextonModel::evaluate_surface(std::span<const SurfacePoint> points, double surface_mni,
                                    std::uint32_t seed, ImageView<float> out) const noexcept {
   with_order_and_channels(order_, channels_, [&]<int Order, int Channels>() {

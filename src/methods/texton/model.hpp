@@ -91,6 +91,12 @@ class TextonModel {
   void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                 std::uint32_t seed, ImageView<float> out) const noexcept;
 
+  // evaluate() for a field of model-space period `period` (core/periodic.hpp): cells of side
+  // period / round(period / cell_size()) per axis holding the same intensity. The scalar loop, for
+  // periodic renders (docs/render.md). noexcept, no allocation.
+  void evaluate_periodic(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                         std::uint32_t seed, ImageView<float> out, Vec2d period) const noexcept;
+
   // Normalised surface noise g^s (section 6, Proposition 3) + mean at each surface point
   // (docs/surface.md): a 3-D Poisson process of surface_mni impulses per r^3 cube, the texton in
   // each point's tangent frame, filtered by the footprint projected on the tangent plane.
@@ -101,6 +107,10 @@ class TextonModel {
   SurfaceConstants surface_constants(double surface_mni) const;
 
  private:
+  template <int Order, int Channels>
+  void evaluate_periodic_typed(std::span<const Vec2d> positions,
+                               std::span<const Footprint> footprints, std::uint32_t seed,
+                               ImageView<float> out, Vec2d period) const noexcept;
   template <int Order, int Channels>
   void evaluate_typed(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                       std::uint32_t seed, ImageView<float> out) const noexcept;

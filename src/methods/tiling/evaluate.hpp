@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "core/hash.hpp"
+#include "core/periodic.hpp"
 #include "stochtex/model.hpp"
 
 namespace stochtex::tiling {
@@ -191,6 +192,70 @@ inline Point2f patch_shift(const PatchTransform& m, float from_x, float from_y,
   const float local_y = edge * from_y * (1.5f * static_cast<float>(kInverseSqrt3));
   return {(m.xx - 1.0f) * local_x + m.xy * local_y, m.yx * local_x + (m.yy - 1.0f) * local_y};
 }
+
+// The triangle lattice of a periodic field (core/periodic.hpp) of model-space period P: the
+// lattice is periodic with (n edge, 0) and (0, m sqrt(3) edge) (vertex (i, j + 2m) is vertex
+// (i - m, j) moved up by that period), so positions are stretched per axis by s = (n edge / P_x,
+// m sqrt(3) edge / P_y), n and m rounded (a stretch within half a lattice period over the output),
+// and each vertex is reduced into the period, (i mod n, j mod 2m) with i shifted by m per wrap of
+// j: its random draws come from the reduced vertex. A patch is read at its offset plus p minus the
+// vertex's position (rounded to whole pixels, as the offsets are, to keep the exemplar's texel
+// grid), where the default evaluator reads wrap(p) + offset: the same patch up to a translation,
+// and periodic in P where wrap(p) is periodic in the exemplar's size only.
+class PeriodicLattice {
+ public:
+  // A vertex of lattice(): its reduced indices (the key of its draws), the translation of its
+  // patch (p minus the vertex's position, whole pixels) and p minus its exact position (the patch
+  // transform's centre).
+  struct Vertex {
+    std::int64_t key_x;
+    std::int64_t key_y;
+    Point2f translation;
+    Point2f local;
+  };
+
+  PeriodicLattice(Vec2d period, double edge) noexcept
+      : period_(period),
+        edge_(edge),
+        columns_(periodic_axis(period.x, edge).cells),
+        rows_(periodic_axis(period.y, edge / kInverseSqrt3).cells),
+        stretch_x_(static_cast<double>(columns_) * edge / period.x),
+        stretch_y_(static_cast<double>(rows_) * edge / kInverseSqrt3 / period.y) {}
+
+  // The lattice around p (reduced into the period) in the stretched space.
+  LatticePoint lattice(Vec2d p) const noexcept {
+    return triangle_lattice({p.x * stretch_x_, p.y * stretch_y_}, edge_);
+  }
+
+  Vertex vertex(Vec2d p, std::int64_t i, std::int64_t j) const noexcept {
+    const PeriodicAxis two_rows{2 * rows_, 1.0};
+    const std::int64_t key_y = two_rows.wrap(j);
+    const std::int64_t wraps_y = (j - key_y) / (2 * rows_);
+    const std::int64_t shifted_i = i + rows_ * wraps_y;
+    const PeriodicAxis columns{columns_, 1.0};
+    const std::int64_t key_x = columns.wrap(shifted_i);
+    const std::int64_t wraps_x = (shifted_i - key_x) / columns_;
+    // The reduced vertex's position, edge * (i + j / 2, j sqrt(3) / 2), unstretched.
+    const double vertex_x =
+        edge_ * (static_cast<double>(key_x) + 0.5 * static_cast<double>(key_y)) / stretch_x_;
+    const double vertex_y = edge_ * static_cast<double>(key_y) * (0.5 / kInverseSqrt3) / stretch_y_;
+    const double x = p.x - static_cast<double>(wraps_x) * period_.x;
+    const double y = p.y - static_cast<double>(wraps_y) * period_.y;
+    return {key_x,
+            key_y,
+            {static_cast<float>(x - std::round(vertex_x)),
+             static_cast<float>(y - std::round(vertex_y))},
+            {static_cast<float>(x - vertex_x), static_cast<float>(y - vertex_y)}};
+  }
+
+ private:
+  Vec2d period_;
+  double edge_;
+  std::int64_t columns_;  // n
+  std::int64_t rows_;     // m
+  double stretch_x_;
+  double stretch_y_;
+};
 
 // p wrapped into the exemplar's period [0, width) x [0, height), formed in double so that
 // p = 1e7 keeps its fraction (docs/design.md §4); offsets are then added in float.

@@ -44,11 +44,14 @@ LevelOfDetail TilingModel::split_level(double lod) const noexcept {
 }
 
 LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_width,
-                                            std::uint32_t seed, float* g) const noexcept {
+                                            std::uint32_t seed, float* g,
+                                            const PeriodicLattice* periodic) const noexcept {
   const int channels = data_.channels;
-  const LatticePoint lattice = triangle_lattice(position, edge_);
+  const LatticePoint lattice =
+      periodic != nullptr ? periodic->lattice(position) : triangle_lattice(position, edge_);
   const LevelOfDetail lod = level_of_detail(footprint_width);
-  const Point2f wrapped = wrap_position(position, data_.width, data_.height);
+  const Point2f wrapped = periodic != nullptr ? Point2f{0.0f, 0.0f}
+                                              : wrap_position(position, data_.width, data_.height);
   const bool transformed = this->transformed();
   const auto max_angle = static_cast<float>(data_.rotation * (std::numbers::pi / 180.0));
   const auto jitter = static_cast<float>(data_.scale_jitter);
@@ -67,16 +70,30 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
   for (int v = 0; v < 3; ++v) {
     const float w = weight[v];
     weight_squares += w * w;
-    const Point2f offset =
-        vertex_offset(lattice.vertex_x[v], lattice.vertex_y[v], seed, data_.width, data_.height);
-    float x = wrapped.x + offset.x;
-    float y = wrapped.y + offset.y;
+    std::int64_t key_x = lattice.vertex_x[v];
+    std::int64_t key_y = lattice.vertex_y[v];
+    Point2f base = wrapped;
+    Point2f local{0.0f, 0.0f};
+    if (periodic != nullptr) {
+      const PeriodicLattice::Vertex vertex = periodic->vertex(position, key_x, key_y);
+      key_x = vertex.key_x;
+      key_y = vertex.key_y;
+      base = vertex.translation;
+      local = vertex.local;
+    }
+    const Point2f offset = vertex_offset(key_x, key_y, seed, data_.width, data_.height);
+    float x = base.x + offset.x;
+    float y = base.y + offset.y;
     LevelOfDetail patch_lod = lod;
     PatchTransform m{1.0f, 0.0f, 0.0f, 1.0f, 1.0f};
     if (transformed) {
-      m = patch_transform(lattice.vertex_x[v], lattice.vertex_y[v], seed, max_angle, jitter);
-      const Point2f shift =
-          patch_shift(m, lattice.from_vertex_x[v], lattice.from_vertex_y[v], edge);
+      m = patch_transform(key_x, key_y, seed, max_angle, jitter);
+      // M (p - vertex) - (p - vertex): in the default lattice from the skewed units, in the
+      // periodic one from p - vertex in model space (its lattice is stretched).
+      const Point2f shift = periodic != nullptr ? Point2f{(m.xx - 1.0f) * local.x + m.xy * local.y,
+                                                          m.yx * local.x + (m.yy - 1.0f) * local.y}
+                                                : patch_shift(m, lattice.from_vertex_x[v],
+                                                              lattice.from_vertex_y[v], edge);
       x += shift.x;
       y += shift.y;
       patch_lod = level_of_detail(footprint_width * m.scale);
@@ -193,6 +210,21 @@ void TilingModel::evaluate(std::span<const Vec2d> positions, std::span<const Foo
     const LevelOfDetail lod = blended_gaussian(
         positions[index], footprint_width(footprints.empty() ? nullptr : &footprints[index]), seed,
         g);
+    const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
+    const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
+    inverse_transform(g, lod, &out.at(x, y, 0));
+  }
+}
+
+void TilingModel::evaluate_periodic(std::span<const Vec2d> positions,
+                                    std::span<const Footprint> footprints, std::uint32_t seed,
+                                    ImageView<float> out, Vec2d period) const noexcept {
+  const PeriodicLattice periodic(period, edge_);
+  for (std::size_t index = 0; index < positions.size(); ++index) {
+    float g[kMaxChannels];
+    const LevelOfDetail lod = blended_gaussian(
+        reduce_position(positions[index], period),
+        footprint_width(footprints.empty() ? nullptr : &footprints[index]), seed, g, &periodic);
     const auto x = static_cast<int>(index % static_cast<std::size_t>(out.width));
     const auto y = static_cast<int>(index / static_cast<std::size_t>(out.width));
     inverse_transform(g, lod, &out.at(x, y, 0));

@@ -157,6 +157,10 @@ class TilingModel {
   // noexcept, no allocation.
   void evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                 std::uint32_t seed, ImageView<float> out) const noexcept;
+  // evaluate() for a field of model-space period `period` (PeriodicLattice). The scalar loop, for
+  // periodic renders (docs/render.md). noexcept, no allocation.
+  void evaluate_periodic(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
+                         std::uint32_t seed, ImageView<float> out, Vec2d period) const noexcept;
 
   // The pyramid levels a footprint reads (footprint == nullptr: a point sample, level 0), from
   // its width: the longer axis (footprint_width; 0 for nullptr).
@@ -173,8 +177,11 @@ class TilingModel {
   // scale jitter (each patch at its own level), the w^2-weighted mean of the patches' levels, as
   // evaluate_triplanar does for its planes. With height_blend on, the weights are the
   // height-aware ones (height_blend_weights) of the patches' heights.
+  // `periodic` (not null): the periodic lattice's vertices and patch translations
+  // (PeriodicLattice), `position` reduced into its period.
   LevelOfDetail blended_gaussian(Vec2d position, double footprint_width, std::uint32_t seed,
-                                 float* g) const noexcept;
+                                 float* g,
+                                 const PeriodicLattice* periodic = nullptr) const noexcept;
   // Whether the T^-1 tables return channel `channel` as linear light (the 3-D table's and the
   // direct tables' srgb channels); the others (decorrelated groups, the variance and linear
   // blends) are decoded after evaluation (model/model_colour.hpp).
