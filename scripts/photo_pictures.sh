@@ -9,7 +9,7 @@ set -euo pipefail
 gallery=inputs
 source "$(dirname "$0")/gallery_common.sh"
 photo=$work/photo_4000x3000.jpg
-python3 - "$textures/rock_sandstone_512.png" "$work/photo.ppm" <<'PY'
+/usr/bin/python3 - "$textures/rock_sandstone_512.png" "$work/photo.ppm" <<'PY'
 import struct, sys, zlib
 import numpy
 data = open(sys.argv[1], "rb").read()
@@ -63,8 +63,11 @@ for method in $("$stochtex" methods | sed -n 's/^\([a-z]*\): .*/\1/p'); do
   "$stochtex" analyze "$photo" --method "$method" -o "$work/$method.stx" 2>"$work/log"
   end=$(date +%s.%N)
   size=$(sed -n 's/.*downscaled to \([0-9]*x[0-9]*\).*/\1/p' "$work/log")
-  awk -v m="$method" -v s="${size:-4000x3000}" -v t0="$start" -v t1="$end" \
+  chose=$(sed -n 's/.*--method auto chose \([a-z]*\):.*/ (chose \1)/p' "$work/log")
+  awk -v m="$method$chose" -v s="${size:-4000x3000}" -v t0="$start" -v t1="$end" \
     'BEGIN { printf "| %s | %s | %.1f |\n", m, s, t1 - t0 }'
+  # auto's picture is the chosen method's.
+  [ "$method" = auto ] && continue
   "$stochtex" render "$work/$method.stx" -o "$out/photo_$method.png" --size 384x384 --seed 1 \
     2>/dev/null
 done
