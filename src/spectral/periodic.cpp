@@ -5,7 +5,6 @@
 #include <complex>
 #include <cstddef>
 #include <numbers>
-#include <utility>
 #include <vector>
 
 #include "spectral/fft.hpp"
@@ -60,25 +59,26 @@ ImageF periodic_component(ImageView<const float> image) {
 
 ImageF periodic_keeping_histogram(ImageView<const float> image) {
   ImageF result = periodic_component(image);
-  const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+  const int width = image.width;
+  const std::size_t pixels = static_cast<std::size_t>(width) * image.height;
   std::vector<std::size_t> order(pixels);
   std::vector<float> values(pixels);
+  std::vector<float> periodic(pixels);
   for (int c = 0; c < image.channels; ++c) {
-    const auto at = [&](ImageView<const float> view, std::size_t i) {
-      return view.at(static_cast<int>(i % image.width), static_cast<int>(i / image.width), c);
-    };
+    // Each channel's values copied out once, so that the sort compares floats in one array.
     for (std::size_t i = 0; i < pixels; ++i) {
+      const int x = static_cast<int>(i % width);
+      const int y = static_cast<int>(i / width);
       order[i] = i;
-      values[i] = at(image, i);
+      values[i] = image.at(x, y, c);
+      periodic[i] = result.at(x, y, c);
     }
     std::sort(values.begin(), values.end());
-    const ImageView<const float> periodic = std::as_const(result).view();
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return at(periodic, a) < at(periodic, b);
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return periodic[a] < periodic[b]; });
     for (std::size_t k = 0; k < pixels; ++k)
-      result.at(static_cast<int>(order[k] % image.width), static_cast<int>(order[k] / image.width),
-                c) = values[k];
+      result.at(static_cast<int>(order[k] % width), static_cast<int>(order[k] / width), c) =
+          values[k];
   }
   return result;
 }
