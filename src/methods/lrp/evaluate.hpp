@@ -114,6 +114,30 @@ struct StratumSum {
   float window_square;  // sum_i w_i^2, for the envelope normalisation
 };
 
+// The cosines of one lattice node of a stratum, sum_j a_j cos(2 pi f_ij.(x - x_i) + phi_ij), drawn
+// from the node's key; (px, py) = x - x_i. Phases are taken relative to the node: with phi uniform
+// this is the same random field as cos(2 pi f.x + phi) (section 3.2's Gabor convention), and
+// x - x_i stays small wherever x is. `axes` (Filtered only) as stratum_sum's.
+template <bool Filtered>
+inline float node_sum(const StratumTables& tables, const StratumDraw& stratum, std::uint32_t key,
+                      float px, float py, const std::array<float, 4>& axes) noexcept {
+  CounterRng rng(key);
+  float local = 0.0f;
+  for (std::uint32_t j = 0; j < stratum.cosines; ++j) {
+    // One draw per cosine, in its own statement (hash.hpp): its top 12 bits are the phase (a
+    // 1/4096 turn grid), its low kPickBits = 20 bits pick one frequency of sub-stratum j
+    // uniformly by multiply-shift (section 4.3; bias <= count / 2^20).
+    const std::uint32_t draw = rng.next();
+    const std::uint32_t pick = pick_frequency(tables, stratum.first_substratum + j, draw);
+    const float fx = tables.frequencies[2 * pick];
+    const float fy = tables.frequencies[2 * pick + 1];
+    float c = node_cosine(ScalarOps{}, fx, fy, draw_phase(draw), px, py);
+    if constexpr (Filtered) c *= frequency_clamp(ScalarOps{}, fx, fy, axes.data());
+    local += tables.weights != nullptr ? tables.weights[pick] * c : c;
+  }
+  return local;
+}
+
 // One random stratum of equation (1) at p, before its amplitude A_S. Lattice nodes on the integer
 // multiples of Delta_S (section 3.4), the nearest one found by nearest_node. With |offset| <= 1/2
 // per axis the window (radius 1.5) reaches the 3 x 3 nodes around it only:
@@ -132,26 +156,9 @@ inline StratumSum stratum_sum(const StratumTables& tables, const StratumDraw& st
       const float ry = offset_y - static_cast<float>(dy);
       const float w = window_from_square(window, rx * rx + ry * ry);
       if (w <= 0.0f) continue;
-      // Phases are taken relative to the node, cos(2 pi f.(x - x_i) + phi): with phi uniform this
-      // is the same random field as cos(2 pi f.x + phi) (section 3.2's Gabor convention), and
-      // x - x_i stays small wherever x is.
-      const float px = rx * stratum.spacing;
-      const float py = ry * stratum.spacing;
-      CounterRng rng(cell_key(cell_x + dx, cell_y + dy, stratum.stream, Stream::phases));
-      float local = 0.0f;
-      for (std::uint32_t j = 0; j < stratum.cosines; ++j) {
-        // One draw per cosine, in its own statement (hash.hpp): its top 12 bits are the phase (a
-        // 1/4096 turn grid), its low kPickBits = 20 bits pick one frequency of sub-stratum j
-        // uniformly by multiply-shift (section 4.3; bias <= count / 2^20).
-        const std::uint32_t draw = rng.next();
-        const std::uint32_t pick = pick_frequency(tables, stratum.first_substratum + j, draw);
-        const float fx = tables.frequencies[2 * pick];
-        const float fy = tables.frequencies[2 * pick + 1];
-        const float phase = draw_phase(draw);
-        float c = node_cosine(ScalarOps{}, fx, fy, phase, px, py);
-        if constexpr (Filtered) c *= frequency_clamp(ScalarOps{}, fx, fy, axes.data());
-        local += tables.weights != nullptr ? tables.weights[pick] * c : c;
-      }
+      const float local = node_sum<Filtered>(
+          tables, stratum, cell_key(cell_x + dx, cell_y + dy, stratum.stream, Stream::phases),
+          rx * stratum.spacing, ry * stratum.spacing, axes);
       result.sum += w * local;
       result.window_square += w * w;
     }
@@ -178,19 +185,10 @@ inline StratumSum stratum_sum_periodic(const StratumTables& tables, const Stratu
       const float ry = offset_y - static_cast<float>(dy);
       const float w = window_from_square(window, rx * rx + ry * ry);
       if (w <= 0.0f) continue;
-      CounterRng rng(
-          cell_key(x.wrap(cell_x + dx), y.wrap(cell_y + dy), stratum.stream, Stream::phases));
-      float local = 0.0f;
-      for (std::uint32_t j = 0; j < stratum.cosines; ++j) {
-        const std::uint32_t draw = rng.next();
-        const std::uint32_t pick = pick_frequency(tables, stratum.first_substratum + j, draw);
-        const float fx = tables.frequencies[2 * pick];
-        const float fy = tables.frequencies[2 * pick + 1];
-        float c =
-            node_cosine(ScalarOps{}, fx, fy, draw_phase(draw), rx * spacing_x, ry * spacing_y);
-        if constexpr (Filtered) c *= frequency_clamp(ScalarOps{}, fx, fy, axes.data());
-        local += tables.weights != nullptr ? tables.weights[pick] * c : c;
-      }
+      const float local = node_sum<Filtered>(
+          tables, stratum,
+          cell_key(x.wrap(cell_x + dx), y.wrap(cell_y + dy), stratum.stream, Stream::phases),
+          rx * spacing_x, ry * spacing_y, axes);
       result.sum += w * local;
       result.window_square += w * w;
     }

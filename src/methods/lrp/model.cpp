@@ -173,95 +173,47 @@ ModelRecord LrpModel::to_record(const ParamValues& params) const {
   return record;
 }
 
+template <class Typed>
+void LrpModel::with_channel_count(Typed&& typed) const {
+  switch (data_.channels) {
+    case 1:
+      return typed.template operator()<1>();
+    case 2:
+      return typed.template operator()<2>();
+    case 3:
+      return typed.template operator()<3>();
+    case 4:
+      return typed.template operator()<4>();
+    default:
+      // A material (5 to kMaxChannels channels): one loop whose accumulators hold kMaxChannels,
+      // the channel count read at run time.
+      return typed.template operator()<kMaxChannels>();
+  }
+}
+
 void LrpModel::evaluate(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
                         std::uint32_t seed, ImageView<float> out) const noexcept {
   // One concrete loop per (channel count, filtering): accumulators stay in registers and the
   // point-sample loop carries no footprint work. Dispatch happens once per batch.
-  const auto with_channels = [&]<int Channels>() {
+  with_channel_count([&]<int Channels>() {
     if (footprints.empty()) {
       if (simd_enabled() && evaluate_simd<Channels, false>(positions, footprints, seed, out))
         return;
-      return evaluate_typed<Channels, false>(positions, footprints, seed, out);
+      return evaluate_typed<Channels, false, false>(positions, footprints, seed, out, {});
     }
     if (simd_enabled() && evaluate_simd<Channels, true>(positions, footprints, seed, out)) return;
-    return evaluate_typed<Channels, true>(positions, footprints, seed, out);
-  };
-  switch (data_.channels) {
-    case 1:
-      return with_channels.template operator()<1>();
-    case 2:
-      return with_channels.template operator()<2>();
-    case 3:
-      return with_channels.template operator()<3>();
-    case 4:
-      return with_channels.template operator()<4>();
-    default:
-      // A material (5 to kMaxChannels channels): one loop whose accumulators hold kMaxChannels,
-      // the channel count read at run time.
-      return with_channels.template operator()<kMaxChannels>();
-  }
+    return evaluate_typed<Channels, true, false>(positions, footprints, seed, out, {});
+  });
 }
 
 void LrpModel::evaluate_periodic(std::span<const Vec2d> positions,
                                  std::span<const Footprint> footprints, std::uint32_t seed,
                                  ImageView<float> out, Vec2d period) const noexcept {
-  const auto with_channels = [&]<int Channels>() {
+  with_channel_count([&]<int Channels>() {
     if (footprints.empty())
-      return evaluate_periodic_typed<Channels, false>(positions, footprints, seed, out, period);
-    return evaluate_periodic_typed<Channels, true>(positions, footprints, seed, out, period);
-  };
-  switch (data_.channels) {
-    case 1:
-      return with_channels.template operator()<1>();
-    case 2:
-      return with_channels.template operator()<2>();
-    case 3:
-      return with_channels.template operator()<3>();
-    case 4:
-      return with_channels.template operator()<4>();
-    default:
-      return with_channels.template operator()<kMaxChannels>();
-  }
-}
-
-template <int Channels, bool Filtered>
-void LrpModel::evaluate_periodic_typed(std::span<const Vec2d> positions,
-                                       std::span<const Footprint> footprints, std::uint32_t seed,
-                                       ImageView<float> out, Vec2d period) const noexcept {
-  const auto seeds = stratum_seeds(seed);
-  const auto mean_envelope = static_cast<float>(mean_envelope_);
-  const StratumTables tables{data_.substratum_first.data(), data_.substratum_count.data(),
-                             data_.frequencies.data(), data_.weights.data()};
-  // Each stratum's lattice in the period, once per batch.
-  std::array<PeriodicAxis, kMaxChannels * kMaxStrataPerChannel> axes_x{};
-  std::array<PeriodicAxis, kMaxChannels * kMaxStrataPerChannel> axes_y{};
-  for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
-    axes_x[s] = periodic_axis(period.x, runtime_strata_[s].spacing);
-    axes_y[s] = periodic_axis(period.y, runtime_strata_[s].spacing);
-  }
-  for (std::size_t index = 0; index < positions.size(); ++index) {
-    const Vec2d p = reduce_position(positions[index], period);
-    std::array<float, 4> axes{};
-    if constexpr (Filtered)
-      axes = {static_cast<float>(footprints[index].dpdx.x),
-              static_cast<float>(footprints[index].dpdx.y),
-              static_cast<float>(footprints[index].dpdy.x),
-              static_cast<float>(footprints[index].dpdy.y)};
-    float noise[Channels] = {};
-    for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
-      const RuntimeStratum& stratum = runtime_strata_[s];
-      if (stratum.amplitude == 0.0f) continue;
-      const auto [sum, window_square] =
-          stratum_sum_periodic<Filtered>(tables,
-                                         {stratum.inverse_spacing, stratum.spacing_float,
-                                          stratum.first_substratum, stratum.cosines, seeds[s]},
-                                         axes_x[s], axes_y[s], window_coefficients_, p, axes);
-      noise[stratum.channel] +=
-          stratum_term(ScalarOps{}, stratum.amplitude, data_.normalise_envelope, mean_envelope,
-                       window_square, sum);
-    }
-    finish_sample<Channels, Filtered>(noise, positions, footprints, index, seed, out);
-  }
+      return evaluate_typed<Channels, false, true>(positions, footprints, seed, out, period);
+    return evaluate_typed<Channels, true, true>(positions, footprints, seed, out, period);
+  });
 }
 
 std::array<std::uint32_t, kMaxChannels * kMaxStrataPerChannel> LrpModel::stratum_seeds(
@@ -293,18 +245,27 @@ void LrpModel::finish_sample(float (&noise)[Channels], std::span<const Vec2d> po
   }
 }
 
-template <int Channels, bool Filtered>
+template <int Channels, bool Filtered, bool Periodic>
 void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
                               std::span<const Footprint> footprints, std::uint32_t seed,
-                              ImageView<float> out) const noexcept {
+                              ImageView<float> out, Vec2d period) const noexcept {
   const auto seeds = stratum_seeds(seed);
   const float mean_envelope = static_cast<float>(mean_envelope_);
   const bool normalise = data_.normalise_envelope;
   const StratumTables tables{data_.substratum_first.data(), data_.substratum_count.data(),
                              data_.frequencies.data(), data_.weights.data()};
+  // Periodic: each stratum's lattice in the period (core/periodic.hpp), once per batch.
+  constexpr std::size_t kPeriodicStrata = Periodic ? kMaxChannels * kMaxStrataPerChannel : 0;
+  std::array<PeriodicAxis, kPeriodicStrata> axes_x{};
+  std::array<PeriodicAxis, kPeriodicStrata> axes_y{};
+  if constexpr (Periodic)
+    for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
+      axes_x[s] = periodic_axis(period.x, runtime_strata_[s].spacing);
+      axes_y[s] = periodic_axis(period.y, runtime_strata_[s].spacing);
+    }
 
   for (std::size_t index = 0; index < positions.size(); ++index) {
-    const Vec2d p = positions[index];
+    const Vec2d p = Periodic ? reduce_position(positions[index], period) : positions[index];
     std::array<float, 4> axes{};
     if constexpr (Filtered)
       axes = {static_cast<float>(footprints[index].dpdx.x),
@@ -315,17 +276,20 @@ void LrpModel::evaluate_typed(std::span<const Vec2d> positions,
     for (std::size_t s = 0; s < runtime_strata_.size(); ++s) {
       const RuntimeStratum& stratum = runtime_strata_[s];
       if (stratum.amplitude == 0.0f) continue;
-      const auto [sum, window_square] =
-          stratum_sum<Filtered>(tables,
-                                {stratum.inverse_spacing, stratum.spacing_float,
-                                 stratum.first_substratum, stratum.cosines, seeds[s]},
-                                window_coefficients_, p, axes);
+      const StratumDraw draw{stratum.inverse_spacing, stratum.spacing_float,
+                             stratum.first_substratum, stratum.cosines, seeds[s]};
+      StratumSum sum;
+      if constexpr (Periodic)
+        sum = stratum_sum_periodic<Filtered>(tables, draw, axes_x[s], axes_y[s],
+                                             window_coefficients_, p, axes);
+      else
+        sum = stratum_sum<Filtered>(tables, draw, window_coefficients_, p, axes);
       // The variance of equation (1) at x is A_S^2 J_S / 2 sum_i w_i(x)^2, which varies over a
       // lattice cell (measured in docs/methods/lrp.md); dividing by sqrt(sum_i w_i^2) over its
       // mean makes it constant without changing its mean. The nearest node is within 0.71 of x,
       // so window_square >= w(0.71)^2 > 0.
       noise[stratum.channel] += stratum_term(ScalarOps{}, stratum.amplitude, normalise,
-                                             mean_envelope, window_square, sum);
+                                             mean_envelope, sum.window_square, sum.sum);
     }
     finish_sample<Channels, Filtered>(noise, positions, footprints, index, seed, out);
   }

@@ -77,13 +77,13 @@ class LrpModel {
                          std::uint32_t seed, ImageView<float> out, Vec2d period) const noexcept;
 
  private:
-  template <int Channels, bool Filtered>
-  void evaluate_periodic_typed(std::span<const Vec2d> positions,
-                               std::span<const Footprint> footprints, std::uint32_t seed,
-                               ImageView<float> out, Vec2d period) const noexcept;
-  template <int Channels, bool Filtered>
+  // Calls typed.template operator()<Channels>() with the loop's channel count for this model.
+  template <class Typed>
+  void with_channel_count(Typed&& typed) const;
+  // The scalar evaluator; Periodic: the field that repeats with `period` (evaluate_periodic).
+  template <int Channels, bool Filtered, bool Periodic>
   void evaluate_typed(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
-                      std::uint32_t seed, ImageView<float> out) const noexcept;
+                      std::uint32_t seed, ImageView<float> out, Vec2d period) const noexcept;
   // The same samples with the random strata in SIMD lanes (simd.hpp); false, with nothing
   // written, when the strata do not fit its node cache.
   template <int Channels, bool Filtered>
