@@ -183,14 +183,18 @@ inline PatchTransform patch_transform(std::int64_t vertex_x, std::int64_t vertex
   return {c, -s, s, c, scale};
 }
 
-// The shift M (p - vertex) - (p - vertex) that moves a patch's fetch from wrap(p) + offset (no
-// transform) to the transformed position; `from_x`, `from_y` are p - vertex in skewed lattice
-// units (LatticePoint), `edge` the lattice edge. Zero for the identity.
+// The shift M (p - vertex) - (p - vertex) that moves a patch's fetch from its untransformed
+// position to the transformed one, `local` = p - vertex in model space. Zero for the identity.
+inline Point2f transform_shift(const PatchTransform& m, Point2f local) noexcept {
+  return {(m.xx - 1.0f) * local.x + m.xy * local.y, m.yx * local.x + (m.yy - 1.0f) * local.y};
+}
+
+// transform_shift with p - vertex in skewed lattice units, `from_x`, `from_y` (LatticePoint),
+// `edge` the lattice edge: the shift from wrap(p) + offset.
 inline Point2f patch_shift(const PatchTransform& m, float from_x, float from_y,
                            float edge) noexcept {
-  const float local_x = edge * (from_x + 0.5f * from_y);
-  const float local_y = edge * from_y * (1.5f * static_cast<float>(kInverseSqrt3));
-  return {(m.xx - 1.0f) * local_x + m.xy * local_y, m.yx * local_x + (m.yy - 1.0f) * local_y};
+  return transform_shift(m, {edge * (from_x + 0.5f * from_y),
+                             edge * from_y * (1.5f * static_cast<float>(kInverseSqrt3))});
 }
 
 // The triangle lattice of a periodic field (core/periodic.hpp) of model-space period P: the

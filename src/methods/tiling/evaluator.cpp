@@ -90,8 +90,7 @@ LevelOfDetail TilingModel::blended_gaussian(Vec2d position, double footprint_wid
       m = patch_transform(key_x, key_y, seed, max_angle, jitter);
       // M (p - vertex) - (p - vertex): in the default lattice from the skewed units, in the
       // periodic one from p - vertex in model space (its lattice is stretched).
-      const Point2f shift = periodic != nullptr ? Point2f{(m.xx - 1.0f) * local.x + m.xy * local.y,
-                                                          m.yx * local.x + (m.yy - 1.0f) * local.y}
+      const Point2f shift = periodic != nullptr ? transform_shift(m, local)
                                                 : patch_shift(m, lattice.from_vertex_x[v],
                                                               lattice.from_vertex_y[v], edge);
       x += shift.x;
