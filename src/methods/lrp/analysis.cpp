@@ -110,6 +110,44 @@ std::vector<std::vector<float>> frequency_weights(
   return weights;
 }
 
+// Drawn uniformly, a sub-stratum's shaped weights put its strongest frequencies into rare, heavy
+// cosines: concrete_cement_512's strongest sub-stratum held DC at weight 6.0 beside 13 frequencies
+// near 1, so one node in 14 carried a blob 6 times the others', seen zoomed out, where frequency
+// clamping has removed the dense high frequencies around them, as isolated light and dark dots
+// (docs/methods/lrp.md, "Dots zoomed out"). Each frequency is therefore listed ceil(w_f^2 /
+// mean w^2) times and its weight divided by the square root of its share of the list against
+// 1 / n_k: the expected spectrum is the same, each cosine's amplitude stays within about
+// sqrt(2) of the sub-stratum's mean, and the table at most doubles. The paper's constant A_S
+// (weights of 1) is left as it is.
+void draw_in_proportion_to_power(std::vector<std::vector<std::array<int, 2>>>& substrata,
+                                 std::vector<std::vector<float>>& weights) {
+  for (std::size_t k = 0; k < substrata.size(); ++k) {
+    const auto& points = substrata[k];
+    const auto& shaped = weights[k];
+    double mean_power = 0.0;
+    for (const float w : shaped) mean_power += double(w) * w;
+    mean_power /= double(shaped.size());
+    if (!(mean_power > 0.0)) continue;
+    std::vector<std::size_t> copies(points.size());
+    std::size_t listed = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double power = double(shaped[i]) * shaped[i];
+      copies[i] = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(power / mean_power)));
+      listed += copies[i];
+    }
+    std::vector<std::array<int, 2>> listed_points;
+    std::vector<float> listed_weights;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double weight =
+          shaped[i] * std::sqrt(double(listed) / (double(points.size()) * double(copies[i])));
+      listed_points.insert(listed_points.end(), copies[i], points[i]);
+      listed_weights.insert(listed_weights.end(), copies[i], static_cast<float>(weight));
+    }
+    substrata[k] = std::move(listed_points);
+    weights[k] = std::move(listed_weights);
+  }
+}
+
 void append_channel(LrpData& data, const std::vector<StratumPlan>& plans) {
   for (const StratumPlan& plan : plans) {
     data.strata_table.push_back(plan.sampling);
@@ -430,6 +468,7 @@ std::vector<StratumPlan> plan_strata(std::span<const double> power, int size, in
     plan.substrata = kmeans(points, plan.sampling.cosines, kKmeansIterations, rng);
     if (shaped) {
       plan.weights = frequency_weights(stratum, plan.substrata, pair_power, size);
+      draw_in_proportion_to_power(plan.substrata, plan.weights);
     } else {
       plan.weights.clear();
       for (const auto& substratum : plan.substrata)
