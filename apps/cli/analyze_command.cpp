@@ -84,14 +84,18 @@ void add_analyze_options(CLI::App* command, AnalyzeOptions& options) {
                    "analyse the exemplar (after --crop) downscaled by this factor, in (0, 1], "
                    "averaging linear light; by default an exemplar longer than the method "
                    "analyses (`stochtex methods`) is downscaled to it, and a note says so")
-      ->check(CLI::Validator(
-          [](const std::string& text) {
-            double value = 0.0;
-            return CLI::detail::lexical_cast(text, value) && value > 0.0 && value <= 1.0
-                       ? std::string()
-                       : "--scale-input " + text + " is not a factor above 0 and at most 1";
-          },
-          "FACTOR in (0, 1]"));
+      ->check(scale_input_validator());
+}
+
+CLI::Validator scale_input_validator() {
+  return CLI::Validator(
+      [](const std::string& text) {
+        double value = 0.0;
+        return CLI::detail::lexical_cast(text, value) && value > 0.0 && value <= 1.0
+                   ? std::string()
+                   : "--scale-input " + text + " is not a factor above 0 and at most 1";
+      },
+      "FACTOR in (0, 1]");
 }
 
 namespace {
@@ -103,13 +107,6 @@ int region_side(const std::string& method) {
   int side = 0;
   for (const MethodInfo& info : methods()) side = std::max(side, analysis_side(info.name));
   return side;
-}
-
-ExemplarRegion exemplar_region_of(const AnalyzeOptions& options) {
-  ExemplarRegion region;
-  if (!options.crop.empty()) region.crop = parse_crop(options.crop, "--crop");
-  region.scale = options.scale_input;
-  return region;
 }
 
 // Refuses, before decoding, an image whose region `method` cannot analyse within the memory
@@ -133,22 +130,35 @@ ImageReadLimits analysis_limits(const std::string& method, const std::string& pa
   return limits;
 }
 
-// The exemplar `path` in `space` (auto where none), cropped and scaled to the region its method
-// analyses; a scale the user did not ask for is said at once, before the analysis' wait.
 ReadExemplar read_region(const std::string& path, std::optional<ColourSpace> space,
                          const AnalyzeOptions& options) {
-  const ExemplarRegion region = exemplar_region_of(options);
-  ReadExemplar exemplar = read_exemplar(path, space, analysis_limits(options.method, path, region));
+  ExemplarRegion region;
+  if (!options.crop.empty()) region.crop = parse_crop(options.crop, "--crop");
+  region.scale = options.scale_input;
   std::string note;
-  exemplar.image = exemplar_region(
-      std::move(exemplar.image), exemplar.space, region, region_side(options.method),
-      stochtex::quoted(std::filesystem::path(path)), options.method, &note);
-  if (!note.empty())
-    fmt::print(stderr,
-               "{}; give --scale-input 1 to analyse every pixel, or --crop to choose a part\n",
-               note);
+  ReadExemplar exemplar = read_exemplar_region(path, space, options.method, region, note);
+  if (!note.empty()) fmt::print(stderr, "{}\n", note);
   return exemplar;
 }
+
+}  // namespace
+
+ReadExemplar read_exemplar_region(const std::string& path, std::optional<ColourSpace> space,
+                                  const std::string& method, const ExemplarRegion& region,
+                                  std::string& scale_note) {
+  ReadExemplar exemplar = read_exemplar(path, space, analysis_limits(method, path, region));
+  std::string note;
+  exemplar.image =
+      exemplar_region(std::move(exemplar.image), exemplar.space, region, region_side(method),
+                      stochtex::quoted(std::filesystem::path(path)), method, &note);
+  scale_note = note.empty() ? std::string()
+                            : note +
+                                  "; give --scale-input 1 to analyse every pixel, or --crop "
+                                  "to choose a part";
+  return exemplar;
+}
+
+namespace {
 
 Model analyze_maps(const AnalyzeOptions& options, const ParamValues& params,
                    std::vector<std::string>* notes) {

@@ -7,7 +7,10 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "analyze_command.hpp"
 #include "arguments.hpp"
 #include "commands.hpp"
 #include "core/memory_budget.hpp"
@@ -29,6 +32,9 @@ Command add_mix_command(CLI::App& app) {
     std::string mask_scale;
     std::uint32_t seed = 0;
     std::string colour_space = "auto";
+    std::string crop_a;
+    std::string crop_b;
+    double scale_input = 0.0;
   };
   auto options = std::make_shared<Options>();
   auto* command = app.add_subcommand(
@@ -60,6 +66,15 @@ Command add_mix_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--analysis-seed", options->seed, "seed of Algorithm 1's white-noise start")
       ->capture_default_str();
+  command->add_option("--crop-a", options->crop_a,
+                      "analyse this part of A: WIDTHxHEIGHT+X+Y in pixels, as 1024x1024+1500+800");
+  command->add_option("--crop-b", options->crop_b, "analyse this part of B, as --crop-a");
+  command
+      ->add_option("--scale-input", options->scale_input,
+                   "analyse A and B (after their crops) downscaled by this factor, in (0, 1], "
+                   "averaging linear light; by default an exemplar longer than texton analyses "
+                   "(`stochtex methods`) is downscaled to it, and a note says so")
+      ->check(scale_input_validator());
   return {command, [options] {
             std::map<std::string, std::string, std::less<>> given = parse_params(options->params);
             const auto pair = [](const std::string& text, const char* option, const char* first,
@@ -79,17 +94,26 @@ Command add_mix_command(CLI::App& app) {
             if (!options->mask_scale.empty()) given["mask_scale"] = options->mask_scale;
             const ParamValues params = resolve_params("texton_mix", given);
             check_output_path(options->output, false, {options->a, options->b, options->mask});
-            HeldImages held;
             const std::optional<ColourSpace> space = option_space(options->colour_space);
-            const auto read = [&](const std::string& path) {
-              ImageReadLimits limits;
-              limits.check_declared = held.check(path);
-              ReadExemplar exemplar = read_exemplar(path, space, limits);
+            // Each exemplar is analysed by texton's Algorithm 1 (texton paper section 7), so
+            // each is read down to the region texton analyses; what was scaled is said once both
+            // are read, so that a refused B is the only line.
+            std::vector<std::string> scale_notes;
+            const auto read = [&](const std::string& path, const std::string& crop,
+                                  const char* crop_option) {
+              ExemplarRegion region;
+              if (!crop.empty()) region.crop = parse_crop(crop, crop_option);
+              region.scale = options->scale_input;
+              ReadExemplar exemplar =
+                  read_exemplar_region(path, space, "texton", region, scale_notes.emplace_back());
               validate_exemplar(exemplar.image.view(), path);
               return exemplar;
             };
-            const ReadExemplar a = read(options->a);
-            const ReadExemplar b = read(options->b);
+            const ReadExemplar a = read(options->a, options->crop_a, "--crop-a");
+            const ReadExemplar b = read(options->b, options->crop_b, "--crop-b");
+            HeldImages held;
+            held.add(a.image.width(), a.image.height(), a.image.channels(), options->a);
+            held.add(b.image.width(), b.image.height(), b.image.channels(), options->b);
             if (a.space != b.space)
               throw Error(ErrorCode::invalid_input,
                           fmt::format("'{}' is {} and '{}' is {}; a mix needs both exemplars in "
@@ -106,6 +130,8 @@ Command add_mix_command(CLI::App& app) {
               inputs.mask = mask_image.view();
               inputs.mask_name = options->mask;
             }
+            for (const std::string& note : scale_notes)
+              if (!note.empty()) fmt::print(stderr, "{}\n", note);
             Progress progress("mix");
             progress.message(fmt::format("mixing {} and {}...", options->a, options->b));
             const Model model = mix(inputs, params, options->seed);

@@ -41,11 +41,13 @@ expect_error "mix -p mni=nan" 2 "mni" "$stochtex" mix "$grey" "$grey" -p mni=nan
 expect_error "mix of a missing file" 1 "missing.png" "$stochtex" mix "$grey" \
   "$inputs/missing.png" -o "$out/x.stx"
 # Beyond the memory budget (docs/design.md §9), refused before any work: 4096² colour exemplars
-# (about 2.8 GB), and 2048² ones into 256 textons of 1024² (about 23 GB of textons).
+# analysed at full size (--scale-input 1; by default they are downscaled to texton's side, as in
+# cli_photos.sh), and 2048² ones into 256 textons of 1024² (about 23 GB of textons).
 expect_error "mix beyond the memory budget" 2 "ramp_4096.png" "$stochtex" mix \
-  "$inputs/ramp_4096.png" "$inputs/ramp_4096.png" -o "$out/x.stx"
+  "$inputs/ramp_4096.png" "$inputs/ramp_4096.png" --scale-input 1 -o "$out/x.stx"
 expect_error "mix into textons beyond the memory budget" 2 "--steps" "$stochtex" mix \
-  "$inputs/ramp_2048.png" "$inputs/ramp_2048.png" --steps 256 -p support=1024 -o "$out/x.stx"
+  "$inputs/ramp_2048.png" "$inputs/ramp_2048.png" --steps 256 -p support=1024 --scale-input 1 \
+  -o "$out/x.stx"
 if [[ -e $out/x.stx ]]; then fail "a refused mix writes nothing" "x.stx exists"; else pass; fi
 # The GPU twin: both fields on the gl backend (both --gl-filter values run the exact path), and
 # the export in every language. The mix model's exact render is the one GL render of texton_mix

@@ -46,6 +46,23 @@ expect_ok "analyze at a chosen scale: no note" \
   if ! grep -q "downscaled" "$work/stderr"; then pass; else
     fail "a chosen scale needs no note" "$(cat "$work/stderr")"
   fi
+# mix reads each exemplar down to the region texton analyses, as analyze does.
+mixfast=(-p support=16 -p iterations=5 --steps 3)
+expect_ok "mix a JPEG photo larger than texton's side" \
+  "$stochtex" mix "$photo" "$textures/grass_lawn_128.png" "${mixfast[@]}" -o "$models/mix_photo.stx" &&
+  if grep -qF "is 1600x1200 pixels, more than texton analyses by default (1024 on the longer side): it is analysed downscaled to 1024x768" "$work/stderr"; then pass; else
+    fail "mix says the downscale" "$(cat "$work/stderr")"
+  fi
+expect_ok "mix crops of two photos at a chosen scale: no note" \
+  "$stochtex" mix "$photo" "$photo" "${mixfast[@]}" --crop-a 256x256+0+0 --crop-b 256x256+1300+900 \
+  --scale-input 0.5 -o "$models/mix_crops.stx" &&
+  if ! grep -q "downscaled" "$work/stderr"; then pass; else
+    fail "mix of chosen crops and scale needs no note" "$(cat "$work/stderr")"
+  fi
+expect_error "mix with a crop outside B" 2 "photo.jpg" \
+  "$stochtex" mix "$photo" "$photo" "${mixfast[@]}" --crop-b 1000x1000+900+0 -o "$out/x.stx"
+expect_parse_error "mix --scale-input 0" \
+  "$stochtex" mix "$photo" "$photo" --scale-input 0 -o "$out/x.stx"
 expect_ok "synth a JPEG photo in one command" \
   "$stochtex" synth "$photo" "${fast[@]}" -o "$out/photo_synth.png" --size 256x256 &&
   expect_file "synth wrote its PNG" "$out/photo_synth.png"
