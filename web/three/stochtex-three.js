@@ -203,7 +203,7 @@ void main() {
   });
 }
 
-// Makes exports maps of a three.js standard material (MeshStandardMaterial, MeshPhysicalMaterial):
+// Makes exports maps of a three.js MeshStandardMaterial (or MeshPhysicalMaterial, its shader):
 // `slots` maps 'map' and 'normalMap' to sources, all at one placement (the maps of aligned
 // models stay aligned). The exported function replaces the texture read in the slot's shader
 // chunk (onBeforeCompile), so each map stays procedural: filtered from the screen derivatives,
