@@ -21,6 +21,11 @@ packages=(
   # the browser test (tests/browser): headless Chromium, its WebDriver and Selenium
   chromium chromium-driver python3-selenium
 )
+# the three.js test (tests/browser/three_test.py) installs three.js with npm; Debian's npm, unless
+# an npm is there already (NodeSource's nodejs has its own, and conflicts with Debian's)
+if ! command -v npm >/dev/null; then
+  packages+=(npm)
+fi
 if [[ ${1:-} == --sanitize ]]; then
   packages+=(clang libclang-rt-14-dev llvm)
 fi
