@@ -11,6 +11,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "core/srgb.hpp"
 #include "render/mesh_shading.hpp"
@@ -51,8 +52,10 @@ TEST_F(MeshTest, ReadsTheShippedMeshes) {
   EXPECT_EQ(sphere.triangles.size(), 2208u);
   EXPECT_EQ(sphere.uvs.size(), sphere.positions.size());
   EXPECT_EQ(sphere.normals.size(), sphere.positions.size());
+  EXPECT_TRUE(sphere.uv_wrap_seam);  // its meridian at u = 0 and u = 1
   const Mesh scan = read_mesh(kMeshes + "scan.obj");
   EXPECT_TRUE(scan.uvs.empty());
+  EXPECT_FALSE(scan.uv_wrap_seam);
   ASSERT_EQ(scan.normals.size(), scan.positions.size());
   for (const Vec3d& n : scan.normals) EXPECT_NEAR(length(n), 1.0, 1e-12);
 }
@@ -133,6 +136,49 @@ TEST(MeshChecks, RefusesValuesAndSizes) {
   Mesh fine = good;
   prepare_mesh(fine, "'m.obj'");
   EXPECT_NEAR(std::abs(fine.normals[0].z), 1.0, 1e-12);
+}
+
+// A flat strip in the plane z = 0, x from 0 to 2 and y from 0 to 1, v = y. Wrapped, u runs from 0
+// to 1 on each half (u = x, then x - 1): the position x = 1 carries u = 1 and u = 0, the wrap
+// seam of a UV sphere's meridian, flattened; otherwise u = x / 2, no seam.
+Mesh uv_strip(bool wrapped) {
+  Mesh mesh;
+  for (std::uint32_t half = 0; half < 2; ++half) {
+    for (int corner = 0; corner < 4; ++corner) {
+      const double x = half + corner % 2;
+      const double y = corner / 2;
+      mesh.positions.push_back({x, y, 0.0});
+      mesh.uvs.push_back({wrapped ? x - half : x / 2.0, y});
+    }
+    const std::uint32_t first = 4 * half;
+    mesh.triangles.push_back({first, first + 1, first + 3});
+    mesh.triangles.push_back({first, first + 3, first + 2});
+  }
+  prepare_mesh(mesh, "strip");
+  return mesh;
+}
+
+// A uv wrap seam: one position whose uvs differ by a whole number in u or v (within 2^-16, as
+// text rounds 0.1 and 1.1), not a position whose uvs differ otherwise (islands of an atlas).
+TEST(MeshChecks, FindsUvWrapSeams) {
+  EXPECT_TRUE(uv_strip(true).uv_wrap_seam);
+  EXPECT_FALSE(uv_strip(false).uv_wrap_seam);
+  const Mesh triangle{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0}},
+                      {},
+                      {{0.1f, 0.25}, {0.5, 0.25}, {0.1, 0.75}, {0, 0}},
+                      {{0, 1, 2}}};
+  const auto seam = [&](Vec2d last) {
+    Mesh mesh = triangle;
+    mesh.uvs.back() = last;
+    prepare_mesh(mesh, "triangle");
+    return mesh.uv_wrap_seam;
+  };
+  EXPECT_TRUE(seam({1.1f, 0.25}));
+  EXPECT_TRUE(seam({0.1f, -1.75}));
+  EXPECT_TRUE(seam({-2.9, 3.25}));
+  EXPECT_FALSE(seam({0.1f, 0.25}));  // the same uv: no seam
+  EXPECT_FALSE(seam({0.6, 0.25}));
+  EXPECT_FALSE(seam({1.1, 0.5}));
 }
 
 // The derivatives of a plane seen head-on are one pixel's size at its distance, at every pixel.
