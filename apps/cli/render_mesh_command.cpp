@@ -36,6 +36,7 @@ struct Options {
   double texture_scale = 0.0;
   SurfaceOptions surface;
   int threads = 0;
+  bool periodic = false;
 };
 
 // --camera: AZIMUTH,ELEVATION[,DISTANCE] (degrees, degrees, framings) or EX,EY,EZ,TX,TY,TZ (eye
@@ -116,6 +117,16 @@ int run(const Options& o) {
         "{}: the gl backend has no GLSL {} mapping for {} models; use --backend cpu, or "
         "--mapping uv, which every method has on the gl backend",
         o.model, o.mapping, model.method()));
+  MeshRenderOptions options;
+  options.mapping = mapping;
+  options.surface = o.surface;
+  options.periodic = o.periodic;
+  options.threads = threads;
+  if (o.periodic) {
+    renderer::check_periodic_backend(backend);
+    if (const std::string refusal = mesh_periodic_refusal(model, options); !refusal.empty())
+      throw std::invalid_argument("--periodic: " + refusal);
+  }
   const Mesh mesh = read_mesh(o.mesh);
   if (mesh.skipped_triangles > 0)
     fmt::print(stderr,
@@ -127,13 +138,15 @@ int run(const Options& o) {
         "'" + o.mesh +
         "' has no texture coordinates (vt on every face corner), which --mapping uv needs; use "
         "--mapping triplanar-linear");
+  if (!mapping && !o.periodic && mesh.uv_wrap_seam)
+    fmt::print(stderr,
+               "stochtex render-mesh: note: '{}' has a uv wrap seam (a position whose uvs differ "
+               "by a whole number), where the texture steps; --periodic repeats it every uv unit "
+               "and hides the seam\n",
+               o.mesh);
 
-  MeshRenderOptions options;
-  options.mapping = mapping;
-  options.surface = o.surface;
   options.texture_scale =
       o.texture_scale > 0.0 ? o.texture_scale : (mapping ? default_texture_scale(mesh) : 1024.0);
-  options.threads = threads;
   ImageF image(size.width, size.height, channels);
   const Camera view = make_camera(camera, mesh, size);
   {
@@ -193,6 +206,11 @@ Command add_render_mesh_command(CLI::App& app) {
                    "triplanar mappings: the weight of axis k is |n_k|^sharpness, normalised")
       ->capture_default_str()
       ->check(finite_range(kMinTriplanarSharpness, kMaxTriplanarSharpness));
+  command->add_flag(
+      "--periodic", options->periodic,
+      "--mapping uv: the texture repeats every uv unit (its period the texture scale), as an "
+      "engine's repeat wrap, so that a seam where u or v jumps by a whole number (a UV sphere's) "
+      "does not show; CPU backend only, each method's scalar evaluator (docs/meshes.md)");
   command->add_option("--threads", options->threads, "worker threads (0 = all cores)")
       ->capture_default_str()
       ->check(CLI::Range(0, kMaxThreads));

@@ -112,8 +112,9 @@ void evaluate_surface_gl(const Model& model, std::span<const SurfacePoint> point
 // the CPU's image to float rounding inside the silhouettes but at pixels on a triangle edge
 // (docs/meshes.md gives the measured differences). options.threads and options.progress are not
 // used. Throws std::invalid_argument as render_mesh() does, and stochtex::Error when no OpenGL 4.5
-// context can be made, the mapping has no GLSL for the model's method, or the model is a material
-// on another mapping than uv or without an exported material function (tiling).
+// context can be made, the mapping has no GLSL for the model's method, the model is a material
+// on another mapping than uv or without an exported material function (tiling), or
+// options.periodic is set (the GLSL has no periodic evaluation).
 void render_mesh_gl(const Model& model, const Mesh& mesh, const Camera& camera,
                     const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out);
 

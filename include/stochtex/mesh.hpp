@@ -24,6 +24,10 @@ struct Mesh {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   // The degenerate triangles prepare_mesh removed (zero area: they cover no pixel).
   std::size_t skipped_triangles = 0;
+  // Set by prepare_mesh: whether one position carries uvs that differ by a non-zero whole number
+  // in u or v (within 2^-16), a uv wrap seam such as a UV sphere's u = 0 and u = 1, where the uv
+  // mapping shows a seam unless the texture repeats every uv unit (MeshRenderOptions::periodic).
+  bool uv_wrap_seam = false;
 };
 
 // The sizes a mesh may have: with 4 Mi triangles and 4 Mi vertices a mesh holds about 300 MB
@@ -43,7 +47,7 @@ inline constexpr double kMaxMeshCoordinate = 1e12;
 // other). Degenerate triangles (an area at most 1e-12 times the squared diagonal of the bounding
 // box: a repeated or collinear vertex) are removed and counted in `skipped_triangles`, as
 // renderers skip them. `normals` may be empty: the check then computes them, area-weighted over
-// the triangles around each position.
+// the triangles around each position. Sets uv_wrap_seam.
 void prepare_mesh(Mesh& mesh, const std::string& name);
 
 // The OBJ file at `path` (v, vt, vn and f lines; polygons are split into fans; lines, points,

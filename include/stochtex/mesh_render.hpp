@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <string>
 
 #include "stochtex/image.hpp"
 #include "stochtex/mesh.hpp"
@@ -44,6 +45,11 @@ struct MeshRenderOptions {
   SurfaceOptions surface;  // its `mapping` is replaced by the one above
   // Exemplar pixels per mesh unit (per uv unit with the uv mapping).
   double texture_scale = 1.0;
+  // The uv mapping only: the texture repeats every uv unit in u and v, as an engine's repeat wrap
+  // (evaluate_periodic, period (texture_scale, texture_scale) exemplar pixels), so that a seam
+  // where u or v jumps by a whole number (Mesh::uv_wrap_seam) does not show. mesh_periodic_refusal
+  // says when it cannot be.
+  bool periodic = false;
   // Every colour channel of the pixels no triangle covers, as an output file shows it (sRGB-encoded
   // where mesh_output_space is linear light: mesh_background); alpha 0.
   float background = 0.2f;
@@ -66,11 +72,17 @@ ColourSpace mesh_output_space(const Model& model);
 // light (mesh_output_space), so that every model shows the same background.
 float mesh_background(const Model& model, const MeshRenderOptions& options);
 
+// Why render_mesh refuses options.periodic (one sentence), or empty when it does not: another
+// mapping than uv (a mapping of positions has no uv unit to repeat), or a model evaluate_periodic
+// refuses (periodic_refusal, stochtex/render.hpp: a texton mix, an lrp structure component).
+std::string mesh_periodic_refusal(const Model& model, const MeshRenderOptions& options);
+
 // Renders the mesh (prepared by prepare_mesh) seen by the camera into `out`, which has
 // mesh_output_channels(model) channels. Throws std::invalid_argument, before any work, when the
 // model is empty or does not support the mapping, the uv mapping meets a mesh without uvs, the
-// camera is degenerate (eye at target, up along the view) or the texture scale puts the mesh
-// beyond kPositionLimit; Error(invalid_input) for a material without a colour map.
+// camera is degenerate (eye at target, up along the view), the texture scale puts the mesh
+// beyond kPositionLimit or options.periodic is refused (mesh_periodic_refusal);
+// Error(invalid_input) for a material without a colour map.
 void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
                  const MeshRenderOptions& options, std::uint32_t seed, ImageView<float> out);
 

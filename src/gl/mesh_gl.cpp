@@ -98,6 +98,10 @@ Texturing uv_texturing(const Model& model, const std::string& fragment) {
 }
 
 Texturing texturing(const Model& model, const MeshRenderOptions& options) {
+  if (options.periodic)
+    throw Error(ErrorCode::invalid_input,
+                "the gl backend of render-mesh has no periodic texture (its GLSL keys the cells "
+                "as the default evaluators do, docs/render.md); render it with --backend cpu");
   const std::string fragment = gl::shader_source("gl/mesh_fragment.glsl");
   if (!options.mapping) return uv_texturing(model, fragment);
   if (!model.maps().empty())

@@ -1,7 +1,9 @@
 #include "stochtex/mesh.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <string>
 #include <tuple>
@@ -40,6 +42,29 @@ std::vector<std::uint32_t> position_ids(const std::vector<Vec3d>& positions) {
     ids[order[k]] = id;
   }
   return ids;
+}
+
+// Whether a position (`ids`, position_ids) carries two uvs that differ by a non-zero whole number
+// in u or v: each uv in steps of 2^-16 split into its whole number and its fraction, sorted, so
+// that the uvs of one position with the same fractions lie side by side.
+bool has_uv_wrap_seam(const std::vector<Vec2d>& uvs, const std::vector<std::uint32_t>& ids) {
+  constexpr int kFractionBits = 16;
+  constexpr std::int64_t kFraction = (std::int64_t{1} << kFractionBits) - 1;
+  // (position, u's fraction, v's fraction, u's whole number, v's whole number); the steps stay
+  // within int64 for uvs within kMaxMeshCoordinate.
+  std::vector<std::array<std::int64_t, 5>> keys;
+  keys.reserve(uvs.size());
+  for (std::size_t v = 0; v < uvs.size(); ++v) {
+    const std::int64_t u = std::llround(std::ldexp(uvs[v].x, kFractionBits));
+    const std::int64_t w = std::llround(std::ldexp(uvs[v].y, kFractionBits));
+    keys.push_back({ids[v], u & kFraction, w & kFraction, u >> kFractionBits, w >> kFractionBits});
+  }
+  std::sort(keys.begin(), keys.end());
+  for (std::size_t k = 1; k < keys.size(); ++k)
+    if (std::equal(keys[k].begin(), keys[k].begin() + 3, keys[k - 1].begin()) &&
+        keys[k] != keys[k - 1])
+      return true;
+  return false;
 }
 
 void check_sizes_and_values(const Mesh& mesh, const std::string& name) {
@@ -123,6 +148,7 @@ void prepare_mesh(Mesh& mesh, const std::string& name) {
   } else {
     for (Vec3d& n : mesh.normals) n = n * (1.0 / length(n));
   }
+  mesh.uv_wrap_seam = has_uv_wrap_seam(mesh.uvs, ids);
 }
 
 }  // namespace stochtex

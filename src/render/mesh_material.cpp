@@ -29,12 +29,13 @@ ImageView<float> row_view(std::vector<float>& storage, std::size_t count, int ch
 // The derived normal map's height changes along each fragment's footprint steps: slope_scale times
 // half the height's change from p - dpdx to p + dpdx (x) and from p - dpdy to p + dpdy (y).
 std::vector<Vec2d> height_changes(const Model& model, const MeshMaterial& material,
-                                  std::span<const MeshFragment> fragments, bool uv,
-                                  const SurfaceOptions& surface, std::uint32_t seed) {
+                                  std::span<const MeshFragment> fragments,
+                                  const MeshRenderOptions& options, const SurfaceOptions& surface,
+                                  std::uint32_t seed) {
   const std::size_t count = fragments.size() * 4;
   std::vector<float> storage;
   const ImageView<float> heights = row_view(storage, count, model.channels());
-  if (uv) {
+  if (!options.mapping) {
     std::vector<Vec2d> positions;
     std::vector<Footprint> footprints;
     for (const MeshFragment& f : fragments) {
@@ -45,7 +46,7 @@ std::vector<Vec2d> height_changes(const Model& model, const MeshMaterial& materi
         footprints.push_back(f.uv_footprint);
       }
     }
-    evaluate(model, positions, footprints, seed, heights);
+    evaluate_uv(model, positions, footprints, seed, options, heights);
   } else {
     std::vector<SurfacePoint> points;
     for (const MeshFragment& f : fragments)
@@ -151,13 +152,15 @@ MeshMaterial mesh_material(const Model& model) {
 }
 
 void bump_gradients(const Model& model, const MeshMaterial& material, const Mesh& mesh,
-                    std::span<const MeshFragment> fragments, bool uv, const SurfaceOptions& surface,
-                    double texture_scale, std::uint32_t seed, ImageView<const float> values,
-                    std::span<Vec3d> gradients) {
+                    std::span<const MeshFragment> fragments, const MeshRenderOptions& options,
+                    const SurfaceOptions& surface, std::uint32_t seed,
+                    ImageView<const float> values, std::span<Vec3d> gradients) {
   std::fill(gradients.begin(), gradients.end(), Vec3d{});
+  const bool uv = !options.mapping;
+  const double texture_scale = options.texture_scale;
   if (material.height >= 0) {
     const std::vector<Vec2d> changes =
-        height_changes(model, material, fragments, uv, surface, seed);
+        height_changes(model, material, fragments, options, surface, seed);
     for (std::size_t i = 0; i < fragments.size(); ++i) {
       const MeshFragment& f = fragments[i];
       gradients[i] =

@@ -30,7 +30,8 @@ inline bool has_bump(const MeshMaterial& material) {
 
 // The surface gradient of the material's normal map at each fragment, in units of the mesh's
 // positions (render_mesh bumps the normal with it), with `values` the model evaluated at the
-// fragments through `surface` (its mapping; uv: through evaluate() at the fragments' uvs):
+// fragments through `surface` (options' mapping; uv, no mapping: through evaluate_uv() at the
+// fragments' uvs, periodic with options.periodic):
 //  - stored slopes, uv: the slopes as the height's gradient over the texture coordinates through
 //    the triangle's texture gradients (texture_surface_gradient);
 //  - stored slopes, triplanar mappings: each plane's slopes (the mapping evaluated at a normal
@@ -44,8 +45,8 @@ inline bool has_bump(const MeshMaterial& material) {
 //    differences, through texture_gradient_from_steps (uv) or surface_gradient_from_steps.
 // Heights are in units of one exemplar pixel's size on the surface (docs/materials.md).
 void bump_gradients(const Model& model, const MeshMaterial& material, const Mesh& mesh,
-                    std::span<const MeshFragment> fragments, bool uv, const SurfaceOptions& surface,
-                    double texture_scale, std::uint32_t seed, ImageView<const float> values,
-                    std::span<Vec3d> gradients);
+                    std::span<const MeshFragment> fragments, const MeshRenderOptions& options,
+                    const SurfaceOptions& surface, std::uint32_t seed,
+                    ImageView<const float> values, std::span<Vec3d> gradients);
 
 }  // namespace stochtex

@@ -236,6 +236,20 @@ void check_mesh_render_arguments(const Model& model, const Mesh& mesh,
     throw std::invalid_argument(
         "the texture scale puts the mesh beyond 2^32 exemplar pixels from the origin; use a "
         "smaller texture scale");
+  if (options.periodic) {
+    const std::string refusal = mesh_periodic_refusal(model, options);
+    if (!refusal.empty()) throw std::invalid_argument(refusal);
+  }
+}
+
+void evaluate_uv(const Model& model, std::span<const Vec2d> positions,
+                 std::span<const Footprint> footprints, std::uint32_t seed,
+                 const MeshRenderOptions& options, ImageView<float> out) {
+  if (options.periodic)
+    evaluate_periodic(model, positions, footprints, seed, out,
+                      {options.texture_scale, options.texture_scale});
+  else
+    evaluate(model, positions, footprints, seed, out);
 }
 
 PixelRays pixel_rays(const Camera& camera, int width, int height) {
@@ -381,6 +395,17 @@ float mesh_background(const Model& model, const MeshRenderOptions& options) {
                                                          : options.background;
 }
 
+std::string mesh_periodic_refusal(const Model& model, const MeshRenderOptions& options) {
+  if (options.mapping)
+    return "a periodic texture repeats every uv unit, so it needs the uv mapping, not " +
+           std::string(mapping_name(*options.mapping));
+  if (const std::string refusal = periodic_refusal(model); !refusal.empty()) return refusal;
+  if (!(options.texture_scale <= kPositionLimit))
+    return "the period of a periodic texture, one uv unit, is the texture scale, and it is beyond "
+           "2^32 exemplar pixels; use a smaller texture scale";
+  return {};
+}
+
 double default_texture_scale(const Mesh& mesh) {
   const Box box = bounding_box(mesh.positions);
   const Vec3d size = box.max - box.min;
@@ -440,7 +465,7 @@ void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
         positions.push_back(f.uv);
         footprints.push_back(f.uv_footprint);
       }
-      evaluate(model, positions, footprints, seed, view);
+      evaluate_uv(model, positions, footprints, seed, options, view);
     } else {
       std::vector<SurfacePoint> points;
       for (const MeshFragment& f : fragments) points.push_back(f.point);
@@ -459,8 +484,7 @@ void render_mesh(const Model& model, const Mesh& mesh, const Camera& camera,
     // surface's own normal is, the ambient term times the ambient occlusion (within [0, 1]).
     std::vector<Vec3d> gradients(fragments.size());
     if (has_bump(material))
-      bump_gradients(model, material, mesh, fragments, uv, surface, options.texture_scale, seed,
-                     view, gradients);
+      bump_gradients(model, material, mesh, fragments, options, surface, seed, view, gradients);
     for (int i = 0; i < count; ++i) {
       const MeshFragment& f = fragments[static_cast<std::size_t>(i)];
       const Vec3d n = bumped_normal(f.normal, gradients[static_cast<std::size_t>(i)]);

@@ -3,6 +3,9 @@
 // tangent frame field, the footprints from ray differentials and the shading. The CPU rasteriser
 // (mesh_render.cpp) uses them; a GL rasteriser passes the same rays and light as uniforms.
 
+#include <cstdint>
+#include <span>
+
 #include "render/mesh_geometry.hpp"
 #include "stochtex/mesh_render.hpp"
 
@@ -134,8 +137,14 @@ inline constexpr double kMaxFootprint = 65536.0;
 // render_mesh()'s checks of its arguments, shared by every backend (std::invalid_argument, one
 // sentence): an empty model, an output of other channels, a mapping the model lacks, the uv
 // mapping on a mesh without uvs, a texture scale that is not positive or puts the mesh beyond
-// kPositionLimit.
+// kPositionLimit, a refused options.periodic (mesh_periodic_refusal).
 void check_mesh_render_arguments(const Model& model, const Mesh& mesh,
                                  const MeshRenderOptions& options, ImageView<float> out);
+
+// The uv mapping's texture at `positions` (the uvs times the texture scale) with their
+// footprints: evaluate(), or with options.periodic evaluate_periodic() repeating every uv unit.
+void evaluate_uv(const Model& model, std::span<const Vec2d> positions,
+                 std::span<const Footprint> footprints, std::uint32_t seed,
+                 const MeshRenderOptions& options, ImageView<float> out);
 
 }  // namespace stochtex

@@ -67,10 +67,7 @@ RenderPlan plan_render(const RenderRequest& request, const std::string& output) 
     throw std::invalid_argument(
         "--tiled, --mipmap and --half write a tiled OpenEXR file: name the output .exr, not '" +
         output + "'");
-  if (request.periodic && request.backend == Backend::gl)
-    throw std::invalid_argument(
-        "--periodic renders on the CPU (each method's scalar evaluator, docs/render.md): use "
-        "--backend cpu");
+  if (request.periodic) check_periodic_backend(request.backend);
   if (request.mipmap && request.region)
     throw std::invalid_argument(
         "--mipmap cannot be combined with --region: a region has no mip levels of its own; render "
@@ -108,6 +105,13 @@ RenderPlan plan_render(const RenderRequest& request, const std::string& output) 
       },
       "use fewer --threads or a smaller --supersample, --tile or --size");
   return plan;
+}
+
+void check_periodic_backend(Backend backend) {
+  if (backend == Backend::gl)
+    throw std::invalid_argument(
+        "--periodic renders on the CPU (each method's scalar evaluator, docs/render.md): use "
+        "--backend cpu");
 }
 
 int budgeted_threads(int width, int rows, int tile, int supersample, int requested,

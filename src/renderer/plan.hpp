@@ -99,10 +99,15 @@ struct RenderPlan {
 // The plan of `request` written to `output` (an image path; .exr is the tiled OpenEXR format):
 // streamed for .exr beyond the in-memory limit or with tiled, mipmap or half, in memory
 // otherwise. Refuses, before any work, a size or region out of range, tiled OpenEXR options for
-// another format, mip levels of a region, an in-memory output beyond its limit, a GL render
-// beyond it, a grid (of any mip level) beyond the precise range of positions (check_grid), and a
-// CPU render beyond the memory budget (budgeted_threads).
+// another format, mip levels of a region, --periodic on the GL backend (check_periodic_backend),
+// an in-memory output beyond its limit, a GL render beyond it, a grid (of any mip level) beyond
+// the precise range of positions (check_grid), and a CPU render beyond the memory budget
+// (budgeted_threads).
 RenderPlan plan_render(const RenderRequest& request, const std::string& output);
+
+// Refuses --periodic (render's, render-mesh's) on a backend without periodic evaluation: only the
+// CPU's scalar evaluators have it (docs/render.md), the GL backend's GLSL does not.
+void check_periodic_backend(Backend backend);
 
 // The threads of a CPU render that holds width x rows pixels of `channels` channels at once (the
 // image, or the strip a streamed render holds) with `tile` and `supersample` (docs/design.md §9):

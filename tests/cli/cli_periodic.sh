@@ -2,7 +2,8 @@
 # `render --periodic` (docs/render.md "Periodic renders"): every method's tileable bake of a size
 # that is no multiple of its cells or of the exemplar tiles (analysed as an exemplar, its wrap
 # steps are the interior's) where the default render does not; --region and --threads give the
-# same bytes; synth takes it too; what cannot be periodic is refused in one sentence.
+# same bytes; synth takes it too; what cannot be periodic is refused in one sentence, by render
+# and by render-mesh.
 # usage and running by hand: tests/cli/common.sh.
 # shellcheck source-path=SCRIPTDIR source=common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -91,5 +92,13 @@ expect_ok "analyze lrp with a structure component" "$stochtex" analyze "$exempla
   -p ratio=0.2 -p cosines=4 -p strata=2 -o "$models/structure.stx"
 expect_error "--periodic of an lrp structure" 2 "structure component cannot render periodic" \
   "$stochtex" render "$models/structure.stx" -o "$out/structure.png" "${bake[@]}" --periodic
+# render-mesh --periodic (docs/meshes.md) refuses them with the same sentences, before the mesh
+# is read.
+expect_error "render-mesh --periodic of a texton mix" 2 "texton mix cannot render periodic" \
+  "$stochtex" render-mesh "$inputs/missing.obj" --model "$models/mix.stx" -o "$out/mix.png" \
+  --mapping uv --periodic
+expect_error "render-mesh --periodic of an lrp structure" 2 \
+  "structure component cannot render periodic" "$stochtex" render-mesh "$inputs/missing.obj" \
+  --model "$models/structure.stx" -o "$out/structure.png" --mapping uv --periodic
 
 summary

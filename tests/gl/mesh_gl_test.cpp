@@ -295,5 +295,24 @@ TEST(GlMesh, AMaterialOffUvIsRefused) {
   }
 }
 
+// The GLSL has no periodic evaluation: a periodic texture is refused with a sentence naming the
+// CPU backend, where render_mesh() makes it.
+TEST(GlMesh, APeriodicTextureIsRefused) {
+  const Mesh mesh = read_mesh(kMeshes + "sphere.obj");
+  const Camera camera = orbit_camera(mesh, 0.0, 0.0, 1.0, 8, 8);
+  ImageF out(8, 8, 3);
+  MeshRenderOptions options;
+  options.mapping = std::nullopt;  // the uv mapping
+  options.periodic = true;
+  const Model model = test_support::white_noise_model("tiling");
+  try {
+    render_mesh_gl(model, mesh, camera, options, 1, out.view());
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("--backend cpu"), std::string::npos) << error.what();
+  }
+  render_mesh(model, mesh, camera, options, 1, out.view());
+}
+
 }  // namespace
 }  // namespace stochtex::mesh_gl_test

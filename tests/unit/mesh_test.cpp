@@ -9,11 +9,15 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/srgb.hpp"
 #include "render/mesh_shading.hpp"
+#include "stochtex/material.hpp"
 #include "stochtex/mesh_render.hpp"
 #include "stochtex/stochtex.hpp"
 #include "test_support.hpp"
@@ -51,8 +55,10 @@ TEST_F(MeshTest, ReadsTheShippedMeshes) {
   EXPECT_EQ(sphere.triangles.size(), 2208u);
   EXPECT_EQ(sphere.uvs.size(), sphere.positions.size());
   EXPECT_EQ(sphere.normals.size(), sphere.positions.size());
+  EXPECT_TRUE(sphere.uv_wrap_seam);  // its meridian at u = 0 and u = 1
   const Mesh scan = read_mesh(kMeshes + "scan.obj");
   EXPECT_TRUE(scan.uvs.empty());
+  EXPECT_FALSE(scan.uv_wrap_seam);
   ASSERT_EQ(scan.normals.size(), scan.positions.size());
   for (const Vec3d& n : scan.normals) EXPECT_NEAR(length(n), 1.0, 1e-12);
 }
@@ -135,6 +141,49 @@ TEST(MeshChecks, RefusesValuesAndSizes) {
   EXPECT_NEAR(std::abs(fine.normals[0].z), 1.0, 1e-12);
 }
 
+// A flat strip in the plane z = 0, x from 0 to 2 and y from 0 to 1, v = y. Wrapped, u runs from 0
+// to 1 on each half (u = x, then x - 1): the position x = 1 carries u = 1 and u = 0, the wrap
+// seam of a UV sphere's meridian, flattened; otherwise u = x / 2, no seam.
+Mesh uv_strip(bool wrapped) {
+  Mesh mesh;
+  for (std::uint32_t half = 0; half < 2; ++half) {
+    for (int corner = 0; corner < 4; ++corner) {
+      const double x = half + corner % 2;
+      const double y = corner / 2;
+      mesh.positions.push_back({x, y, 0.0});
+      mesh.uvs.push_back({wrapped ? x - half : x / 2.0, y});
+    }
+    const std::uint32_t first = 4 * half;
+    mesh.triangles.push_back({first, first + 1, first + 3});
+    mesh.triangles.push_back({first, first + 3, first + 2});
+  }
+  prepare_mesh(mesh, "strip");
+  return mesh;
+}
+
+// A uv wrap seam: one position whose uvs differ by a whole number in u or v (within 2^-16, as
+// text rounds 0.1 and 1.1), not a position whose uvs differ otherwise (islands of an atlas).
+TEST(MeshChecks, FindsUvWrapSeams) {
+  EXPECT_TRUE(uv_strip(true).uv_wrap_seam);
+  EXPECT_FALSE(uv_strip(false).uv_wrap_seam);
+  const Mesh triangle{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0}},
+                      {},
+                      {{0.1f, 0.25}, {0.5, 0.25}, {0.1, 0.75}, {0, 0}},
+                      {{0, 1, 2}}};
+  const auto seam = [&](Vec2d last) {
+    Mesh mesh = triangle;
+    mesh.uvs.back() = last;
+    prepare_mesh(mesh, "triangle");
+    return mesh.uv_wrap_seam;
+  };
+  EXPECT_TRUE(seam({1.1f, 0.25}));
+  EXPECT_TRUE(seam({0.1f, -1.75}));
+  EXPECT_TRUE(seam({-2.9, 3.25}));
+  EXPECT_FALSE(seam({0.1f, 0.25}));  // the same uv: no seam
+  EXPECT_FALSE(seam({0.6, 0.25}));
+  EXPECT_FALSE(seam({1.1, 0.5}));
+}
+
 // The derivatives of a plane seen head-on are one pixel's size at its distance, at every pixel.
 TEST(MeshRender, HeadOnPlaneDerivativesArePixelSize) {
   Camera camera;
@@ -209,6 +258,88 @@ TEST(MeshRender, TheBackgroundLooksTheSameForEveryColourSpace) {
   }
 }
 
+// The uv strip seen head-on from in front of its seam, a picture 128 x 64 pixels and 0.25 mesh
+// units wide, its seam between columns 63 and 64. The texture scale is no whole number (a
+// period's pixels need not be): 0.29 exemplar pixels a picture pixel. Zoomed in, neighbouring
+// pixels are close and a seam stands out.
+constexpr int kStripWidth = 128;
+constexpr int kStripHeight = 64;
+constexpr double kStripScale = 150.5;
+
+ImageF render_strip(const Model& model, const Mesh& mesh, bool periodic, std::uint32_t seed) {
+  const PixelRays unit = pixel_rays({{0, 0, 1}, {0, 0, 0}}, kStripWidth, kStripHeight);
+  Camera camera;
+  camera.eye = {1.0, 0.5, 0.25 / (kStripWidth * length(unit.step_x))};
+  camera.target = {1.0, 0.5, 0.0};
+  MeshRenderOptions options;
+  options.mapping = std::nullopt;  // the uv mapping
+  options.texture_scale = kStripScale;
+  options.periodic = periodic;
+  ImageF image(kStripWidth, kStripHeight, mesh_output_channels(model));
+  render_mesh(model, mesh, camera, options, seed, image.view());
+  return image;
+}
+
+// The step across the strip's seam (columns 63 to 64) over the mean step between the other
+// neighbouring columns, each the sum of absolute differences over rows and channels.
+double seam_step(const ImageF& image) {
+  std::vector<double> steps;
+  for (int x = 0; x + 1 < image.width(); ++x) {
+    double sum = 0.0;
+    for (int y = 0; y < image.height(); ++y)
+      for (int c = 0; c < image.channels(); ++c)
+        sum += std::abs(image.at(x + 1, y, c) - image.at(x, y, c));
+    steps.push_back(sum);
+  }
+  const double seam = steps[kStripWidth / 2 - 1];
+  const double interior = (std::accumulate(steps.begin(), steps.end(), 0.0) - seam) /
+                          static_cast<double>(steps.size() - 1);
+  return seam / interior;
+}
+
+// The models of the seam test: each method's of grass_lawn_128 (quick settings, as in
+// periodic_test.cpp) and the rock material (albedo, its normal map derived from its height, so
+// that the bump samples the height around each fragment too).
+std::vector<std::pair<std::string, Model>> seam_models() {
+  std::vector<std::pair<std::string, Model>> models;
+  const ImageF grass = read_image(STOCHTEX_TEXTURE_DIR "/grass_lawn_128.png");
+  for (const auto& [method, params] : std::initializer_list<std::pair<const char*, ParamValues>>{
+           {"texton", {{"support", 32}, {"iterations", 10}}},
+           {"tiling", {}},
+           {"lrp", {{"cosines", 4}, {"strata", 2}}},
+           {"gabor", {{"impulses", 128}, {"iterations", 5}}}})
+    models.emplace_back(method, analyze(method, grass.view(), params, 1));
+  const std::vector<std::string> names = {"albedo", "normal", "height"};
+  std::vector<ImageF> images;
+  for (const std::string& name : names)
+    images.push_back(read_image(test_support::kRock + name + ".png"));
+  std::vector<MaterialMap> maps;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    maps.push_back({names[i], {}, images[i].view(), names[i] + ".png"});
+  models.emplace_back("rock material",
+                      analyze_material("texton", maps, {{"iterations", 3}, {"support", 32}}, 0));
+  return models;
+}
+
+// The uv mapping evaluates the model at uv * texture scale, so where u jumps from 1 to 0 the
+// texture does too: the default render steps at the seam. With `periodic` the texture repeats
+// every uv unit and the seam steps as the interior does. Measured over seeds 1 to 8, the seam
+// step over the interior's mean: default 2.13 to 7.86 (per model at least: texton 2.54, tiling
+// 3.67, lrp 2.25, gabor 2.13, the material 2.99), periodic 0.50 to 1.41 (at most: texton 1.40,
+// tiling 0.78, lrp 1.22, gabor 1.27, the material 1.41). The bound 1.75 lies between, about 0.35
+// from either; seeds 1 to 4 are tested.
+TEST(MeshRender, PeriodicUvHidesTheWrapSeam) {
+  const Mesh strip = uv_strip(true);
+  for (const auto& [name, model] : seam_models()) {
+    for (std::uint32_t seed = 1; seed <= 4; ++seed) {
+      const double plain = seam_step(render_strip(model, strip, false, seed));
+      const double periodic = seam_step(render_strip(model, strip, true, seed));
+      EXPECT_GT(plain, 1.75) << name << ", seed " << seed;
+      EXPECT_LT(periodic, 1.75) << name << ", seed " << seed;
+    }
+  }
+}
+
 TEST(MeshRender, RefusesBeforeWork) {
   const Mesh scan = read_mesh(kMeshes + "scan.obj");
   const Camera camera = orbit_camera(scan, 0.0, 0.0, 1.0, 8, 8);
@@ -225,6 +356,15 @@ TEST(MeshRender, RefusesBeforeWork) {
   options.texture_scale = 1e10;  // beyond 2^32 exemplar pixels
   EXPECT_THROW(render_mesh(tiling_model(), scan, camera, options, 0, image.view()),
                std::invalid_argument);
+  // --periodic: the uv mapping only, and models evaluate_periodic takes.
+  const Mesh sphere = read_mesh(kMeshes + "sphere.obj");
+  options.texture_scale = 64.0;
+  options.periodic = true;
+  EXPECT_THROW(render_mesh(tiling_model(), sphere, camera, options, 0, image.view()),
+               std::invalid_argument);
+  EXPECT_NE(mesh_periodic_refusal(tiling_model(), options).find("uv mapping"), std::string::npos);
+  options.mapping = std::nullopt;
+  EXPECT_EQ(mesh_periodic_refusal(tiling_model(), options), "");
   EXPECT_EQ(image.view().at(0, 0, 0), 42.0f);
   EXPECT_THROW(orbit_camera(scan, 0.0, 90.0, 1.0, 8, 8), std::invalid_argument);
   Camera degenerate;
