@@ -239,11 +239,11 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
         stochtex.export_fast(model_path, export)
         with open(os.path.join(export, "stochtex_tiling.glsl")) as glsl:
             constants = tiling_group.read_constants(glsl.read())
-        tiling_group.check_supported(
+        files = tiling_group.check_supported(
             constants, [f for f in os.listdir(export) if f.endswith((".png", ".exr"))])
         name = "stochtex tiling: %s" % node.image.name
-        exemplar = load_image(os.path.join(export, "tiling_exemplar.png"), "Non-Color")
-        lut = load_image(os.path.join(export, "tiling_lut.png"), "Non-Color")
+        exemplar = load_image(os.path.join(export, files["tiling_exemplar"]), "Non-Color")
+        lut = load_image(os.path.join(export, files["tiling_lut"]), "Non-Color")
         offset_table = tiling_group.offsets_image(name + " offsets", self.seed,
                                                   constants["TILING_WIDTH"],
                                                   constants["TILING_HEIGHT"])

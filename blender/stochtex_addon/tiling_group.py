@@ -13,7 +13,7 @@ in EEVEE and Cycles, on the CPU and the GPU:
    the Gaussianised exemplar `tiling_exemplar.png` at wrap(p) + offset, bilinear and periodic.
 4. The variance-preserving blend of eq. (13) around the blend mean.
 5. T^-1 of level 0 (tiling_inverse_at_level): eq. (22) with the Abramowitz-Stegun erf of
-   evaluate.glsl, then the 3-D table of `tiling_lut.png` (its first 32 slices), trilinear.
+   evaluate.glsl, then the 3-D table of `tiling_lut` (its first 32 slices), trilinear.
 
 Every image read is a closest read (bilinear and trilinear are blended by hand): EEVEE mip-maps an
 image read with linear interpolation by the screen derivatives of its coordinates, which jump where
@@ -28,6 +28,7 @@ The group's output is the model's render: linear light for a model of sRGB or li
 (scene-linear Rec. 709 in Blender), the values as they are for a model of data.
 """
 
+import os
 import re
 
 import bpy
@@ -72,7 +73,9 @@ def read_constants(glsl):
 
 
 def check_supported(constants, texture_names):
-    """Raises Unsupported, one sentence, for what the group does not evaluate."""
+    """The export's data files by name (`tiling_exemplar`, `tiling_lut`: a 16-bit PNG, or a
+    float OpenEXR where a table's values leave [0, 1]); raises Unsupported, one sentence, for what
+    the group does not evaluate."""
     if constants["TILING_CHANNELS"] != 3 or not constants["TILING_COLOUR_LUT"]:
         raise Unsupported("the node group evaluates colour (RGB) models with the 3-D table "
                           "(the default sliced transport)")
@@ -81,8 +84,10 @@ def check_supported(constants, texture_names):
     if constants["TILING_TRANSFORMED"] or constants["TILING_SHARPNESS"] != 1.0:
         raise Unsupported("the node group has no artist controls (rotation, scale jitter, "
                           "sharpness)")
-    if sorted(texture_names) != ["tiling_exemplar.png", "tiling_lut.png"]:
+    files = {os.path.splitext(name)[0]: name for name in texture_names}
+    if sorted(files) != ["tiling_exemplar", "tiling_lut"]:
         raise Unsupported("the export's data files are not the two the node group reads")
+    return files
 
 
 class _Builder:
