@@ -212,9 +212,8 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
             stochtex = backend.Backend(preferences.use, preferences.command)
             folder = data_folder(node.image.name)
             source = ExemplarSource(node.image, folder)
-            colour = source.colour(from_pixels=stochtex.module is not None)
             model_path = os.path.join(folder, self.method + ".stx")
-            stochtex.analyse(source, self.method, colour, model_path)
+            route, colour = stochtex.analyse(source, self.method, model_path)
             if self.method == "tiling" and not self.bake:
                 try:
                     result = self.node_group(tree, node, stochtex, model_path, folder)
@@ -230,8 +229,8 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
             other.select = False
         result.select = True
         tree.nodes.active = result
-        self.report({"INFO"}, "stochtex: %s of '%s' (%s, via the %s), files in %s" % (
-            self.method, node.image.name, colour, stochtex.name, folder))
+        self.report({"INFO"}, "stochtex: %s of '%s' (%s, analysed by the %s), files in %s" % (
+            self.method, node.image.name, colour, route, folder))
         return {"FINISHED"}
 
     def node_group(self, tree, node, stochtex, model_path, folder):
@@ -253,6 +252,7 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
         group = tree.nodes.new("ShaderNodeGroup")
         group.node_tree = tiling_group.build_group(name, constants, exemplar, lut, offset_table)
         group.location = node.location
+        group.width = node.width  # wide enough to show the group's name
         node.location.y += 320.0
         rewire(tree, node, group.outputs["Color"], group.inputs["Vector"])
         return group

@@ -59,22 +59,28 @@ class Backend:
                                 "found: install either, or set the command's path in the add-on's "
                                 "preferences")
 
-    @property
-    def name(self):
-        return "Python module" if self.module else "command line"
-
-    def analyse(self, source, method, colour, model_path):
-        """Analyses `source` (an ExemplarSource) as `colour` ("srgb", "linear" or "data") with
-        `method` and writes the model to `model_path`."""
-        if self.module:
+    def analyse(self, source, method, model_path):
+        """Analyses `source` (an ExemplarSource) with `method` as its colour space says, writes
+        the model to `model_path` and returns (what analysed it: "Python module" or "command
+        line", the colour space analysed: "srgb", "linear" or "data"). An image longer than the
+        method analyses (`analysis_side`: 1024 pixels, 512 for gabor) goes to the command line
+        where there is one, which downscales it in linear light (docs/inputs.md); the module
+        analyses the pixels it is given, at their size."""
+        use_module = self.module is not None
+        if use_module and self.command:
+            side = next(m["analysis_side"] for m in self.module.methods() if m["name"] == method)
+            use_module = max(source.image.size) <= side
+        colour = source.colour(from_pixels=use_module)
+        if use_module:
             try:
                 model = self.module.analyze(source.array(), method, colour=colour)
                 model.save(model_path)
             except (ValueError, OSError, RuntimeError) as error:
                 raise StochtexError(str(error)) from error
-        else:
-            _run([self.command, "analyze", source.file(), "--method", method, "--colour-space",
-                  colour, "-o", model_path])
+            return "Python module", colour
+        _run([self.command, "analyze", source.file(), "--method", method, "--colour-space",
+              colour, "-o", model_path])
+        return "command line", colour
 
     def bake(self, model_path, image_path, width, height, seed, periodic):
         """Renders the model into `image_path` (PNG: sRGB-encoded colour for a model of colour,
