@@ -140,12 +140,14 @@ class _Builder:
     def lay_out(self):
         """Columns by the longest path from the group's inputs, so the graph reads left to
         right."""
+        feeding = {node.name: [] for node in self.tree.nodes}
+        for link in self.tree.links:
+            feeding[link.to_node.name].append(link.from_node)
         column = {}
 
         def depth(node):
             if node.name not in column:
-                column[node.name] = 1 + max((depth(link.from_node) for link in self.tree.links
-                                             if link.to_node == node), default=-1)
+                column[node.name] = 1 + max((depth(n) for n in feeding[node.name]), default=-1)
             return column[node.name]
 
         rows = {}
@@ -171,10 +173,11 @@ def _erf(build, x):
 def _bilinear(build, image, x, y, width, height):
     """The periodic bilinear read of `image` at (x, y) exemplar pixels (fetch_bilinear: texel i
     covers [i, i + 1)), from 4 closest reads."""
-    corner_x = build.math("FLOOR", build.math("SUBTRACT", x, 0.5))
-    corner_y = build.math("FLOOR", build.math("SUBTRACT", y, 0.5))
-    fraction_x = build.math("SUBTRACT", build.math("SUBTRACT", x, 0.5), corner_x)
-    fraction_y = build.math("SUBTRACT", build.math("SUBTRACT", y, 0.5), corner_y)
+    # Texel centres at i + 1/2: the corner texel and the fraction past its centre.
+    x, y = build.math("SUBTRACT", x, 0.5), build.math("SUBTRACT", y, 0.5)
+    corner_x, corner_y = build.math("FLOOR", x), build.math("FLOOR", y)
+    fraction_x = build.math("SUBTRACT", x, corner_x)
+    fraction_y = build.math("SUBTRACT", y, corner_y)
     corner = build.combine(build.math("DIVIDE", build.math("ADD", corner_x, 0.5), width),
                            build.math("SUBTRACT", 1.0, build.math(
                                "DIVIDE", build.math("ADD", corner_y, 0.5), height)))
