@@ -9,10 +9,11 @@
    (Color Space sRGB) on a plane, the operator, then a render of an orthographic view of the
    plane by Cycles (CPU) and by EEVEE (OpenGL: Mesa's llvmpipe under Xvfb here), each against
    `stochtex render` of the same region and seed, pixel for pixel.
-3. Bakes (analysis and render through the command line): the first exemplar's tiling model
-   baked periodic to PNG and to OpenEXR, each rendered by both engines as the add-on set it up,
-   against `stochtex render --periodic`: the colour space of each file must be the one Blender
-   reads it in (the EXR holds linear light, the PNG sRGB-encoded values).
+3. Bakes of the first exemplar: its tiling model (analysis and render through the command line)
+   baked periodic to PNG and to OpenEXR, its texton model (through the module) to OpenEXR, each
+   rendered by both engines as the add-on set it up, against `stochtex render --periodic`: the
+   colour space of each file must be the one Blender reads it in (the EXR holds linear light,
+   the PNG sRGB-encoded values).
 4. Disables and removes the add-on.
 
 Every render takes one sample per pixel, at the pixel's centre (Cycles: through a 0.01-pixel box
@@ -128,9 +129,10 @@ def render_region(scene, engine, pixels_per_unit, origin):
     return read_exr(path)
 
 
-def newest_model():
-    """The model file the operator wrote last (its folder is under TMPDIR, WORK/tmp)."""
-    return max(glob.glob(os.path.join(WORK, "tmp", "*", "tiling.stx")), key=os.path.getmtime)
+def newest_model(method="tiling"):
+    """The model file of `method` the operator wrote last (its folders are under TMPDIR,
+    WORK/tmp)."""
+    return max(glob.glob(os.path.join(WORK, "tmp", "*", method + ".stx")), key=os.path.getmtime)
 
 
 def run_operator(**options):
@@ -183,33 +185,34 @@ for exemplar in EXEMPLARS:
               "%s, %s: the node group's render is stochtex render's region" % (engine, name))
 
 
-# 3. Periodic bakes to PNG and OpenEXR, through the command line.
-preferences.use = "command_line"
-expected = None
-for file_format, bound in (("PNG", 5e-3), ("EXR", 1e-3)):
+# 3. Periodic bakes: tiling to PNG and to OpenEXR through the command line, texton (another
+# method: a bake only) to OpenEXR through the module.
+for method, file_format, use, bound in (("tiling", "PNG", "command_line", 5e-3),
+                                        ("tiling", "EXR", "command_line", 1e-3),
+                                        ("texton", "EXR", "module", 1e-3)):
+    preferences.use = use
     scene, material = scene_with_plane(EXEMPLARS[0])
-    run_operator(method="tiling", bake=True, resolution=BAKE_SIDE, periodic=True,
+    run_operator(method=method, bake=True, resolution=BAKE_SIDE, periodic=True,
                  file_format=file_format, seed=0)
     baked = [n for n in material.node_tree.nodes if n.type == "TEX_IMAGE" and n.image and
              n.image.name.startswith("stochtex")][0].image
     check(baked.colorspace_settings.name == ("sRGB" if file_format == "PNG" else "Linear"),
           "the %s bake's Color Space is %s" % (file_format, baked.colorspace_settings.name))
-    if expected is None:
-        model = newest_model()
-        whole = reference(model, "bake_reference", (BAKE_SIDE, BAKE_SIDE), periodic=True)
-        expected = whole[BAKE_ORIGIN[1]:BAKE_ORIGIN[1] + SIDE, BAKE_ORIGIN[0]:BAKE_ORIGIN[0] + SIDE]
+    whole = reference(newest_model(method), "bake_reference", (BAKE_SIDE, BAKE_SIDE),
+                      periodic=True)
+    expected = whole[BAKE_ORIGIN[1]:BAKE_ORIGIN[1] + SIDE, BAKE_ORIGIN[0]:BAKE_ORIGIN[0] + SIDE]
     for engine in ENGINES:
         difference = numpy.abs(render_region(scene, engine, BAKE_SIDE / 2.0, BAKE_ORIGIN) -
                                expected)
-        print("%s, %s bake against stochtex render --periodic: max %.2e, mean %.2e" %
-              (engine, file_format, difference.max(), difference.mean()))
+        print("%s, %s %s bake against stochtex render --periodic: max %.2e, mean %.2e" %
+              (engine, method, file_format, difference.max(), difference.mean()))
         # PNG: 8-bit sRGB-encoded values, half a level of 255 is at most 4.5e-3 in linear light
         # (the sRGB curve's slope is at most 2.3); measured max 3.2e-3 (Cycles), 4.1e-3 (EEVEE).
         # EXR: float; Cycles' filter jitter, max 1.9e-4, and EEVEE's 16-bit float textures, max
-        # 4.9e-4. Encoded values read as linear light (the washed-out EXR) are off by up to 0.29,
-        # linear light read as sRGB by as much.
-        check(difference.max() < bound,
-              "%s: the %s bake renders as stochtex renders it" % (engine, file_format))
+        # 4.9e-4 (texton: about the same). Encoded values read as linear light (the washed-out
+        # EXR) are off by up to 0.29, linear light read as sRGB by as much.
+        check(difference.max() < bound, "%s: the %s %s bake renders as stochtex renders it" %
+              (engine, method, file_format))
 
 # 4. Disable and remove.
 bpy.ops.preferences.addon_disable(module=MODULE)
