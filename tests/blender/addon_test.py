@@ -14,6 +14,8 @@
    rendered by both engines as the add-on set it up, against `stochtex render --periodic`: the
    colour space of each file must be the one Blender reads it in (the EXR holds linear light,
    the PNG sRGB-encoded values).
+   The .blend, saved and opened again without the add-on's files, renders the same: it holds
+   the images packed.
 4. Disables and removes the add-on.
 
 Every render takes one sample per pixel, at the pixel's centre (Cycles: through a 0.01-pixel box
@@ -24,6 +26,7 @@ transform).
 
 import glob
 import os
+import shutil
 import subprocess
 import sys
 
@@ -130,9 +133,9 @@ def render_region(scene, engine, pixels_per_unit, origin):
 
 
 def newest_model(method="tiling"):
-    """The model file of `method` the operator wrote last (its folders are under TMPDIR,
-    WORK/tmp)."""
-    return max(glob.glob(os.path.join(WORK, "tmp", "*", method + ".stx")), key=os.path.getmtime)
+    """The model file of `method` the operator wrote last: its folders are in TMPDIR (WORK/tmp)
+    while the .blend is not saved, then in stochtex/ beside it (WORK/stochtex)."""
+    return max(glob.glob(os.path.join(WORK, "*", "*", method + ".stx")), key=os.path.getmtime)
 
 
 def run_operator(**options):
@@ -166,8 +169,8 @@ for exemplar in EXEMPLARS:
     width = bpy.data.images[name].size[0]
     expected = reference(model, "group_reference", (SIDE, SIDE), ORIGIN)
     for engine in ENGINES:
-        difference = numpy.abs(render_region(scene, engine, width * SCALE / 2.0, ORIGIN) -
-                               expected)
+        rendered = render_region(scene, engine, width * SCALE / 2.0, ORIGIN)
+        difference = numpy.abs(rendered - expected)
         print("%s, %s, node group against stochtex render: max %.2e, mean %.2e" %
               (engine, name, difference.max(), difference.mean()))
         # The group runs the fast variant's data: the Gaussianised exemplar as a 16-bit PNG and
@@ -184,6 +187,15 @@ for exemplar in EXEMPLARS:
         check(difference.max() < MAX_DIFFERENCE[engine] and difference.mean() < 1e-4,
               "%s, %s: the node group's render is stochtex render's region" % (engine, name))
 
+
+# The .blend holds what the group reads: saved, its files deleted and opened again, it renders
+# the same pixels (the last engine's render, of the last exemplar).
+blend = os.path.join(WORK, "group.blend")
+bpy.ops.wm.save_as_mainfile(filepath=blend)
+shutil.rmtree(os.path.dirname(newest_model()))
+bpy.ops.wm.open_mainfile(filepath=blend)
+again = render_region(bpy.context.scene, ENGINES[-1], width * SCALE / 2.0, ORIGIN)
+check(numpy.array_equal(again, rendered), "the saved .blend renders the same without the files")
 
 # 3. Periodic bakes: tiling to PNG and to OpenEXR through the command line, texton (another
 # method: a bake only) to OpenEXR through the module.
