@@ -5,8 +5,9 @@ In the Shader Editor, select an Image Texture node and run "Stochtex: analyse im
 (sidebar, Stochtex tab, or the Node menu). The image is analysed as its Color Space says (sRGB,
 Linear or Non-Color), then either
 
-- tiling: a node group of native nodes that evaluates histogram-preserving tiling and blending
-  (stochtex's fast shader variant), in EEVEE and Cycles, on the CPU and the GPU; or
+- tiling: a node group of native nodes (math nodes and closest Image Texture reads, which every
+  Blender device runs) that evaluates histogram-preserving tiling and blending (stochtex's fast
+  shader variant) in EEVEE and Cycles; or
 - any method (or tiling when asked): a bake, an image rendered by stochtex at a chosen
   resolution, periodic when asked so that it repeats without a seam.
 

@@ -2,7 +2,7 @@
 
 It is the fast variant of `stochtex export-shader` (src/methods/tiling/hardware.glsl and
 evaluate.glsl, read there for each step) written in math and Image Texture nodes, so that it runs
-in EEVEE and Cycles, on the CPU and the GPU:
+in EEVEE and Cycles on any device (tested: Cycles on the CPU, EEVEE on Mesa's llvmpipe):
 
 1. p = (u W, (1 - v) H) Scale: the group's Vector (a UV) in exemplar pixels, with the image's
    orientation (UV (0, 1) is the exemplar's top-left pixel, as the Image Texture node shows it).
