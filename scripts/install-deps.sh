@@ -20,6 +20,8 @@ packages=(
   python3-zarr
   # the browser test (tests/browser): headless Chromium, its WebDriver and Selenium
   chromium chromium-driver python3-selenium
+  # the Blender add-on's test (tests/blender): Blender 3.4, and Xvfb for EEVEE's OpenGL context
+  blender xvfb xauth
 )
 # the three.js test (tests/browser/three_test.py) installs three.js with npm; Debian's npm, unless
 # an npm is there already (NodeSource's nodejs has its own, and conflicts with Debian's)

@@ -128,6 +128,32 @@ expect_ok "export-web of a srgb model" "$stochtex" export-web "$models/srgb.stx"
     fail "export-web of a srgb model" "no manifest says its colour is linear"
   fi
 
+# gaussian: the ADSN of a photo's sRGB values is written as a srgb model's render would be, into
+# a PNG as it is with an sRGB chunk and into PFM (as OpenEXR) decoded to linear light, never the
+# encoded values in a linear file (a washed-out texture in Blender, issue 38).
+for space in auto data; do
+  expect_ok "gaussian --colour-space $space to PFM" "$stochtex" gaussian "$nuts" --size 32x32 \
+    --seed 3 --colour-space "$space" -o "$models/gaussian_$space.pfm"
+done
+if python3 - "$models" <<'PY'; then pass; else fail "gaussian's PFM holds linear light" "see above"; fi
+import struct, sys
+def pfm(path):
+    data = open(path, "rb").read()
+    header = data.split(b"\n", 3)
+    assert header[0] == b"Pf", "a grey PFM"
+    count = len(header[3]) // 4
+    return struct.unpack(("<" if float(header[2]) < 0 else ">") + "%df" % count, header[3])
+decode = lambda v: v / 12.92 if v <= 0.04045 else ((v + 0.055) / 1.055) ** 2.4
+linear, encoded = pfm(sys.argv[1] + "/gaussian_auto.pfm"), pfm(sys.argv[1] + "/gaussian_data.pfm")
+error = max(abs(decode(e) - l) for e, l in zip(encoded, linear))
+print("gaussian to PFM: largest |decode(data) - auto|", error)
+assert error < 1e-5 and max(abs(e - l) for e, l in zip(encoded, linear)) > 0.1
+PY
+expect_ok "gaussian to PNG" "$stochtex" gaussian "$nuts" --size 32x32 -o "$models/gaussian.png" &&
+  if grep -q sRGB "$models/gaussian.png"; then pass; else
+    fail "gaussian of a photo to PNG" "the PNG has no sRGB chunk"
+  fi
+
 # A material's colour maps take a colour space; its data maps refuse one.
 rock=$textures/../materials/rock_sandstone
 expect_ok "a material's albedo in sRGB" "$stochtex" analyze --map albedo:srgb="$rock/albedo.png" \

@@ -1,0 +1,245 @@
+"""The Blender add-on in Blender itself (docs/engines.md, "Blender"), run by run_addon_test.sh:
+
+    blender -b --factory-startup --python-exit-code 1 -P addon_test.py -- \
+        ADDON_ZIP STOCHTEX WORK_DIR EXEMPLAR...
+
+1. Installs the zip and enables the add-on, as a user does from the preferences.
+2. Node group (analysis through the Python module), for each exemplar (the first's export holds
+   its table as a 16-bit PNG, the second's as OpenEXR): an Image Texture node with the exemplar
+   (Color Space sRGB) on a plane, the operator, then a render of an orthographic view of the
+   plane by Cycles (CPU) and by EEVEE (OpenGL: Mesa's llvmpipe under Xvfb here), each against
+   `stochtex render` of the same region and seed, pixel for pixel.
+3. Bakes of the first exemplar: its tiling model (analysis and render through the command line)
+   baked periodic to PNG and to OpenEXR, its texton model (through the module) to OpenEXR, each
+   rendered by both engines as the add-on set it up, against `stochtex render --periodic`: the
+   colour space of each file must be the one Blender reads it in (the EXR holds linear light,
+   the PNG sRGB-encoded values).
+   The .blend, saved and opened again without the add-on's files, renders the same: it holds
+   the images packed.
+4. Disables and removes the add-on.
+
+Every render takes one sample per pixel, at the pixel's centre (Cycles: through a 0.01-pixel box
+filter, so to 0.005 pixels; EEVEE: its first sample is the centre), of an Emission shader, so a
+pixel's value is the texture's (scene-linear, saved to a 32-bit float OpenEXR without view
+transform).
+"""
+
+import glob
+import os
+import shutil
+import subprocess
+import sys
+
+import addon_utils
+import bpy
+import numpy
+
+ZIP, STOCHTEX, WORK, *EXEMPLARS = sys.argv[sys.argv.index("--") + 1:]
+MODULE = "stochtex_addon"
+SIDE = 64  # rendered pixels a side
+SCALE = 4.0  # the node group's Scale: the plane's UV square holds 4 x 4 exemplar widths
+ORIGIN = (160, 200)  # the rendered region's top-left corner, exemplar pixels
+ENGINES = ("CYCLES", "BLENDER_EEVEE")
+MAX_DIFFERENCE = {"CYCLES": 5e-3, "BLENDER_EEVEE": 5e-4}  # the node group's, reasons below
+BAKE_SIDE = 128  # the first exemplar's size: one bake pixel per rendered texture pixel below
+BAKE_ORIGIN = (32, 40)
+failures = []
+renders = []
+
+
+def check(condition, message):
+    print(("ok: " if condition else "FAIL: ") + message)
+    if not condition:
+        failures.append(message)
+
+
+def read_exr(path):
+    """A float image's pixels as stored, rows from the top (stochtex's order)."""
+    image = bpy.data.images.load(path, check_existing=False)
+    image.colorspace_settings.name = "Non-Color"
+    width, height = image.size
+    pixels = numpy.empty(width * height * 4, numpy.float32)
+    image.pixels.foreach_get(pixels)
+    bpy.data.images.remove(image)
+    return pixels.reshape(height, width, 4)[::-1, :, :3]
+
+
+def reference(model, name, size, origin=(0, 0), periodic=False):
+    path = os.path.join(WORK, name + ".exr")
+    subprocess.run([STOCHTEX, "render", model, "-o", path, "--size", "%dx%d" % size,
+                    "--origin", "%d,%d" % origin, "--seed", "0"] +
+                   (["--periodic"] if periodic else []), check=True, capture_output=True)
+    return read_exr(path)
+
+
+def scene_with_plane(exemplar):
+    """The scene emptied (the add-on stays enabled), then a plane whose material shows the
+    exemplar's Image Texture node (the active node) through an Emission shader."""
+    for collection in (bpy.data.objects, bpy.data.meshes, bpy.data.cameras, bpy.data.lights,
+                       bpy.data.materials):
+        for block in list(collection):
+            collection.remove(block)
+    scene = bpy.context.scene
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = 1
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.use_denoising = False
+    scene.cycles.max_bounces = 0
+    scene.cycles.pixel_filter_type = "BOX"
+    scene.cycles.filter_width = 0.01
+    scene.render.threads_mode = "FIXED"
+    scene.render.threads = 2
+    scene.eevee.taa_render_samples = 1
+    scene.render.resolution_x = scene.render.resolution_y = SIDE
+    scene.render.resolution_percentage = 100
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.view_settings.view_transform = "Standard"
+    bpy.ops.mesh.primitive_plane_add(size=2.0)  # x, y in [-1, 1], UV (x + 1, y + 1) / 2
+    plane = bpy.context.active_object
+    material = bpy.data.materials.new("exemplar")
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    texture = nodes.new("ShaderNodeTexImage")
+    texture.image = bpy.data.images.load(exemplar)
+    texture.image.colorspace_settings.name = "sRGB"
+    emission = nodes.new("ShaderNodeEmission")
+    output = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(texture.outputs["Color"], emission.inputs["Color"])
+    material.node_tree.links.new(emission.outputs[0], output.inputs["Surface"])
+    nodes.active = texture
+    plane.data.materials.append(material)
+    return scene, material
+
+
+def render_region(scene, engine, pixels_per_unit, origin):
+    """The engine's render of the SIDE x SIDE region at `origin` (texture pixels, y down), where
+    the plane's x in [-1, 1] spans 2 pixels_per_unit texture pixels."""
+    scene.render.engine = engine
+    camera_data = bpy.data.cameras.new("camera")
+    camera_data.type = "ORTHO"
+    camera_data.ortho_scale = SIDE / pixels_per_unit
+    camera = bpy.data.objects.new("camera", camera_data)
+    centre = [o + SIDE / 2.0 for o in origin]
+    camera.location = (centre[0] / pixels_per_unit - 1.0, 1.0 - centre[1] / pixels_per_unit, 1.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    renders.append(os.path.join(WORK, "render_%d.exr" % len(renders)))
+    path = renders[-1]
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    return read_exr(path)
+
+
+def newest_model(method="tiling"):
+    """The model file of `method` the operator wrote last: its folders are in TMPDIR (WORK/tmp)
+    while the .blend is not saved, then in stochtex/ beside it (WORK/stochtex)."""
+    return max(glob.glob(os.path.join(WORK, "*", "*", method + ".stx")), key=os.path.getmtime)
+
+
+def run_operator(**options):
+    result = bpy.ops.node.stochtex_analyse(**options)
+    check(result == {"FINISHED"}, "the operator finished (%s)" % options)
+
+
+# 1. Install and enable.
+bpy.ops.preferences.addon_install(filepath=ZIP, overwrite=True)
+bpy.ops.preferences.addon_enable(module=MODULE)
+check(addon_utils.check(MODULE)[1], "the add-on is enabled")
+check(hasattr(bpy.types, "NODE_OT_stochtex_analyse"), "its operator is registered")
+preferences = bpy.context.preferences.addons[MODULE].preferences
+preferences.command = STOCHTEX
+# Mesa's llvmpipe filters anisotropically even a 1:1 view (Blender's default, 2x, blurred a
+# plain image's render by 0.019 on average): the bakes' reads compare without it. The node group
+# makes closest reads only, which no texture filter changes.
+bpy.context.preferences.system.anisotropic_filter = "FILTER_0"
+
+# 2. The node group, analysed by the Python module.
+preferences.use = "module"
+for exemplar in EXEMPLARS:
+    name = os.path.basename(exemplar)
+    scene, material = scene_with_plane(exemplar)
+    run_operator(method="tiling", seed=0)
+    groups = [n for n in material.node_tree.nodes if n.type == "GROUP"]
+    check(len(groups) == 1 and groups[0].outputs["Color"].links,
+          "%s: a node group feeds the emission" % name)
+    model = newest_model()
+    groups[0].inputs["Scale"].default_value = SCALE
+    width = bpy.data.images[name].size[0]
+    expected = reference(model, "group_reference", (SIDE, SIDE), ORIGIN)
+    for engine in ENGINES:
+        rendered = render_region(scene, engine, width * SCALE / 2.0, ORIGIN)
+        difference = numpy.abs(rendered - expected)
+        print("%s, %s, node group against stochtex render: max %.2e, mean %.2e" %
+              (engine, name, difference.max(), difference.mean()))
+        # The group runs the fast variant's data: the Gaussianised exemplar as a 16-bit PNG and
+        # T^-1 as a 16-bit PNG (grass) or float OpenEXR (water), which move the values by at
+        # most 2.2e-5 from the CPU's (grass, measured in numpy with these files), and its float
+        # node arithmetic. EEVEE samples each pixel's centre: measured max 2.2e-5 (grass),
+        # 1.1e-4 (water). Cycles' 0.01-pixel filter moves each sample by up to 0.005 pixels, so a
+        # bilinear read by up to 0.005 of a step between neighbouring texels, at most 5e-3 for
+        # values in [0, 1]: measured max 2.6e-4 (grass), 1.8e-3 (water's sharp caustics). Means:
+        # 3.0e-5 and 4.0e-5 (Cycles), 2.3e-6 and 3.7e-6 (EEVEE). One patch at a wrong offset in
+        # one triangle of the region gave max 0.028 and mean 5e-5; a wrong vertex order, 0.27 and
+        # 0.04; EEVEE's mip-mapped reads where the patches change (Linear image reads), 0.14 and
+        # 2.6e-3; a seed other than the reference's, 0.25 and 0.04.
+        check(difference.max() < MAX_DIFFERENCE[engine] and difference.mean() < 1e-4,
+              "%s, %s: the node group's render is stochtex render's region" % (engine, name))
+
+
+# The .blend holds what the group reads: saved, its files deleted and opened again, it renders
+# the same pixels (the last engine's render, of the last exemplar).
+blend = os.path.join(WORK, "group.blend")
+bpy.ops.wm.save_as_mainfile(filepath=blend)
+shutil.rmtree(os.path.dirname(newest_model()))
+bpy.ops.wm.open_mainfile(filepath=blend)
+again = render_region(bpy.context.scene, ENGINES[-1], width * SCALE / 2.0, ORIGIN)
+check(numpy.array_equal(again, rendered), "the saved .blend renders the same without the files")
+
+# 3. Periodic bakes: tiling to PNG and to OpenEXR through the command line, texton (another
+# method: a bake only) to OpenEXR through the module.
+for method, file_format, use, bound in (("tiling", "PNG", "command_line", 5e-3),
+                                        ("tiling", "EXR", "command_line", 1e-3),
+                                        ("texton", "EXR", "module", 1e-3)):
+    preferences.use = use
+    scene, material = scene_with_plane(EXEMPLARS[0])
+    run_operator(method=method, bake=True, resolution=BAKE_SIDE, periodic=True,
+                 file_format=file_format, seed=0)
+    baked = [n for n in material.node_tree.nodes if n.type == "TEX_IMAGE" and n.image and
+             n.image.name.startswith("stochtex")][0].image
+    check(baked.colorspace_settings.name == ("sRGB" if file_format == "PNG" else "Linear"),
+          "the %s bake's Color Space is %s" % (file_format, baked.colorspace_settings.name))
+    whole = reference(newest_model(method), "bake_reference", (BAKE_SIDE, BAKE_SIDE),
+                      periodic=True)
+    expected = whole[BAKE_ORIGIN[1]:BAKE_ORIGIN[1] + SIDE, BAKE_ORIGIN[0]:BAKE_ORIGIN[0] + SIDE]
+    for engine in ENGINES:
+        difference = numpy.abs(render_region(scene, engine, BAKE_SIDE / 2.0, BAKE_ORIGIN) -
+                               expected)
+        print("%s, %s %s bake against stochtex render --periodic: max %.2e, mean %.2e" %
+              (engine, method, file_format, difference.max(), difference.mean()))
+        # PNG: 8-bit sRGB-encoded values, half a level of 255 is at most 4.5e-3 in linear light
+        # (the sRGB curve's slope is at most 2.3); measured max 3.2e-3 (Cycles), 4.1e-3 (EEVEE).
+        # EXR: float; Cycles' filter jitter, max 1.9e-4, and EEVEE's 16-bit float textures, max
+        # 4.9e-4 (texton: about the same). Encoded values read as linear light (the washed-out
+        # EXR) are off by up to 0.29, linear light read as sRGB by as much.
+        check(difference.max() < bound, "%s: the %s %s bake renders as stochtex renders it" %
+              (engine, method, file_format))
+
+# 4. Disable and remove.
+bpy.ops.preferences.addon_disable(module=MODULE)
+check(not hasattr(bpy.types, "NODE_OT_stochtex_analyse"), "disabled: the operator is gone")
+installed = os.path.join(WORK, "scripts", "addons", MODULE)
+check(os.path.isdir(installed), "the add-on was installed into Blender's user scripts")
+try:
+    bpy.ops.preferences.addon_remove(module=MODULE)
+except RuntimeError as error:
+    # Blender 3.4's operator removes the add-on, then redraws the Preferences area, which a
+    # background Blender does not have (context.area is None): judged by what it removed.
+    print("addon_remove: %s" % str(error).strip().splitlines()[-1])
+check(not os.path.exists(installed), "removed: the add-on's folder is gone")
+check(not any(m.__name__ == MODULE for m in addon_utils.modules(refresh=True)),
+      "removed: Blender no longer lists the add-on")
+
+print("%d failure(s)" % len(failures))
+sys.exit(1 if failures else 0)
