@@ -364,7 +364,14 @@ def take_screenshots(driver, url, folder):
                        ("export_web_zoomed_out.png", {"x": 0, "y": 0, "scale": 16})]:
         run_page(driver, "window.stochtexPage.setSeed(7);"
                  "window.stochtexPage.setView(arguments[0]);"
-                 "await new Promise((resolve) => requestAnimationFrame(resolve));", view)
+                 "await new Promise((resolve) => requestAnimationFrame(resolve));"
+                 # Each canvas's drawing finished (a one-pixel read waits for it): SwiftShader
+                 # takes seconds for the exact gabor and lrp, longer than the screenshot waits.
+                 "for (const canvas of document.querySelectorAll('canvas')) {"
+                 "  const gl = canvas.getContext('webgl2');"
+                 "  if (gl) gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE,"
+                 "                        new Uint8Array(4));"
+                 "}", view)
         driver.save_screenshot(os.path.join(folder, name))
         print(f"wrote {os.path.join(folder, name)}")
 
