@@ -64,17 +64,12 @@ for model in water water_J100 water_J200; do
   echo "$model $(echo "$(date +%s.%N) - $start" | bc)" >>"$work/times.txt"
 done
 
-/usr/bin/python3 - "$work" "$pictures" <<'EOF'
+PYTHONPATH="$root/scripts" /usr/bin/python3 - "$work" "$pictures" <<'EOF'
 import sys
 import numpy as np
 from PIL import Image
+from pfm import read_pfm
 work, pictures = sys.argv[1], sys.argv[2]
-
-def pfm(path):
-    data = open(path, "rb").read()
-    header = data.split(b"\n", 3)
-    width, height = map(int, header[1].split())
-    return np.frombuffer(header[3], dtype="<f4").reshape(height, width, -1)
 
 def grey(path):
     return np.asarray(Image.open(path).convert("L"), dtype=np.float64)
@@ -101,7 +96,7 @@ def coherence(x):
 print("dots: concrete at scale 8, samples beyond 4 standard deviations per 512^2 render (Gaussian: 16.6)")
 counts = []
 for seed in range(1, 5):
-    x = pfm(f"{work}/dots_{seed}.pfm")[:, :, 0].astype(np.float64)
+    x = read_pfm(f"{work}/dots_{seed}.pfm")[:, :, 0].astype(np.float64)
     counts.append(int((np.abs(x - x.mean()) > 4 * x.std()).sum()))
 print("  lrp:", counts)
 

@@ -66,17 +66,11 @@ for model in "${models[@]}"; do
         --seed "$seed" -o "$work/seam_${kind}_$seed.pfm" "${flags[@]}" 2>/dev/null
     done
   done
-  /usr/bin/python3 - "$work" "$model" <<'PY'
+  PYTHONPATH="$root/scripts" /usr/bin/python3 - "$work" "$model" <<'PY'
 import sys
 import numpy
 work, model = sys.argv[1], sys.argv[2]
-def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        width, height = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = numpy.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    return data.reshape(height, width, 3 if kind == b"PF" else 1)[::-1]  # PFM rows: bottom up
+from pfm import read_pfm
 def seam_step(image):
     steps = numpy.abs(numpy.diff(image[96:288, 160:353], axis=1)).mean(axis=(0, 2))
     seam = steps[255 - 160]

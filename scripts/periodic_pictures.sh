@@ -26,17 +26,11 @@ for method in "${methods[@]}"; do
       "$stochtex" render "$work/$method.stx" -o "$work/${method}_periodic_$seed.pfm" \
         --size 200x136 --seed "$seed" --scale "$scale" --periodic 2>/dev/null
     done
-    /usr/bin/python3 - "$method" "$work" "$scale" <<'PY'
+    PYTHONPATH="$root/scripts" /usr/bin/python3 - "$method" "$work" "$scale" <<'PY'
 import sys
 import numpy
 method, work = sys.argv[1], sys.argv[2]
-def read_pfm(path):
-    with open(path, "rb") as f:
-        kind = f.readline().strip()
-        width, height = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = numpy.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    return data.reshape(height, width, 3 if kind == b"PF" else 1)
+from pfm import read_pfm
 def wrap(image):
     # metrics/metrics.hpp wrap_steps: mean |last - first| over the mean |neighbour step|.
     steps = []
