@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -324,6 +325,27 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
           }
           for (const char* entry : {"void main(", "frag_main", "main0("})
             EXPECT_EQ(files.shader.text.find(entry), std::string::npos) << "an entry point is left";
+          // The manifest names the files and each texture with its settings.
+          const nlohmann::json manifest = nlohmann::json::parse(files.manifest);
+          EXPECT_EQ(manifest["format"], "stochtex-shader-export");
+          EXPECT_EQ(manifest["language"], name);
+          EXPECT_EQ(manifest["entry"], "stochtex_" + method);
+          EXPECT_EQ(manifest["shader"], files.shader.name);
+          EXPECT_EQ(manifest.contains("shader_graph"), language == ShaderLanguage::hlsl);
+          EXPECT_EQ(manifest["outputs"][0]["colour"],
+                    &model == &case_models()[k][1] ? "linear" : "data");
+          ASSERT_EQ(manifest["textures"].size(), files.textures.size());
+          for (std::size_t t = 0; t < files.textures.size(); ++t) {
+            const ShaderTexture& texture = files.textures[t];
+            const nlohmann::json& entry = manifest["textures"][t];
+            EXPECT_EQ(entry["uniform"], "stochtex_" + texture.name);
+            EXPECT_EQ(entry["file"], texture.file_name());
+            EXPECT_EQ(entry["channels"], texture.image.channels());
+            EXPECT_EQ(entry["height"].get<int>() * texture.depth, texture.image.height());
+            EXPECT_EQ(entry["mip_levels"], texture.mip_levels);
+            EXPECT_EQ(entry["filter"], std::string(filter_name(texture.filter)));
+            EXPECT_EQ(entry["wrap"], std::string(wrap_name(texture.wrap)));
+          }
           // Every argument's copy is named after its parameter (spirv_names.hpp).
           if (language != ShaderLanguage::glsl) {
             EXPECT_EQ(files.shader.text.find("param_"), std::string::npos);
