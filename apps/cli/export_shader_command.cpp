@@ -59,7 +59,8 @@ void export_shader_files([[maybe_unused]] const std::string& model_path,
   const std::filesystem::path folder(output);
   AtomicFileSet written;
   written.create_folder(folder);
-  std::vector<std::filesystem::path> targets = {folder / files.shader.name, folder / "README.md"};
+  std::vector<std::filesystem::path> targets = {folder / files.shader.name, folder / "README.md",
+                                                folder / "manifest.json"};
   for (const TextFile& wrapper : files.wrappers) targets.push_back(folder / wrapper.name);
   for (const ShaderTexture& texture : files.textures)
     targets.push_back(folder / texture.file_name());
@@ -70,9 +71,10 @@ void export_shader_files([[maybe_unused]] const std::string& model_path,
     write_image(written, folder / texture.file_name(), texture.image.view(),
                 texture.encoding == TextureEncoding::png16 ? 16 : 8);
   written.write(folder / "README.md", files.readme);
+  written.write(folder / "manifest.json", files.manifest);
   written.commit();
-  fmt::print(stderr, "wrote {} ({}, {} image(s), README.md)\n", output, files.shader.name,
-             files.textures.size());
+  fmt::print(stderr, "wrote {} ({}, {} image(s), README.md, manifest.json)\n", output,
+             files.shader.name, files.textures.size());
 #else
   throw Error(ErrorCode::io,
               "this stochtex was built without the OpenGL backend "

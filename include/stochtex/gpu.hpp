@@ -9,6 +9,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "stochtex/image.hpp"
@@ -151,6 +152,11 @@ enum class TextureEncoding { exr_float32, png8, png16 };
 enum class TextureFilter { nearest, linear, mipmap };
 // The sampler's wrap on every axis; clamp_to_border uses transparent black (0, 0, 0, 0).
 enum class TextureWrap { clamp_to_edge, clamp_to_border, repeat };
+// The values' names in the exports' manifest.json files (export-shader's, export-web's): the
+// enumerators' ("exr_float32", "mipmap", "clamp_to_border", ...).
+std::string_view encoding_name(TextureEncoding encoding);
+std::string_view filter_name(TextureFilter filter);
+std::string_view wrap_name(TextureWrap wrap);
 
 // One exported data image and the texture it becomes.
 struct ShaderTexture {
@@ -189,6 +195,9 @@ struct ShaderExport {
   std::vector<TextFile> wrappers;
   std::vector<ShaderTexture> textures;  // each bound to the texture `stochtex_<name>`
   std::string readme;
+  // manifest.json, for importers (docs/shaders.md, "The manifest"): the files, the entry point,
+  // what each of its outputs holds (linear light or data), and each texture's settings.
+  std::string manifest;
 };
 // A material (a model with maps) exports a struct of its maps and
 // StochtexMaterial stochtex_<method>_material(vec2 p, vec2 dpdx, vec2 dpdy, uint seed), derived

@@ -3,7 +3,9 @@
 // SPIR-V needs an entry point, so the library is compiled inside a fragment shader whose main()
 // calls the exported function once with zeros. Neither glslang (no optimiser run) nor SPIRV-Cross
 // inlines functions, and both keep OpName names, so the library comes out function for function
-// with its names and parameters; the entry point SPIRV-Cross writes last is then cut off.
+// with its names and parameters; the entry point SPIRV-Cross writes last is then cut off. The
+// values glslang leaves unnamed (calls' results, arguments' copies, temporaries, constant arrays)
+// are named by spirv_names.hpp, so that the source reads as the GLSL does.
 
 #include "gl/cross_compile.hpp"
 
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include "gl/shaders.hpp"
+#include "gl/spirv_names.hpp"
 
 namespace stochtex::gl {
 namespace {
@@ -154,6 +157,8 @@ std::string cross_compile(std::string_view library, std::string_view function,
   cross.check(spvc_context_create_compiler(cross.context(), backend(language), ir,
                                            SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &compiler),
               "create a compiler");
+  for (const SpirvName& name : readable_names(spirv, wrapper))
+    spvc_compiler_set_name(compiler, name.id, name.name.c_str());
 
   const SpvCapability* capabilities = nullptr;
   std::size_t count = 0;

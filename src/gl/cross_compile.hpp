@@ -15,7 +15,8 @@ namespace stochtex::gl {
 // `library` (GLSL 4.50 without `#version`: uniform sampler2D declarations, constants and
 // functions, among them `vec4 <function>(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)`) in `language`
 // (essl, hlsl or msl): every function reachable from `function` kept with its name and parameter
-// names, no entry point and no `#version` line, to paste into the caller's shader.
+// names, the values the GLSL does not name named after what they are (spirv_names.hpp), no entry
+// point and no `#version` line, to paste into the caller's shader.
 //   essl: `uniform highp sampler2D <name>` as in the GLSL; default precision highp;
 //   hlsl: `Texture2D<float4> <name>` and `SamplerState _<name>_sampler` globals, no registers;
 //   msl:  each texture2d<float> <name> and `sampler <name>Smplr` become parameters of the

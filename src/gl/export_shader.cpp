@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <span>
 #include <sstream>
@@ -405,18 +406,67 @@ TextFile shader_graph_wrapper(const Entry& entry, const std::string& what, const
        << outputs << ". Set";
   for (std::size_t i = 0; i < textures.size(); ++i)
     text << (i == 0 ? " " : ", ") << "stochtex_" << textures[i].name;
-  text << " on the material by script. See README.md.\n#ifndef " << guard << "\n#define " << guard
-       << "\n\n"
+  text << " on the material by script (the Unity package\n// unity/com.stochtex.textures binds "
+          "them). See README.md.\n#ifndef "
+       << guard << "\n#define " << guard
+       << "\n\n// Unity gives a texture's filter and wrap to the sampler named sampler<texture>.\n";
+  for (const ShaderTexture& t : textures)
+    text << "#define _stochtex_" << t.name << "_sampler samplerstochtex_" << t.name << "\n";
+  text << "\n"
        << hlsl << "\nvoid " << entry.function()
        << "_float(float2 p, float2 dpdx, float2 dpdy, uint seed" << parameters << ") {\n"
        << body << "}\n\n#endif  // " << guard << "\n";
   return {shader_graph_file(entry.method), text.str()};
 }
 
+// manifest.json: the files, the entry point's outputs (the Shader Graph function's ports: `colour`
+// or a material's maps) with what each holds, and each texture as the README's table says.
+std::string manifest(const Entry& entry, ShaderVariant variant, ShaderLanguage language,
+                     const ShaderExport& files, bool linear_light) {
+  nlohmann::ordered_json outputs = nlohmann::ordered_json::array();
+  if (entry.material)
+    for (const MaterialMember& member : entry.material->members)
+      outputs.push_back(
+          {{"name", member.name},
+           {"components", member.vector ? 3 : 1},
+           {"kind", map_kind_name(member.map.kind)},
+           {"colour", member.map.colour_space == ColourSpace::srgb ? "linear" : "data"}});
+  else
+    outputs.push_back(
+        {{"name", "colour"}, {"components", 4}, {"colour", linear_light ? "linear" : "data"}});
+  nlohmann::ordered_json textures = nlohmann::ordered_json::array();
+  for (const ShaderTexture& t : files.textures)
+    textures.push_back({{"uniform", "stochtex_" + t.name},
+                        {"file", t.file_name()},
+                        {"encoding", encoding_name(t.encoding)},
+                        {"channels", t.image.channels()},
+                        {"width", t.image.width()},
+                        {"height", t.image.height() / t.depth},
+                        {"depth", t.depth},
+                        {"filter", filter_name(t.filter)},
+                        {"wrap", wrap_name(t.wrap)},
+                        {"mip_levels", t.mip_levels},
+                        {"anisotropy", t.filter == TextureFilter::mipmap ? 16 : 1}});
+  nlohmann::ordered_json json = {
+      {"format", "stochtex-shader-export"},
+      {"version", 1},
+      {"method", entry.method},
+      {"variant", variant == ShaderVariant::fast ? "fast" : "exact"},
+      {"language", language_row(language).name},
+      {"entry", entry.function()},
+      {"shader", files.shader.name},
+  };
+  if (language == ShaderLanguage::hlsl) json["shader_graph"] = shader_graph_file(entry.method);
+  json["outputs"] = outputs;
+  json["textures"] = textures;
+  return json.dump(1) + "\n";
+}
+
 // The export of a method's parts: a model of one image exposes stochtex_<method>, a material (a
-// model with `maps`) its material function after the library.
+// model with `maps`) its material function after the library; `linear_light`: a model of one
+// image whose function returns linear light (its colour space srgb).
 ShaderExport assemble_export(ExportParts parts, ShaderLanguage language,
-                             std::span<const MapInfo> maps, int channels) {
+                             std::span<const MapInfo> maps, int channels, bool linear_light) {
   const std::string method(parts.method);
   std::optional<MaterialShader> material;
   if (!maps.empty()) {
@@ -451,6 +501,7 @@ ShaderExport assemble_export(ExportParts parts, ShaderLanguage language,
                                  signature, parts.textures, parts.notes);
   }
   result.textures = std::move(parts.textures);
+  result.manifest = manifest(entry, parts.variant, language, result, linear_light);
   return result;
 }
 
@@ -460,6 +511,21 @@ ShaderExport assemble_export(ExportParts parts, ShaderLanguage language,
 
 std::string ShaderTexture::file_name() const {
   return name + (encoding == TextureEncoding::exr_float32 ? ".exr" : ".png");
+}
+
+std::string_view encoding_name(TextureEncoding encoding) {
+  constexpr std::array<std::string_view, 3> kNames = {"exr_float32", "png8", "png16"};
+  return kNames[static_cast<std::size_t>(encoding)];
+}
+
+std::string_view filter_name(TextureFilter filter) {
+  constexpr std::array<std::string_view, 3> kNames = {"nearest", "linear", "mipmap"};
+  return kNames[static_cast<std::size_t>(filter)];
+}
+
+std::string_view wrap_name(TextureWrap wrap) {
+  constexpr std::array<std::string_view, 3> kNames = {"clamp_to_edge", "clamp_to_border", "repeat"};
+  return kNames[static_cast<std::size_t>(wrap)];
 }
 
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options) {
@@ -477,7 +543,7 @@ ShaderExport export_shader(const Model& model, const ShaderExportOptions& option
         gl::ExportParts parts = gl::Twin<Method>::shader(method_model, options.variant);
         gl::add_colour(parts, model.data().colour, model.channels(), model.maps());
         return gl::assemble_export(std::move(parts), options.language, model.maps(),
-                                   model.channels());
+                                   model.channels(), model.data().colour.decodes());
       },
       model.data().model);
 }

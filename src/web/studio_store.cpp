@@ -528,6 +528,7 @@ std::string StudioStore::shader_zip(const std::string& id, const ShaderExportOpt
                                       texture.encoding == TextureEncoding::png16 ? 16 : 8));
   }
   entries.emplace_back("README.md", files.readme);
+  entries.emplace_back("manifest.json", files.manifest);
   return zip_archive(entries);
 }
 

@@ -39,9 +39,6 @@ constexpr std::array<const char*, 4> kUploadFormats = {"RED", "RG", "RGB", "RGBA
 // Names indexed by the enums' values.
 constexpr std::array<const char*, 3> kStoredSuffixes = {"32F", "16F", "8"};
 constexpr std::array<const char*, 3> kStoredTypes = {"FLOAT", "HALF_FLOAT", "UNSIGNED_BYTE"};
-constexpr std::array<const char*, 3> kFilters = {"nearest", "linear", "mipmap"};
-constexpr std::array<const char*, 3> kWraps = {"clamp_to_edge", "clamp_to_border", "repeat"};
-constexpr std::array<const char*, 3> kEncodings = {"exr_float32", "png8", "png16"};
 
 template <typename Enum>
 const char* name_of(const std::array<const char*, 3>& names, Enum value) {
@@ -107,15 +104,15 @@ nlohmann::ordered_json texture_entry(const ShaderTexture& texture) {
       {"internal_format", internal_format(stored, components)},
       {"format", kUploadFormats[static_cast<std::size_t>(components - 1)]},
       {"type", name_of(kStoredTypes, stored)},
-      {"filter", name_of(kFilters, texture.filter)},
-      {"wrap", name_of(kWraps, wrap)},
+      {"filter", filter_name(texture.filter)},
+      {"wrap", wrap_name(wrap)},
       {"mip_levels", texture.mip_levels},
       {"anisotropy", texture.filter == TextureFilter::mipmap ? 16 : 1},
       {"exported_as",
        {{"file", texture.file_name()},
-        {"encoding", name_of(kEncodings, texture.encoding)},
+        {"encoding", encoding_name(texture.encoding)},
         {"components", texture.image.channels()},
-        {"wrap", name_of(kWraps, texture.wrap)}}},
+        {"wrap", wrap_name(texture.wrap)}}},
   };
   return entry;
 }

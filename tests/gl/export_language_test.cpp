@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -49,6 +51,32 @@ std::string hlsl_shader(const std::string& library, const std::string& method, b
          (wrapper ? "  float4 colour;\n  " + call + "(p, ddx(p), ddy(p), 7u, colour);\n"
                   : "  float4 colour = " + call + "(p, ddx(p), ddy(p), 7u);\n") +
          "  return colour;\n}\n";
+}
+
+// How many identifiers of `source` are names that no GLSL gave: SPIRV-Cross's `_<id>` of a value
+// without a name, and glslang's copies of a call's arguments, `param` and `param_<n>`
+// (src/gl/spirv_names.hpp names both).
+int unnamed_identifiers(std::string_view source) {
+  const auto digits = [](std::string_view text) {
+    return !text.empty() &&
+           std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  const auto word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  int count = 0;
+  for (std::size_t at = 0; at < source.size();) {
+    if (!word(source[at])) {
+      ++at;
+      continue;
+    }
+    std::size_t end = at;
+    while (end < source.size() && word(source[end])) ++end;
+    const std::string_view name = source.substr(at, end - at);
+    if ((name.starts_with('_') && digits(name.substr(1))) || name == "param" ||
+        (name.starts_with("param_") && digits(name.substr(6))))
+      ++count;
+    at = end;
+  }
+  return count;
 }
 
 GLuint compile_stage(GLenum stage, const std::string& source) {
@@ -297,6 +325,31 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
           }
           for (const char* entry : {"void main(", "frag_main", "main0("})
             EXPECT_EQ(files.shader.text.find(entry), std::string::npos) << "an entry point is left";
+          // The manifest names the files and each texture with its settings.
+          const nlohmann::json manifest = nlohmann::json::parse(files.manifest);
+          EXPECT_EQ(manifest["format"], "stochtex-shader-export");
+          EXPECT_EQ(manifest["language"], name);
+          EXPECT_EQ(manifest["entry"], "stochtex_" + method);
+          EXPECT_EQ(manifest["shader"], files.shader.name);
+          EXPECT_EQ(manifest.contains("shader_graph"), language == ShaderLanguage::hlsl);
+          EXPECT_EQ(manifest["outputs"][0]["colour"],
+                    &model == &case_models()[k][1] ? "linear" : "data");
+          ASSERT_EQ(manifest["textures"].size(), files.textures.size());
+          for (std::size_t t = 0; t < files.textures.size(); ++t) {
+            const ShaderTexture& texture = files.textures[t];
+            const nlohmann::json& entry = manifest["textures"][t];
+            EXPECT_EQ(entry["uniform"], "stochtex_" + texture.name);
+            EXPECT_EQ(entry["file"], texture.file_name());
+            EXPECT_EQ(entry["channels"], texture.image.channels());
+            EXPECT_EQ(entry["height"].get<int>() * texture.depth, texture.image.height());
+            EXPECT_EQ(entry["mip_levels"], texture.mip_levels);
+            EXPECT_EQ(entry["filter"], std::string(filter_name(texture.filter)));
+            EXPECT_EQ(entry["wrap"], std::string(wrap_name(texture.wrap)));
+          }
+          // Every argument's copy is named after its parameter (spirv_names.hpp).
+          if (language != ShaderLanguage::glsl) {
+            EXPECT_EQ(files.shader.text.find("param_"), std::string::npos);
+          }
           switch (language) {
             case ShaderLanguage::glsl:
               EXPECT_EQ(gl::front_end_errors(
@@ -327,6 +380,37 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
           }
         }
   }
+}
+
+TEST(ExportLanguage, CrossCompiledLibrariesKeepTheGlslNames) {
+  // A library whose SPIR-V has each unnamed kind: a constant array, a call's result, copies of
+  // its arguments, a `?:`'s variable.
+  const std::string library =
+      "const float TEST_TABLE[3] = float[](0.5, 1.5, -2.5);\n"
+      "float test_scaled(float x, int k) { return x * TEST_TABLE[k]; }\n"
+      "vec4 stochtex_test(vec2 p, vec2 dpdx, vec2 dpdy, uint seed) {\n"
+      "  float a = test_scaled(p.x, int(seed % 3u));\n"
+      "  float b = p.y > 0.0 ? test_scaled(p.y, 1) : length(dpdy);\n"
+      "  return vec4(a, b, test_scaled(length(dpdx), 2), 1.0);\n"
+      "}\n";
+  for (const ShaderLanguage language :
+       {ShaderLanguage::essl, ShaderLanguage::hlsl, ShaderLanguage::msl}) {
+    SCOPED_TRACE(gl::language_row(language).name);
+    const std::string source = gl::cross_compile(library, "stochtex_test", "test", language);
+    EXPECT_EQ(gl::cross_compile(library, "stochtex_test", "test", language), source);
+    EXPECT_EQ(unnamed_identifiers(source), 0) << source;
+    EXPECT_NE(source.find("TEST_TABLE[k]"), std::string::npos) << source;
+    EXPECT_NE(source.find("test_scaled(x, k)"), std::string::npos) << source;
+    EXPECT_NE(source.find("b_value"), std::string::npos) << source;
+  }
+  // A method's export: tiling's HLSL names its level table as the GLSL does, and is the same
+  // bytes when exported again.
+  const Model& tiling = case_models()[1][0];
+  const ShaderExportOptions hlsl{ShaderVariant::exact, ShaderLanguage::hlsl};
+  const std::string text = export_shader(tiling, hlsl).shader.text;
+  EXPECT_NE(text.find("TILING_LEVEL_TEXELS["), std::string::npos);
+  EXPECT_LE(unnamed_identifiers(text), 20);
+  EXPECT_EQ(export_shader(tiling, hlsl).shader.text, text);
 }
 
 TEST(ExportLanguage, FrontEndRefusesBrokenShaders) {

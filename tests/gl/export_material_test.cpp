@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -235,6 +236,17 @@ TEST(ExportMaterial, EveryLanguageCompiles) {
         EXPECT_EQ(shipped, decodes) << table;
         EXPECT_EQ(files.readme.find(std::string(table) + ".exr") != std::string::npos, decodes)
             << table;
+      }
+      // The manifest gives the function's outputs, one per map, and what each holds.
+      const nlohmann::json manifest = nlohmann::json::parse(files.manifest);
+      EXPECT_EQ(manifest["entry"], function);
+      ASSERT_EQ(manifest["outputs"].size(), model.maps().size());
+      for (std::size_t m = 0; m < model.maps().size(); ++m) {
+        const nlohmann::json& output = manifest["outputs"][m];
+        EXPECT_EQ(output["name"], model.maps()[m].name);
+        EXPECT_EQ(output["components"], components(model.maps()[m]));
+        EXPECT_EQ(output["colour"],
+                  model.maps()[m].colour_space == ColourSpace::srgb ? "linear" : "data");
       }
       const std::string call = "StochtexMaterial material = " + function;
       switch (language) {
