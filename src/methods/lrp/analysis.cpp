@@ -114,7 +114,7 @@ std::vector<std::vector<float>> frequency_weights(
 // cosines: concrete_cement_512's strongest sub-stratum held DC at weight 6.0 beside 13 frequencies
 // near 1, so one node in 14 carried a blob 6 times the others', seen zoomed out, where frequency
 // clamping has removed the dense high frequencies around them, as isolated light and dark dots
-// (docs/methods/lrp.md, "Dots zoomed out"). Each frequency is therefore listed ceil(w_f^2 /
+// (docs/methods/lrp.md, "Dots, streaks and swirl"). Each frequency is therefore listed ceil(w_f^2 /
 // mean w^2) times and its weight divided by the square root of its share of the list against
 // 1 / n_k: the expected spectrum is the same, each cosine's amplitude stays within about
 // sqrt(2) of the sub-stratum's mean, and the table at most doubles. The paper's constant A_S
