@@ -198,7 +198,8 @@ struct TextFile {
 // A material whose maps are decoded after evaluation is refused for now. Needs no GL context.
 struct ShaderExport {
   TextFile shader;  // stochtex_<method> with the language's extension (.glsl, .metal, ...)
-  // Engine-shaped wrappers of `shader` (HLSL: a Unity Shader Graph custom function file).
+  // Engine-shaped wrappers of `shader` (HLSL: a Unity Shader Graph custom function file; Godot:
+  // its canvas_item shader, scene, Godot 4 shader and each data file's .import settings).
   std::vector<TextFile> wrappers;
   std::vector<ShaderTexture> textures;  // each bound to the texture `stochtex_<name>`
   std::string readme;
@@ -210,7 +211,8 @@ struct ShaderExport {
 // StochtexMaterial stochtex_<method>_material(vec2 p, vec2 dpdx, vec2 dpdy, uint seed), derived
 // normal maps from the height around p (docs/shaders.md, "Materials"). Throws
 // std::invalid_argument, one sentence, when the model's shader uses what the language lacks (the
-// gabor exact shader's double precision in GLSL ES, HLSL and Metal), and Error(invalid_input),
+// gabor exact shader's double precision in GLSL ES, HLSL, Metal and Godot; a material's struct,
+// or data wider than 2048 texels, in Godot), and Error(invalid_input),
 // one sentence, for what cannot be exported (a model of more than 4 channels without maps,
 // tiling's material groups, texton's fast variant and lrp's section 5 beyond 4 channels).
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options = {});

@@ -562,7 +562,17 @@ ShaderExport assemble_export(ExportParts parts, ShaderLanguage language,
     const bool border =
         std::any_of(parts.textures.begin(), parts.textures.end(),
                     [](const ShaderTexture& t) { return t.wrap == TextureWrap::clamp_to_border; });
+    std::vector<std::string> exported_names;
+    for (const ShaderTexture& t : parts.textures) exported_names.push_back(t.file_name());
     godot_textures(parts.textures, method);
+    // The notes name the files of the other languages: a float image is a PNG here.
+    for (std::size_t k = 0; k < parts.textures.size(); ++k) {
+      const std::string from = "`" + exported_names[k] + "`";
+      const std::string to = "`" + parts.textures[k].file_name() + "`";
+      for (std::size_t at = parts.notes.find(from); at != std::string::npos;
+           at = parts.notes.find(from, at + to.size()))
+        parts.notes.replace(at, from.size(), to);
+    }
     const Entry entry{method, nullptr};
     const std::string function = entry.function();
     const std::string library = cross_compile(parts.library, function, method, language);
