@@ -25,6 +25,8 @@ packages=(
   # the Unity package's test (tests/unity): mono's C# compiler and runtime (mcs, mono: 16
   # packages, 7.2 MB to download, 25 MB installed)
   mono-mcs
+  # the Godot test (tests/godot): Debian's Godot 3.2.3, run headless under Xvfb (above)
+  godot3
 )
 # the three.js test (tests/browser/three_test.py) installs three.js with npm; Debian's npm, unless
 # an npm is there already (NodeSource's nodejs has its own, and conflicts with Debian's)

@@ -133,8 +133,10 @@ enum class ShaderVariant { exact, fast };
 // The language of an exported shader (`export-shader --language`; `stochtex languages` lists each
 // with its title and targets, from the table of src/gl/languages.hpp). glsl (GLSL 4.50) is the
 // method's own source and the default; the others are cross-compiled from it through SPIR-V
-// (glslang, SPIRV-Cross), the same for both variants.
-enum class ShaderLanguage { glsl, essl, hlsl, msl };
+// (glslang, SPIRV-Cross), the same for both variants; godot (Godot 3's shading language) is
+// written from the GLSL ES that SPIRV-Cross makes of the library with every function inlined
+// (src/gl/godot_shader.hpp).
+enum class ShaderLanguage { glsl, essl, hlsl, msl, godot };
 
 struct ShaderExportOptions {
   ShaderVariant variant = ShaderVariant::exact;
@@ -172,6 +174,11 @@ struct ShaderTexture {
   // 1: no mip-maps. More: the engine generates the mip chain from the image (2 x 2 box filter,
   // glGenerateMipmap) and samples levels 0 .. mip_levels - 1 (GL_TEXTURE_MAX_LEVEL).
   int mip_levels = 1;
+  // Godot 3 (`--language godot`), whose importer makes no float32 texture: a float image read
+  // texel by texel stored as its floats' bytes in a grey + alpha image (encoding png8, 2 channels,
+  // 8 times as wide): float c of texel (x, y) in the texels 8x + 2c (bytes 0, 1, lowest first)
+  // and 8x + 2c + 1 (bytes 2, 3) of row y, which the shader reads back bit for bit.
+  bool float_bytes = false;
   std::string file_name() const;
 };
 
@@ -191,7 +198,8 @@ struct TextFile {
 // A material whose maps are decoded after evaluation is refused for now. Needs no GL context.
 struct ShaderExport {
   TextFile shader;  // stochtex_<method> with the language's extension (.glsl, .metal, ...)
-  // Engine-shaped wrappers of `shader` (HLSL: a Unity Shader Graph custom function file).
+  // Engine-shaped wrappers of `shader` (HLSL: a Unity Shader Graph custom function file; Godot:
+  // its canvas_item shader, scene, Godot 4 shader and each data file's .import settings).
   std::vector<TextFile> wrappers;
   std::vector<ShaderTexture> textures;  // each bound to the texture `stochtex_<name>`
   std::string readme;
@@ -203,7 +211,8 @@ struct ShaderExport {
 // StochtexMaterial stochtex_<method>_material(vec2 p, vec2 dpdx, vec2 dpdy, uint seed), derived
 // normal maps from the height around p (docs/shaders.md, "Materials"). Throws
 // std::invalid_argument, one sentence, when the model's shader uses what the language lacks (the
-// gabor exact shader's double precision in GLSL ES, HLSL and Metal), and Error(invalid_input),
+// gabor exact shader's double precision in GLSL ES, HLSL, Metal and Godot; a material's struct,
+// or data wider than 2048 texels, in Godot), and Error(invalid_input),
 // one sentence, for what cannot be exported (a model of more than 4 channels without maps,
 // tiling's material groups, texton's fast variant and lrp's section 5 beyond 4 channels).
 ShaderExport export_shader(const Model& model, const ShaderExportOptions& options = {});

@@ -1,4 +1,5 @@
-// GLSL 4.50 -> SPIR-V (glslang) -> GLSL ES 3.00 / HLSL / Metal (SPIRV-Cross's C API).
+// GLSL 4.50 -> SPIR-V (glslang) -> GLSL ES 3.00 / HLSL / Metal (SPIRV-Cross's C API), and
+// -> Godot 3 (godot_shader.hpp).
 //
 // SPIR-V needs an entry point, so the library is compiled inside a fragment shader whose main()
 // calls the exported function once with zeros. Neither glslang (no optimiser run) nor SPIRV-Cross
@@ -6,6 +7,16 @@
 // with its names and parameters; the entry point SPIRV-Cross writes last is then cut off. The
 // values glslang leaves unnamed (calls' results, arguments' copies, temporaries, constant arrays)
 // are named by spirv_names.hpp, so that the source reads as the GLSL does.
+//
+// Godot 3's language has no structs, global variables or arrays as arguments, which the libraries
+// use, so for it main() reads the arguments from inputs and stores the result in an output, and
+// spirv-opt's legalization passes (SPIRV-Tools, linked; the passes that make HLSL's SPIR-V legal
+// for Vulkan) inline every function into main() and split the structs into their members;
+// godot_from_essl writes what is left in Godot's subset. They keep every float operation as it
+// is (measured: the Godot text run as GLSL ES matches the CPU as the GLSL ES export does). With
+// the performance passes (spirv-opt -O), which also reorder arithmetic, lrp's text was 0.3 away
+// from the CPU (not traced further). Its values are not renamed: the inlined function's values
+// are not those spirv_names.hpp names (calls, arguments), which inlining removes.
 
 #include "gl/cross_compile.hpp"
 
@@ -17,10 +28,12 @@
 #include <array>
 #include <memory>
 #include <mutex>
+#include <spirv-tools/optimizer.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "gl/godot_shader.hpp"
 #include "gl/shaders.hpp"
 #include "gl/spirv_names.hpp"
 
@@ -73,7 +86,7 @@ struct Lack {
   SpvCapability capability;
   const char* reason;
 };
-constexpr std::array<Lack, 4> kLacks = {{
+constexpr std::array<Lack, 6> kLacks = {{
     {ShaderLanguage::essl, SpvCapabilityFloat64,
      "computes in double precision, which GLSL ES 3.00 does not have"},
     {ShaderLanguage::essl, SpvCapabilityInt64,
@@ -83,6 +96,10 @@ constexpr std::array<Lack, 4> kLacks = {{
      "double division only as an optional feature)"},
     {ShaderLanguage::msl, SpvCapabilityFloat64,
      "computes in double precision, which Metal does not have"},
+    {ShaderLanguage::godot, SpvCapabilityFloat64,
+     "computes in double precision, which Godot's shading language does not have"},
+    {ShaderLanguage::godot, SpvCapabilityInt64,
+     "uses 64-bit integers, which Godot's shading language does not have"},
 }};
 
 // SPIRV-Cross's backend for a cross-compiled language (a switch, so that the compiler asks for a
@@ -90,6 +107,7 @@ constexpr std::array<Lack, 4> kLacks = {{
 spvc_backend backend(ShaderLanguage language) {
   switch (language) {
     case ShaderLanguage::essl:
+    case ShaderLanguage::godot:
       return SPVC_BACKEND_GLSL;
     case ShaderLanguage::hlsl:
       return SPVC_BACKEND_HLSL;
@@ -127,11 +145,42 @@ class Cross {
   std::string log_;
 };
 
+// The fragment shader whose SPIR-V is cross-compiled: the library after what the targets lack
+// (portable.glsl; for Godot also its float images' decoding, godot_texel.glsl), and a main()
+// calling `function`, with zeros or (Godot) with its inputs, storing the result.
+std::string wrapper(std::string_view library, std::string_view function, ShaderLanguage language) {
+  const std::string head = "#version 450\n" + shader_source("gl/portable.glsl");
+  if (language != ShaderLanguage::godot)
+    return head + std::string(library) + "void main() {\n  " + std::string(function) +
+           "(vec2(0.0), vec2(0.0), vec2(0.0), 0u);\n}\n";
+  return head + shader_source("gl/godot_texel.glsl") + std::string(library) +
+         "layout(location = 0) in vec2 p;\nlayout(location = 1) in vec2 dpdx;\n"
+         "layout(location = 2) in vec2 dpdy;\nlayout(location = 3) flat in uint seed;\n"
+         "layout(location = 0) out vec4 stochtex_result;\nvoid main() {\n  stochtex_result = " +
+         std::string(function) + "(p, dpdx, dpdy, seed);\n}\n";
+}
+
+// spirv-opt's legalization passes (inlining, the structs' and arrays' scalar replacement, dead code
+// removal, exact constant folding) on `spirv`.
+std::vector<unsigned> inlined(const std::vector<unsigned>& spirv) {
+  spvtools::Optimizer optimizer(SPV_ENV_UNIVERSAL_1_0);
+  std::string log;
+  optimizer.SetMessageConsumer(
+      [&log](spv_message_level_t level, const char*, const spv_position_t&, const char* message) {
+        if (level <= SPV_MSG_ERROR) log += message;
+      });
+  optimizer.RegisterLegalizationPasses();
+  std::vector<unsigned> result;
+  if (!optimizer.Run(spirv.data(), spirv.size(), &result))
+    throw std::logic_error("cross_compile: spirv-opt failed: " + log);
+  return result;
+}
+
 }  // namespace
 
 std::string front_end_errors(std::string_view source, ShaderLanguage language) {
-  if (language == ShaderLanguage::msl)
-    throw std::invalid_argument("front_end_errors: glslang has no Metal front end");
+  if (language == ShaderLanguage::msl || language == ShaderLanguage::godot)
+    throw std::invalid_argument("front_end_errors: glslang has no Metal or Godot front end");
   return compile(source, language, nullptr);
 }
 
@@ -140,14 +189,14 @@ std::string cross_compile(std::string_view library, std::string_view function,
   if (language == ShaderLanguage::glsl)
     throw std::logic_error("cross_compile: GLSL is not cross-compiled");
   const std::string_view entry = language_row(language).entry_point_start;
-  const std::string wrapper = "#version 450\n" + shader_source("gl/portable.glsl") +
-                              std::string(library) + "void main() {\n  " + std::string(function) +
-                              "(vec2(0.0), vec2(0.0), vec2(0.0), 0u);\n}\n";
+  const bool godot = language == ShaderLanguage::godot;
   std::vector<unsigned> spirv;
-  const std::string errors = compile(wrapper, ShaderLanguage::glsl, &spirv);
+  const std::string glsl = wrapper(library, function, language);
+  const std::string errors = compile(glsl, ShaderLanguage::glsl, &spirv);
   if (!errors.empty())
     throw std::logic_error("cross_compile: glslang refused the " + std::string(method) +
                            " library: " + errors);
+  if (godot) spirv = inlined(spirv);
 
   Cross cross;
   spvc_parsed_ir ir = nullptr;
@@ -157,8 +206,9 @@ std::string cross_compile(std::string_view library, std::string_view function,
   cross.check(spvc_context_create_compiler(cross.context(), backend(language), ir,
                                            SPVC_CAPTURE_MODE_TAKE_OWNERSHIP, &compiler),
               "create a compiler");
-  for (const SpirvName& name : readable_names(spirv, wrapper))
-    spvc_compiler_set_name(compiler, name.id, name.name.c_str());
+  if (!godot)
+    for (const SpirvName& name : readable_names(spirv, glsl))
+      spvc_compiler_set_name(compiler, name.id, name.name.c_str());
 
   const SpvCapability* capabilities = nullptr;
   std::size_t count = 0;
@@ -177,6 +227,7 @@ std::string cross_compile(std::string_view library, std::string_view function,
   cross.check(spvc_compiler_create_compiler_options(compiler, &options), "make options");
   switch (language) {
     case ShaderLanguage::essl:
+    case ShaderLanguage::godot:
       cross.check(spvc_compiler_options_set_uint(options, SPVC_COMPILER_OPTION_GLSL_VERSION, 300),
                   "set the version");
       cross.check(spvc_compiler_options_set_bool(options, SPVC_COMPILER_OPTION_GLSL_ES, SPVC_TRUE),
@@ -217,6 +268,12 @@ std::string cross_compile(std::string_view library, std::string_view function,
   cross.check(spvc_compiler_compile(compiler, &text), "write the source");
 
   std::string source(text);
+  if (godot) {
+    const GodotLibrary godot_library = godot_from_essl(source, function);
+    std::string result;
+    for (const std::string& uniform : godot_library.uniforms) result += uniform + "\n";
+    return result + "\n" + godot_library.functions;
+  }
   const std::size_t cut = source.rfind(entry);
   if (cut == std::string::npos)
     throw std::logic_error("cross_compile: no entry point in SPIRV-Cross's output");

@@ -20,6 +20,7 @@
 
 #include "gl/colour.hpp"
 #include "gl/cross_compile.hpp"
+#include "gl/export_godot.hpp"
 #include "gl/export_material.hpp"
 #include "gl/readme.hpp"
 #include "gl/twin.hpp"
@@ -317,7 +318,8 @@ std::string binding(ShaderLanguage language, bool fast, const Entry& entry, cons
       break;
     }
     case ShaderLanguage::glsl:
-      throw std::logic_error("binding: GLSL is not cross-compiled and has READMEs of its own");
+    case ShaderLanguage::godot:
+      throw std::logic_error("binding: GLSL and Godot have READMEs of their own");
   }
   return text.text();
 }
@@ -360,16 +362,28 @@ std::string export_header(ShaderLanguage language, const std::string& what, cons
   if (language == ShaderLanguage::glsl)
     text << "// " << what << " exported by `stochtex export-shader`.\n"
          << "// Paste or include after `#version 450`.\n// Bind";
+  else if (language == ShaderLanguage::godot)
+    text << "// " << what << " exported by\n// `stochtex export-shader --language godot` ("
+         << language_row(language).title
+         << "), written from the GLSL 4.50\n// through SPIR-V (glslang, spirv-opt, SPIRV-Cross) "
+            "with every function inlined.\n// "
+         << language_row(language).placement << "\n// Set";
   else
     text << "// " << what << " exported by\n// `stochtex export-shader --language "
          << language_row(language).name << "` (" << language_row(language).title
          << "), cross-compiled from the GLSL 4.50\n// by glslang and SPIRV-Cross. "
          << language_row(language).placement << "\n// Bind";
-  for (std::size_t i = 0; i < textures.size(); ++i)
-    text << (i == 0 ? " " : ",\n// ") << textures[i].file_name() << " as "
-         << (variant == ShaderVariant::exact ? std::string("an RGBA32F")
-                                             : "a " + texture_format(language, textures[i]))
-         << " texture to `stochtex_" << textures[i].name << "`";
+  for (std::size_t i = 0; i < textures.size(); ++i) {
+    text << (i == 0 ? " " : ",\n// ");
+    if (language == ShaderLanguage::godot)
+      text << "stochtex_" << textures[i].name << " to " << textures[i].file_name()
+           << " (imported as its .import file says)";
+    else
+      text << textures[i].file_name() << " as "
+           << (variant == ShaderVariant::exact ? std::string("an RGBA32F")
+                                               : "a " + texture_format(language, textures[i]))
+           << " texture to `stochtex_" << textures[i].name << "`";
+  }
   text << ",\n// then call " << entry.function() << "(p, dpdx, dpdy, seed"
        << (language == ShaderLanguage::msl ? ", <textures, samplers>" : "")
        << "). See README.md.\n\n";
@@ -435,18 +449,23 @@ std::string manifest(const Entry& entry, ShaderVariant variant, ShaderLanguage l
     outputs.push_back(
         {{"name", "colour"}, {"components", 4}, {"colour", linear_light ? "linear" : "data"}});
   nlohmann::ordered_json textures = nlohmann::ordered_json::array();
-  for (const ShaderTexture& t : files.textures)
-    textures.push_back({{"uniform", "stochtex_" + t.name},
-                        {"file", t.file_name()},
-                        {"encoding", encoding_name(t.encoding)},
-                        {"channels", t.image.channels()},
-                        {"width", t.image.width()},
-                        {"height", t.image.height() / t.depth},
-                        {"depth", t.depth},
-                        {"filter", filter_name(t.filter)},
-                        {"wrap", wrap_name(t.wrap)},
-                        {"mip_levels", t.mip_levels},
-                        {"anisotropy", t.filter == TextureFilter::mipmap ? 16 : 1}});
+  for (const ShaderTexture& t : files.textures) {
+    textures.push_back(
+        {{"uniform", "stochtex_" + t.name},
+         {"file", t.file_name()},
+         {"encoding", encoding_name(t.encoding)},
+         {"channels", t.image.channels()},
+         {"width", t.image.width()},
+         {"height", t.image.height() / t.depth},
+         {"depth", t.depth},
+         {"filter", filter_name(t.filter)},
+         {"wrap", wrap_name(t.wrap)},
+         {"mip_levels", t.mip_levels},
+         // Godot's import turns anisotropic filtering off (export_godot.cpp).
+         {"anisotropy",
+          t.filter == TextureFilter::mipmap && language != ShaderLanguage::godot ? 16 : 1}});
+    if (t.float_bytes) textures.back()["float_bytes"] = true;
+  }
   nlohmann::ordered_json json = {
       {"format", "stochtex-shader-export"},
       {"version", 1},
@@ -457,17 +476,117 @@ std::string manifest(const Entry& entry, ShaderVariant variant, ShaderLanguage l
       {"shader", files.shader.name},
   };
   if (language == ShaderLanguage::hlsl) json["shader_graph"] = shader_graph_file(entry.method);
+  if (language == ShaderLanguage::godot) {
+    json["canvas_shader"] = godot_canvas_file(entry.method);
+    json["scene"] = godot_scene_file(entry.method);
+  }
   json["outputs"] = outputs;
   json["textures"] = textures;
   return json.dump(1) + "\n";
 }
 
+// The Godot README: its files, the steps in Godot 3, the data files' import settings, precision,
+// what differs in Godot 4, and the method's notes. `border`: a texture was clamped to a border,
+// which Godot 3 lacks; `linear`: the function returns linear light (a model in the srgb colour
+// space), else the model's values.
+std::string godot_readme(const Entry& entry, const ExportParts& parts, const GodotFiles& files,
+                         bool border, bool linear) {
+  const bool fast = parts.variant == ShaderVariant::fast;
+  const std::string& method = entry.method;
+  std::vector<std::string> data_files;
+  std::vector<std::string> hints;
+  bool float_bytes = false;
+  bool half_floats = false;
+  const std::string rows = join_textures(parts.textures, [&](const ShaderTexture& t, std::size_t) {
+    const int width = t.float_bytes ? t.image.width() / 8 : t.image.width();
+    const int height = t.image.height() / t.depth;
+    data_files.push_back("- `" + t.file_name() + "` and `" + t.file_name() + ".import`: " +
+                         (t.float_bytes ? "float32 data, as bytes" : "data, as floats") + ";");
+    hints.push_back("`stochtex_" + t.name + " : " + godot4_hint(t) + "`");
+    float_bytes = float_bytes || t.float_bytes;
+    half_floats = half_floats || !t.float_bytes;
+    const std::string size = std::to_string(width) + " x " + std::to_string(height) +
+                             (t.depth > 1 ? " x " + std::to_string(t.depth) : "");
+    return ReadmeTemplate("godot_data_row")
+        .set("file", t.file_name())
+        .set("texture_type", t.depth == 1 ? "sampler2D" : "sampler3D")
+        .set("name", t.name)
+        .set("contents", t.float_bytes ? size + " RGBA float32 texels as their bytes (" +
+                                             std::to_string(8 * width) + " x " +
+                                             std::to_string(height) + " grey + alpha, LA8)"
+                                       : size + " " + (t.image.channels() == 4 ? "RGBA" : "RGB") +
+                                             " float32, imported as half floats")
+        .flag("volume", t.depth > 1)
+        .set("depth", std::to_string(t.depth))
+        .set("filter", t.filter == TextureFilter::nearest ? "off (read texel by texel)" : "on")
+        .set("mipmaps", t.mip_levels > 1 ? "on (generated at import), anisotropic off" : "off")
+        .set("repeat", t.wrap == TextureWrap::repeat ? "on" : "off (clamp to edge)")
+        .text();
+  });
+  return ReadmeTemplate("godot")
+      .set("title", parts.title)
+      .flag("fast", fast)
+      .set("file", files.spatial.name)
+      .set("canvas_file", godot_canvas_file(method))
+      .set("scene_file", godot_scene_file(method))
+      .set("gdshader_file", godot4_file(method))
+      .set("size", std::to_string(kGodotSceneSize))
+      .set("function", entry.function())
+      .set("signature", glsl_signature(entry))
+      .set("data_files", join(data_files))
+      .set("arguments", arguments(entry, ShaderLanguage::godot))
+      .set("rows", rows)
+      .flag("float_bytes", float_bytes)
+      .flag("half_floats", half_floats)
+      .flag("border", border)
+      .flag("linear", linear)
+      .set("hints", join(hints, ", "))
+      .flag("notes", !parts.notes.empty())
+      .set("method_notes", parts.notes)
+      .text();
+}
+
 // The export of a method's parts: a model of one image exposes stochtex_<method>, a material (a
-// model with `maps`) its material function after the library; `linear_light`: a model of one
-// image whose function returns linear light (its colour space srgb).
+// model with `maps`) its material function after the library; `colour`: the model's (a model of
+// one image in the srgb colour space returns linear light).
 ShaderExport assemble_export(ExportParts parts, ShaderLanguage language,
-                             std::span<const MapInfo> maps, int channels, bool linear_light) {
+                             std::span<const MapInfo> maps, int channels,
+                             const ModelColour& colour) {
+  const bool linear_light = colour.decodes();
   const std::string method(parts.method);
+  if (language == ShaderLanguage::godot) {
+    if (!maps.empty())
+      throw std::invalid_argument(
+          "a material exports a struct of its maps, which Godot 3's shading language does not "
+          "have; analyse each map by itself to export it for Godot");
+    const bool border =
+        std::any_of(parts.textures.begin(), parts.textures.end(),
+                    [](const ShaderTexture& t) { return t.wrap == TextureWrap::clamp_to_border; });
+    std::vector<std::string> exported_names;
+    for (const ShaderTexture& t : parts.textures) exported_names.push_back(t.file_name());
+    godot_textures(parts.textures, method);
+    // The notes name the files of the other languages: a float image is a PNG here.
+    for (std::size_t k = 0; k < parts.textures.size(); ++k) {
+      const std::string from = "`" + exported_names[k] + "`";
+      const std::string to = "`" + parts.textures[k].file_name() + "`";
+      for (std::size_t at = parts.notes.find(from); at != std::string::npos;
+           at = parts.notes.find(from, at + to.size()))
+        parts.notes.replace(at, from.size(), to);
+    }
+    const Entry entry{method, nullptr};
+    const std::string function = entry.function();
+    const std::string library = cross_compile(parts.library, function, method, language);
+    GodotFiles files = godot_files(
+        method, function, export_header(language, parts.what, entry, parts.textures, parts.variant),
+        library, parts.textures, channels, colour);
+    ShaderExport result;
+    result.readme = godot_readme(entry, parts, files, border, linear_light);
+    result.shader = std::move(files.spatial);
+    result.wrappers = std::move(files.others);
+    result.textures = std::move(parts.textures);
+    result.manifest = manifest(entry, parts.variant, language, result, linear_light);
+    return result;
+  }
   std::optional<MaterialShader> material;
   if (!maps.empty()) {
     material =
@@ -543,7 +662,7 @@ ShaderExport export_shader(const Model& model, const ShaderExportOptions& option
         gl::ExportParts parts = gl::Twin<Method>::shader(method_model, options.variant);
         gl::add_colour(parts, model.data().colour, model.channels(), model.maps());
         return gl::assemble_export(std::move(parts), options.language, model.maps(),
-                                   model.channels(), model.data().colour.decodes());
+                                   model.channels(), model.data().colour);
       },
       model.data().model);
 }

@@ -22,7 +22,7 @@ struct LanguageRow {
   std::string_view name;        // the --language spelling and the studio's: "glsl", "essl", ...
   std::string_view title;       // "GLSL 4.50", "GLSL ES 3.00", "HLSL Shader Model 5", ...
   std::string_view targets;     // the APIs and engines that run it, for --help and listings
-  std::string_view extension;   // of the shader file: ".glsl", ".essl", ".hlsl", ".metal"
+  std::string_view extension;   // of the shader file: ".glsl", ".essl", ".hlsl", ".metal", ...
   std::string_view placement;   // where a cross-compiled library goes in the caller's shader
   std::string_view texel_read;  // how the exact variant reads one texel of a data texture
   // The texture types of a 2-D and a 3-D data texture, as the shader declares them.
@@ -35,7 +35,7 @@ struct LanguageRow {
   std::string_view entry_point_start;
 };
 
-inline constexpr std::array<LanguageRow, 4> kLanguageRows = {{
+inline constexpr std::array<LanguageRow, 5> kLanguageRows = {{
     {ShaderLanguage::glsl,
      "glsl",
      "GLSL 4.50",
@@ -90,6 +90,21 @@ inline constexpr std::array<LanguageRow, 4> kLanguageRows = {{
        {"MTLPixelFormatR16Unorm", "MTLPixelFormatRG16Unorm", "MTLPixelFormatRGBA16Unorm",
         "MTLPixelFormatRGBA16Unorm"}}},
      "\nfragment void main0("},
+    // Godot's files (export_godot.hpp): a float image read texel by texel as its floats' bytes
+    // in a grey + alpha PNG (png8), a filtered image as OpenEXR, which Godot imports as half
+    // floats.
+    {ShaderLanguage::godot,
+     "godot",
+     "Godot 3 shading language",
+     "Godot 3.2 and later 3.x (GLES3)",
+     ".shader",
+     "A complete spatial shader: copy its uniforms and functions into another Godot 3 shader.",
+     "`texelFetch` of eight LA8 texels, the float32 values' bytes",
+     {"sampler2D", "sampler3D"},
+     {{{"RGBH (half floats)", "RGBH (half floats)", "RGBH (half floats)", "RGBAH (half floats)"},
+       {"LA8", "LA8", "LA8", "LA8"},
+       {"RGBH (half floats)", "RGBH (half floats)", "RGBH (half floats)", "RGBAH (half floats)"}}},
+     "\nvoid main()\n"},
 }};
 
 // kLanguageRows holds one row per ShaderLanguage, in the enum's order.

@@ -152,18 +152,31 @@ fi
 # (gabor's doubles), an unknown language and folders that cannot take the files are refused with
 # nothing written. (tests/gl/export_language_test.cpp compiles and runs what is written.)
 for language in $cross_languages; do
+  # Godot imports no float32 file: its atlas is the floats' bytes in a PNG (docs/engines.md).
+  atlas=texton_atlas.exr
+  [[ $language == godot ]] && atlas=texton_atlas.png
   expect_ok "export-shader --language $language" "$stochtex" export-shader "$model" \
     -o "$models/shader_$language" --language "$language" &&
     expect_file "export-shader --language $language writes the README" \
       "$models/shader_$language/README.md" &&
     expect_file "export-shader --language $language writes the atlas" \
-      "$models/shader_$language/texton_atlas.exr"
+      "$models/shader_$language/$atlas"
 done
 expect_file "export-shader --language essl writes the GLSL ES" "$models/shader_essl/stochtex_texton.essl"
 expect_file "export-shader --language hlsl writes the HLSL" "$models/shader_hlsl/stochtex_texton.hlsl"
 expect_file "export-shader --language hlsl writes the Shader Graph function" \
   "$models/shader_hlsl/stochtex_texton_shadergraph.hlsl"
 expect_file "export-shader --language msl writes the Metal" "$models/shader_msl/stochtex_texton.metal"
+# Godot: the shaders, the scene and each data file's import settings (tests/godot runs them).
+for file in stochtex_texton.shader stochtex_texton_canvas.shader stochtex_texton.tscn \
+  stochtex_texton.gdshader texton_atlas.png.import; do
+  expect_file "export-shader --language godot writes $file" "$models/shader_godot/$file"
+done
+if [[ -f $models/shader_godot/texton_atlas.png.import ]]; then
+  if grep -qx 'flags/srgb=0' "$models/shader_godot/texton_atlas.png.import"; then pass; else
+    fail "export-shader --language godot imports its data without sRGB" "no flags/srgb=0"
+  fi
+fi
 if expect_ok "export-shader --language glsl" "$stochtex" export-shader "$model" \
   -o "$models/shader_glsl" --language glsl; then
   if cmp -s "$models/shader/stochtex_texton.glsl" "$models/shader_glsl/stochtex_texton.glsl"; then

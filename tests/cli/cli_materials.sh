@@ -164,7 +164,10 @@ expect_ok "a material of 9 channels" "$stochtex" analyze --map albedo="$rock/alb
   fi &&
   expect_error "export-shader --variant fast of a material beyond 4 channels" 1 \
     "export it with --variant exact" "$stochtex" export-shader "$models/rock.stx" \
-    -o "$out/rock" --variant fast
+    -o "$out/rock" --variant fast &&
+  expect_error "export-shader --language godot of a material (no structs in Godot 3)" 2 \
+    "which Godot 3's shading language does not have" "$stochtex" export-shader \
+    "$models/rock.stx" -o "$out/rock_godot" --language godot
 # render-mesh shades a material's colour map (3 channels), bumped by a derived normal map (rock) or
 # none (material), through every mapping its method has.
 for mapping in uv triplanar-linear surface; do

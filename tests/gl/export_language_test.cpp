@@ -35,8 +35,19 @@ constexpr std::uint32_t kSeed = 11;
 
 // The caller's side of the GLSL and GLSL ES exports: a fragment shader evaluating the function at
 // each pixel centre of a grid of `scale` from the origin, as render() samples it.
-std::string fragment_shader(const std::string& version, const std::string& library,
+std::string fragment_shader(const std::string& version, const std::string& text,
                             const std::string& method) {
+  std::string library = text;
+  if (library.find("\nshader_type spatial;\n") != std::string::npos) {
+    // Godot's spatial shader: its uniforms and functions, as GLSL ES 3.00.
+    library.erase(library.find("\nvoid fragment()"));
+    library.erase(0, library.find("\nshader_type spatial;\n") + 22);
+    for (const char* uniform :
+         {"uniform float stochtex_texture_scale", "uniform int stochtex_seed"}) {
+      const std::size_t at = library.find(uniform);
+      library.erase(at, library.find('\n', at) - at);
+    }
+  }
   return version + "\n" + library +
          "uniform highp float scale;\nuniform highp uint seed;\nout highp vec4 colour;\n"
          "void main() {\n  highp vec2 p = scale * gl_FragCoord.xy;\n  colour = stochtex_" +
@@ -147,6 +158,12 @@ void bind_texture(GLuint id, const ShaderTexture& t) {
     glTexSubImage3D(target, 0, 0, 0, 0, width, height, t.depth, kLayouts[channel], type, data);
   }
   if (t.mip_levels > 1) glGenerateMipmap(target);
+  if (t.float_bytes) {
+    // Godot's grey + alpha texture (LA8) reads as (L, L, L, A).
+    for (const GLenum swizzle : {GL_TEXTURE_SWIZZLE_R, GL_TEXTURE_SWIZZLE_G, GL_TEXTURE_SWIZZLE_B})
+      glTexParameteri(target, swizzle, GL_RED);
+    glTexParameteri(target, GL_TEXTURE_SWIZZLE_A, GL_GREEN);
+  }
   constexpr std::array<GLenum, 3> kMinFilters = {GL_NEAREST, GL_LINEAR, GL_LINEAR_MIPMAP_LINEAR};
   glTexParameteri(target, GL_TEXTURE_MIN_FILTER,
                   static_cast<GLint>(kMinFilters[static_cast<std::size_t>(t.filter)]));
@@ -292,13 +309,16 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
           if (fast) {
             EXPECT_NE(files.readme.find("fast variant"), std::string::npos);
           }
-          // It ends with each engine's import settings, the exact variant's for texelFetch.
-          EXPECT_NE(files.readme.find("Importing the data files, engine by engine."),
-                    std::string::npos);
-          EXPECT_EQ(files.readme.find("with one mip level (the shader reads texels with "
-                                      "`texelFetch`)") != std::string::npos,
-                    !fast);
-          const std::string extension = language == ShaderLanguage::msl ? ".metal" : "." + name;
+          // It ends with each engine's import settings, the exact variant's for texelFetch
+          // (Godot's: its own, in its .import files).
+          if (language != ShaderLanguage::godot) {
+            EXPECT_NE(files.readme.find("Importing the data files, engine by engine."),
+                      std::string::npos);
+            EXPECT_EQ(files.readme.find("with one mip level (the shader reads texels with "
+                                        "`texelFetch`)") != std::string::npos,
+                      !fast);
+          }
+          const std::string extension(row.extension);
           EXPECT_EQ(files.shader.name, "stochtex_" + method + extension);
           // One signature in every language, the parameter names kept by SPIRV-Cross (GLSL ES:
           // highp is the default precision, so no qualifier is written); Metal's then takes each
@@ -309,7 +329,8 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
               "float4 stochtex_" + method + "(float2 p, float2 dpdx, float2 dpdy, uint seed)",
               "float4 stochtex_" + method +
                   "(thread const float2& p, thread const float2& dpdx, thread const float2& dpdy, "
-                  "thread const uint& seed, "};
+                  "thread const uint& seed, ",
+              "vec4 stochtex_" + method + "(vec2 p, vec2 dpdx, vec2 dpdy, uint seed)"};
           const std::string& signature = signatures[static_cast<std::size_t>(language)];
           EXPECT_NE(files.shader.text.find(signature), std::string::npos) << signature;
           EXPECT_NE(files.readme.find(signature), std::string::npos) << signature;
@@ -374,8 +395,34 @@ TEST(ExportLanguage, EveryFileCompilesInItsLanguage) {
               break;
             case ShaderLanguage::msl:
               break;  // no Metal compiler on Linux
+            case ShaderLanguage::godot: {
+              // No Godot front end here (tests/godot runs Godot itself; the text runs as GLSL ES
+              // below): the files the README names, each data file with its import settings.
+              std::vector<std::string> names;
+              for (const TextFile& file : files.wrappers) names.push_back(file.name);
+              for (const std::string& expected :
+                   {"stochtex_" + method + "_canvas.shader", "stochtex_" + method + ".tscn",
+                    "stochtex_" + method + ".gdshader"})
+                EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
+              for (const ShaderTexture& t : files.textures) {
+                // Texel-read floats as bytes in grey + alpha PNGs, filtered data as OpenEXR.
+                const bool bytes = t.filter == TextureFilter::nearest;
+                EXPECT_EQ(t.float_bytes, bytes) << t.name;
+                EXPECT_EQ(t.encoding, bytes ? TextureEncoding::png8 : TextureEncoding::exr_float32)
+                    << t.name;
+                EXPECT_EQ(t.image.channels() == 2, bytes) << t.name;
+                EXPECT_NE(t.wrap, TextureWrap::clamp_to_border) << t.name;
+                EXPECT_NE(std::find(names.begin(), names.end(), t.file_name() + ".import"),
+                          names.end())
+                    << t.name;
+              }
+              EXPECT_NE(files.shader.text.find("\nshader_type spatial;\n"), std::string::npos);
+              for (const char* missing : {"struct ", "#define", "0x", "^="})
+                EXPECT_EQ(files.shader.text.find(missing), std::string::npos) << missing;
+              break;
+            }
           }
-          if (language != ShaderLanguage::hlsl) {
+          if (language != ShaderLanguage::hlsl && language != ShaderLanguage::godot) {
             EXPECT_TRUE(files.wrappers.empty());
           }
         }
@@ -486,6 +533,15 @@ TEST(ExportLanguage, GlslRunsInAFragmentShaderAndMatchesTheCpu) {
 
 TEST(ExportLanguage, EsslRunsOnOpenGlEs30AndMatchesTheCpu) {
   expect_renders_match(gl::Api::gles30, ShaderLanguage::essl, "#version 300 es");
+}
+
+// Godot's text is GLSL ES 3.00 but for its first line, its fragment() and its uniforms'
+// initialisers: run as such, it shows what the rewrites of godot_shader.cpp compute, apart from
+// Godot (tests/godot runs it in Godot 3.2.3 itself).
+TEST(ExportLanguage, GodotTextRunsOnOpenGlEs30AndMatchesTheCpu) {
+  expect_renders_match(gl::Api::gles30, ShaderLanguage::godot,
+                       "#version 300 es\nprecision highp float;\nprecision highp int;\n"
+                       "precision highp sampler2D;\nprecision highp sampler3D;");
 }
 
 }  // namespace
