@@ -78,26 +78,8 @@ FAST_DEVIATION_BOUND = 0.10
 #   the fast ones.
 COLOUR_STEPS = 1
 
-
-def parse_pfm(data):
-    """A PFM file's pixels, top row first: (width, height, channels, floats)."""
-    fields = []
-    position = 0
-    while len(fields) < 4:
-        while data[position:position + 1].isspace():
-            position += 1
-        start = position
-        while not data[position:position + 1].isspace():
-            position += 1
-        fields.append(data[start:position].decode())
-    position += 1
-    channels = 3 if fields[0] == "PF" else 1
-    width, height = int(fields[1]), int(fields[2])
-    order = "<" if float(fields[3]) < 0 else ">"
-    values = struct.unpack(f"{order}{width * height * channels}f", data[position:])
-    row = width * channels
-    rows = [values[(height - 1 - j) * row:(height - j) * row] for j in range(height)]
-    return width, height, channels, [v for r in rows for v in r]
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "browser"))
+from browser_test import parse_pfm  # noqa: E402  (the one PFM reader of the engine tests)
 
 
 def run(command, **options):
