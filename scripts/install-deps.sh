@@ -10,7 +10,7 @@ packages=(
   libfftw3-dev libpng-dev liblcms2-dev libopenexr-dev libeigen3-dev
   libjpeg-dev libexif-dev libtiff-dev libwebp-dev libstb-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libtinyobjloader-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libhwy-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libhwy-dev libxxhash-dev
   libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri
   glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev libcpp-httplib-dev
   libarchive-dev

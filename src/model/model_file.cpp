@@ -6,6 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+// xxHash's functions inlined here (header only): nothing to link, for stochtex nor its users.
+#define XXH_INLINE_ALL
+#include <xxhash.h>
+
 #include "model/map_layout.hpp"
 #include "stochtex/error.hpp"
 
@@ -119,11 +123,11 @@ class Reader {
     if (maps != json.end()) record.maps = read_maps(*maps, version);
     const auto space = json.find("colour_space");
     if (space != json.end()) {
-      if (version < kModelFormatVersion || maps != json.end())
+      if (version < kColourModelFormatVersion || maps != json.end())
         fail("has a colour space where its format version holds none; the file is corrupt");
       record.colour_space = read_colour_space(*space);
     }
-    if (version == kModelFormatVersion && !has_colour(record))
+    if (version == kColourModelFormatVersion && !has_colour(record))
       fail("is a version-3 model file without a colour space; the file is corrupt");
     if (const auto wrap = json.find("exemplar_wrap_step"); wrap != json.end()) {
       const auto step = [&](std::size_t i) {
@@ -252,7 +256,7 @@ class Reader {
       }
       const auto space = entry.find("colour_space");
       if (space != entry.end()) {
-        if (version < kModelFormatVersion)
+        if (version < kColourModelFormatVersion)
           fail("has a colour space where its format version holds none; the file is corrupt");
         map.colour_space = read_colour_space(*space);
       }
@@ -299,9 +303,7 @@ std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
   const std::string text = header.dump();
 
   std::vector<std::uint8_t> out(std::begin(kMagic), std::end(kMagic));
-  put_u32(out, has_colour(record)    ? kModelFormatVersion
-               : record.maps.empty() ? kSingleImageModelFormatVersion
-                                     : kMaterialModelFormatVersion);
+  put_u32(out, kModelFormatVersion);
   put_u32(out, static_cast<std::uint32_t>(text.size()));
   out.insert(out.end(), text.begin(), text.end());
   for (const auto& array : record.arrays)
@@ -315,6 +317,9 @@ std::vector<std::uint8_t> write_model_record(const ModelRecord& record) {
 }
 
 std::uint64_t model_checksum(std::span<const std::uint8_t> bytes_before_checksum) {
+  if (bytes_before_checksum.size() >= kPreambleBytes &&
+      get_u32(bytes_before_checksum.data() + sizeof(kMagic)) >= kModelFormatVersion)
+    return XXH3_64bits(bytes_before_checksum.data(), bytes_before_checksum.size());
   std::uint64_t hash = 14695981039346656037ull;
   for (const std::uint8_t byte : bytes_before_checksum) {
     hash ^= byte;

@@ -28,7 +28,9 @@
 
 namespace stochtex {
 
-inline constexpr std::uint32_t kModelFormatVersion = 3;             // the newest, colour spaces
+// The versions (docs/design.md §7). Every file is written in the newest; the older ones load.
+inline constexpr std::uint32_t kModelFormatVersion = 4;             // the newest, XXH3 checksum
+inline constexpr std::uint32_t kColourModelFormatVersion = 3;       // colour spaces
 inline constexpr std::uint32_t kMaterialModelFormatVersion = 2;     // a material
 inline constexpr std::uint32_t kSingleImageModelFormatVersion = 1;  // a model of one image
 inline constexpr std::uint32_t kMaxModelHeaderBytes = 1u << 20;
@@ -38,11 +40,13 @@ inline constexpr std::uint32_t kMaxModelHeaderBytes = 1u << 20;
 // analysis never writes a model that loading would refuse.
 inline constexpr std::uint64_t kMaxModelArrayValues = kMemoryBudgetBytes / 20;
 
-// Whether the record has a colour space other than data (format version 3).
+// Whether the record has a colour space other than data (format version 3 or later).
 bool has_colour(const ModelRecord& record);
 // Throws stochtex::Error(ErrorCode::invalid_input) for a record of more than kMaxModelArrayValues.
 std::vector<std::uint8_t> write_model_record(const ModelRecord& record);
-// The FNV-1a 64 checksum stored in the last 8 bytes of a model file, over all bytes before it.
+// The checksum stored in the last 8 bytes of a model file, over all bytes before it, as the
+// version the bytes declare has it: XXH3-64 from version 4 (a 512² colour model's 3 MB in 0.2
+// ms), FNV-1a 64 before (3.2 ms: one multiplication after another, byte by byte).
 std::uint64_t model_checksum(std::span<const std::uint8_t> bytes_before_checksum);
 ModelRecord read_model_record(std::span<const std::uint8_t> bytes, const std::string& source_name);
 

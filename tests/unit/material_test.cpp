@@ -190,14 +190,14 @@ TEST(Material, MoreChannelsThanTheMethodTakesAreRefusedBeforeAnalysis) {
                        "has 17 channels in 7 maps, more than the 16"));
 }
 
-TEST(Material, ModelFilesKeepTheMapsAndOneImageStaysVersionOne) {
+TEST(Material, ModelFilesKeepTheMaps) {
   const ImageF albedo = rock("albedo");
   const ImageF roughness = rock("roughness");
   const Model material = analyze_material(
       "tiling", std::vector<MaterialMap>{{"albedo", {}, albedo.view(), "a.png"},
                                          {"roughness", {}, roughness.view(), "r.png"}});
   const std::vector<std::uint8_t> bytes = serialize_model(material);
-  EXPECT_EQ(bytes[8], kMaterialModelFormatVersion);
+  EXPECT_EQ(bytes[8], kModelFormatVersion);
   const Model loaded = deserialize_model(bytes, "m.stx");
   ASSERT_EQ(loaded.maps().size(), 2u);
   EXPECT_EQ(loaded.maps()[0].name, "albedo");
@@ -206,7 +206,7 @@ TEST(Material, ModelFilesKeepTheMapsAndOneImageStaysVersionOne) {
   EXPECT_NE(describe_model(loaded).find("\"maps\""), std::string::npos);
 
   const Model image = analyze("tiling", albedo.view());
-  EXPECT_EQ(serialize_model(image)[8], kSingleImageModelFormatVersion);
+  EXPECT_EQ(serialize_model(image)[8], kModelFormatVersion);
   EXPECT_TRUE(image.maps().empty());
   EXPECT_EQ(describe_model(image).find("\"maps\""), std::string::npos);
 }

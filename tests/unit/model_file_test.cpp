@@ -35,6 +35,13 @@ std::vector<std::uint8_t> with_checksum(std::vector<std::uint8_t> bytes) {
   return bytes;
 }
 
+// The FNV-1a 64 hash (the checksum of model files before version 4).
+std::uint64_t fnv1a(std::span<const std::uint8_t> bytes) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const std::uint8_t byte : bytes) hash = (hash ^ byte) * 1099511628211ull;
+  return hash;
+}
+
 // A file made of a given header and `float_count` zero floats, with a valid checksum.
 std::vector<std::uint8_t> file_with_header(const std::string& header, std::size_t float_count,
                                            std::uint32_t version = kSingleImageModelFormatVersion) {
@@ -107,6 +114,23 @@ TEST(ModelFile, EveryByteFlipIsRejected) {
     corrupt[i] ^= 0x20;
     expect_rejected(corrupt, "byte " + std::to_string(i) + " flipped");
   }
+}
+
+// Versions 1 to 3 end with the FNV-1a 64 checksum, version 4 with XXH3-64: each file is checked by
+// its version's.
+TEST(ModelFile, EachVersionHasItsChecksum) {
+  const std::vector<std::uint8_t> bytes = serialize_model(small_model(1));
+  ASSERT_EQ(bytes[8], kModelFormatVersion);
+  const std::span<const std::uint8_t> payload = std::span(bytes).first(bytes.size() - 8);
+  EXPECT_NE(model_checksum(payload), fnv1a(payload));
+  std::vector<std::uint8_t> older = bytes;
+  older[8] = static_cast<std::uint8_t>(kSingleImageModelFormatVersion);
+  const std::span<const std::uint8_t> older_payload = std::span(older).first(older.size() - 8);
+  EXPECT_EQ(model_checksum(older_payload), fnv1a(older_payload));
+  EXPECT_NO_THROW(deserialize_model(with_checksum(older), "older.stx"));
+  std::vector<std::uint8_t> mislabelled = with_checksum(older);
+  mislabelled[8] = static_cast<std::uint8_t>(kModelFormatVersion);
+  expect_rejected(mislabelled, "version 4 with FNV-1a's checksum");
 }
 
 TEST(ModelFile, OtherVersionsGetAClearMessage) {
@@ -214,7 +238,7 @@ std::uint64_t render_hash(const Model& model, double scale, std::uint32_t seed) 
     std::memcpy(&bits, &value, sizeof(bits));
     for (int i = 0; i < 4; ++i) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * i)));
   }
-  return model_checksum(bytes);
+  return fnv1a(bytes);
 }
 
 // Files written before colour spaces (the model corpus of the fuzz tests, written by earlier
@@ -245,10 +269,11 @@ TEST(ModelFile, FilesWrittenBeforeColourSpacesRenderAsBefore) {
                                           std::istreambuf_iterator<char>());
     const Model model = deserialize_model(bytes, path.string());
     EXPECT_EQ(model.colour_space(), ColourSpace::data) << file.name;
-    // Written again in the file's version without a colour space (texton's file predates its
+    // Written again in the newest version without a colour space (texton's file predates its
     // `points` parameter, which is written now).
     const std::vector<std::uint8_t> again = serialize_model(model);
-    EXPECT_EQ(again[8], bytes[8]) << file.name;
+    EXPECT_LT(bytes[8], kModelFormatVersion) << file.name;
+    EXPECT_EQ(again[8], kModelFormatVersion) << file.name;
     const ModelRecord record = read_model_record(again, path.string());
     EXPECT_FALSE(has_colour(record)) << file.name;
     EXPECT_TRUE(std::none_of(record.arrays.begin(), record.arrays.end(), [](const NamedArray& a) {
@@ -259,12 +284,12 @@ TEST(ModelFile, FilesWrittenBeforeColourSpacesRenderAsBefore) {
   }
 }
 
-// A model with a colour space is format version 3 and keeps it, with its table of removed
-// deviations, through the file; a version-3 file without a colour space, a colour space in an
-// older version, an unknown one, or a srgb model without its table are corrupt.
-TEST(ModelFile, ColourSpacesRoundTripInVersionThree) {
+// A model keeps its colour space, with its table of removed deviations, through the file; a
+// version-3 file without a colour space, a colour space in an older version, an unknown one, or a
+// srgb model without its table are corrupt.
+TEST(ModelFile, ColourSpacesRoundTrip) {
   const Model data = small_model(3);
-  EXPECT_EQ(serialize_model(data)[8], kSingleImageModelFormatVersion);
+  EXPECT_EQ(serialize_model(data)[8], kModelFormatVersion);
   const Model srgb = with_colour_space(data, ColourSpace::srgb);
   const std::vector<std::uint8_t> bytes = serialize_model(srgb);
   EXPECT_EQ(bytes[8], kModelFormatVersion);
@@ -286,9 +311,15 @@ TEST(ModelFile, ColourSpacesRoundTripInVersionThree) {
   };
   expect_rejected(replaced("\"colour_space\":\"srgb\"", "\"colour_space\":\"oklab\""),
                   "unknown colour space");
+  std::vector<std::uint8_t> version_three = bytes;
+  version_three[8] = static_cast<std::uint8_t>(kColourModelFormatVersion);
+  const std::string three(version_three.begin(), version_three.end());
+  std::string spade = three;
+  spade.replace(spade.find("\"colour_space\":\"srgb\""), 22, "\"colour_spade\":\"srgb\"");
   // Same length, so the header's declared length still holds.
-  expect_rejected(replaced("\"colour_space\":\"srgb\"", "\"colour_spade\":\"srgb\""),
+  expect_rejected(with_checksum(std::vector<std::uint8_t>(spade.begin(), spade.end())),
                   "version-3 model file without a colour space");
+  EXPECT_NO_THROW(deserialize_model(with_checksum(version_three), "three.stx"));
   std::vector<std::uint8_t> older = with_checksum(bytes);
   older[8] = static_cast<std::uint8_t>(kSingleImageModelFormatVersion);
   expect_rejected(with_checksum(older), "colour space where its format version holds none");
