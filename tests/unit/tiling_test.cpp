@@ -423,6 +423,44 @@ constexpr auto expect_rejected = &test_support::expect_record_rejected<TilingMod
 
 void check_threads_tiles_and_regions(const Model& model);
 
+// A model without the 3-D table stores its prefiltered and calibrated level tables, so that a load
+// need not rebuild them (issue 39): the file holds the tables the model built, a record without
+// them loads a model that builds the same, and tables of the wrong shape are refused. With the
+// 3-D table none are stored (its levels would make the file several times larger).
+TEST(TilingModelFile, LevelTablesAreStoredAsBuilt) {
+  const auto level_tables = [](const TilingModel& tiling) {
+    std::vector<float> tables;
+    for (int l = 0; l < tiling.level_count(); ++l)
+      tables.insert(tables.end(), tiling.level_tables(l).begin(), tiling.level_tables(l).end());
+    return tables;
+  };
+  const auto stored = [](auto& record) {
+    return std::find_if(record.arrays.begin(), record.arrays.end(),
+                        [](const NamedArray& array) { return array.name == "level_tables"; });
+  };
+  for (const int channels : {1, 3, 4}) {
+    const Model model =
+        analyse(structured_exemplar(32, channels, 7), {{"transport", 1}, {"table_size", 64}});
+    const TilingModel& tiling = tiling_of(model);
+    const ModelRecord record = tiling.to_record(model.params());
+    const auto found = stored(record);
+    ASSERT_NE(found, record.arrays.end()) << channels << " channels";
+    EXPECT_EQ(found->values, level_tables(tiling)) << channels << " channels";
+    ModelRecord without = record;
+    without.arrays.erase(stored(without));
+    EXPECT_EQ(level_tables(TilingModel::from_record(without, "without.stx")), level_tables(tiling))
+        << channels << " channels";
+    ModelRecord wrong = record;
+    const auto tables = stored(wrong);
+    tables->shape[0] -= 1;
+    tables->values.resize(tables->values.size() / 2);
+    expect_rejected(wrong, "level tables of the wrong shape");
+  }
+  const Model sliced = analyse(structured_exemplar(32, 3, 7), {{"transport", 0}, {"lut_size", 8}});
+  const ModelRecord record = tiling_of(sliced).to_record(sliced.params());
+  EXPECT_EQ(stored(record), record.arrays.end());
+}
+
 // `record` with the scalar `name` set to `value`.
 ModelRecord scalar_edited(ModelRecord record, const std::string& name, double value) {
   record.scalars[name] = value;
@@ -430,7 +468,7 @@ ModelRecord scalar_edited(ModelRecord record, const std::string& name, double va
 }
 
 TEST(TilingModelFile, CorruptRecordsAreRejectedWithAFormatError) {
-  const Model model = analyse(structured_exemplar(16, 4, 8), {{"lut_size", 4}});
+  const Model model = analyse(structured_exemplar(16, 4, 8), {{"transport", 0}, {"lut_size", 4}});
   const ModelRecord good = tiling_of(model).to_record(model.params());
   EXPECT_NO_THROW(TilingModel::from_record(good, "good.stx"));
   const auto with_scalar = [&](const std::string& name, double value) {
@@ -557,7 +595,7 @@ TEST(TilingTables, OneDimensionalTablesInvertTheTransport) {
 
 TEST(TilingTables, ColourTableIsFetchedAtTheErfParameterisation) {
   // At the Gaussian value of a cell centre (eq. 20) the 3-D table returns that cell (eq. 22).
-  const Model model = analyse(structured_exemplar(32, 3, 11), {{"lut_size", 8}});
+  const Model model = analyse(structured_exemplar(32, 3, 11), {{"transport", 0}, {"lut_size", 8}});
   const TilingModel& tiling = tiling_of(model);
   const std::vector<float>& lut = tiling.data().lut;
   for (const auto& [x, y, z] : {std::tuple{0, 0, 0}, std::tuple{3, 5, 1}, std::tuple{7, 2, 6}}) {

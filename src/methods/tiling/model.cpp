@@ -115,13 +115,21 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
                 pyramid_.size() < std::size_t{1} << 31;
   if (d.blend != Blend::histogram) return;
 
-  // T^-1 prefiltered per level (pyramid.hpp).
+  // T^-1 prefiltered per level (pyramid.hpp) and calibrated, or as the model file stored them.
   lut_floats_ = d.lut.size();
   table_floats_ = d.tables.size();
-  prefilter_levels(d, layout_, texels, widths, heights, level_luts_, level_tables_);
+  const bool stored = !d.level_tables.empty();
+  if (stored) {
+    if (layout_.colour_lut || d.level_tables.size() != texels.size() * table_floats_)
+      throw std::invalid_argument("tiling: the level tables do not match the model");
+    level_tables_ = std::move(data_.level_tables);
+    data_.level_tables = {};
+  } else {
+    prefilter_levels(d, layout_, texels, widths, heights, level_luts_, level_tables_);
+  }
   simd_ready_ = simd_ready_ && level_luts_.size() < std::size_t{1} << 31 &&
                 level_tables_.size() < std::size_t{1} << 31;
-  calibrate_colour();
+  if (!stored) calibrate_colour();
 }
 
 // The prefiltered T^-1 of a level (section 5.4) is the expectation over a Gaussian residual of

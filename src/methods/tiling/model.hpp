@@ -76,6 +76,11 @@ struct TilingData {
   // T^-1 by groups of channels, a material's maps (issue 18); empty: an image's colour and alpha
   // (tiling_layout).
   std::vector<GroupSpec> groups;
+  // Derived, optional: the 1-D tables of T^-1 prefiltered for every pyramid level and calibrated
+  // (TilingModel::level_tables), as the model file stores them so that a load need not rebuild
+  // them; empty: built at construction. Never with the 3-D table, whose 32³ per level would make
+  // the file several times larger.
+  std::vector<float> level_tables;
   // Each channel's colour space (model/model_colour.hpp), or empty: every channel data. Not in
   // the tiling record: the model file's header holds it. The 3-D table's and the direct 1-D
   // tables' srgb channels are decoded before they are prefiltered, so that each level's T^-1

@@ -84,6 +84,14 @@ TilingModel TilingModel::from_record(const ModelRecord& record, const std::strin
   data.blend_mean = take("blend_mean", {data.channels});
   if (layout.colour_lut) data.lut = take("lut", {n, n, n, 3});
   if (layout.table_count > 0) data.tables = take("tables", {layout.table_count, data.table_size});
+  if (!layout.colour_lut && layout.table_count > 0 &&
+      std::any_of(record.arrays.begin(), record.arrays.end(),
+                  [](const NamedArray& array) { return array.name == "level_tables"; })) {
+    std::int64_t levels = 1;
+    for (int w = data.width, h = data.height; w > 1 || h > 1; w = (w + 1) / 2, h = (h + 1) / 2)
+      ++levels;
+    data.level_tables = take("level_tables", {levels, layout.table_count, data.table_size});
+  }
   if (layout.basis_size > 0 && layout.image_layout) {
     data.colour_basis = take("colour_basis", {cc, cc});
     data.colour_mean = take("colour_mean", {cc});
@@ -139,6 +147,9 @@ ModelRecord TilingModel::to_record(const ParamValues& params) const {
   if (layout_.colour_lut) record.arrays.push_back({"lut", {n, n, n, 3}, d.lut});
   if (layout_.table_count > 0)
     record.arrays.push_back({"tables", {layout_.table_count, d.table_size}, d.tables});
+  if (!layout_.colour_lut && !level_tables_.empty())
+    record.arrays.push_back(
+        {"level_tables", {level_count(), layout_.table_count, d.table_size}, level_tables_});
   if (!d.colour_basis.empty() && layout_.image_layout) {
     record.arrays.push_back({"colour_basis", {cc, cc}, d.colour_basis});
     record.arrays.push_back({"colour_mean", {cc}, d.colour_mean});
