@@ -174,9 +174,33 @@ LevelLanes level_lanes(DF df, const SimdTiling& m, VI level, bool uniform) {
   return l;
 }
 
+// The texels of `channels` interleaved channels (1 to 4) at p, p + channels, ... in lanes 0, 1,
+// ...: one lane per texel, channel c in out[c].
+HWY_INLINE void load_texels(const float* p, int channels, VF* out) {
+  const DF df;
+  switch (channels) {
+    case 1:
+      out[0] = hn::LoadU(df, p);
+      return;
+    case 2:
+      hn::LoadInterleaved2(df, p, out[0], out[1]);
+      return;
+    case 3:
+      hn::LoadInterleaved3(df, p, out[0], out[1], out[2]);
+      return;
+    default:
+      hn::LoadInterleaved4(df, p, out[0], out[1], out[2], out[3]);
+      return;
+  }
+}
+
 // fetch_bilinear (evaluate.hpp) in every lane: acc[c] += weight * level(x, y)[c] where `take`.
+// Where the lanes read neighbouring texels of the same two rows, left to right without a wrap (a
+// row of point samples within one patch at scale 1), vector loads replace the gathers: the same
+// texels, so the same sums.
 HWY_INLINE void fetch_bilinear(const SimdTiling& m, const LevelLanes& l, VF x, VF y, VF weight,
                                MF take, VF* acc) {
+  const DI di;
   const VectorOps ops;
   const BilinearTaps<VectorOps> taps = bilinear_taps(ops, l.shape, x, y, weight);
   const VI channels = ops.i(m.channels);
@@ -185,6 +209,26 @@ HWY_INLINE void fetch_bilinear(const SimdTiling& m, const LevelLanes& l, VF x, V
   const VI r1 = l.first + taps.y1 * row;
   const VI x0 = taps.x0 * channels;
   const VI x1 = taps.x1 * channels;
+  const std::int32_t first_x = hn::GetLane(taps.x0);
+  const std::int32_t row_0 = hn::GetLane(r0);
+  const std::int32_t row_1 = hn::GetLane(r1);
+  if (m.channels <= 4 && hn::AllTrue(di, hn::Eq(taps.x0, hn::Iota(di, first_x))) &&
+      hn::AllTrue(di, hn::Eq(taps.x1, hn::Iota(di, first_x + 1))) &&
+      hn::AllTrue(di, hn::Eq(r0, hn::Set(di, row_0))) &&
+      hn::AllTrue(di, hn::Eq(r1, hn::Set(di, row_1)))) {
+    VF t00[4], t10[4], t01[4], t11[4];
+    const float* top = m.pyramid + row_0 + first_x * m.channels;
+    const float* bottom = m.pyramid + row_1 + first_x * m.channels;
+    load_texels(top, m.channels, t00);
+    load_texels(top + m.channels, m.channels, t10);
+    load_texels(bottom, m.channels, t01);
+    load_texels(bottom + m.channels, m.channels, t11);
+    for (int c = 0; c < m.channels; ++c) {
+      const VF sum = bilinear_sum(taps, t00[c], t10[c], t01[c], t11[c]);
+      acc[c] = hn::IfThenElse(take, acc[c] + sum, acc[c]);
+    }
+    return;
+  }
   for (int c = 0; c < m.channels; ++c) {
     const VI k = ops.i(c);
     const VF sum =
@@ -322,9 +366,20 @@ void Lanes(const SimdTiling& m, std::span<const Vec2d> positions, std::size_t fi
     for (int c = 0; c < m.channels; ++c) value[c] = g[c];
   }
 
+  const auto width = static_cast<std::size_t>(out.width);
+  const std::size_t start = out_first + first;
+  if (count == lanes && start % width + lanes <= width && out.channels == m.channels &&
+      (m.channels == 3 || m.channels == 4)) {
+    // A full vector of samples within one row of out: interleaved stores.
+    float* pixel = &out.at(static_cast<int>(start % width), static_cast<int>(start / width), 0);
+    if (m.channels == 3)
+      hn::StoreInterleaved3(value[0], value[1], value[2], df, pixel);
+    else
+      hn::StoreInterleaved4(value[0], value[1], value[2], value[3], df, pixel);
+    return;
+  }
   HWY_ALIGN float result[kMaxChannels][kMaxLanes];
   for (int c = 0; c < m.channels; ++c) hn::Store(value[c], df, result[c]);
-  const auto width = static_cast<std::size_t>(out.width);
   for (std::size_t lane = 0; lane < count; ++lane) {
     const std::size_t index = out_first + first + lane;
     float* pixel = &out.at(static_cast<int>(index % width), static_cast<int>(index / width), 0);
