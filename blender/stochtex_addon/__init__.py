@@ -187,6 +187,11 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
                ("EXR", "OpenEXR", "32-bit float; colour in linear light (Color Space Linear)")])
     seed: bpy.props.IntProperty(name="Seed", default=0, min=0, max=2**31 - 1,
                                 description="The random pattern (render --seed)")
+    parameters: bpy.props.StringProperty(
+        name="Parameters", default="",
+        description="The method's parameters as name=value separated by spaces, as `stochtex "
+                    "analyze -p` takes them (`stochtex methods` lists them), e.g. "
+                    "transport=pca sharpness=2; empty: the defaults")
 
     @classmethod
     def poll(cls, context):
@@ -198,6 +203,7 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
     def draw(self, context):
         layout = self.layout
         layout.prop(self, "method")
+        layout.prop(self, "parameters")
         if self.method == "tiling":
             layout.prop(self, "bake")
         column = layout.column()
@@ -210,11 +216,12 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
         tree, node = active_image_node(context)
         preferences = context.preferences.addons[__package__].preferences
         try:
+            parameters = backend.parse_parameters(self.parameters)
             stochtex = backend.Backend(preferences.use, preferences.command)
             folder = data_folder(node.image.name)
             source = ExemplarSource(node.image, folder)
             model_path = os.path.join(folder, self.method + ".stx")
-            route, colour = stochtex.analyse(source, self.method, model_path)
+            route, colour = stochtex.analyse(source, self.method, parameters, model_path)
             if self.method == "tiling" and not self.bake:
                 try:
                     result = self.node_group(tree, node, stochtex, model_path, folder)

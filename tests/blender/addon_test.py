@@ -197,6 +197,21 @@ bpy.ops.wm.open_mainfile(filepath=blend)
 again = render_region(bpy.context.scene, ENGINES[-1], width * SCALE / 2.0, ORIGIN)
 check(numpy.array_equal(again, rendered), "the saved .blend renders the same without the files")
 
+# Parameters the operator refuses, each in one sentence, on a new plane: text that is not
+# name=value pairs, and a parameter the method does not have (the library's sentence, through the
+# module).
+scene, material = scene_with_plane(EXEMPLARS[0])
+for parameters, sentence in (("transport", "the parameters are name=value pairs"),
+                             ("colours=3", "colours")):
+    try:
+        bpy.ops.node.stochtex_analyse(method="tiling", parameters=parameters)
+        message = "(none)"
+    except RuntimeError as error:
+        message = str(error).strip()
+    print("Parameters %r: %s" % (parameters, message))
+    check(sentence in message and len(message.splitlines()) == 1,
+          "Parameters %r are refused in one sentence" % parameters)
+
 # 3. Periodic bakes: tiling to PNG and to OpenEXR through the command line, texton (another
 # method: a bake only) to OpenEXR through the module.
 for method, file_format, use, bound in (("tiling", "PNG", "command_line", 5e-3),
