@@ -249,16 +249,24 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
         files = tiling_group.check_supported(
             constants, [f for f in os.listdir(export) if f.endswith((".png", ".exr"))])
         name = "stochtex tiling: %s" % node.image.name
-        exemplar = load_image(os.path.join(export, files["tiling_exemplar"]), "Non-Color")
-        lut = load_image(os.path.join(export, files["tiling_lut"]), "Non-Color")
-        offset_table = tiling_group.offsets_image(name + " offsets", self.seed,
-                                                  constants["TILING_WIDTH"],
-                                                  constants["TILING_HEIGHT"])
-        for image in (exemplar, lut, offset_table):
+        images = {"exemplar": load_image(os.path.join(export, files["tiling_exemplar"]),
+                                         "Non-Color"),
+                  "offsets": tiling_group.offsets_image(name + " offsets", self.seed,
+                                                        constants["TILING_WIDTH"],
+                                                        constants["TILING_HEIGHT"])}
+        if "tiling_lut" in files:
+            images["lut"] = load_image(os.path.join(export, files["tiling_lut"]), "Non-Color")
+        if "tiling_tables" in files:
+            images["tables"] = tiling_group.tables_image(
+                name + " tables", os.path.join(export, files["tiling_tables"]), constants)
+        if constants["TILING_TRANSFORMED"]:
+            images["transforms"] = tiling_group.transforms_image(name + " transforms", self.seed,
+                                                                 constants)
+        for image in images.values():
             # EEVEE would otherwise hold the float data as 16-bit floats on the GPU.
             image.use_half_precision = False
         group = tree.nodes.new("ShaderNodeGroup")
-        group.node_tree = tiling_group.build_group(name, constants, exemplar, lut, offset_table)
+        group.node_tree = tiling_group.build_group(name, constants, images)
         group.location = node.location
         group.width = node.width  # wide enough to show the group's name
         node.location.y += 320.0
