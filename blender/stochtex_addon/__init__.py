@@ -187,6 +187,11 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
                ("EXR", "OpenEXR", "32-bit float; colour in linear light (Color Space Linear)")])
     seed: bpy.props.IntProperty(name="Seed", default=0, min=0, max=2**31 - 1,
                                 description="The random pattern (render --seed)")
+    parameters: bpy.props.StringProperty(
+        name="Parameters", default="",
+        description="The method's parameters as name=value separated by spaces, as `stochtex "
+                    "analyze -p` takes them (`stochtex methods` lists them), e.g. "
+                    "transport=pca sharpness=2; empty: the defaults")
 
     @classmethod
     def poll(cls, context):
@@ -198,6 +203,7 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
     def draw(self, context):
         layout = self.layout
         layout.prop(self, "method")
+        layout.prop(self, "parameters")
         if self.method == "tiling":
             layout.prop(self, "bake")
         column = layout.column()
@@ -210,11 +216,12 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
         tree, node = active_image_node(context)
         preferences = context.preferences.addons[__package__].preferences
         try:
+            parameters = backend.parse_parameters(self.parameters)
             stochtex = backend.Backend(preferences.use, preferences.command)
             folder = data_folder(node.image.name)
             source = ExemplarSource(node.image, folder)
             model_path = os.path.join(folder, self.method + ".stx")
-            route, colour = stochtex.analyse(source, self.method, model_path)
+            route, colour = stochtex.analyse(source, self.method, parameters, model_path)
             if self.method == "tiling" and not self.bake:
                 try:
                     result = self.node_group(tree, node, stochtex, model_path, folder)
@@ -242,16 +249,24 @@ class NODE_OT_stochtex_analyse(bpy.types.Operator):
         files = tiling_group.check_supported(
             constants, [f for f in os.listdir(export) if f.endswith((".png", ".exr"))])
         name = "stochtex tiling: %s" % node.image.name
-        exemplar = load_image(os.path.join(export, files["tiling_exemplar"]), "Non-Color")
-        lut = load_image(os.path.join(export, files["tiling_lut"]), "Non-Color")
-        offset_table = tiling_group.offsets_image(name + " offsets", self.seed,
-                                                  constants["TILING_WIDTH"],
-                                                  constants["TILING_HEIGHT"])
-        for image in (exemplar, lut, offset_table):
+        images = {"exemplar": load_image(os.path.join(export, files["tiling_exemplar"]),
+                                         "Non-Color"),
+                  "offsets": tiling_group.offsets_image(name + " offsets", self.seed,
+                                                        constants["TILING_WIDTH"],
+                                                        constants["TILING_HEIGHT"])}
+        if "tiling_lut" in files:
+            images["lut"] = load_image(os.path.join(export, files["tiling_lut"]), "Non-Color")
+        if "tiling_tables" in files:
+            images["tables"] = tiling_group.tables_image(
+                name + " tables", os.path.join(export, files["tiling_tables"]), constants)
+        if constants["TILING_TRANSFORMED"]:
+            images["transforms"] = tiling_group.transforms_image(name + " transforms", self.seed,
+                                                                 constants)
+        for image in images.values():
             # EEVEE would otherwise hold the float data as 16-bit floats on the GPU.
             image.use_half_precision = False
         group = tree.nodes.new("ShaderNodeGroup")
-        group.node_tree = tiling_group.build_group(name, constants, exemplar, lut, offset_table)
+        group.node_tree = tiling_group.build_group(name, constants, images)
         group.location = node.location
         group.width = node.width  # wide enough to show the group's name
         node.location.y += 320.0

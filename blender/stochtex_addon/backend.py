@@ -44,6 +44,28 @@ def _run(arguments):
     return completed
 
 
+def parse_parameters(text):
+    """The operator's Parameters, "name=value name=value", as {name: value} (the texts)."""
+    parameters = {}
+    for pair in text.split():
+        name, equals, value = pair.partition("=")
+        if not (name and equals and value):
+            raise StochtexError("the parameters are name=value pairs separated by spaces, and "
+                                "'%s' is not one" % pair)
+        parameters[name] = value
+    return parameters
+
+
+def _number_or_text(value):
+    """A parameter's value as the module takes it: a number, or a choice's name."""
+    for kind in (int, float):
+        try:
+            return kind(value)
+        except ValueError:
+            pass
+    return value
+
+
 class Backend:
     """The module or the command line, chosen once: `use` is "auto" (the module where it
     imports), "module" or "command_line"."""
@@ -59,9 +81,10 @@ class Backend:
                                 "found: install either, or set the command's path in the add-on's "
                                 "preferences")
 
-    def analyse(self, source, method, model_path):
-        """Analyses `source` (an ExemplarSource) with `method` as its colour space says, writes
-        the model to `model_path` and returns (what analysed it: "Python module" or "command
+    def analyse(self, source, method, parameters, model_path):
+        """Analyses `source` (an ExemplarSource) with `method` and its `parameters` ({name:
+        value}, parse_parameters) as its colour space says, writes the model to `model_path` and
+        returns (what analysed it: "Python module" or "command
         line", the colour space analysed: "srgb", "linear" or "data"). An image longer than the
         method analyses (`analysis_side`: 1024 pixels, 512 for gabor) goes to the command line
         where there is one, which downscales it in linear light (docs/inputs.md); the module
@@ -73,13 +96,17 @@ class Backend:
         colour = source.colour(from_pixels=use_module)
         if use_module:
             try:
-                model = self.module.analyze(source.array(), method, colour=colour)
+                model = self.module.analyze(source.array(), method, colour=colour,
+                                            **{name: _number_or_text(value)
+                                               for name, value in parameters.items()})
                 model.save(model_path)
             except (ValueError, OSError, RuntimeError) as error:
                 raise StochtexError(str(error)) from error
             return "Python module", colour
         _run([self.command, "analyze", source.file(), "--method", method, "--colour-space",
-              colour, "-o", model_path])
+              colour, "-o", model_path] +
+             [argument for name, value in parameters.items()
+              for argument in ("-p", "%s=%s" % (name, value))])
         return "command line", colour
 
     def bake(self, model_path, image_path, width, height, seed, periodic):

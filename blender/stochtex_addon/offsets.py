@@ -6,13 +6,15 @@ each lattice vertex's offset from this table instead: the offsets of vertices (i
 -size/2 <= i, j < size/2, drawn here by the same uint32 arithmetic as vertex_offset
 (src/methods/tiling/evaluate.hpp), so within that range of vertices the node group places every
 patch where `stochtex render` does. Beyond it, the table repeats: the offsets repeat every `size`
-lattice vertices along each lattice axis (size x edge exemplar pixels).
+lattice vertices along each lattice axis (size x edge exemplar pixels). The artist controls'
+rotation and scale jitter of each patch (patch_transform) come from a table drawn the same way.
 """
 
 import numpy
 
 _U32 = numpy.uint32
 STREAM_OFFSETS = 0x85EBCA6B  # Stream::offsets
+STREAM_TRANSFORMS = 0x27D4EB2F  # Stream::transforms
 
 
 def pcg_hash(value):
@@ -40,15 +42,38 @@ def cell_key(x, y, seed, stream):
     return pcg4d(x, y, numpy.full_like(x, seed), numpy.full_like(x, stream))[0]
 
 
-def vertex_offsets(size, seed, width, height):
-    """(offset_x, offset_y), each size x size float32 indexed [row j][column i] for the table
-    entry (i, j): vertex (i, j) for i, j < size / 2, else (i - size, j - size) (the vertices
-    whose indices wrap onto the entry)."""
+def _table_keys(size, seed, stream):
+    """cell_key of the vertex of each table entry (i, j), size x size indexed [row j][column i]:
+    vertex (i, j) for i, j < size / 2, else (i - size, j - size) (the vertices whose indices wrap
+    onto the entry)."""
     entries = numpy.arange(size, dtype=numpy.int64)
     vertices = numpy.where(entries < size // 2, entries, entries - size)
     vertex_y, vertex_x = numpy.meshgrid(vertices, vertices, indexing="ij")
-    key = cell_key(vertex_x, vertex_y, seed, STREAM_OFFSETS)
-    # CounterRng: draw n is pcg_hash(key ^ pcg_hash(n)); floor(draw * side / 2^32).
-    draws = [pcg_hash(key ^ pcg_hash(numpy.full_like(key, n))) for n in (0, 1)]
-    return tuple(((draw.astype(numpy.uint64) * numpy.uint64(side)) >> numpy.uint64(32)).astype(
-        numpy.float32) for draw, side in zip(draws, (width, height)))
+    return cell_key(vertex_x, vertex_y, seed, stream)
+
+
+def _draw(key, n):
+    """CounterRng's draw n: pcg_hash(key ^ pcg_hash(n))."""
+    return pcg_hash(key ^ pcg_hash(numpy.full_like(key, n)))
+
+
+def vertex_offsets(size, seed, width, height):
+    """(offset_x, offset_y), each size x size float32 for the table entries of _table_keys: the
+    patch offsets of vertex_offset, floor(draw * side / 2^32)."""
+    key = _table_keys(size, seed, STREAM_OFFSETS)
+    return tuple(((_draw(key, n).astype(numpy.uint64) * numpy.uint64(side)) >> numpy.uint64(32))
+                 .astype(numpy.float32) for n, side in ((0, width), (1, height)))
+
+
+def vertex_transforms(size, seed, max_angle, jitter):
+    """(c, s), each size x size float32 for the table entries of _table_keys: each patch's
+    matrix M = [[c, -s], [s, c]] of patch_transform (src/methods/tiling/evaluate.hpp), in
+    float32 as there: an angle uniform in [-max_angle, max_angle] radians and a scale
+    2^(jitter u), u uniform in [-1, 1], each from a draw's top 24 bits."""
+    key = _table_keys(size, seed, STREAM_TRANSFORMS)
+    angle_draw, scale_draw = ((_draw(key, n) >> _U32(8)).astype(numpy.float32) *
+                              numpy.float32(1.0 / 16777216.0) for n in (0, 1))
+    one, two = numpy.float32(1.0), numpy.float32(2.0)
+    angle = numpy.float32(max_angle) * (two * angle_draw - one)
+    scale = numpy.exp2(numpy.float32(jitter) * (two * scale_draw - one))
+    return scale * numpy.cos(angle), scale * numpy.sin(angle)

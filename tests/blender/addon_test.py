@@ -1,15 +1,16 @@
 """The Blender add-on in Blender itself (docs/engines.md, "Blender"), run by run_addon_test.sh:
 
     blender -b --factory-startup --python-exit-code 1 -P addon_test.py -- \
-        ADDON_ZIP STOCHTEX WORK_DIR EXEMPLAR...
+        ADDON_ZIP STOCHTEX WORK_DIR EXEMPLAR_DIR
 
 1. Installs the zip and enables the add-on, as a user does from the preferences.
-2. Node group (analysis through the Python module), for each exemplar (the first's export holds
-   its table as a 16-bit PNG, the second's as OpenEXR): an Image Texture node with the exemplar
-   (Color Space sRGB) on a plane, the operator, then a render of an orthographic view of the
-   plane by Cycles (CPU) and by EEVEE (OpenGL: Mesa's llvmpipe under Xvfb here), each against
-   `stochtex render` of the same region and seed, pixel for pixel.
-3. Bakes of the first exemplar: its tiling model (analysis and render through the command line)
+2. Node group (analysis through the Python module), for each case of GROUP_CASES (an exemplar
+   and the operator's Parameters: each kind of model the group evaluates): an Image Texture node
+   with the exemplar (Color Space sRGB) on a plane, the operator, then a render of an
+   orthographic view of the plane by Cycles (CPU) and by EEVEE (OpenGL: Mesa's llvmpipe under
+   Xvfb here), each against `stochtex render` of the same region and seed, pixel for pixel.
+   A linear-blend model is refused by the group and baked.
+3. Bakes of grass_lawn_128: its tiling model (analysis and render through the command line)
    baked periodic to PNG and to OpenEXR, its texton model (through the module) to OpenEXR, each
    rendered by both engines as the add-on set it up, against `stochtex render --periodic`: the
    colour space of each file must be the one Blender reads it in (the EXR holds linear light,
@@ -34,14 +35,27 @@ import addon_utils
 import bpy
 import numpy
 
-ZIP, STOCHTEX, WORK, *EXEMPLARS = sys.argv[sys.argv.index("--") + 1:]
+ZIP, STOCHTEX, WORK, EXEMPLAR_DIR = sys.argv[sys.argv.index("--") + 1:]
 MODULE = "stochtex_addon"
 SIDE = 64  # rendered pixels a side
 SCALE = 4.0  # the node group's Scale: the plane's UV square holds 4 x 4 exemplar widths
 ORIGIN = (160, 200)  # the rendered region's top-left corner, exemplar pixels
 ENGINES = ("CYCLES", "BLENDER_EEVEE")
 MAX_DIFFERENCE = {"CYCLES": 5e-3, "BLENDER_EEVEE": 5e-4}  # the node group's, reasons below
-BAKE_SIDE = 128  # the first exemplar's size: one bake pixel per rendered texture pixel below
+# The node group's cases: the exemplar, the operator's Parameters, what the case covers. The
+# transport is named, so that the 3-D table stays covered whatever the default. The last case's
+# .blend is saved and opened again: it has every kind of table the add-on makes in Blender.
+GROUP_CASES = (
+    ("grass_lawn_128.png", "transport=sliced", "the 3-D table as a 16-bit PNG"),
+    ("water_caustics_256.png", "transport=sliced", "the 3-D table as a float OpenEXR"),
+    ("grass_lawn_128.png", "transport=pca", "the pca transport: 1-D tables, colour basis, "
+     "decoded from sRGB"),
+    ("grass_lawn_128.png", "blend=variance", "the variance blend: no T^-1, decoded from sRGB"),
+    ("nuts_grey_256.png", "sharpness=4 rotation=30 scale_jitter=0.5",
+     "a grey model's 1-D table, the artist controls"),
+)
+BAKED_EXEMPLAR = os.path.join(EXEMPLAR_DIR, "grass_lawn_128.png")
+BAKE_SIDE = 128  # grass_lawn_128's size: one bake pixel per rendered texture pixel below
 BAKE_ORIGIN = (32, 40)
 failures = []
 renders = []
@@ -157,45 +171,79 @@ bpy.context.preferences.system.anisotropic_filter = "FILTER_0"
 
 # 2. The node group, analysed by the Python module.
 preferences.use = "module"
-for exemplar in EXEMPLARS:
-    name = os.path.basename(exemplar)
-    scene, material = scene_with_plane(exemplar)
-    run_operator(method="tiling", seed=0)
+rendered = {}
+for exemplar, parameters, covers in GROUP_CASES:
+    label = "%s (%s: %s)" % (exemplar, parameters, covers)
+    scene, material = scene_with_plane(os.path.join(EXEMPLAR_DIR, exemplar))
+    run_operator(method="tiling", seed=0, parameters=parameters)
     groups = [n for n in material.node_tree.nodes if n.type == "GROUP"]
     check(len(groups) == 1 and groups[0].outputs["Color"].links,
-          "%s: a node group feeds the emission" % name)
+          "%s: a node group feeds the emission" % label)
     model = newest_model()
     groups[0].inputs["Scale"].default_value = SCALE
-    width = bpy.data.images[name].size[0]
+    width = bpy.data.images[exemplar].size[0]
     expected = reference(model, "group_reference", (SIDE, SIDE), ORIGIN)
+    # Scale jitter reads a patch up to 2^scale_jitter times as fast (the Cycles bound below).
+    patch_scale = 2.0 ** float(dict(p.split("=") for p in parameters.split()).get(
+        "scale_jitter", 0.0))
     for engine in ENGINES:
-        rendered = render_region(scene, engine, width * SCALE / 2.0, ORIGIN)
-        difference = numpy.abs(rendered - expected)
+        rendered[engine] = render_region(scene, engine, width * SCALE / 2.0, ORIGIN)
+        difference = numpy.abs(rendered[engine] - expected)
         print("%s, %s, node group against stochtex render: max %.2e, mean %.2e" %
-              (engine, name, difference.max(), difference.mean()))
+              (engine, label, difference.max(), difference.mean()))
         # The group runs the fast variant's data: the Gaussianised exemplar as a 16-bit PNG and
-        # T^-1 as a 16-bit PNG (grass) or float OpenEXR (water), which move the values by at
-        # most 2.2e-5 from the CPU's (grass, measured in numpy with these files), and its float
-        # node arithmetic. EEVEE samples each pixel's centre: measured max 2.2e-5 (grass),
-        # 1.1e-4 (water). Cycles' 0.01-pixel filter moves each sample by up to 0.005 pixels, so a
-        # bilinear read by up to 0.005 of a step between neighbouring texels, at most 5e-3 for
-        # values in [0, 1]: measured max 2.6e-4 (grass), 1.8e-3 (water's sharp caustics). Means:
-        # 3.0e-5 and 4.0e-5 (Cycles), 2.3e-6 and 3.7e-6 (EEVEE). One patch at a wrong offset in
-        # one triangle of the region gave max 0.028 and mean 5e-5; a wrong vertex order, 0.27 and
-        # 0.04; EEVEE's mip-mapped reads where the patches change (Linear image reads), 0.14 and
-        # 2.6e-3; a seed other than the reference's, 0.25 and 0.04.
-        check(difference.max() < MAX_DIFFERENCE[engine] and difference.mean() < 1e-4,
-              "%s, %s: the node group's render is stochtex render's region" % (engine, name))
-
+        # T^-1 as a 16-bit PNG (grass) or float OpenEXR (water, the 1-D tables), which move the
+        # values by at most 2.2e-5 from the CPU's (grass, measured in numpy with these files),
+        # and its float node arithmetic. EEVEE samples each pixel's centre: measured max 2.2e-5
+        # (grass), 1.1e-4 (water), 9.1e-6 (pca), 5.4e-7 (variance: no T^-1), 1.7e-4 (nuts, whose
+        # T^-1 is steep between its dark ground and bright nuts: 2.7e-4 without the controls).
+        # Cycles' 0.01-pixel filter moves each sample by up to 0.005 pixels, so a bilinear read
+        # by up to 0.005 of a step between neighbouring texels (times the patch's scale), at most
+        # 5e-3 for values in [0, 1]: measured max 2.6e-4 (grass, pca, variance: 2.2e-4 to
+        # 2.6e-4), 1.8e-3 (water's sharp caustics), 3.8e-3 (nuts' edges; 3.1e-3 without the
+        # controls). Means: Cycles 3.0e-5 to 5.3e-5 (nuts), EEVEE 5.7e-8 to 6.2e-6 (nuts).
+        # What the bounds caught: one patch at a wrong offset in one triangle of the region gave
+        # max 0.028 and mean 5e-5; a wrong vertex order, 0.27 and 0.04; EEVEE's mip-mapped reads
+        # where the patches change (Linear image reads), 0.14 and 2.6e-3; a seed other than the
+        # reference's, 0.25 and 0.04; pca's basis transposed, 0.41 and 0.047; its values not
+        # decoded from sRGB, 0.29 and 0.25; its 1-D tables read one entry off, 0.032 and 3.3e-4;
+        # nuts' sharpness left out, 0.88 and 0.10; its rotation and scale jitter left out, 1.0
+        # and 0.48.
+        bound = MAX_DIFFERENCE[engine] * (patch_scale if engine == "CYCLES" else 1.0)
+        check(difference.max() < bound and difference.mean() < 1e-4,
+              "%s, %s: the node group's render is stochtex render's region" % (engine, label))
 
 # The .blend holds what the group reads: saved, its files deleted and opened again, it renders
-# the same pixels (the last engine's render, of the last exemplar).
+# the same pixels (Cycles' render of the last case: the images are the same in both engines).
 blend = os.path.join(WORK, "group.blend")
 bpy.ops.wm.save_as_mainfile(filepath=blend)
 shutil.rmtree(os.path.dirname(newest_model()))
 bpy.ops.wm.open_mainfile(filepath=blend)
-again = render_region(bpy.context.scene, ENGINES[-1], width * SCALE / 2.0, ORIGIN)
-check(numpy.array_equal(again, rendered), "the saved .blend renders the same without the files")
+again = render_region(bpy.context.scene, "CYCLES", width * SCALE / 2.0, ORIGIN)
+check(numpy.array_equal(again, rendered["CYCLES"]),
+      "the saved .blend renders the same without the files")
+
+# What the operator refuses, or evaluates otherwise than asked, on a new plane. Parameters it
+# refuses, each in one sentence: text that is not name=value pairs, and a parameter the method
+# does not have (the library's sentence, through the module).
+scene, material = scene_with_plane(BAKED_EXEMPLAR)
+for parameters, sentence in (("transport", "the parameters are name=value pairs"),
+                             ("colours=3", "colours")):
+    try:
+        bpy.ops.node.stochtex_analyse(method="tiling", parameters=parameters)
+        message = "(none)"
+    except RuntimeError as error:
+        message = str(error).strip()
+    print("Parameters %r: %s" % (parameters, message))
+    check(sentence in message and len(message.splitlines()) == 1,
+          "Parameters %r are refused in one sentence" % parameters)
+
+# A linear-blend model: the group refuses it (a warning), the operator bakes it instead.
+run_operator(method="tiling", seed=0, parameters="blend=linear", resolution=16)
+check(not [n for n in material.node_tree.nodes if n.type == "GROUP"] and
+      [n for n in material.node_tree.nodes if n.type == "TEX_IMAGE" and n.image and
+       n.image.name.startswith("stochtex tiling bake")],
+      "a linear-blend model is baked, not evaluated by the node group")
 
 # 3. Periodic bakes: tiling to PNG and to OpenEXR through the command line, texton (another
 # method: a bake only) to OpenEXR through the module.
@@ -203,7 +251,7 @@ for method, file_format, use, bound in (("tiling", "PNG", "command_line", 5e-3),
                                         ("tiling", "EXR", "command_line", 1e-3),
                                         ("texton", "EXR", "module", 1e-3)):
     preferences.use = use
-    scene, material = scene_with_plane(EXEMPLARS[0])
+    scene, material = scene_with_plane(BAKED_EXEMPLAR)
     run_operator(method=method, bake=True, resolution=BAKE_SIDE, periodic=True,
                  file_format=file_format, seed=0)
     baked = [n for n in material.node_tree.nodes if n.type == "TEX_IMAGE" and n.image and

@@ -5,10 +5,10 @@
 # both. Blender's user folders point into a temporary folder, so installing the add-on leaves the
 # user's own Blender untouched.
 #
-# usage: run_addon_test.sh ADDON_ZIP STOCHTEX PYTHON_MODULE_DIR EXEMPLAR...
+# usage: run_addon_test.sh ADDON_ZIP STOCHTEX PYTHON_MODULE_DIR EXEMPLAR_DIR
 set -euo pipefail
-if [[ $# -lt 4 ]]; then
-  echo "usage: $0 ADDON_ZIP STOCHTEX PYTHON_MODULE_DIR EXEMPLAR..." >&2
+if [[ $# -ne 4 ]]; then
+  echo "usage: $0 ADDON_ZIP STOCHTEX PYTHON_MODULE_DIR EXEMPLAR_DIR" >&2
   exit 2
 fi
 for tool in blender xvfb-run; do
@@ -23,4 +23,4 @@ mkdir -p "$work/tmp"
 BLENDER_USER_SCRIPTS=$work/scripts BLENDER_USER_CONFIG=$work/config TMPDIR=$work/tmp \
   PYTHONPATH=$3 PYTHONDONTWRITEBYTECODE=1 \
   xvfb-run -a -s "-screen 0 640x480x24" blender -b --factory-startup --python-exit-code 1 \
-  -P "$(dirname "$0")/addon_test.py" -- "$1" "$2" "$work" "${@:4}"
+  -P "$(dirname "$0")/addon_test.py" -- "$1" "$2" "$work" "$4"

@@ -2,7 +2,8 @@
 """`stochtex export-shader --language godot` in Godot 3 itself (docs/engines.md, "Godot").
 
 Analyses a small shipped exemplar with each method (texton, tiling and lrp exact; texton,
-tiling and gabor fast; a data model), exports the shaders for Godot and puts the exports into a
+tiling and gabor fast; a data model; a texton mix of it with a second exemplar, `stochtex mix`,
+whose fast variant is its exact one), exports the shaders for Godot and puts the exports into a
 Godot project, as a user copies them into theirs: Godot's editor imports the data files with the
 exported `.import` settings, then the project runs headless under Xvfb (Mesa llvmpipe) and
 renders, in viewports of known size,
@@ -17,7 +18,7 @@ renders, in viewports of known size,
 Godot's output must hold no shader error. The numbers measured are printed (`--measure` prints
 them for every view, docs/engines.md gives them).
 
-Usage: godot_test.py STOCHTEX EXEMPLAR [--keep DIR] [--measure]
+Usage: godot_test.py STOCHTEX EXEMPLAR SECOND_EXEMPLAR [--keep DIR] [--measure]
 Exit 77 (CTest's SKIP_RETURN_CODE) when godot3 or xvfb-run is not installed.
 """
 
@@ -51,6 +52,10 @@ CASES = [
     {"name": "lrp_exact", "method": "lrp", "params": ["cosines=8"], "variant": "exact"},
     {"name": "gabor_fast", "method": "gabor", "params": ["impulses=64", "iterations=20"],
      "variant": "fast"},
+    # `stochtex mix EXEMPLAR SECOND_EXEMPLAR`: the ramp puts both views between the two (rho 0.04
+    # to 0.16 in the far view, 0.96 to 0.99 in the near one), 5 textons.
+    {"name": "texton_mix", "method": "texton_mix", "params": ["support=16", "iterations=10"],
+     "mix": ["--steps", "5", "--ramp", "-1040,0"], "variant": "exact"},
 ]
 # Off the origin at scale 1; far off it, zoomed out 4x.
 VIEWS = [((-40.0, 24.0), 1.0), ((-1000.0, 512.0), 4.0)]
@@ -292,8 +297,12 @@ def make_project(args, folder):
     cases = []
     for case in CASES:
         model = os.path.join(folder, case["name"] + ".stx")
-        command = [args.stochtex, "analyze", args.exemplar, "--method", case["method"], "-o",
-                   model]
+        if "mix" in case:
+            command = [args.stochtex, "mix", args.exemplar, args.second_exemplar, "-o",
+                       model] + case["mix"]
+        else:
+            command = [args.stochtex, "analyze", args.exemplar, "--method", case["method"],
+                       "-o", model]
         for parameter in case["params"]:
             command += ["-p", parameter]
         if "colour_space" in case:
@@ -404,6 +413,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("stochtex")
     parser.add_argument("exemplar")
+    parser.add_argument("second_exemplar", help="texton_mix's second exemplar")
     parser.add_argument("--keep", help="folder to keep the project in")
     parser.add_argument("--measure", action="store_true")
     args = parser.parse_args()
