@@ -191,6 +191,10 @@ Model assemble_model(ParamValues params, MethodModel model, std::vector<MapInfo>
     if (removed_deviation->size() != static_cast<std::size_t>(kRemovedSteps) * channels)
       throw std::invalid_argument("the removed deviations of the srgb channels are missing");
     colour.removed_deviation = std::move(*removed_deviation);
+    if (auto* tiling = std::get_if<tiling::TilingModel>(&model))
+      tiling->calibrate_decoded([&](int c, float value, double width) {
+        return expected_decoded(value, stochtex::removed_deviation(colour, channels, c, width));
+      });
   }
   return Model(std::make_shared<const ModelData>(ModelData{
       std::move(params), std::move(model), std::move(maps), std::move(colour), exemplar_wrap}));

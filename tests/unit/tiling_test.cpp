@@ -22,6 +22,7 @@
 #include "methods/tiling/params.hpp"
 #include "metrics/metrics.hpp"
 #include "model/model_data.hpp"
+#include "model/model_file.hpp"
 #include "spectral/periodic.hpp"
 #include "stochtex/material.hpp"
 #include "stochtex/stochtex.hpp"
@@ -459,6 +460,22 @@ TEST(TilingModelFile, LevelTablesAreStoredAsBuilt) {
   const Model sliced = analyse(structured_exemplar(32, 3, 7), {{"transport", 0}, {"lut_size", 8}});
   const ModelRecord record = tiling_of(sliced).to_record(sliced.params());
   EXPECT_EQ(stored(record), record.arrays.end());
+  // An srgb colour model's tables are calibrated after decoding (calibrate_decoded): a file
+  // without them loads tables calibrated to the same values.
+  const Model srgb = with_colour_space(
+      analyse(structured_exemplar(32, 3, 7), {{"transport", 1}, {"table_size", 64}}),
+      ColourSpace::srgb);
+  const std::vector<std::uint8_t> bytes = serialize_model(srgb);
+  ModelRecord without = read_model_record(bytes, "srgb.stx");
+  without.arrays.erase(stored(without));
+  const Model rebuilt = deserialize_model(write_model_record(without), "without.stx");
+  EXPECT_EQ(level_tables(tiling_of(rebuilt)), level_tables(tiling_of(srgb)));
+  // Assembled again with its colour space, it is not calibrated twice.
+  EXPECT_EQ(level_tables(tiling_of(with_colour_space(srgb, ColourSpace::srgb))),
+            level_tables(tiling_of(srgb)));
+  EXPECT_NE(level_tables(tiling_of(srgb)),
+            level_tables(tiling_of(
+                analyse(structured_exemplar(32, 3, 7), {{"transport", 1}, {"table_size", 64}}))));
 }
 
 // `record` with the scalar `name` set to `value`.

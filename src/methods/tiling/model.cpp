@@ -1,6 +1,7 @@
 #include "methods/tiling/model.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -119,6 +120,7 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
   lut_floats_ = d.lut.size();
   table_floats_ = d.tables.size();
   const bool stored = !d.level_tables.empty();
+  decoded_calibrated_ = stored;
   if (stored) {
     if (layout_.colour_lut || d.level_tables.size() != texels.size() * table_floats_)
       throw std::invalid_argument("tiling: the level tables do not match the model");
@@ -186,6 +188,104 @@ void TilingModel::calibrate_colour() {
                          static_cast<std::size_t>(group.first_table) * data_.table_size;
           for (int i = 0; i < data_.table_size; ++i) table[i] += shift * scale;
         }
+      }
+    }
+  }
+}
+
+void TilingModel::calibrate_decoded(const std::function<float(int, float, double)>& decode) {
+  if (decoded_calibrated_ || data_.colour.empty() || level_count() < 2) return;
+  decoded_calibrated_ = true;
+  std::vector<const TableGroup*> groups;
+  for (const TableGroup& group : layout_.groups)
+    if (group.transform == GroupTransform::decorrelated && group.channels > 1)
+      for (int k = 0; k < group.channels; ++k)
+        if (data_.colour[static_cast<std::size_t>(group.first + k)] == ColourSpace::srgb) {
+          groups.push_back(&group);
+          break;
+        }
+  if (groups.empty()) return;
+  const int channels = data_.channels;
+  constexpr int kCalibrationSamples = 32768;
+  const std::vector<Vec2d> positions = spread_positions(kCalibrationSamples, 0x9e3779b97f4a7c15ull);
+  std::vector<float> out(static_cast<std::size_t>(kCalibrationSamples) * channels);
+  const ImageView<float> view{out.data(), kCalibrationSamples, 1, channels,
+                              static_cast<std::ptrdiff_t>(kCalibrationSamples) * channels};
+  // The mean of the decoded values of channel c, each shifted by `shift` before decoding.
+  const auto decoded_mean = [&](int c, float shift, double width) {
+    double sum = 0.0;
+    for (int i = 0; i < kCalibrationSamples; ++i)
+      sum += decode(c, out[static_cast<std::size_t>(i) * channels + c] + shift, width);
+    return sum / kCalibrationSamples;
+  };
+  const auto srgb = [&](int c) {
+    return data_.colour[static_cast<std::size_t>(c)] == ColourSpace::srgb;
+  };
+  evaluate(positions, {}, 0, view);
+  std::vector<double> target(static_cast<std::size_t>(channels), 0.0);
+  for (int c = 0; c < channels; ++c)
+    if (srgb(c)) target[static_cast<std::size_t>(c)] = decoded_mean(c, 0.0f, 0.0);
+  for (int l = 1; l < level_count(); ++l) {
+    const double width = std::exp2(l + kLodBias + 1e-6);
+    const std::vector<Footprint> footprints(kCalibrationSamples,
+                                            Footprint{{width, 0.0}, {0.0, width}});
+    evaluate(positions, footprints, 0, view);
+    for (const TableGroup* group : groups) {
+      // The shift of each output channel that the decoded mean asks for: Newton's method, the
+      // slope by central differences.
+      const int cc = group->channels;
+      std::array<double, kMaxChannels> shift{};
+      for (int k = 0; k < cc; ++k) {
+        const int c = group->first + k;
+        if (!srgb(c)) continue;
+        float s = 0.0f;
+        for (int step = 0; step < 4; ++step) {
+          constexpr float kStep = 1e-3f;
+          const double slope =
+              (decoded_mean(c, s + kStep, width) - decoded_mean(c, s - kStep, width)) /
+              (2.0 * kStep);
+          if (!(slope > 0.0)) break;
+          s += static_cast<float>(
+              (target[static_cast<std::size_t>(c)] - decoded_mean(c, s, width)) / slope);
+        }
+        shift[static_cast<std::size_t>(k)] = s;
+      }
+      // The output is mean + B t (from_decorrelated): tables shifted by d with B d = shift,
+      // solved by Gaussian elimination with partial pivoting.
+      std::array<std::array<double, kMaxChannels + 1>, kMaxChannels> system{};
+      for (int r = 0; r < cc; ++r) {
+        for (int k = 0; k < cc; ++k)
+          system[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)] =
+              data_.colour_basis[static_cast<std::size_t>(group->first_basis + r * cc + k)];
+        system[static_cast<std::size_t>(r)][static_cast<std::size_t>(cc)] =
+            shift[static_cast<std::size_t>(r)];
+      }
+      for (int k = 0; k < cc; ++k) {
+        int pivot = k;
+        for (int r = k + 1; r < cc; ++r)
+          if (std::abs(system[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)]) >
+              std::abs(system[static_cast<std::size_t>(pivot)][static_cast<std::size_t>(k)]))
+            pivot = r;
+        std::swap(system[static_cast<std::size_t>(k)], system[static_cast<std::size_t>(pivot)]);
+        const auto& row = system[static_cast<std::size_t>(k)];
+        if (row[static_cast<std::size_t>(k)] == 0.0) return;  // a singular basis: left as is
+        for (int r = 0; r < cc; ++r) {
+          if (r == k) continue;
+          auto& other = system[static_cast<std::size_t>(r)];
+          const double factor =
+              other[static_cast<std::size_t>(k)] / row[static_cast<std::size_t>(k)];
+          for (int j = k; j <= cc; ++j)
+            other[static_cast<std::size_t>(j)] -= factor * row[static_cast<std::size_t>(j)];
+        }
+      }
+      float* tables = level_tables_.data() + static_cast<std::size_t>(l) * table_floats_ +
+                      static_cast<std::size_t>(group->first_table) * data_.table_size;
+      for (int k = 0; k < cc; ++k) {
+        const auto& row = system[static_cast<std::size_t>(k)];
+        const auto d = static_cast<float>(row[static_cast<std::size_t>(cc)] /
+                                          row[static_cast<std::size_t>(k)]);
+        for (int i = 0; i < data_.table_size; ++i)
+          tables[static_cast<std::size_t>(k) * data_.table_size + i] += d;
       }
     }
   }

@@ -9,6 +9,7 @@
 // histogram is preserved too) but never enters the colour transport or the colour look-up table.
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -193,6 +194,14 @@ class TilingModel {
   bool decodes_in_tables(int channel) const noexcept;
   // The same model with each channel's colour space (TilingData::colour).
   TilingModel with_colour(std::vector<ColourSpace> colour) const;
+  // The level tables of the srgb channels decoded after evaluation (a decorrelated group of
+  // several channels, which mixes its tables linearly: model/model_colour.hpp), shifted per level
+  // so that the level's decoded renders average what decoded point samples average, as
+  // calibrate_colour does for the channels decoded in the tables. `decode(channel, value, width)`
+  // is that decoding of a value rendered for a footprint of width `width` (0: a point sample).
+  // Runs once: nothing to do for tables a model file stored (calibrated when it was written) or
+  // already calibrated.
+  void calibrate_decoded(const std::function<float(int, float, double)>& decode);
   // The rotation or the scale jitter is on.
   bool transformed() const noexcept { return data_.rotation > 0.0 || data_.scale_jitter > 0.0; }
   // Step 3: T^-1 by the look-up tables prefiltered for `lod` (eq. 22, section 4.3); the identity
@@ -247,6 +256,9 @@ class TilingModel {
   std::vector<float> level_tables_;
   std::size_t lut_floats_ = 0;
   std::size_t table_floats_ = 0;
+  // The level tables are calibrated for decoding after evaluation (calibrate_decoded ran, or the
+  // model file stored them), so that a model assembled again is not shifted twice.
+  bool decoded_calibrated_ = false;
   // The vectorised evaluator takes this model: the paper's operator (no artist control, no
   // radial group) and every index within int32.
   bool simd_ready_ = false;
