@@ -18,7 +18,7 @@ enum class MakeTileable { off = 0, on = 1, automatic = 2 };
 
 struct Params {
   double tile_radius = 0.0;
-  Transport transport = Transport::sliced;
+  Transport transport = Transport::per_channel;
   int iterations = 64;
   int lut_size = 32;
   int table_size = 1024;
@@ -48,8 +48,11 @@ inline constexpr std::array<ParamField<Params>, 12> kFields = {{
         "but 0.5% of its power, at least 1/4 and at most 1/2 (a tile as wide as the exemplar)"),
     choice_field<&Params::transport>(
         "transport", kTransports,
-        "Gaussianisation T: sliced, iterated sliced optimal transport in colour space (sections "
-        "4.1-4.3); pca, PCA-decorrelated per-channel 1-D transport (Deliot & Heitz 2019)"),
+        "Gaussianisation T: pca (the default), PCA-decorrelated per-channel 1-D transport "
+        "(section 2's decorrelated channels, Deliot & Heitz 2019); sliced, iterated sliced "
+        "optimal transport in colour space (sections 4.1-4.3), which keeps the joint colour "
+        "histogram of colours on a thin curved set better, at 5-6 times the analysis time and a "
+        "32³ table per level"),
     number_field<&Params::iterations>(
         "iterations", 1, 2000,
         "iterations of the sliced transport, each along 3 orthogonal random directions "
