@@ -192,8 +192,8 @@ Model assemble_model(ParamValues params, MethodModel model, std::vector<MapInfo>
       throw std::invalid_argument("the removed deviations of the srgb channels are missing");
     colour.removed_deviation = std::move(*removed_deviation);
     if (auto* tiling = std::get_if<tiling::TilingModel>(&model))
-      tiling->calibrate_decoded([&](int c, float value, double width) {
-        return expected_decoded(value, stochtex::removed_deviation(colour, channels, c, width));
+      tiling->calibrate_decoded([&](int c, double width) {
+        return stochtex::removed_deviation(colour, channels, c, width);
       });
   }
   return Model(std::make_shared<const ModelData>(ModelData{

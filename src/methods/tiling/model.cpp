@@ -193,7 +193,7 @@ void TilingModel::calibrate_colour() {
   }
 }
 
-void TilingModel::calibrate_decoded(const std::function<float(int, float, double)>& decode) {
+void TilingModel::calibrate_decoded(const std::function<float(int, double)>& removed) {
   if (decoded_calibrated_ || data_.colour.empty() || level_count() < 2) return;
   decoded_calibrated_ = true;
   std::vector<const TableGroup*> groups;
@@ -211,11 +211,11 @@ void TilingModel::calibrate_decoded(const std::function<float(int, float, double
   std::vector<float> out(static_cast<std::size_t>(kCalibrationSamples) * channels);
   const ImageView<float> view{out.data(), kCalibrationSamples, 1, channels,
                               static_cast<std::ptrdiff_t>(kCalibrationSamples) * channels};
-  // The mean of the decoded values of channel c, each shifted by `shift` before decoding.
-  const auto decoded_mean = [&](int c, float shift, double width) {
+  // The mean of D(v + shift, deviation) over the values v of channel c.
+  const auto decoded_mean = [&](int c, float shift, float deviation) {
     double sum = 0.0;
     for (int i = 0; i < kCalibrationSamples; ++i)
-      sum += decode(c, out[static_cast<std::size_t>(i) * channels + c] + shift, width);
+      sum += expected_decoded(out[static_cast<std::size_t>(i) * channels + c] + shift, deviation);
     return sum / kCalibrationSamples;
   };
   const auto srgb = [&](int c) {
@@ -224,7 +224,7 @@ void TilingModel::calibrate_decoded(const std::function<float(int, float, double
   evaluate(positions, {}, 0, view);
   std::vector<double> target(static_cast<std::size_t>(channels), 0.0);
   for (int c = 0; c < channels; ++c)
-    if (srgb(c)) target[static_cast<std::size_t>(c)] = decoded_mean(c, 0.0f, 0.0);
+    if (srgb(c)) target[static_cast<std::size_t>(c)] = decoded_mean(c, 0.0f, removed(c, 0.0));
   for (int l = 1; l < level_count(); ++l) {
     const double width = std::exp2(l + kLodBias + 1e-6);
     const std::vector<Footprint> footprints(kCalibrationSamples,
@@ -238,15 +238,16 @@ void TilingModel::calibrate_decoded(const std::function<float(int, float, double
       for (int k = 0; k < cc; ++k) {
         const int c = group->first + k;
         if (!srgb(c)) continue;
+        const float deviation = removed(c, width);
         float s = 0.0f;
-        for (int step = 0; step < 4; ++step) {
+        for (int step = 0; step < 3; ++step) {
           constexpr float kStep = 1e-3f;
           const double slope =
-              (decoded_mean(c, s + kStep, width) - decoded_mean(c, s - kStep, width)) /
+              (decoded_mean(c, s + kStep, deviation) - decoded_mean(c, s - kStep, deviation)) /
               (2.0 * kStep);
           if (!(slope > 0.0)) break;
           s += static_cast<float>(
-              (target[static_cast<std::size_t>(c)] - decoded_mean(c, s, width)) / slope);
+              (target[static_cast<std::size_t>(c)] - decoded_mean(c, s, deviation)) / slope);
         }
         shift[static_cast<std::size_t>(k)] = s;
       }

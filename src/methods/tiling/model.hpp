@@ -197,11 +197,11 @@ class TilingModel {
   // The level tables of the srgb channels decoded after evaluation (a decorrelated group of
   // several channels, which mixes its tables linearly: model/model_colour.hpp), shifted per level
   // so that the level's decoded renders average what decoded point samples average, as
-  // calibrate_colour does for the channels decoded in the tables. `decode(channel, value, width)`
-  // is that decoding of a value rendered for a footprint of width `width` (0: a point sample).
+  // calibrate_colour does for the channels decoded in the tables: by D(v, r(w)) (model_colour.hpp,
+  // expected_decoded), `removed(channel, width)` giving r(w) for a footprint of width `width`.
   // Runs once: nothing to do for tables a model file stored (calibrated when it was written) or
   // already calibrated.
-  void calibrate_decoded(const std::function<float(int, float, double)>& decode);
+  void calibrate_decoded(const std::function<float(int, double)>& removed);
   // The rotation or the scale jitter is on.
   bool transformed() const noexcept { return data_.rotation > 0.0 || data_.scale_jitter > 0.0; }
   // Step 3: T^-1 by the look-up tables prefiltered for `lod` (eq. 22, section 4.3); the identity
