@@ -150,8 +150,9 @@ Model with_colour_space(const Model& model, ColourSpace space);
 // A JSON description of a model: method, parameters, maps, array sizes (`stochtex info`).
 std::string describe_model(const Model& model);
 
-// The model's image-shaped arrays (height x width x channels), by name: e.g. the texton of a
-// texton model. For inspection and documentation (`stochtex info --export`).
+// The model's image-shaped arrays (height x width x 1 to 4 channels), by name: e.g. the texton of
+// a texton model. Other arrays of three dimensions (tiling's level_tables: levels x tables x
+// entries) are not images. For inspection and documentation (`stochtex info --export`).
 struct NamedImage {
   std::string name;
   ImageF image;

@@ -320,7 +320,7 @@ std::string describe_model(const Model& model) {
 std::vector<NamedImage> model_images(const Model& model) {
   std::vector<NamedImage> images;
   for (const auto& array : record_of(model).arrays) {
-    if (array.shape.size() != 3) continue;
+    if (array.shape.size() != 3 || array.shape[2] < 1 || array.shape[2] > 4) continue;
     ImageF image(static_cast<int>(array.shape[1]), static_cast<int>(array.shape[0]),
                  static_cast<int>(array.shape[2]));
     std::copy(array.values.begin(), array.values.end(), image.pixels().begin());

@@ -451,6 +451,10 @@ TEST(TilingModelFile, LevelTablesAreStoredAsBuilt) {
     without.arrays.erase(stored(without));
     EXPECT_EQ(level_tables(TilingModel::from_record(without, "without.stx")), level_tables(tiling))
         << channels << " channels";
+    // `info --export` shows the exemplar, not the tables (three dimensions, not an image).
+    std::vector<std::string> images;
+    for (const NamedImage& image : model_images(model)) images.push_back(image.name);
+    EXPECT_EQ(images, std::vector<std::string>{"gaussian"}) << channels << " channels";
     ModelRecord wrong = record;
     const auto tables = stored(wrong);
     tables->shape[0] -= 1;
