@@ -65,8 +65,9 @@ struct Shortfall {
 };
 const std::map<std::pair<std::string, std::string>, Shortfall> kShortfalls = {
     {{"tiling", "wood_planks_256.png"},
-     {3.0, 0.0,
-      "measured 2.75 and 2.72 (averaged 2.73; 2.62 and 3.31 before make_tileable): the exemplar "
+     {2.8, 0.0,
+      "measured 2.61 and 2.49 (averaged 2.55; 2.75 and 2.72 with the sliced transport, the "
+      "default before issue 39; 2.62 and 3.31 before make_tileable): the exemplar "
       "is not tileable (the steps across its borders are 5.6 and 7.1 times the step between "
       "neighbouring pixels); made tileable, its renders lose the straight seams, but the smooth "
       "ramps that replace them and the planks' dark bands, longer than a tile, keep the excess "
