@@ -41,6 +41,7 @@
 #include "core/file_message.hpp"
 #include "core/input_file.hpp"
 #include "core/srgb.hpp"
+#include "io/compression.hpp"
 #include "io/decoding.hpp"
 #include "io/image_streams.hpp"
 #include "io/png_sample.hpp"
@@ -477,6 +478,8 @@ bool write_png_rows(PngWriter& writer, PngOutput& output, png_uint_32 width, png
   png_set_IHDR(writer.png, writer.info, width, height, bit_depth, color_type, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   if (srgb_chunk) png_set_sRGB_gAMA_and_cHRM(writer.png, writer.info, PNG_sRGB_INTENT_PERCEPTUAL);
+  png_set_filter(writer.png, PNG_FILTER_TYPE_BASE, kPngFilters);
+  png_set_compression_strategy(writer.png, kPngZlibStrategy);
   png_write_info(writer.png, writer.info);
   png_write_image(writer.png, rows);
   png_write_end(writer.png, nullptr);
@@ -733,7 +736,7 @@ ImageF srgb_decoded(ImageView<const float> image) {
 void write_exr(Imf::OStream& stream, ImageView<const float> image) {
   const auto& names = exr_written_channel_names(image.channels);
   Imf::Header header(image.width, image.height);
-  header.compression() = Imf::ZIP_COMPRESSION;
+  header.compression() = kExrFloatCompression;
   Imf::FrameBuffer frame_buffer;
   const Imath::Box2i window = header.dataWindow();
   for (int c = 0; c < image.channels; ++c) {
