@@ -486,6 +486,34 @@ bool write_png_rows(PngWriter& writer, PngOutput& output, png_uint_32 width, png
   return true;
 }
 
+// One row of `width` pixels of `channels` values as PNG samples of `bit_depth` bits (16: big-
+// endian) into `out`: linear values of colour channels are encoded with the sRGB transfer
+// function before they are rounded (`space`); the others are rounded as they are.
+void png_samples(const float* values, int width, int channels, int bit_depth, ColourSpace space,
+                 png_bytep out) {
+  const SrgbSamples8& srgb8 = SrgbSamples8::get();
+  for (int c = 0; c < channels; ++c) {
+    const bool encoded = space == ColourSpace::linear && is_colour_channel(c, channels);
+    const auto count = static_cast<std::size_t>(width);
+    const float* in = values + c;
+    const auto step = static_cast<std::size_t>(channels);
+    if (bit_depth == 16) {
+      png_bytep sample_bytes = out + 2 * c;
+      for (std::size_t x = 0; x < count; ++x, in += step, sample_bytes += 2 * step) {
+        const unsigned sample = png_sample(encoded ? srgb_encode(*in) : *in, 65535);
+        sample_bytes[0] = static_cast<png_byte>(sample >> 8);
+        sample_bytes[1] = static_cast<png_byte>(sample & 0xff);
+      }
+    } else if (encoded) {
+      for (std::size_t x = 0; x < count; ++x, in += step)
+        out[c + x * step] = static_cast<png_byte>(srgb8(*in));
+    } else {
+      for (std::size_t x = 0; x < count; ++x, in += step)
+        out[c + x * step] = static_cast<png_byte>(png_sample(*in, 255));
+    }
+  }
+}
+
 // `space`: linear values are encoded with the sRGB transfer function (colour channels) before
 // they are rounded; linear and srgb images get the sRGB chunk; data is written as it is.
 void write_png(Imf::OStream& stream, ImageView<const float> image, int bit_depth,
@@ -498,23 +526,8 @@ void write_png(Imf::OStream& stream, ImageView<const float> image, int bit_depth
   std::vector<png_byte> bytes(row_bytes * image.height);
   std::vector<png_bytep> rows(image.height);
   for (int y = 0; y < image.height; ++y) {
-    png_bytep row = bytes.data() + y * row_bytes;
-    rows[y] = row;
-    const float* values = image.row(y);
-    for (std::size_t i = 0; i < static_cast<std::size_t>(image.width) * image.channels; ++i) {
-      const float value =
-          space == ColourSpace::linear &&
-                  is_colour_channel(static_cast<int>(i % image.channels), image.channels)
-              ? srgb_encode(values[i])
-              : values[i];
-      if (bit_depth == 16) {
-        const unsigned sample = png_sample(value, 65535);
-        row[2 * i] = static_cast<png_byte>(sample >> 8);
-        row[2 * i + 1] = static_cast<png_byte>(sample & 0xff);
-      } else {
-        row[i] = static_cast<png_byte>(png_sample(value, 255));
-      }
-    }
+    rows[y] = bytes.data() + y * row_bytes;
+    png_samples(image.row(y), image.width, image.channels, bit_depth, space, rows[y]);
   }
   PngWriter writer;
   PngOutput output{stream, nullptr};

@@ -11,6 +11,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -24,6 +25,7 @@
 #include <vector>
 
 #include "core/srgb.hpp"
+#include "io/png_sample.hpp"
 #include "stochtex/colour.hpp"
 #include "stochtex/error.hpp"
 #include "test_support.hpp"
@@ -163,6 +165,52 @@ TEST_F(ImageIoTest, PngClampsAndRoundsOutOfRangeValues) {
   EXPECT_EQ(read.at(2, 0, 0), 1.0f);
   EXPECT_EQ(read.at(3, 0, 0), 128.0f / 255.0f);
   EXPECT_EQ(read.at(4, 0, 0), 0.0f);
+}
+
+// png_sample rounds as std::lround did: halves up, on every 61st float of [0, 1] (whose products
+// with 255 and 65535 meet every rounding case) and on each tie.
+TEST(PngSampleTest, RoundsAsLround) {
+  const auto lround_sample = [](float value, unsigned maximum) -> unsigned {
+    if (!(value > 0.0f)) return 0;
+    if (value >= 1.0f) return maximum;
+    return static_cast<unsigned>(std::lround(value * static_cast<float>(maximum)));
+  };
+  for (const unsigned maximum : {255u, 65535u}) {
+    std::uint64_t differences = 0;
+    for (std::uint32_t bits = 0; bits <= std::bit_cast<std::uint32_t>(1.0f); bits += 61) {
+      const float value = std::bit_cast<float>(bits);
+      differences += png_sample(value, maximum) != lround_sample(value, maximum);
+    }
+    for (unsigned k = 0; k < maximum; ++k)
+      for (float tie = (static_cast<float>(k) + 0.5f) / static_cast<float>(maximum);
+           const float value : {std::nextafter(tie, 0.0f), tie, std::nextafter(tie, 1.0f)})
+        differences += png_sample(value, maximum) != lround_sample(value, maximum);
+    EXPECT_EQ(differences, 0u) << maximum;
+  }
+}
+
+// SrgbSamples8's table gives the formula's 8-bit sample, png_sample(srgb_encode(l), 255), on
+// every float from its lowest bucket to 1, on every 31st float below, and on the values beyond.
+TEST(PngSampleTest, SrgbSamplesAreTheFormulasOnEveryFloat) {
+  const SrgbSamples8& table = SrgbSamples8::get();
+  const auto formula = [](float linear) { return png_sample(srgb_encode(linear), 255); };
+  const auto low = std::bit_cast<std::uint32_t>(SrgbSamples8::kLow);
+  const auto one = std::bit_cast<std::uint32_t>(1.0f);
+  std::uint64_t differences = 0;
+  for (std::uint32_t bits = low; bits <= one; ++bits) {
+    const float linear = std::bit_cast<float>(bits);
+    differences += table(linear) != formula(linear);
+  }
+  for (std::uint32_t bits = 0; bits < low; bits += 31) {
+    const float linear = std::bit_cast<float>(bits);
+    differences += table(linear) != formula(linear);
+  }
+  EXPECT_EQ(differences, 0u);
+  const float infinity = std::numeric_limits<float>::infinity();
+  for (const float linear : {-0.0f, -1e-30f, -0.5f, -infinity, std::nextafter(1.0f, 2.0f), 1.5f,
+                             1e30f, infinity, std::numeric_limits<float>::quiet_NaN()})
+    EXPECT_EQ(table(linear), formula(linear)) << linear;
+  EXPECT_EQ(table(0.5f), 188u);  // 0.73536 after the transfer function
 }
 
 TEST_F(ImageIoTest, ExrFloatRoundTripIsExact) {
