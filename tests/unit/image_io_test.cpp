@@ -25,6 +25,7 @@
 
 #include "core/srgb.hpp"
 #include "io/png_sample.hpp"
+#include "io/tiled_exr.hpp"
 #include "stochtex/colour.hpp"
 #include "stochtex/error.hpp"
 #include "test_support.hpp"
@@ -588,9 +589,16 @@ TEST_F(ImageIoTest, TinyFilesDeclaringHugeContentsAreRefusedWithoutAllocatingThe
 }
 
 TEST_F(ImageIoTest, CompressedImagesWithinTheirFilesStillRead) {
-  // A constant 4096 x 256 image compresses far below its size, within the zlib bound.
+  // A constant 4096 x 256 image compresses far below its size, within the zlib bound: as a PNG,
+  // and as a tiled OpenEXR file of half pixels (ZIP; write_image's OpenEXR files are uncompressed).
+  write_image(file("flat.png"), ImageF(4096, 256, 3, 0.5f).view());
+  write_tiled_exr(file("flat.exr"), Grid{{0.0, 0.0}, 1.0, 4096, 256}, 3, {.half = true},
+                  [](const Grid&, ImageView<float> out) {
+                    for (int y = 0; y < out.height; ++y)
+                      std::fill_n(out.row(y), out.width * out.channels, 0.5f);
+                  });
   for (const char* name : {"flat.png", "flat.exr"}) {
-    write_image(file(name), ImageF(4096, 256, 3, 0.5f).view());
+    EXPECT_LT(fs::file_size(file(name)), 4096u * 256u * 3u / 100u) << name;
     EXPECT_EQ(read_image(file(name)).width(), 4096) << name;
   }
 }
