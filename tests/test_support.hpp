@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <optional>
 #include <random>
 #include <stdexcept>
@@ -77,6 +79,12 @@ inline ImageF material_exemplar(const std::string& set, const std::vector<std::s
         for (int k = 0; k < map.channels(); ++k) stacked.at(x, y, c++) = map.at(x, y, k);
     }
   return stacked;
+}
+
+// The bytes of the file at `path`.
+inline std::vector<unsigned char> file_bytes(const std::filesystem::path& path) {
+  std::ifstream stream(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
 }
 
 // The same size and the same bytes (determinism checks compare floats bit for bit).

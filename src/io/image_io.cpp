@@ -25,6 +25,7 @@
 #include <cstring>
 #include <exception>
 #include <functional>
+#include <future>
 #include <memory>
 #include <new>
 #include <optional>
@@ -41,6 +42,7 @@
 #include "core/file_message.hpp"
 #include "core/input_file.hpp"
 #include "core/srgb.hpp"
+#include "io/compression.hpp"
 #include "io/decoding.hpp"
 #include "io/image_streams.hpp"
 #include "io/png_sample.hpp"
@@ -466,61 +468,120 @@ struct PngWriter {
   PngWriter& operator=(const PngWriter&) = delete;
 };
 
+// libpng's steps of writing a file, each under its own setjmp so that a PNG can be written by
+// more than one thread in turn. Each returns false after png_error.
+//
 // `srgb_chunk`: the file says its values are sRGB-encoded. png_set_sRGB_gAMA_and_cHRM writes the
 // sRGB chunk and, as the PNG specification recommends beside it, the gAMA (0.45455) and cHRM
 // (sRGB's primaries) chunks for decoders that do not know sRGB (73 bytes in all); stochtex's
 // reader takes sRGB first. Perceptual: the rendering intent of photographs.
-bool write_png_rows(PngWriter& writer, PngOutput& output, png_uint_32 width, png_uint_32 height,
-                    int color_type, int bit_depth, bool srgb_chunk, png_bytepp rows) {
+bool begin_png(PngWriter& writer, PngOutput& output, png_uint_32 width, png_uint_32 height,
+               int color_type, int bit_depth, bool srgb_chunk) {
   if (setjmp(png_jmpbuf(writer.png))) return false;
   png_set_write_fn(writer.png, &output, write_png_bytes, flush_png);
   png_set_IHDR(writer.png, writer.info, width, height, bit_depth, color_type, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   if (srgb_chunk) png_set_sRGB_gAMA_and_cHRM(writer.png, writer.info, PNG_sRGB_INTENT_PERCEPTUAL);
+  png_set_filter(writer.png, PNG_FILTER_TYPE_BASE, kPngFilters);
+  png_set_compression_strategy(writer.png, kPngZlibStrategy);
   png_write_info(writer.png, writer.info);
-  png_write_image(writer.png, rows);
+  return true;
+}
+
+bool write_png_rows(PngWriter& writer, png_bytepp rows, png_uint_32 count) {
+  if (setjmp(png_jmpbuf(writer.png))) return false;
+  png_write_rows(writer.png, rows, count);
+  return true;
+}
+
+bool end_png(PngWriter& writer) {
+  if (setjmp(png_jmpbuf(writer.png))) return false;
   png_write_end(writer.png, nullptr);
   return true;
 }
 
-// `space`: linear values are encoded with the sRGB transfer function (colour channels) before
-// they are rounded; linear and srgb images get the sRGB chunk; data is written as it is.
-void write_png(Imf::OStream& stream, ImageView<const float> image, int bit_depth,
-               ColourSpace space) {
-  constexpr std::array<int, 4> color_types = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
-                                              PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGBA};
-  const std::size_t bytes_per_sample = bit_depth == 16 ? 2 : 1;
-  const std::size_t row_bytes =
-      static_cast<std::size_t>(image.width) * image.channels * bytes_per_sample;
-  std::vector<png_byte> bytes(row_bytes * image.height);
-  std::vector<png_bytep> rows(image.height);
-  for (int y = 0; y < image.height; ++y) {
-    png_bytep row = bytes.data() + y * row_bytes;
-    rows[y] = row;
-    const float* values = image.row(y);
-    for (std::size_t i = 0; i < static_cast<std::size_t>(image.width) * image.channels; ++i) {
-      const float value =
-          space == ColourSpace::linear &&
-                  is_colour_channel(static_cast<int>(i % image.channels), image.channels)
-              ? srgb_encode(values[i])
-              : values[i];
-      if (bit_depth == 16) {
-        const unsigned sample = png_sample(value, 65535);
-        row[2 * i] = static_cast<png_byte>(sample >> 8);
-        row[2 * i + 1] = static_cast<png_byte>(sample & 0xff);
-      } else {
-        row[i] = static_cast<png_byte>(png_sample(value, 255));
+// One row of `width` pixels of `channels` values as PNG samples of `bit_depth` bits (16: big-
+// endian) into `out`: linear values of colour channels are encoded with the sRGB transfer
+// function before they are rounded (`space`); the others are rounded as they are.
+void png_samples(const float* values, int width, int channels, int bit_depth, ColourSpace space,
+                 png_bytep out) {
+  const SrgbSamples8& srgb8 = SrgbSamples8::get();
+  for (int c = 0; c < channels; ++c) {
+    const bool encoded = space == ColourSpace::linear && is_colour_channel(c, channels);
+    const auto count = static_cast<std::size_t>(width);
+    const float* in = values + c;
+    const auto step = static_cast<std::size_t>(channels);
+    if (bit_depth == 16) {
+      png_bytep sample_bytes = out + 2 * c;
+      for (std::size_t x = 0; x < count; ++x, in += step, sample_bytes += 2 * step) {
+        const unsigned sample = png_sample(encoded ? srgb_encode(*in) : *in, 65535);
+        sample_bytes[0] = static_cast<png_byte>(sample >> 8);
+        sample_bytes[1] = static_cast<png_byte>(sample & 0xff);
       }
+    } else if (encoded) {
+      for (std::size_t x = 0; x < count; ++x, in += step)
+        out[c + x * step] = static_cast<png_byte>(srgb8(*in));
+    } else {
+      for (std::size_t x = 0; x < count; ++x, in += step)
+        out[c + x * step] = static_cast<png_byte>(png_sample(*in, 255));
     }
   }
-  PngWriter writer;
-  PngOutput output{stream, nullptr};
-  if (!write_png_rows(writer, output, static_cast<png_uint_32>(image.width),
-                      static_cast<png_uint_32>(image.height), color_types[image.channels - 1],
-                      bit_depth, space != ColourSpace::data, rows.data())) {
-    if (output.failure) std::rethrow_exception(output.failure);
-    throw std::runtime_error(writer.error.text);
+}
+
+// A PNG of float images' rows, written rows after rows: its header when made, then each call's
+// rows (png_samples), then its end. Every step throws what failed: the stream's exception, or
+// std::runtime_error with libpng's message. `space`: linear values are encoded with the sRGB
+// transfer function (colour channels) before they are rounded; linear and srgb images get the
+// sRGB chunk; data is written as it is.
+class PngEncoder {
+ public:
+  PngEncoder(Imf::OStream& stream, int width, int height, int channels, int bit_depth,
+             ColourSpace space)
+      : output_{stream, nullptr}, bit_depth_(bit_depth), space_(space) {
+    constexpr std::array<int, 4> color_types = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
+                                                PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGBA};
+    check(begin_png(writer_, output_, static_cast<png_uint_32>(width),
+                    static_cast<png_uint_32>(height), color_types[channels - 1], bit_depth,
+                    space != ColourSpace::data));
   }
+  PngEncoder(const PngEncoder&) = delete;
+  PngEncoder& operator=(const PngEncoder&) = delete;
+
+  // The next rows.height rows of the image (rows.width pixels of its channels).
+  void write(ImageView<const float> rows) {
+    const std::size_t row_bytes =
+        static_cast<std::size_t>(rows.width) * rows.channels * (bit_depth_ == 16 ? 2 : 1);
+    bytes_.resize(row_bytes * rows.height);
+    pointers_.resize(rows.height);
+    for (int y = 0; y < rows.height; ++y) {
+      pointers_[y] = bytes_.data() + y * row_bytes;
+      png_samples(rows.row(y), rows.width, rows.channels, bit_depth_, space_, pointers_[y]);
+    }
+    check(write_png_rows(writer_, pointers_.data(), static_cast<png_uint_32>(rows.height)));
+  }
+
+  void finish() { check(end_png(writer_)); }
+
+ private:
+  void check(bool written) {
+    if (written) return;
+    if (output_.failure) std::rethrow_exception(output_.failure);
+    throw std::runtime_error(writer_.error.text);
+  }
+
+  PngWriter writer_;
+  PngOutput output_;
+  int bit_depth_;
+  ColourSpace space_;
+  std::vector<png_byte> bytes_;
+  std::vector<png_bytep> pointers_;
+};
+
+void write_png(Imf::OStream& stream, ImageView<const float> image, int bit_depth,
+               ColourSpace space) {
+  PngEncoder encoder(stream, image.width, image.height, image.channels, bit_depth, space);
+  encoder.write(image);
+  encoder.finish();
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -733,7 +794,7 @@ ImageF srgb_decoded(ImageView<const float> image) {
 void write_exr(Imf::OStream& stream, ImageView<const float> image) {
   const auto& names = exr_written_channel_names(image.channels);
   Imf::Header header(image.width, image.height);
-  header.compression() = Imf::ZIP_COMPRESSION;
+  header.compression() = kExrFloatCompression;
   Imf::FrameBuffer frame_buffer;
   const Imath::Box2i window = header.dataWindow();
   for (int c = 0; c < image.channels; ++c) {
@@ -953,13 +1014,17 @@ ImageF decode(const Input& input, const ImageReadLimits& limits, ImageColour* co
 
 // The checks of write_image's and encode_image's arguments, in that order; each message begins
 // with `cannot` ("cannot write 'out.png'").
-void check_image_shape(ImageView<const float> image, const std::string& cannot) {
-  if (!image.data || image.width < 1 || image.height < 1 || image.channels < 1 ||
-      image.channels > 4)
-    throw std::invalid_argument(cannot + ": the image is " + std::to_string(image.width) + "x" +
-                                std::to_string(image.height) + " pixels with " +
-                                std::to_string(image.channels) +
+void check_image_shape(int width, int height, int channels, bool has_pixels,
+                       const std::string& cannot) {
+  if (!has_pixels || width < 1 || height < 1 || channels < 1 || channels > 4)
+    throw std::invalid_argument(cannot + ": the image is " + std::to_string(width) + "x" +
+                                std::to_string(height) + " pixels with " +
+                                std::to_string(channels) +
                                 " channels; it needs at least one pixel and 1 to 4 channels");
+}
+
+void check_image_shape(ImageView<const float> image, const std::string& cannot) {
+  check_image_shape(image.width, image.height, image.channels, image.data != nullptr, cannot);
 }
 
 void check_bit_depth(const Codec& codec, int png_bit_depth, const std::string& cannot) {
@@ -1028,6 +1093,47 @@ void write_image(AtomicFileSet& files, const fs::path& path, ImageView<const flo
                  int png_bit_depth, ColourSpace space) {
   write_image_to(path, image, png_bit_depth, space,
                  [&]() -> AtomicFile& { return files.open(path); });
+}
+
+void write_png_strips(const fs::path& path, int width, int height, int channels, int png_bit_depth,
+                      ColourSpace space, const StripMaker& make_strip) {
+  const std::string cannot = "cannot write " + quoted(path);
+  check_image_shape(width, height, channels, true, cannot);
+  const Codec& codec = output_codec(path);
+  if (codec.format != ImageFormat::png)
+    throw std::invalid_argument(cannot + ": write_png_strips writes PNG files only");
+  check_bit_depth(codec, png_bit_depth, cannot);
+
+  // The encoder's steps fail as write_image's do; make_strip's failures pass as they are.
+  const auto encoding = [&](const auto& step) {
+    try {
+      step();
+    } catch (const std::exception& e) {
+      throw Error(ErrorCode::io, cannot + ": " + e.what());
+    }
+  };
+  AtomicFile file(path);
+  FileOutputStream stream(file.stream(), file.temporary().c_str());
+  std::optional<PngEncoder> encoder;
+  encoding([&] { encoder.emplace(stream, width, height, channels, png_bit_depth, space); });
+  // Strip k is made into strips[k % 2] while strip k - 1 is encoded from the other; the encoder
+  // of strip k - 2 had finished before k - 1's began.
+  std::array<ImageF, 2> strips = {ImageF(width, std::min(kPngStripRows, height), channels),
+                                  ImageF(width, std::min(kPngStripRows, height), channels)};
+  std::future<void> encoded;  // destroyed first: waits for the strip in flight
+  for (int first_row = 0, k = 0; first_row < height; first_row += kPngStripRows, ++k) {
+    const ImageView<float> strip = strips[static_cast<std::size_t>(k % 2)].view().sub(
+        0, 0, width, std::min(kPngStripRows, height - first_row));
+    make_strip(first_row, strip);
+    if (encoded.valid()) encoding([&] { encoded.get(); });
+    encoded = std::async(std::launch::async, [&encoder, strip] { encoder->write(strip); });
+  }
+  encoding([&] {
+    encoded.get();
+    encoder->finish();
+  });
+  file.finish();
+  file.commit();
 }
 
 std::vector<std::uint8_t> encode_image(ImageView<const float> image, ImageFormat format,

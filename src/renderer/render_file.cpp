@@ -165,6 +165,20 @@ void render_model(const Model& model, const RenderPlan& plan, const RenderReques
     files.commit();
     return;
   }
+  if (!plan.streamed && output_image_format(output) == ImageFormat::png) {
+    // Each strip is encoded while the next renders (write_png_strips).
+    TrackedBackend renderer(backend, static_cast<std::uint64_t>(grid.width) * grid.height,
+                            progress);
+    write_png_strips(output, grid.width, grid.height, model.channels(), request.bit_depth,
+                     rendered_space(model.colour_space()),
+                     [&](int first_row, ImageView<float> out) {
+                       Grid strip = grid;
+                       strip.height = out.height;
+                       strip.first_pixel_y += first_row;
+                       renderer(strip, out);
+                     });
+    return;
+  }
   if (!plan.streamed) {
     write_image(output, render_image(model, grid, backend, progress).view(), request.bit_depth,
                 rendered_space(model.colour_space()));

@@ -37,8 +37,10 @@ ImageF render_image(const Model& model, const Grid& grid, GridBackend& backend,
 // `output` naming them with {map} (map_output), each writable and the render of them within the
 // memory budget; a tiled file the free space of its folder. Then renders the model on the backend
 // `make_backend` gives and writes it: in memory, or strip by strip into a tiled OpenEXR file
-// (plan.streamed), a material's maps in memory or strip by strip alike. `progress` gets the
-// fraction of every grid's pixels done, from the calling thread. Returns the files written.
+// (plan.streamed), a material's maps in memory or strip by strip alike; a PNG of one image
+// strip by strip, each encoded on another thread while the next renders (write_png_strips).
+// `progress` gets the fraction of every grid's pixels done, from the calling thread. Returns the
+// files written.
 std::vector<std::string> render_to_file(const std::function<Model()>& make_model,
                                         const RenderRequest& request, const std::string& output,
                                         const std::string& input,

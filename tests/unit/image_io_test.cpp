@@ -11,12 +11,12 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -24,6 +24,8 @@
 #include <vector>
 
 #include "core/srgb.hpp"
+#include "io/png_sample.hpp"
+#include "io/tiled_exr.hpp"
 #include "stochtex/colour.hpp"
 #include "stochtex/error.hpp"
 #include "test_support.hpp"
@@ -50,11 +52,6 @@ void expect_identical(const ImageF& expected, const ImageF& actual) {
   ASSERT_EQ(actual.channels(), expected.channels());
   for (std::size_t i = 0; i < expected.pixels().size(); ++i)
     ASSERT_EQ(actual.pixels()[i], expected.pixels()[i]) << "sample " << i;
-}
-
-Bytes read_bytes(const fs::path& path) {
-  std::ifstream stream(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(stream), std::istreambuf_iterator<char>()};
 }
 
 void write_bytes(const fs::path& path, const Bytes& bytes) {
@@ -163,6 +160,131 @@ TEST_F(ImageIoTest, PngClampsAndRoundsOutOfRangeValues) {
   EXPECT_EQ(read.at(2, 0, 0), 1.0f);
   EXPECT_EQ(read.at(3, 0, 0), 128.0f / 255.0f);
   EXPECT_EQ(read.at(4, 0, 0), 0.0f);
+}
+
+// The PNG sample of a value as write_image has always written it (docs/design.md §14): NaN and
+// values up to 0 are 0, from 1 on `maximum`, the others rounded by std::lround.
+unsigned lround_sample(float value, unsigned maximum) {
+  if (!(value > 0.0f)) return 0;
+  if (value >= 1.0f) return maximum;
+  return static_cast<unsigned>(std::lround(value * static_cast<float>(maximum)));
+}
+
+// png_sample rounds as std::lround did: halves up, on every 61st float of [0, 1] (whose products
+// with 255 and 65535 meet every rounding case) and on each tie.
+TEST(PngSampleTest, RoundsAsLround) {
+  for (const unsigned maximum : {255u, 65535u}) {
+    std::uint64_t differences = 0;
+    for (std::uint32_t bits = 0; bits <= std::bit_cast<std::uint32_t>(1.0f); bits += 61) {
+      const float value = std::bit_cast<float>(bits);
+      differences += png_sample(value, maximum) != lround_sample(value, maximum);
+    }
+    for (unsigned k = 0; k < maximum; ++k)
+      for (float tie = (static_cast<float>(k) + 0.5f) / static_cast<float>(maximum);
+           const float value : {std::nextafter(tie, 0.0f), tie, std::nextafter(tie, 1.0f)})
+        differences += png_sample(value, maximum) != lround_sample(value, maximum);
+    EXPECT_EQ(differences, 0u) << maximum;
+  }
+}
+
+// SrgbSamples8's table gives the formula's 8-bit sample, png_sample(srgb_encode(l), 255), on
+// every float from its lowest bucket to 1, on every 31st float below, and on the values beyond.
+TEST(PngSampleTest, SrgbSamplesAreTheFormulasOnEveryFloat) {
+  const SrgbSamples8& table = SrgbSamples8::get();
+  const auto formula = [](float linear) { return png_sample(srgb_encode(linear), 255); };
+  const auto low = std::bit_cast<std::uint32_t>(SrgbSamples8::kLow);
+  const auto one = std::bit_cast<std::uint32_t>(1.0f);
+  std::uint64_t differences = 0;
+  for (std::uint32_t bits = low; bits <= one; ++bits) {
+    const float linear = std::bit_cast<float>(bits);
+    differences += table(linear) != formula(linear);
+  }
+  for (std::uint32_t bits = 0; bits < low; bits += 31) {
+    const float linear = std::bit_cast<float>(bits);
+    differences += table(linear) != formula(linear);
+  }
+  EXPECT_EQ(differences, 0u);
+  const float infinity = std::numeric_limits<float>::infinity();
+  for (const float linear : {-0.0f, -1e-30f, -0.5f, -infinity, std::nextafter(1.0f, 2.0f), 1.5f,
+                             1e30f, infinity, std::numeric_limits<float>::quiet_NaN()})
+    EXPECT_EQ(table(linear), formula(linear)) << linear;
+  EXPECT_EQ(table(0.5f), 188u);  // 0.73536 after the transfer function
+}
+
+// A render-like image: values spread over [-0.1, 1.1] (so some clamp) with a NaN now and then.
+ImageF noisy_image(int width, int height, int channels, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> value(-0.1f, 1.1f);
+  ImageF image(width, height, channels);
+  for (float& sample : image.pixels())
+    sample = random() % 997 == 0 ? std::numeric_limits<float>::quiet_NaN() : value(random);
+  return image;
+}
+
+// Every PNG write_image and write_png_strips make decodes to the samples of the rule they were
+// always written by (lround_sample of the value, sRGB-encoded by the formula for a linear image's
+// colour channels), whatever the compression; write_png_strips, in strips of kPngStripRows rows
+// (here 3, the last short), writes write_image's bytes.
+TEST_F(ImageIoTest, PngsHoldTheSamplesOfTheRuleInStripsToo) {
+  const int width = 45;
+  const int height = 2 * kPngStripRows + 11;
+  for (const int bit_depth : {8, 16})
+    for (int channels = 1; channels <= 4; ++channels)
+      for (const ColourSpace space : {ColourSpace::data, ColourSpace::linear, ColourSpace::srgb}) {
+        const std::string context = std::to_string(bit_depth) + "-bit, " +
+                                    std::to_string(channels) + " channels, " +
+                                    std::string(colour_space_name(space));
+        const ImageF image = noisy_image(width, height, channels, 7 * channels + bit_depth);
+        const fs::path whole = file("whole.png");
+        write_image(whole, image.view(), bit_depth, space);
+        const fs::path strips = file("strips.png");
+        std::vector<int> first_rows;
+        write_png_strips(strips, width, height, channels, bit_depth, space,
+                         [&](int first_row, ImageView<float> out) {
+                           first_rows.push_back(first_row);
+                           EXPECT_EQ(out.width, width);
+                           EXPECT_EQ(out.height, std::min(kPngStripRows, height - first_row));
+                           for (int y = 0; y < out.height; ++y)
+                             for (int x = 0; x < width; ++x)
+                               for (int c = 0; c < channels; ++c)
+                                 out.at(x, y, c) = image.at(x, first_row + y, c);
+                         });
+        EXPECT_EQ(first_rows, (std::vector<int>{0, kPngStripRows, 2 * kPngStripRows})) << context;
+        EXPECT_EQ(test_support::file_bytes(strips), test_support::file_bytes(whole)) << context;
+
+        const unsigned maximum = bit_depth == 8 ? 255 : 65535;
+        const ImageF read = read_image(whole);
+        for (int y = 0; y < height; ++y)
+          for (int x = 0; x < width; ++x)
+            for (int c = 0; c < channels; ++c) {
+              float value = image.at(x, y, c);
+              if (space == ColourSpace::linear && is_colour_channel(c, channels))
+                value = srgb_encode(value);
+              ASSERT_EQ(read.at(x, y, c), static_cast<float>(lround_sample(value, maximum)) /
+                                              static_cast<float>(maximum))
+                  << context << ", pixel " << x << "," << y << " channel " << c;
+            }
+      }
+}
+
+TEST_F(ImageIoTest, PngStripsThatFailLeaveNoFile) {
+  const fs::path path = file("strips.png");
+  const auto fail_second = [](int first_row, ImageView<float> out) {
+    if (first_row > 0) throw std::runtime_error("the render stopped");
+    for (int y = 0; y < out.height; ++y)
+      for (int x = 0; x < out.width; ++x) out.at(x, y, 0) = 0.5f;
+  };
+  EXPECT_THROW(write_png_strips(path, 8, 3 * kPngStripRows, 1, 8, ColourSpace::data, fail_second),
+               std::runtime_error);
+  EXPECT_TRUE(folder_contents().empty());
+  const auto unused = [](int, ImageView<float>) { ADD_FAILURE() << "a strip was made"; };
+  EXPECT_THROW(write_png_strips(file("strips.exr"), 8, 8, 1, 8, ColourSpace::data, unused),
+               std::invalid_argument);
+  EXPECT_THROW(write_png_strips(path, 8, 8, 5, 8, ColourSpace::data, unused),
+               std::invalid_argument);
+  EXPECT_THROW(write_png_strips(path, 8, 8, 1, 12, ColourSpace::data, unused),
+               std::invalid_argument);
+  EXPECT_TRUE(folder_contents().empty());
 }
 
 TEST_F(ImageIoTest, ExrFloatRoundTripIsExact) {
@@ -301,7 +423,7 @@ TEST_F(ImageIoTest, TruncatedFilesAreFormatErrors) {
   });
   for (const char* name : {"whole.png", "whole.exr", "whole.pfm"}) {
     write_image(file(name), image.view());
-    const Bytes whole = read_bytes(file(name));
+    const Bytes whole = test_support::file_bytes(file(name));
     const fs::path truncated = file(std::string("half_") + name);
     write_bytes(truncated, Bytes(whole.begin(), whole.begin() + whole.size() / 2));
     EXPECT_EQ(read_error_code(truncated), ErrorCode::format) << name;
@@ -339,7 +461,7 @@ TEST_F(ImageIoTest, HugeDeclaredSizesAreRefusedBeforeAllocating) {
 
   // An EXR whose data window is edited to 100000x100000 pixels.
   write_image(file("small.exr"), ImageF(2, 2, 1, 0.5f).view());
-  Bytes exr = read_bytes(file("small.exr"));
+  Bytes exr = test_support::file_bytes(file("small.exr"));
   const std::string attribute = std::string("dataWindow") + '\0' + "box2i" + '\0';
   const auto found = std::search(exr.begin(), exr.end(), attribute.begin(), attribute.end());
   ASSERT_NE(found, exr.end());
@@ -355,7 +477,7 @@ TEST_F(ImageIoTest, HugeDeclaredSizesAreRefusedBeforeAllocating) {
 // an address space that may grow by 64 MiB only: exits 0 when the read is refused cleanly, and
 // dies when anything near the declared size is allocated.
 [[noreturn]] void read_with_little_memory(const fs::path& path, bool from_memory) {
-  const Bytes bytes = from_memory ? read_bytes(path) : Bytes();
+  const Bytes bytes = from_memory ? test_support::file_bytes(path) : Bytes();
   std::ifstream statm("/proc/self/statm");
   std::uint64_t pages = 0;
   statm >> pages;
@@ -467,9 +589,16 @@ TEST_F(ImageIoTest, TinyFilesDeclaringHugeContentsAreRefusedWithoutAllocatingThe
 }
 
 TEST_F(ImageIoTest, CompressedImagesWithinTheirFilesStillRead) {
-  // A constant 4096 x 256 image compresses far below its size, within the zlib bound.
+  // A constant 4096 x 256 image compresses far below its size, within the zlib bound: as a PNG,
+  // and as a tiled OpenEXR file of half pixels (ZIP; write_image's OpenEXR files are uncompressed).
+  write_image(file("flat.png"), ImageF(4096, 256, 3, 0.5f).view());
+  write_tiled_exr(file("flat.exr"), Grid{{0.0, 0.0}, 1.0, 4096, 256}, 3, {.half = true},
+                  [](const Grid&, ImageView<float> out) {
+                    for (int y = 0; y < out.height; ++y)
+                      std::fill_n(out.row(y), out.width * out.channels, 0.5f);
+                  });
   for (const char* name : {"flat.png", "flat.exr"}) {
-    write_image(file(name), ImageF(4096, 256, 3, 0.5f).view());
+    EXPECT_LT(fs::file_size(file(name)), 4096u * 256u * 3u / 100u) << name;
     EXPECT_EQ(read_image(file(name)).width(), 4096) << name;
   }
 }
@@ -551,7 +680,7 @@ TEST_F(ImageIoTest, BuffersHoldTheFilesBytes) {
         Case{"grey.exr", ImageFormat::exr, grey, 8}, Case{"rgb.pfm", ImageFormat::pfm, rgb, 8},
         Case{"grey.pfm", ImageFormat::pfm, grey, 8}}) {
     write_image(file(test.name), test.image.view(), test.bit_depth);
-    const Bytes written = read_bytes(file(test.name));
+    const Bytes written = test_support::file_bytes(file(test.name));
     const std::vector<std::uint8_t> encoded =
         encode_image(test.image.view(), test.format, test.bit_depth);
     EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), written) << test.name;
@@ -676,9 +805,9 @@ TEST_F(ImageIoTest, DataIsWrittenAsItIsWithNoColourChunk) {
       const ImageF image = stored_values(19, 7, channels, bit_depth == 8 ? 255 : 65535);
       const fs::path path = file("data.png");
       write_image(path, image.view(), bit_depth, ColourSpace::data);
-      const Bytes written = read_bytes(path);
+      const Bytes written = test_support::file_bytes(path);
       write_image(path, image.view(), bit_depth);
-      EXPECT_EQ(read_bytes(path), written) << "data is the default";
+      EXPECT_EQ(test_support::file_bytes(path), written) << "data is the default";
       for (const char* type : {"sRGB", "gAMA", "cHRM", "iCCP", "cICP"})
         EXPECT_FALSE(has_chunk(written, type)) << type;
       expect_identical(image, read_image(path));
@@ -700,13 +829,13 @@ TEST_F(ImageIoTest, EachColourSpaceIsWrittenAsItSays) {
     write_image(data, image.view(), bit_depth);
     write_image(srgb, image.view(), bit_depth, ColourSpace::srgb);
     expect_identical(read_image(data), read_image(srgb));
-    const std::vector<std::string> chunks = png_chunk_types(read_bytes(srgb));
+    const std::vector<std::string> chunks = png_chunk_types(test_support::file_bytes(srgb));
     for (const char* type : {"sRGB", "gAMA", "cHRM"})
       EXPECT_NE(std::find(chunks.begin(), chunks.end(), type), chunks.end()) << type;
     // linear: colour channels encoded before they are rounded, alpha as it is.
     const fs::path linear = file("linear.png");
     write_image(linear, image.view(), bit_depth, ColourSpace::linear);
-    EXPECT_TRUE(has_chunk(read_bytes(linear), "sRGB"));
+    EXPECT_TRUE(has_chunk(test_support::file_bytes(linear), "sRGB"));
     const ImageF read = read_image(linear);
     for (int x = 0; x < 11; ++x)
       for (int y = 0; y < 2; ++y)
@@ -726,7 +855,7 @@ TEST_F(ImageIoTest, EachColourSpaceIsWrittenAsItSays) {
     const ImageView<const float> written = format == ImageFormat::exr ? image.view() : rgb.view();
     write_image(file(name), written, 8, ColourSpace::srgb);
     const std::vector<std::uint8_t> encoded = encode_image(written, format, 8, ColourSpace::srgb);
-    EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), read_bytes(file(name))) << name;
+    EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), test_support::file_bytes(file(name))) << name;
     const ImageF read = read_image(file(name));
     for (int y = 0; y < written.height; ++y)
       for (int x = 0; x < written.width; ++x)
@@ -883,7 +1012,7 @@ TEST_F(ImageIoTest, SrgbPngRoundTripsAreExactAndSayTheyAreSrgb) {
 
       const fs::path path = file("srgb.png");
       write_image(path, read.view(), bit_depth, ColourSpace::srgb);
-      const Bytes written = read_bytes(path);
+      const Bytes written = test_support::file_bytes(path);
       const std::vector<std::uint8_t> encoded =
           encode_image(read.view(), ImageFormat::png, bit_depth, ColourSpace::srgb);
       EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), written) << context;
@@ -909,7 +1038,7 @@ TEST_F(ImageIoTest, LinearPngIsEncodedWithTheSrgbTransferFunction) {
       const fs::path path = file("linear.png");
       write_image(path, linear.view(), bit_depth, ColourSpace::linear);
       ImageColour colour;
-      const ImageF read = read_colour(path, read_bytes(path), colour);
+      const ImageF read = read_colour(path, test_support::file_bytes(path), colour);
       EXPECT_EQ(colour.space, ColourSpace::srgb);
       EXPECT_EQ(colour.origin, "sRGB chunk");
       for (int y = 0; y < 3; ++y)
@@ -1180,7 +1309,7 @@ TEST_F(ImageIoTest, FloatFormatsAreLinearAndGetSrgbImagesDecoded) {
       for (int c = 0; c < 4; ++c) srgb.at(x, y, c) = static_cast<float>(x + 5 * y + c) / 12.0f;
   const fs::path exr = file("srgb.exr");
   write_image(exr, srgb.view(), 8, ColourSpace::srgb);
-  const Bytes written = read_bytes(exr);
+  const Bytes written = test_support::file_bytes(exr);
   const std::vector<std::uint8_t> encoded =
       encode_image(srgb.view(), ImageFormat::exr, 8, ColourSpace::srgb);
   EXPECT_EQ(Bytes(encoded.begin(), encoded.end()), written);
@@ -1204,7 +1333,7 @@ TEST_F(ImageIoTest, FloatFormatsAreLinearAndGetSrgbImagesDecoded) {
   const ImageF rgb = stored_values(4, 3, 3, 255);
   const fs::path pfm = file("srgb.pfm");
   write_image(pfm, rgb.view(), 8, ColourSpace::srgb);
-  const ImageF pfm_linear = read_colour(pfm, read_bytes(pfm), colour);
+  const ImageF pfm_linear = read_colour(pfm, test_support::file_bytes(pfm), colour);
   EXPECT_EQ(colour.space, ColourSpace::linear);
   EXPECT_EQ(colour.origin, "PFM: linear");
   for (std::size_t i = 0; i < rgb.pixels().size(); ++i)

@@ -9,6 +9,8 @@
 #include <string>
 
 #include "core/memory_budget.hpp"
+#include "io/image_io.hpp"
+#include "model/model_colour.hpp"
 #include "renderer/plan.hpp"
 #include "renderer/render_file.hpp"
 #include "stochtex/io.hpp"
@@ -141,6 +143,35 @@ TEST_F(RendererFile, WritesThePlainRendersBytesInMemoryAndStreamed) {
   const std::string exr = file("render.exr").string();
   render_to_file([&] { return model; }, request, exr, "model.stx", make_cpu_backend);
   EXPECT_TRUE(test_support::same_bytes(read_image(exr), plain));
+}
+
+// A PNG is rendered strip by strip while each strip is encoded (write_png_strips): the file holds
+// write_image's bytes of the plain render, at both bit depths.
+TEST_F(RendererFile, WritesThePlainRendersPngWhileRenderingStrips) {
+  const Model model = test_support::white_noise_model("texton");
+  const int height = 2 * kPngStripRows + 22;
+  RenderRequest request = sized(70, height);
+  request.origin = {-2.0, 5.5};
+  request.seed = 3;
+  request.threads = 2;
+  ImageF plain(70, height, model.channels());
+  RenderOptions options;
+  options.threads = 2;
+  render(model, {request.origin, request.scale, 70, height}, request.seed, plain.view(), options);
+  for (const int bit_depth : {8, 16}) {
+    request.bit_depth = bit_depth;
+    double last = 0.0;
+    const std::string png = file("render.png").string();
+    render_to_file([&] { return model; }, request, png, "model.stx", make_cpu_backend,
+                   [&](double fraction) {
+                     EXPECT_GE(fraction, last);
+                     last = fraction;
+                   });
+    EXPECT_DOUBLE_EQ(last, 1.0);
+    const std::string expected = file("plain.png").string();
+    write_image(expected, plain.view(), bit_depth, rendered_space(model.colour_space()));
+    EXPECT_EQ(test_support::file_bytes(png), test_support::file_bytes(expected)) << bit_depth;
+  }
 }
 
 }  // namespace
