@@ -27,9 +27,9 @@ for name in nuts_grey_256 water_caustics_256; do
   done
 done
 
-# Transports (sections 4.1-4.2 against Deliot & Heitz's per-channel transport).
-"$stochtex" synth "$textures/moss_ground_512.png" --method tiling -p transport=1 \
-  -o "$out/moss_ground_512_tiling_per_channel.png" --size 256x256 --seed 1
+# Transports (sections 4.1-4.2 against Deliot & Heitz's per-channel transport, the default).
+"$stochtex" synth "$textures/moss_ground_512.png" --method tiling -p transport=sliced \
+  -o "$out/moss_ground_512_tiling_sliced.png" --size 256x256 --seed 1
 
 # The artist controls (docs/methods/tiling.md, "Artist controls"): defaults, each control alone,
 # same seed.
