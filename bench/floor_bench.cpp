@@ -1,12 +1,11 @@
 // The machine's floor under the CPU evaluators (issue 39, docs/performance.md, "The machine's
-// floor"): each
-// row renders a 128² grid of a default-parameter model of the 256² colour crop through `render`
-// (one thread, the best CPU target) and, in the same run, a floor program that does only the
-// operator's irreducible work on tables of the same sizes, and prints both per sample and their
-// ratio. The floor keeps the memory reads and drops what the evaluator adds for its contract
-// (docs/design.md §4: the scalar reference's bytes on every target): it computes in float with
-// fused multiply-adds, skips the double-precision lattice and erf, hashes a vertex's offset with
-// two multiplies, and has power-of-two exemplar sides (a wrap is a mask). Per sample:
+// floor"): each row renders a 128² grid of a default-parameter model of the 256² colour crop
+// through `render` (one thread, the best CPU target) and, in the same run, a floor program that
+// does only the operator's irreducible work on tables of the same sizes, and prints both per
+// sample and their ratio. The floor keeps the memory reads and drops what the evaluator adds for
+// its contract (docs/design.md §4: the scalar reference's bytes on every target): it computes in
+// float with fused multiply-adds, skips the double-precision lattice and erf, hashes a vertex's
+// offset with two multiplies, and has power-of-two exemplar sides (a wrap is a mask). Per sample:
 //   tiling (histogram blend)  3 vertices x (offset hash + a bilinear RGB read: 12 gathers, or 4
 //                             de-interleaving vector loads where the lanes read neighbouring
 //                             texels of one row, as the evaluator does), the
