@@ -143,33 +143,45 @@ TilingModel::TilingModel(TilingData data) : data_(std::move(data)) {
 // samples: kCalibrationSamples evaluations at positions far apart (independent patches), seed 0,
 // with footprints of the level and without.
 // A shift of all of a table's values shifts its interpolated output by as much.
+void TilingModel::measure_levels(
+    const std::function<void(int, double, std::span<const float>)>& at_level) const {
+  constexpr int kCalibrationSamples = 32768;
+  const int channels = data_.channels;
+  const std::vector<Vec2d> positions = spread_positions(kCalibrationSamples, 0x9e3779b97f4a7c15ull);
+  std::vector<float> out(static_cast<std::size_t>(kCalibrationSamples) * channels);
+  const ImageView<float> view{out.data(), kCalibrationSamples, 1, channels,
+                              static_cast<std::ptrdiff_t>(kCalibrationSamples) * channels};
+  evaluate(positions, {}, 0, view);
+  at_level(0, 0.0, out);
+  for (int l = 1; l < level_count(); ++l) {
+    const double width = std::exp2(l + kLodBias + 1e-6);
+    const std::vector<Footprint> footprints(kCalibrationSamples,
+                                            Footprint{{width, 0.0}, {0.0, width}});
+    evaluate(positions, footprints, 0, view);
+    at_level(l, width, out);
+  }
+}
+
 void TilingModel::calibrate_colour() {
   const int channels = data_.channels;
   std::vector<int> decoded;
   for (int c = 0; c < channels; ++c)
     if (decodes_in_tables(c)) decoded.push_back(c);
   if (decoded.empty() || level_count() < 2) return;
-  constexpr int kCalibrationSamples = 32768;
-  const std::vector<Vec2d> positions = spread_positions(kCalibrationSamples, 0x9e3779b97f4a7c15ull);
-  std::vector<float> out(static_cast<std::size_t>(kCalibrationSamples) * channels);
-  const ImageView<float> view{out.data(), kCalibrationSamples, 1, channels,
-                              static_cast<std::ptrdiff_t>(kCalibrationSamples) * channels};
-  const auto mean_of = [&](int c) {
-    double sum = 0.0;
-    for (int i = 0; i < kCalibrationSamples; ++i)
-      sum += out[static_cast<std::size_t>(i) * channels + c];
-    return sum / kCalibrationSamples;
-  };
   // The target: the mean of point samples (level 0, decoded exactly), as a supersampled render
   // averages them.
-  evaluate(positions, {}, 0, view);
   std::vector<double> target(static_cast<std::size_t>(channels), 0.0);
-  for (const int c : decoded) target[static_cast<std::size_t>(c)] = mean_of(c);
-  for (int l = 1; l < level_count(); ++l) {
-    const double width = std::exp2(l + kLodBias + 1e-6);
-    const std::vector<Footprint> footprints(kCalibrationSamples,
-                                            Footprint{{width, 0.0}, {0.0, width}});
-    evaluate(positions, footprints, 0, view);
+  measure_levels([&](int l, double, std::span<const float> values) {
+    const auto mean_of = [&](int c) {
+      double sum = 0.0;
+      for (std::size_t i = static_cast<std::size_t>(c); i < values.size(); i += channels)
+        sum += values[i];
+      return sum / static_cast<double>(values.size() / static_cast<std::size_t>(channels));
+    };
+    if (l == 0) {
+      for (const int c : decoded) target[static_cast<std::size_t>(c)] = mean_of(c);
+      return;
+    }
     for (const int c : decoded) {
       const auto shift = static_cast<float>(target[static_cast<std::size_t>(c)] - mean_of(c));
       for (const TableGroup& group : layout_.groups) {
@@ -190,7 +202,7 @@ void TilingModel::calibrate_colour() {
         }
       }
     }
-  }
+  });
 }
 
 void TilingModel::calibrate_decoded(const std::function<float(int, double)>& removed) {
@@ -206,30 +218,23 @@ void TilingModel::calibrate_decoded(const std::function<float(int, double)>& rem
         }
   if (groups.empty()) return;
   const int channels = data_.channels;
-  constexpr int kCalibrationSamples = 32768;
-  const std::vector<Vec2d> positions = spread_positions(kCalibrationSamples, 0x9e3779b97f4a7c15ull);
-  std::vector<float> out(static_cast<std::size_t>(kCalibrationSamples) * channels);
-  const ImageView<float> view{out.data(), kCalibrationSamples, 1, channels,
-                              static_cast<std::ptrdiff_t>(kCalibrationSamples) * channels};
-  // The mean of D(v + shift, deviation) over the values v of channel c.
-  const auto decoded_mean = [&](int c, float shift, float deviation) {
-    double sum = 0.0;
-    for (int i = 0; i < kCalibrationSamples; ++i)
-      sum += expected_decoded(out[static_cast<std::size_t>(i) * channels + c] + shift, deviation);
-    return sum / kCalibrationSamples;
-  };
   const auto srgb = [&](int c) {
     return data_.colour[static_cast<std::size_t>(c)] == ColourSpace::srgb;
   };
-  evaluate(positions, {}, 0, view);
   std::vector<double> target(static_cast<std::size_t>(channels), 0.0);
-  for (int c = 0; c < channels; ++c)
-    if (srgb(c)) target[static_cast<std::size_t>(c)] = decoded_mean(c, 0.0f, removed(c, 0.0));
-  for (int l = 1; l < level_count(); ++l) {
-    const double width = std::exp2(l + kLodBias + 1e-6);
-    const std::vector<Footprint> footprints(kCalibrationSamples,
-                                            Footprint{{width, 0.0}, {0.0, width}});
-    evaluate(positions, footprints, 0, view);
+  measure_levels([&](int l, double width, std::span<const float> values) {
+    // The mean of D(v + shift, deviation) over the values v of channel c.
+    const auto decoded_mean = [&](int c, float shift, float deviation) {
+      double sum = 0.0;
+      for (std::size_t i = static_cast<std::size_t>(c); i < values.size(); i += channels)
+        sum += expected_decoded(values[i] + shift, deviation);
+      return sum / static_cast<double>(values.size() / static_cast<std::size_t>(channels));
+    };
+    if (l == 0) {
+      for (int c = 0; c < channels; ++c)
+        if (srgb(c)) target[static_cast<std::size_t>(c)] = decoded_mean(c, 0.0f, removed(c, 0.0));
+      return;
+    }
     for (const TableGroup* group : groups) {
       // The shift of each output channel that the decoded mean asks for: Newton's method, the
       // slope by central differences.
@@ -251,45 +256,20 @@ void TilingModel::calibrate_decoded(const std::function<float(int, double)>& rem
         }
         shift[static_cast<std::size_t>(k)] = s;
       }
-      // The output is mean + B t (from_decorrelated): tables shifted by d with B d = shift,
-      // solved by Gaussian elimination with partial pivoting.
-      std::array<std::array<double, kMaxChannels + 1>, kMaxChannels> system{};
-      for (int r = 0; r < cc; ++r) {
-        for (int k = 0; k < cc; ++k)
-          system[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)] =
-              data_.colour_basis[static_cast<std::size_t>(group->first_basis + r * cc + k)];
-        system[static_cast<std::size_t>(r)][static_cast<std::size_t>(cc)] =
-            shift[static_cast<std::size_t>(r)];
-      }
-      for (int k = 0; k < cc; ++k) {
-        int pivot = k;
-        for (int r = k + 1; r < cc; ++r)
-          if (std::abs(system[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)]) >
-              std::abs(system[static_cast<std::size_t>(pivot)][static_cast<std::size_t>(k)]))
-            pivot = r;
-        std::swap(system[static_cast<std::size_t>(k)], system[static_cast<std::size_t>(pivot)]);
-        const auto& row = system[static_cast<std::size_t>(k)];
-        if (row[static_cast<std::size_t>(k)] == 0.0) return;  // a singular basis: left as is
-        for (int r = 0; r < cc; ++r) {
-          if (r == k) continue;
-          auto& other = system[static_cast<std::size_t>(r)];
-          const double factor =
-              other[static_cast<std::size_t>(k)] / row[static_cast<std::size_t>(k)];
-          for (int j = k; j <= cc; ++j)
-            other[static_cast<std::size_t>(j)] -= factor * row[static_cast<std::size_t>(j)];
-        }
-      }
+      // The output is mean + B t (from_decorrelated) with B the group's PCA basis, orthonormal:
+      // the tables shift by B^T shift, as the analysis projects the colours by B^T.
       float* tables = level_tables_.data() + static_cast<std::size_t>(l) * table_floats_ +
                       static_cast<std::size_t>(group->first_table) * data_.table_size;
       for (int k = 0; k < cc; ++k) {
-        const auto& row = system[static_cast<std::size_t>(k)];
-        const auto d = static_cast<float>(row[static_cast<std::size_t>(cc)] /
-                                          row[static_cast<std::size_t>(k)]);
+        double d = 0.0;
+        for (int c = 0; c < cc; ++c)
+          d += data_.colour_basis[static_cast<std::size_t>(group->first_basis + c * cc + k)] *
+               shift[static_cast<std::size_t>(c)];
         for (int i = 0; i < data_.table_size; ++i)
-          tables[static_cast<std::size_t>(k) * data_.table_size + i] += d;
+          tables[static_cast<std::size_t>(k) * data_.table_size + i] += static_cast<float>(d);
       }
     }
-  }
+  });
 }
 
 bool TilingModel::decodes_in_tables(int channel) const noexcept {

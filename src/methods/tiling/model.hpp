@@ -232,6 +232,12 @@ class TilingModel {
   // The level tables of the channels decoded in them, corrected so that each level's renders
   // average what point samples average (docs/design.md §14).
   void calibrate_colour();
+  // What the calibrations measure: the model's values (channels interleaved) at 32 768 positions
+  // far apart (independent patches), seed 0, as point samples, at_level(0, 0, values), then with
+  // the footprint of each level l >= 1, at_level(l, its width, values), in that order (a
+  // calibration may shift level l's tables before level l + 1 is measured).
+  void measure_levels(
+      const std::function<void(int, double, std::span<const float>)>& at_level) const;
   // evaluate's vectorised path (simd.hpp), when simd_ready_.
   SimdTiling simd_tiling() const noexcept;
   void evaluate_simd(std::span<const Vec2d> positions, std::span<const Footprint> footprints,
